@@ -1,0 +1,84 @@
+#include "InfoCommand.h"
+
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "VolumeReport.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/io/VolumeReader.h"
+
+namespace mvw::app {
+
+namespace {
+
+struct InfoOptions {
+  std::vector<std::string> paths;
+  std::string series;
+  bool json = false;
+  bool noSuv = false;
+};
+
+bool isStudyConfig(const std::filesystem::path& p) { return p.extension() == ".json"; }
+
+void runInfo(const InfoOptions& opt) {
+  // Read everything first: a bad input anywhere means no partial report.
+  struct Item {
+    std::string role;
+    Volume volume;
+  };
+  std::vector<Item> items;
+  io::ReadOptions read;
+  read.series = opt.series;
+  read.suv = !opt.noSuv;
+  for (const auto& p : opt.paths) {
+    if (isStudyConfig(p)) {
+      const auto study = config::loadStudyConfig(p);
+      io::ReadOptions a = read;
+      a.series = study.anatomical.series;
+      items.push_back({"anatomical", io::readVolume(study.anatomical.path, a)});
+      if (study.functional) {
+        io::ReadOptions f = read;
+        f.series = study.functional->series;
+        items.push_back({"functional (" + config::toString(study.functionalKind) + ")",
+                         io::readVolume(study.functional->path, f)});
+      }
+    } else {
+      for (auto& v : io::readAllVolumes(p, read)) items.push_back({"", std::move(v)});
+    }
+  }
+  if (opt.json) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& item : items) {
+      auto j = volumeJson(item.volume);
+      if (!item.role.empty()) j["role"] = item.role;
+      out.push_back(j);
+    }
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i) std::cout << "\n";
+    if (!items[i].role.empty()) std::cout << "[" << items[i].role << "] ";
+    printVolume(std::cout, items[i].volume);
+  }
+}
+
+}  // namespace
+
+void addInfoCommand(CLI::App& app) {
+  auto opt = std::make_shared<InfoOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "info", "Describe volumes: DICOM folders or files, NIfTI, MetaImage, or a study config (.json)");
+  cmd->add_option("paths", opt->paths, "Files, DICOM folders or study configs")->required();
+  cmd->add_option("--series", opt->series, "DICOM series to show: UID, number or part of the description");
+  cmd->add_flag("--json", opt->json, "Print JSON instead of text");
+  cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
+  cmd->callback([opt] { runInfo(*opt); });
+}
+
+}  // namespace mvw::app

@@ -1,0 +1,35 @@
+// mvw: multimodal volume workstation. One CLI, one subcommand per job.
+// Exit codes: 0 success, 1 internal fault, 2 bad input (file, config or command line).
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "InfoCommand.h"
+#include "mvw/core/Error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"mvw - multimodal volume workstation: anatomy + functional volumes, registered and rendered"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "mvw 0.1.0");
+  mvw::app::addInfoCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  } catch (const mvw::InputError& e) {
+    std::cerr << "mvw: error: " << e.what() << "\n";
+    return 2;
+  } catch (const mvw::Error& e) {
+    std::cerr << "mvw: internal error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "mvw: internal error: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "mvw: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

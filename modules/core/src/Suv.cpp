@@ -1,0 +1,45 @@
+#include "mvw/core/Suv.h"
+
+#include <cctype>
+#include <cmath>
+
+namespace mvw {
+
+std::optional<double> suvbwFactor(const PetDose& dose, std::string* why) {
+  auto fail = [&](const char* reason) -> std::optional<double> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  if (!(dose.injectedDoseBq > 0)) return fail("RadionuclideTotalDose missing or not positive");
+  if (!(dose.patientWeightKg > 0)) return fail("PatientWeight missing or not positive");
+  double doseAtReference = dose.injectedDoseBq;
+  if (dose.decayCorrection == "START") {
+    if (!(dose.halfLifeSeconds > 0)) return fail("RadionuclideHalfLife missing or not positive");
+    double dt = dose.referenceTimeSeconds - dose.injectionTimeSeconds;
+    if (dt < 0) dt += 24.0 * 3600.0;  // the scan started after midnight, the injection before
+    doseAtReference = dose.injectedDoseBq * std::exp2(-dt / dose.halfLifeSeconds);
+  } else if (dose.decayCorrection != "ADMIN") {
+    return fail("DecayCorrection is neither START nor ADMIN");
+  }
+  return dose.patientWeightKg * 1000.0 / doseAtReference;
+}
+
+std::optional<double> parseDicomTime(const std::string& tm) {
+  std::string digits;
+  std::size_t i = 0;
+  for (; i < tm.size() && tm[i] != '.'; ++i) {
+    if (std::isdigit(static_cast<unsigned char>(tm[i]))) digits += tm[i];
+    else if (tm[i] != ':' && tm[i] != ' ') return std::nullopt;
+  }
+  if (digits.size() < 2 || digits.size() > 6 || digits.size() % 2) return std::nullopt;
+  digits.resize(6, '0');
+  const int h = std::stoi(digits.substr(0, 2)), m = std::stoi(digits.substr(2, 2)),
+            s = std::stoi(digits.substr(4, 2));
+  if (h > 23 || m > 59 || s > 60) return std::nullopt;
+  double fraction = 0.0, scale = 0.1;
+  for (++i; i < tm.size() && std::isdigit(static_cast<unsigned char>(tm[i])); ++i, scale /= 10)
+    fraction += (tm[i] - '0') * scale;
+  return h * 3600.0 + m * 60.0 + s + fraction;
+}
+
+}  // namespace mvw

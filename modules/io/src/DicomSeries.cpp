@@ -1,0 +1,343 @@
+// DICOM series through vtk-dicom: vtkDICOMDirectory groups the files of a folder (or one file)
+// into series, vtkDICOMReader sorts the slices along the slice normal, decodes (GDCM for
+// compressed transfer syntaxes), applies the rescale to physical units and gives the
+// patient matrix (LPS). Before any pixel is read, each file's pixel-data size is checked
+// against the file and the whole volume against the memory limit.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <string>
+
+#include <vtkDICOMDictHash.h>
+#include <vtkDICOMDirectory.h>
+#include <vtkDICOMItem.h>
+#include <vtkDICOMMetaData.h>
+#include <vtkDICOMParser.h>
+#include <vtkDICOMReader.h>
+#include <vtkDICOMTagPath.h>
+#include <vtkDICOMValue.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkIntArray.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStringArray.h>
+
+#include "FileChecks.h"
+#include "Formats.h"
+#include "VtkBridge.h"
+#include "VtkMessages.h"
+#include "mvw/core/Error.h"
+#include "mvw/core/Suv.h"
+
+namespace mvw::io::detail {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SeriesRef {
+  int index = 0;
+  std::string uid, description, modality;
+  int number = -1;
+};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string describe(const SeriesRef& s) {
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+  std::string out = "#";
+  out += std::to_string(s.number);
+  out += " " + s.modality + " \"" + s.description + "\" (" + s.uid + ")";
+  return out;
+}
+
+bool matches(const SeriesRef& s, const std::string& want) {
+  if (want == s.uid) return true;
+  if (!want.empty() && std::all_of(want.begin(), want.end(), ::isdigit) && std::stoll(want) == s.number) return true;
+  return !want.empty() && lower(s.description).find(lower(want)) != std::string::npos;
+}
+
+bool isUncompressed(const std::string& ts) {
+  // Implicit VR LE, explicit VR LE, explicit VR BE; empty: no meta header (implicit VR LE).
+  return ts.empty() || ts == "1.2.840.10008.1.2" || ts == "1.2.840.10008.1.2.1" || ts == "1.2.840.10008.1.2.2";
+}
+
+// Refuses files whose header claims more pixel data than the file holds (uncompressed only:
+// a compressed stream's length says nothing about the decoded size).
+void checkPixelDataSizes(vtkDICOMMetaData* meta, vtkStringArray* files) {
+  for (vtkIdType f = 0; f < files->GetNumberOfValues(); ++f) {
+    const fs::path file(files->GetValue(f).c_str());
+    const long long rows = meta->Get(static_cast<int>(f), DC::Rows).AsInt64();
+    const long long cols = meta->Get(static_cast<int>(f), DC::Columns).AsInt64();
+    const long long bits = meta->Get(static_cast<int>(f), DC::BitsAllocated).AsInt64();
+    long long spp = meta->Get(static_cast<int>(f), DC::SamplesPerPixel).AsInt64();
+    long long frames = meta->Get(static_cast<int>(f), DC::NumberOfFrames).AsInt64();
+    if (spp <= 0) spp = 1;
+    if (frames <= 0) frames = 1;
+    if (rows <= 0 || cols <= 0) throw InputError(file, "Rows or Columns missing or not positive");
+    if (bits != 1 && bits != 8 && bits != 16 && bits != 32 && bits != 64)
+      throw InputError(file, "unsupported BitsAllocated " + std::to_string(bits));
+    if (spp > 4) throw InputError(file, "unsupported SamplesPerPixel " + std::to_string(spp));
+    if (frames > (1 << 20)) throw InputError(file, "implausible NumberOfFrames " + std::to_string(frames));
+    const std::string ts = meta->Get(static_cast<int>(f), DC::TransferSyntaxUID).AsString();
+    if (!isUncompressed(ts)) continue;
+    // YBR_FULL_422 stores two samples per pixel on average, not three.
+    if (meta->Get(static_cast<int>(f), DC::PhotometricInterpretation).AsString() == "YBR_FULL_422") spp = 2;
+    // Each factor is bounded above (rows, columns < 2^32, spp <= 4, frames <= 2^20, bits <= 64).
+    const double need = std::ceil(static_cast<double>(rows) * cols * spp * frames * bits / 8.0);
+    const std::uintmax_t have = regularFileSize(file);
+    if (need > static_cast<double>(have))
+      throw InputError(file, "truncated: the header describes " + std::to_string(static_cast<unsigned long long>(need)) +
+                                 " bytes of pixel data but the file has only " + std::to_string(have) + " bytes");
+  }
+}
+
+void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& options) {
+  auto& md = volume.metadata();
+  const std::string rescaleType = meta->Get(0, DC::RescaleType).AsString();
+  if (md.modality == "CT") {
+    md.unit = rescaleType.empty() ? "HU" : rescaleType;
+    return;
+  }
+  if (md.modality != "PT") {
+    md.unit = rescaleType == "US" ? "" : rescaleType;
+    return;
+  }
+  const std::string units = meta->Get(0, DC::Units).AsString();
+  if (units != "BQML") {
+    md.unit = units.empty() ? "" : units;
+    md.notes.push_back("PET Units is '" + units + "', not BQML: values kept as stored, no SUV");
+    return;
+  }
+  md.unit = "Bq/ml";
+  if (!options.suv) {
+    md.notes.push_back("SUV conversion turned off: values in Bq/ml");
+    return;
+  }
+  PetDose dose;
+  const vtkDICOMTag seq = DC::RadiopharmaceuticalInformationSequence;
+  dose.injectedDoseBq = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadionuclideTotalDose)).AsDouble();
+  dose.halfLifeSeconds = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadionuclideHalfLife)).AsDouble();
+  dose.patientWeightKg = meta->Get(0, DC::PatientWeight).AsDouble();
+  dose.decayCorrection = meta->Get(0, DC::DecayCorrection).AsString();
+  std::string start = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartTime)).AsString();
+  if (start.empty()) {
+    const std::string dt = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartDateTime)).AsString();
+    if (dt.size() > 8) start = dt.substr(8);
+  }
+  std::string reference = meta->Get(0, DC::SeriesTime).AsString();
+  if (reference.empty()) reference = meta->Get(0, DC::AcquisitionTime).AsString();
+  const auto injection = parseDicomTime(start);
+  const auto ref = parseDicomTime(reference);
+  std::string why;
+  std::optional<double> factor;
+  if (dose.decayCorrection == "START" && (!injection || !ref)) {
+    why = "injection time or series time missing";
+  } else {
+    dose.injectionTimeSeconds = injection.value_or(0.0);
+    dose.referenceTimeSeconds = ref.value_or(0.0);
+    factor = suvbwFactor(dose, &why);
+  }
+  if (!factor) {
+    md.notes.push_back("values in Bq/ml: SUVbw not computed (" + why + ")");
+    return;
+  }
+  VolumeMetadata keep = md;
+  volume = volume.converted(ScalarType::Float32, *factor, 0.0);
+  volume.metadata() = keep;
+  volume.metadata().unit = "SUVbw";
+  volume.metadata().notes.push_back("SUVbw = Bq/ml x " + std::to_string(*factor) +
+                                    " (weight " + std::to_string(dose.patientWeightKg) + " kg, dose " +
+                                    std::to_string(dose.injectedDoseBq) + " Bq, decay correction " +
+                                    dose.decayCorrection + ")");
+}
+
+std::optional<SliceSpacing> sliceSpacing(vtkDICOMReader* reader, const glm::dvec3& normal) {
+  vtkIntArray* fileIndex = reader->GetFileIndexArray();
+  vtkIntArray* frameIndex = reader->GetFrameIndexArray();
+  vtkDICOMMetaData* meta = reader->GetMetaData();
+  if (!fileIndex || !frameIndex || fileIndex->GetNumberOfTuples() < 2) return std::nullopt;
+  std::vector<double> positions;
+  for (vtkIdType s = 0; s < fileIndex->GetNumberOfTuples(); ++s) {
+    const vtkDICOMValue& ipp = meta->Get(fileIndex->GetComponent(s, 0), frameIndex->GetComponent(s, 0),
+                                         DC::ImagePositionPatient);
+    if (ipp.GetNumberOfValues() != 3) return std::nullopt;
+    positions.push_back(ipp.GetDouble(0) * normal.x + ipp.GetDouble(1) * normal.y + ipp.GetDouble(2) * normal.z);
+  }
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < positions.size(); ++i) gaps.push_back(std::abs(positions[i] - positions[i - 1]));
+  SliceSpacing out;
+  out.slices = static_cast<int>(positions.size());
+  std::vector<double> sorted = gaps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  out.nominal = sorted[sorted.size() / 2];
+  out.minimum = *std::min_element(gaps.begin(), gaps.end());
+  out.maximum = *std::max_element(gaps.begin(), gaps.end());
+  const double tol = std::max(0.01, 0.01 * out.nominal);
+  out.regular = out.maximum - out.nominal <= tol && out.nominal - out.minimum <= tol;
+  return out;
+}
+
+Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& ref,
+                  const ReadOptions& options) {
+  const fs::path first(files->GetValue(0).c_str());
+  VtkMessageScope messages;
+  vtkNew<vtkDICOMReader> reader;
+  reader->SetFileNames(files);
+  reader->SetMemoryRowOrderToFileNative();  // voxel (0,0) is the first pixel of the file
+  reader->TimeAsVectorOn();                 // time frames become components, as for NIfTI
+  reader->AutoRescaleOn();
+  reader->UpdateInformation();
+  if (!messages.firstError().empty()) throw InputError(first, "cannot read the DICOM header: " + messages.firstError());
+  checkPixelDataSizes(reader->GetMetaData(), files);
+
+  vtkInformation* info = reader->GetOutputInformation(0);
+  int extent[6];
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  const glm::ivec3 dims{extent[1] - extent[0] + 1, extent[3] - extent[2] + 1, extent[5] - extent[4] + 1};
+  const int components = std::max(1, vtkImageData::GetNumberOfScalarComponents(info));
+  const int typeSize = vtkDataArray::GetDataTypeSize(vtkImageData::GetScalarType(info));
+  checkedVolumeBytes(first, dims, components, static_cast<std::size_t>(std::max(typeSize, 1)), options.maxBytes);
+
+  reader->Update();
+  if (!messages.firstError().empty() || reader->GetErrorCode() != 0) {
+    std::string why = messages.firstError();
+    if (why.empty()) why = "error code " + std::to_string(reader->GetErrorCode());
+    throw InputError(first, "cannot read the DICOM pixel data: " + why);
+  }
+  vtkImageData* image = reader->GetOutput();
+  Volume volume = volumeFromImage(image, first);
+  double origin[3], spacing[3];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  glm::dmat4 patientFromData(1.0);
+  if (vtkMatrix4x4* p = reader->GetPatientMatrix()) {
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) patientFromData[c][r] = p->GetElement(r, c);
+  }
+  glm::dmat4 dataFromIndex(1.0);
+  for (int a = 0; a < 3; ++a) {
+    dataFromIndex[a][a] = spacing[a] > 0 ? spacing[a] : 1.0;
+    dataFromIndex[3][a] = origin[a];
+  }
+  volume.setWorldFromIndex(patientFromData * dataFromIndex);
+
+  vtkDICOMMetaData* meta = reader->GetMetaData();
+  auto& md = volume.metadata();
+  md.format = "DICOM";
+  md.sourcePath = path.string();
+  md.modality = ref.modality.empty() ? meta->Get(0, DC::Modality).AsString() : ref.modality;
+  md.seriesInstanceUid = ref.uid;
+  md.seriesDescription = ref.description;
+  md.seriesNumber = ref.number;
+  if (meta->Get(0, DC::ImageOrientationPatient).GetNumberOfValues() != 6)
+    md.notes.push_back("no ImageOrientationPatient: patient orientation unknown, axes assumed LPS");
+  md.sliceSpacing = sliceSpacing(reader, glm::normalize(glm::dvec3(patientFromData[2])));
+  if (md.sliceSpacing && !md.sliceSpacing->regular)
+    md.notes.push_back("irregular slice spacing: the volume uses one spacing of " + std::to_string(spacing[2]) + " mm");
+  if (reader->GetStackIDs() && reader->GetStackIDs()->GetNumberOfValues() > 1)
+    md.notes.push_back("series holds several stacks; the first was read");
+  if (reader->GetTimeDimension() > 1)
+    md.notes.push_back(std::to_string(reader->GetTimeDimension()) + " time points stored as components");
+  fillUnitAndSuv(volume, meta, options);
+  return volume;
+}
+
+SeriesRef seriesRefFrom(vtkDICOMMetaData* meta) {
+  SeriesRef s;
+  s.uid = meta->Get(DC::SeriesInstanceUID).AsString();
+  s.description = meta->Get(DC::SeriesDescription).AsString();
+  s.number = meta->Get(DC::SeriesNumber).IsValid() ? meta->Get(DC::SeriesNumber).AsInt() : -1;
+  s.modality = meta->Get(DC::Modality).AsString();
+  return s;
+}
+
+// One file: parsed directly, so files without a Part 10 meta header still load and a file
+// that is not an image says what it is.
+Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
+  regularFileSize(path);
+  VtkMessageScope messages;
+  vtkNew<vtkDICOMMetaData> meta;
+  vtkNew<vtkDICOMParser> parser;
+  parser->SetMetaData(meta);
+  parser->SetFileName(path.c_str());
+  parser->Update();
+  if (!messages.firstError().empty() || parser->GetErrorCode() != 0) {
+    const std::string why = messages.firstError();
+    throw InputError(path, "not a readable DICOM file" + (why.empty() ? std::string() : ": " + why));
+  }
+  if (!parser->GetPixelDataFound()) {
+    const std::string modality = meta->Get(DC::Modality).AsString();
+    throw InputError(path, "no pixel data: " + (modality.empty() ? std::string("this DICOM object") : "a " + modality + " object") +
+                               " is not an image volume");
+  }
+  if (!meta->Has(DC::Rows) || !meta->Has(DC::Columns))
+    throw InputError(path, "pixel data without Rows and Columns: not a usable image");
+  vtkNew<vtkStringArray> files;
+  files->InsertNextValue(path.string());
+  return readSeries(path, files, seriesRefFrom(meta), options);
+}
+
+}  // namespace
+
+std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, bool allSeries) {
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) {
+    std::vector<Volume> one;
+    one.push_back(readSingleFile(path, options));
+    return one;
+  }
+  VtkMessageScope messages;
+  vtkNew<vtkDICOMDirectory> dir;
+  dir->SetDirectoryName(path.c_str());
+  dir->SetScanDepth(8);
+  dir->RequirePixelDataOn();
+  dir->Update();
+  std::vector<SeriesRef> series;
+  for (int i = 0; i < dir->GetNumberOfSeries(); ++i) {
+    const vtkDICOMItem& rec = dir->GetSeriesRecord(i);
+    SeriesRef s;
+    s.index = i;
+    s.uid = rec.Get(DC::SeriesInstanceUID).AsString();
+    s.description = rec.Get(DC::SeriesDescription).AsString();
+    s.number = rec.Get(DC::SeriesNumber).IsValid() ? rec.Get(DC::SeriesNumber).AsInt() : -1;
+    vtkDICOMMetaData* meta = dir->GetMetaDataForSeries(i);
+    s.modality = meta ? meta->Get(DC::Modality).AsString() : "";
+    series.push_back(s);
+  }
+  if (series.empty()) {
+    const std::string err = messages.firstError();
+    throw InputError(path, err.empty() ? "no DICOM image series in this folder (files without pixel "
+                                         "data, such as RT plans, structure sets and reports, are not volumes)"
+                                       : "no readable DICOM image series: " + err);
+  }
+  std::vector<SeriesRef> chosen;
+  if (!options.series.empty()) {
+    for (const auto& s : series)
+      if (matches(s, options.series)) chosen.push_back(s);
+    if (chosen.empty()) {
+      std::string list;
+      for (const auto& s : series) list += "\n  " + describe(s);
+      throw InputError(path, "no series matches '" + options.series + "'; the series are:" + list);
+    }
+  } else {
+    chosen = series;
+  }
+  if (!allSeries && chosen.size() > 1) {
+    std::string list;
+    for (const auto& s : chosen) list += "\n  " + describe(s);
+    throw InputError(path, std::to_string(chosen.size()) +
+                               " series here; choose one by UID, number or description:" + list);
+  }
+  std::vector<Volume> volumes;
+  for (const auto& s : chosen) volumes.push_back(readSeries(path, dir->GetFileNamesForSeries(s.index), s, options));
+  return volumes;
+}
+
+}  // namespace mvw::io::detail

@@ -1,0 +1,66 @@
+#include "FileChecks.h"
+
+#include <limits>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::io::detail {
+
+std::uintmax_t regularFileSize(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw InputError(path, "file not found");
+  if (!std::filesystem::is_regular_file(status)) throw InputError(path, "not a regular file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path, "cannot read the file size: " + ec.message());
+  return size;
+}
+
+std::uintmax_t companionFileSize(const std::filesystem::path& header, const std::filesystem::path& data) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(data, ec))
+    throw InputError(header, "its data file " + data.string() + " is missing");
+  return regularFileSize(data);
+}
+
+std::size_t checkedVolumeBytes(const std::filesystem::path& file, glm::ivec3 dims,
+                               long long components, std::size_t bytesPerValue,
+                               std::size_t maxBytes) {
+  if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0 || components <= 0)
+    throw InputError(file, "header gives non-positive dimensions " + std::to_string(dims.x) + " x " +
+                               std::to_string(dims.y) + " x " + std::to_string(dims.z) + " x " +
+                               std::to_string(components));
+  unsigned long long bytes = bytesPerValue;
+  bool overflow = false;
+  for (unsigned long long factor : {static_cast<unsigned long long>(dims.x), static_cast<unsigned long long>(dims.y),
+                                    static_cast<unsigned long long>(dims.z), static_cast<unsigned long long>(components)})
+    overflow |= __builtin_mul_overflow(bytes, factor, &bytes);
+  if (overflow || bytes > maxBytes)
+    throw InputError(file, "header claims " + std::to_string(dims.x) + " x " +
+                               std::to_string(dims.y) + " x " + std::to_string(dims.z) + " x " +
+                               std::to_string(components) + " values (" + (overflow ? std::string("more than 2^64 bytes")
+                                         : std::to_string(bytes >> 20) + " MiB") + "), more than the limit of " +
+                               std::to_string(maxBytes >> 20) + " MiB");
+  return static_cast<std::size_t>(bytes);
+}
+
+void writeAtomically(const std::filesystem::path& path,
+                     const std::function<void(const std::filesystem::path&)>& write) {
+  // The temporary keeps the real extension(s) so extension-driven writers (.nii.gz) still work.
+  std::filesystem::path tmp = path.parent_path() /
+                              (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+  try {
+    write(tmp);
+    std::filesystem::rename(tmp, path);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
+}
+
+}  // namespace mvw::io::detail

@@ -1,0 +1,69 @@
+#include "mvw/io/VolumeReader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "FileChecks.h"
+#include "Formats.h"
+#include "mvw/core/Error.h"
+
+namespace mvw::io {
+
+namespace fs = std::filesystem;
+
+std::size_t defaultMaxBytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || pageSize <= 0) return std::size_t{4} << 30;
+  return static_cast<std::size_t>(pages) * static_cast<std::size_t>(pageSize) / 4;
+}
+
+FileFormat detectFormat(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return FileFormat::Dicom;
+  std::string name = path.filename().string();
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  auto ends = [&](const char* s) {
+    const std::string suffix(s);
+    return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (ends(".nii") || ends(".nii.gz") || ends(".hdr") || ends(".hdr.gz")) return FileFormat::Nifti;
+  if (ends(".mha") || ends(".mhd")) return FileFormat::MetaImage;
+  if (ends(".dcm") || ends(".ima") || path.extension().empty()) return FileFormat::Dicom;
+  // Unknown extension: DICOM files carry "DICM" at byte 128 (most of them).
+  std::ifstream in(path, std::ios::binary);
+  char magic[132] = {};
+  if (in.read(magic, sizeof magic) && std::string(magic + 128, 4) == "DICM") return FileFormat::Dicom;
+  return FileFormat::Unknown;
+}
+
+std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& given) {
+  ReadOptions options = given;
+  if (options.maxBytes == 0) options.maxBytes = defaultMaxBytes();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
+  switch (detectFormat(path)) {
+    case FileFormat::Dicom: return detail::readDicom(path, options, true);
+    case FileFormat::Nifti: { std::vector<Volume> v; v.push_back(detail::readNifti(path, options)); return v; }
+    case FileFormat::MetaImage: { std::vector<Volume> v; v.push_back(detail::readMetaImage(path, options)); return v; }
+    case FileFormat::Unknown: break;
+  }
+  throw InputError(path, "unknown file type (expected a DICOM file or folder, .nii, .nii.gz, .hdr, .mha or .mhd)");
+}
+
+Volume readVolume(const fs::path& path, const ReadOptions& given) {
+  ReadOptions options = given;
+  if (options.maxBytes == 0) options.maxBytes = defaultMaxBytes();
+  if (detectFormat(path) == FileFormat::Dicom) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
+    auto volumes = detail::readDicom(path, options, false);
+    return std::move(volumes.front());
+  }
+  auto volumes = readAllVolumes(path, options);
+  return std::move(volumes.front());
+}
+
+}  // namespace mvw::io

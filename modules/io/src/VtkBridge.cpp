@@ -1,0 +1,70 @@
+#include "VtkBridge.h"
+
+#include <cstring>
+
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkType.h>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::io::detail {
+
+namespace {
+
+bool scalarTypeFromVtk(int vtkType, ScalarType* out) {
+  switch (vtkType) {
+    case VTK_UNSIGNED_CHAR: *out = ScalarType::UInt8; return true;
+    case VTK_SIGNED_CHAR:
+    case VTK_CHAR: *out = ScalarType::Int8; return true;
+    case VTK_UNSIGNED_SHORT: *out = ScalarType::UInt16; return true;
+    case VTK_SHORT: *out = ScalarType::Int16; return true;
+    case VTK_UNSIGNED_INT: *out = ScalarType::UInt32; return true;
+    case VTK_INT: *out = ScalarType::Int32; return true;
+    case VTK_FLOAT: *out = ScalarType::Float32; return true;
+    case VTK_DOUBLE: *out = ScalarType::Float64; return true;
+    default: return false;
+  }
+}
+
+int vtkTypeFromScalar(ScalarType type) {
+  switch (type) {
+    case ScalarType::UInt8: return VTK_UNSIGNED_CHAR;
+    case ScalarType::Int8: return VTK_SIGNED_CHAR;
+    case ScalarType::UInt16: return VTK_UNSIGNED_SHORT;
+    case ScalarType::Int16: return VTK_SHORT;
+    case ScalarType::UInt32: return VTK_UNSIGNED_INT;
+    case ScalarType::Int32: return VTK_INT;
+    case ScalarType::Float32: return VTK_FLOAT;
+    case ScalarType::Float64: return VTK_DOUBLE;
+  }
+  return VTK_DOUBLE;
+}
+
+}  // namespace
+
+Volume volumeFromImage(vtkImageData* image, const std::filesystem::path& file) {
+  int dims[3];
+  image->GetDimensions(dims);
+  ScalarType type;
+  if (!scalarTypeFromVtk(image->GetScalarType(), &type))
+    throw InputError(file, std::string("unsupported voxel type ") + image->GetScalarTypeAsString());
+  const int components = image->GetNumberOfScalarComponents();
+  if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0 || components <= 0 ||
+      image->GetPointData()->GetScalars() == nullptr)
+    throw InputError(file, "no voxel data could be read");
+  Volume volume({dims[0], dims[1], dims[2]}, components, type, glm::dmat4(1.0));
+  std::memcpy(volume.data(), image->GetScalarPointer(), volume.byteSize());
+  return volume;
+}
+
+vtkSmartPointer<vtkImageData> imageFromVolume(const Volume& volume) {
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  const glm::ivec3 d = volume.dimensions();
+  image->SetDimensions(d.x, d.y, d.z);
+  image->AllocateScalars(vtkTypeFromScalar(volume.scalarType()), volume.components());
+  std::memcpy(image->GetScalarPointer(), volume.data(), volume.byteSize());
+  return image;
+}
+
+}  // namespace mvw::io::detail

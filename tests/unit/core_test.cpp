@@ -1,0 +1,98 @@
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "mvw/core/Orientation.h"
+#include "mvw/core/Suv.h"
+#include "mvw/core/Volume.h"
+
+namespace mvw {
+namespace {
+
+TEST(Volume, GeometryComesBackFromWorldFromIndex) {
+  const glm::dmat3 rot = glm::dmat3(glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(1, 2, 3)));
+  const glm::dvec3 spacing(0.7, 1.1, 3.5), origin(-10.5, 20.25, 7.0);
+  Volume v({7, 5, 3}, 1, ScalarType::Int16, makeWorldFromIndex(origin, spacing, rot));
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(v.spacing()[a], spacing[a], 1e-12);
+    EXPECT_NEAR(v.origin()[a], origin[a], 1e-12);
+    for (int b = 0; b < 3; ++b) EXPECT_NEAR(v.direction()[a][b], rot[a][b], 1e-12);
+  }
+  // Voxel (2, 1, 1) lies at origin + 2*sx*i_dir + 1*sy*j_dir + 1*sz*k_dir.
+  const glm::dvec3 expected = origin + rot[0] * (2 * 0.7) + rot[1] * 1.1 + rot[2] * 3.5;
+  const glm::dvec3 got = v.worldFromIndexPoint({2, 1, 1});
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(got[a], expected[a], 1e-12);
+  EXPECT_EQ(v.byteSize(), 7u * 5 * 3 * 2);
+}
+
+TEST(Volume, ValuesAndRangeIgnoreNaN) {
+  Volume v({3, 2, 2}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  v.setValue(0, 0, 0, 0, -4.5);
+  v.setValue(2, 1, 1, 0, 12.0);
+  v.setValue(1, 1, 0, 0, std::numeric_limits<double>::quiet_NaN());
+  const auto [lo, hi] = v.valueRange();
+  EXPECT_EQ(lo, -4.5);
+  EXPECT_EQ(hi, 12.0);
+  EXPECT_EQ(v.value(2, 1, 1), 12.0);
+}
+
+TEST(Volume, ConvertedAppliesSlopeAndIntercept) {
+  Volume v({2, 1, 1}, 2, ScalarType::Int16, glm::dmat4(1.0));
+  v.setValue(1, 0, 0, 1, 100);
+  const Volume f = v.converted(ScalarType::Float32, 0.5, -1024);
+  EXPECT_EQ(f.scalarType(), ScalarType::Float32);
+  EXPECT_FLOAT_EQ(static_cast<float>(f.value(1, 0, 0, 1)), -974.0f);
+  EXPECT_FLOAT_EQ(static_cast<float>(f.value(0, 0, 0, 0)), -1024.0f);
+}
+
+TEST(Orientation, CodesNameTheSideEachAxisPointsToward) {
+  EXPECT_EQ(orientationCode(glm::dmat3(1.0)), "LPS");
+  EXPECT_EQ(orientationCode(glm::dmat3(glm::dvec3(-1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1))), "RAS");
+  // Sagittal slices: columns toward P, rows toward I (downward), slices toward L.
+  EXPECT_EQ(orientationCode(glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1), glm::dvec3(1, 0, 0))), "PIL");
+  // Coronal with a 10 degree tilt still reads by its dominant axes, and counts as oblique.
+  const glm::dmat3 tilted = glm::dmat3(glm::rotate(glm::dmat4(1.0), glm::radians(10.0), glm::dvec3(1, 0, 0))) *
+                            glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0));
+  EXPECT_EQ(orientationCode(tilted), "LIP");
+  EXPECT_TRUE(isOblique(tilted));
+  EXPECT_FALSE(isOblique(glm::dmat3(1.0)));
+}
+
+TEST(Suv, StartDecayCorrectionMatchesHandComputation) {
+  // 370 MBq F-18 (T1/2 = 6586.2 s) injected at 10:00:00, series at 11:00:00, 75 kg:
+  // dose at series start = 370e6 * 2^(-3600/6586.2) = 253314180.24 Bq,
+  // factor = 75000 g / 253314180.24 Bq = 2.96075016e-4; 5000 Bq/ml -> SUVbw 1.48037508.
+  PetDose dose{370e6, 6586.2, 75.0, 10 * 3600.0, 11 * 3600.0, "START"};
+  const auto factor = suvbwFactor(dose);
+  ASSERT_TRUE(factor.has_value());
+  EXPECT_NEAR(*factor, 2.960750161260463e-4, 1e-15);
+  EXPECT_NEAR(5000 * *factor, 1.4803750806302316, 1e-12);
+}
+
+TEST(Suv, ScanAfterMidnightAndAdminAndNone) {
+  PetDose wrap{370e6, 6586.2, 75.0, 23.5 * 3600.0, 0.5 * 3600.0, "START"};
+  EXPECT_NEAR(*suvbwFactor(wrap), 2.960750161260463e-4, 1e-15);
+  PetDose admin{370e6, 6586.2, 75.0, 0, 0, "ADMIN"};
+  EXPECT_NEAR(*suvbwFactor(admin), 75000.0 / 370e6, 1e-18);
+  std::string why;
+  PetDose none{370e6, 6586.2, 75.0, 0, 0, "NONE"};
+  EXPECT_FALSE(suvbwFactor(none, &why).has_value());
+  EXPECT_NE(why.find("DecayCorrection"), std::string::npos);
+  PetDose noWeight{370e6, 6586.2, 0.0, 0, 0, "ADMIN"};
+  EXPECT_FALSE(suvbwFactor(noWeight, &why).has_value());
+  EXPECT_NE(why.find("PatientWeight"), std::string::npos);
+}
+
+TEST(Suv, ParsesDicomTimes) {
+  EXPECT_DOUBLE_EQ(*parseDicomTime("101530.5"), 36930.5);
+  EXPECT_DOUBLE_EQ(*parseDicomTime("10:15:30"), 36930.0);
+  EXPECT_DOUBLE_EQ(*parseDicomTime("1015"), 36900.0);
+  EXPECT_FALSE(parseDicomTime("abc").has_value());
+  EXPECT_FALSE(parseDicomTime("256000").has_value());
+  EXPECT_FALSE(parseDicomTime("").has_value());
+}
+
+}  // namespace
+}  // namespace mvw

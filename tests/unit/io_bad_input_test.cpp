@@ -1,0 +1,74 @@
+// Bad files end in one InputError that names the file, before anything large is allocated.
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "TestUtil.h"
+#include "mvw/core/Error.h"
+#include "mvw/io/VolumeReader.h"
+#include "mvw/io/VolumeWriter.h"
+
+namespace mvw::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string refusal(const fs::path& p, const ReadOptions& options = {}) {
+  try {
+    readVolume(p, options);
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(p.filename().string()), std::string::npos) << e.what();
+    return e.problem();
+  }
+  ADD_FAILURE() << p << " was not refused";
+  return {};
+}
+
+std::string bytesOf(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+fs::path smallNifti(const fs::path& dir) {
+  Volume v({9, 8, 7}, 1, ScalarType::Int16, glm::dmat4(1.0));
+  writeVolume(v, dir / "good.nii");
+  return dir / "good.nii";
+}
+
+TEST(BadInput, TruncatedNiftiIsRefusedWithSizes) {
+  const fs::path dir = test::scratchDir();
+  const std::string good = bytesOf(smallNifti(dir));
+  std::ofstream(dir / "cut.nii", std::ios::binary) << good.substr(0, good.size() - 1);
+  EXPECT_NE(refusal(dir / "cut.nii").find("truncated"), std::string::npos);
+}
+
+TEST(BadInput, HeaderLargerThanTheLimitIsRefusedBeforeReading) {
+  const fs::path dir = test::scratchDir();
+  const fs::path p = smallNifti(dir);
+  ReadOptions tiny;
+  tiny.maxBytes = 1000;  // the volume needs 9*8*7*2 = 1008 bytes
+  EXPECT_NE(refusal(p, tiny).find("limit"), std::string::npos);
+  tiny.maxBytes = 1008;
+  EXPECT_NO_THROW(readVolume(p, tiny));
+}
+
+TEST(BadInput, MissingAndUnknownFiles) {
+  const fs::path dir = test::scratchDir();
+  EXPECT_NE(refusal(dir / "absent.nii").find("no such file"), std::string::npos);
+  std::ofstream(dir / "notes.txt") << "hello";
+  EXPECT_NE(refusal(dir / "notes.txt").find("unknown file type"), std::string::npos);
+  fs::create_directories(dir / "empty-folder");
+  EXPECT_NE(refusal(dir / "empty-folder").find("no DICOM image series"), std::string::npos);
+}
+
+TEST(BadInput, MetaImageWithTooLittleData) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "short.mha", std::ios::binary)
+      << "ObjectType = Image\nNDims = 3\nDimSize = 10 10 10\nElementType = MET_FLOAT\n"
+         "ElementDataFile = LOCAL\n"
+      << std::string(100, '\0');
+  EXPECT_NE(refusal(dir / "short.mha").find("truncated"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mvw::io
