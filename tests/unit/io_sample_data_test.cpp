@@ -134,3 +134,34 @@ TEST(SampleData, FolderWithTwoSeriesNeedsAChoice) {
 
 }  // namespace
 }  // namespace mvw::io
+
+namespace mvw::io {
+namespace {
+
+TEST(SampleData, RtDoseFramesBecomeSlicesInGray) {
+  // pydicom's rtdose.dcm: 15 frames placed by GridFrameOffsetVector (5 mm apart), uint32
+  // scaled by DoseGridScaling 1e-6.
+  const Volume dose = readVolume(test::sampleData("pydicom/test_files/rtdose.dcm"));
+  EXPECT_EQ(dose.dimensions(), glm::ivec3(10, 10, 15));
+  EXPECT_EQ(dose.components(), 1);
+  EXPECT_NEAR(dose.spacing().z, 5.0, 1e-6);
+  const auto [lo, hi] = dose.valueRange();
+  EXPECT_NEAR(lo, 0.795, 1e-6);
+  EXPECT_NEAR(hi, 1.254, 1e-6);
+}
+
+TEST(SampleData, CompressedAndBigEndianDicomDecodeToTheSameImage) {
+  // The same MR slice stored uncompressed, big-endian, RLE, JPEG-LS and JPEG 2000 lossless.
+  const Volume ref = readVolume(test::sampleData("pydicom/test_files/MR_small.dcm"));
+  for (const char* name : {"MR_small_bigendian.dcm", "MR_small_RLE.dcm", "MR_small_jpeg_ls_lossless.dcm",
+                           "MR_small_jp2klossless.dcm", "MR_small_implicit.dcm"}) {
+    const Volume v = readVolume(test::sampleData(std::string("pydicom/test_files/") + name));
+    ASSERT_EQ(v.dimensions(), ref.dimensions()) << name;
+    for (int j = 0; j < ref.dimensions().y; ++j)
+      for (int i = 0; i < ref.dimensions().x; ++i)
+        ASSERT_EQ(v.value(i, j, 0), ref.value(i, j, 0)) << name << " at " << i << "," << j;
+  }
+}
+
+}  // namespace
+}  // namespace mvw::io

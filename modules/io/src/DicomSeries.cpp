@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include <vtkDICOMDictHash.h>
@@ -105,6 +106,18 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
     md.unit = rescaleType.empty() ? "HU" : rescaleType;
     return;
   }
+  if (md.modality == "RTDOSE") {
+    const double scaling = meta->Get(0, DC::DoseGridScaling).AsDouble();
+    const std::string units = meta->Get(0, DC::DoseUnits).AsString();
+    md.unit = units == "GY" ? "Gy" : units == "RELATIVE" ? "%" : units;
+    if (scaling > 0 && std::isfinite(scaling) && scaling != 1.0) {
+      VolumeMetadata keep = md;
+      volume = volume.converted(ScalarType::Float32, scaling, 0.0);
+      volume.metadata() = keep;
+      volume.metadata().notes.push_back("DoseGridScaling " + meta->Get(0, DC::DoseGridScaling).AsString() + " applied");
+    }
+    return;
+  }
   if (md.modality != "PT") {
     md.unit = rescaleType == "US" ? "" : rescaleType;
     return;
@@ -184,6 +197,40 @@ std::optional<SliceSpacing> sliceSpacing(vtkDICOMReader* reader, const glm::dvec
   return out;
 }
 
+// vtk-dicom returns the frames of a multi-frame file that carries no per-frame position
+// (RT dose grids with GridFrameOffsetVector, secondary captures) as vector components of a
+// single slice. Frames are slices: stack them along the slice normal.
+Volume stackFramesAsSlices(const Volume& in, int frames, int spp, vtkDICOMMetaData* meta) {
+  const glm::ivec3 d = in.dimensions();
+  Volume out({d.x, d.y, frames}, spp, in.scalarType(), in.worldFromIndex());
+  out.metadata() = in.metadata();
+  const std::size_t value = scalarSize(in.scalarType());
+  const std::size_t pixelBytes = static_cast<std::size_t>(spp) * value;
+  for (int f = 0; f < frames; ++f)
+    for (std::size_t p = 0; p < static_cast<std::size_t>(d.x) * d.y; ++p)
+      std::memcpy(out.data() + (static_cast<std::size_t>(f) * d.x * d.y + p) * pixelBytes,
+                  in.data() + (p * frames + f) * pixelBytes, pixelBytes);
+  const glm::dmat4& w = in.worldFromIndex();
+  const glm::dvec3 normal = glm::normalize(glm::cross(glm::dvec3(w[0]), glm::dvec3(w[1])));
+  const vtkDICOMValue& offsets = meta->Get(0, DC::GridFrameOffsetVector);
+  glm::dmat4 m = w;
+  if (offsets.GetNumberOfValues() == static_cast<std::size_t>(frames) && frames > 1) {
+    const double step = offsets.GetDouble(1) - offsets.GetDouble(0);
+    bool uniform = step != 0.0;
+    for (int f = 2; f < frames; ++f)
+      uniform &= std::abs(offsets.GetDouble(f) - offsets.GetDouble(f - 1) - step) < 1e-3 * std::abs(step) + 1e-4;
+    m[2] = glm::dvec4(normal * step, 0.0);
+    m[3] = w[3] + glm::dvec4(normal * offsets.GetDouble(0), 0.0);
+    out.metadata().notes.push_back(std::string("frames stacked along the slice normal by GridFrameOffsetVector") +
+                                   (uniform ? "" : " (NOT uniform: the volume uses the first step)"));
+  } else {
+    m[2] = glm::dvec4(normal, 0.0);
+    out.metadata().notes.push_back("frames without positions stacked as slices 1 mm apart");
+  }
+  out.setWorldFromIndex(m);
+  return out;
+}
+
 Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& ref,
                   const ReadOptions& options) {
   const fs::path first(files->GetValue(0).c_str());
@@ -229,6 +276,11 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   volume.setWorldFromIndex(patientFromData * dataFromIndex);
 
   vtkDICOMMetaData* meta = reader->GetMetaData();
+  const int spp = std::max(1, meta->Get(0, DC::SamplesPerPixel).AsInt());
+  const int frames = meta->Get(0, DC::NumberOfFrames).AsInt();
+  if (files->GetNumberOfValues() == 1 && frames > 1 && volume.dimensions().z == 1 &&
+      volume.components() == frames * spp)
+    volume = stackFramesAsSlices(volume, frames, spp, meta);
   auto& md = volume.metadata();
   md.format = "DICOM";
   md.sourcePath = path.string();
