@@ -58,10 +58,11 @@ class GzFile {
     }
     // zlib reports a truncated gzip stream only through gzerror after the last read.
     int code = Z_OK;
-    gzerror(f_, &code);
-    if (code != Z_OK && code != Z_STREAM_END)
-      throw InputError(path_, std::string("corrupt or truncated compressed data: ") +
-                                  gzerror(f_, &code));
+    std::string msg = gzerror(f_, &code);
+    if (code != Z_OK && code != Z_STREAM_END) {
+      if (msg.rfind(path_.string() + ": ", 0) == 0) msg = msg.substr(path_.string().size() + 2);
+      throw InputError(path_, "corrupt or truncated compressed data: " + msg);
+    }
     return got;
   }
 
@@ -223,8 +224,9 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
       have = img.skipCount(need);
     }
     if (have < need)
-      throw InputError(image, "file is truncated: header and image data need " + std::to_string(need) +
-                                  " bytes, the file holds " + std::to_string(have));
+      throw InputError(path, (facts.singleFile ? std::string("file") : "its image file " + image.string()) +
+                                 " is truncated: header and image data need " + std::to_string(need) +
+                                 " bytes, the file holds " + std::to_string(have));
   }
 
   VtkMessageScope messages;
