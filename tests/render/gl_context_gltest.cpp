@@ -1,0 +1,52 @@
+// Needs a GL context (OSMesa, headless): the loader and context layer the renderer builds on.
+#include <array>
+
+#include <glad/gl.h>
+#include <gtest/gtest.h>
+
+#include "mvw/core/Error.h"
+#include "mvw/render/GlContext.h"
+
+namespace mvw::render {
+namespace {
+
+TEST(GlContext, HeadlessCoreContextClearsAndReadsBack) {
+  // Intentional odd size: catches row-stride and NPOT mistakes.
+  auto ctx = createHeadlessContext({37, 23});
+  EXPECT_FALSE(ctx->renderer().empty());
+  EXPECT_NE(ctx->version().find("4.5"), std::string::npos) << ctx->version();
+  EXPECT_EQ(ctx->size(), glm::ivec2(37, 23));
+  glViewport(0, 0, 37, 23);
+  glClearColor(0.2f, 0.4f, 0.6f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  std::array<unsigned char, 4> px{};
+  glReadPixels(36, 22, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(px[0], 51);
+  EXPECT_EQ(px[1], 102);
+  EXPECT_EQ(px[2], 153);
+  EXPECT_EQ(px[3], 255);
+}
+
+TEST(GlContext, ThreeDimensionalTexturesWork) {
+  auto ctx = createHeadlessContext({8, 8});
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_3D, tex);
+  std::array<unsigned short, 3 * 5 * 7> voxels{};
+  for (std::size_t i = 0; i < voxels.size(); ++i) voxels[i] = static_cast<unsigned short>(i * 100);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R16, 3, 5, 7, 0, GL_RED, GL_UNSIGNED_SHORT, voxels.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  GLint depth = 0;
+  glGetTexLevelParameteriv(GL_TEXTURE_3D, 0, GL_TEXTURE_DEPTH, &depth);
+  EXPECT_EQ(depth, 7);
+  glDeleteTextures(1, &tex);
+}
+
+TEST(GlContext, InvalidSizeIsAnError) {
+  EXPECT_THROW(createHeadlessContext({0, 10}), Error);
+}
+
+}  // namespace
+}  // namespace mvw::render
