@@ -50,3 +50,43 @@ TEST(GlContext, InvalidSizeIsAnError) {
 
 }  // namespace
 }  // namespace mvw::render
+
+#include "mvw/render/ShaderProgram.h"
+
+namespace mvw::render {
+namespace {
+
+TEST(ShaderProgram, EmbeddedProgramDrawsItsColour) {
+  auto ctx = createHeadlessContext({31, 17});
+  ShaderProgram program("fullscreen.vert.glsl", "solid.frag.glsl");
+  GLuint vao = 0;
+  glGenVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glViewport(0, 0, 31, 17);
+  glClearColor(0, 0, 0, 1);
+  glClear(GL_COLOR_BUFFER_BIT);
+  program.use();
+  glUniform4f(program.uniform("uColor"), 1.5f, 0.5f, 0.25f, 1.0f);  // 1.5 is clamped by the shader
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  std::array<unsigned char, 4> px{};
+  glReadPixels(15, 8, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  EXPECT_EQ(px[0], 255);
+  EXPECT_EQ(px[1], 128);
+  EXPECT_EQ(px[2], 64);
+  glDeleteVertexArrays(1, &vao);
+}
+
+TEST(ShaderProgram, CompileErrorsNameTheShaderFileAndLine) {
+  auto ctx = createHeadlessContext({4, 4});
+  try {
+    // A define that breaks line 5 of solid.frag.glsl ("out vec4 fragColor;"), which comes
+    // after the included common/math.glsl: checks that numbering resumes after an include.
+    ShaderProgram broken("fullscreen.vert.glsl", "solid.frag.glsl", {"fragColor 1.0 +"});
+    ADD_FAILURE() << "compiled a broken shader";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("shaders/solid.frag.glsl:5:"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mvw::render
