@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "InfoCommand.h"
+#include "RenderCommand.h"
 #include "mvw/core/Error.h"
 
 int main(int argc, char** argv) {
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "mvw 0.1.0");
   mvw::app::addInfoCommand(app);
+  mvw::app::addRenderCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -59,6 +59,81 @@ VolumeSource volumeSource(const fs::path& file, const json& j, const std::string
   return s;
 }
 
+double numberField(const fs::path& file, const json& o, const std::string& where, const std::string& key,
+                   double fallback, double lo, double hi) {
+  if (!o.contains(key)) return fallback;
+  if (!o[key].is_number()) throw InputError(file, "'" + where + key + "' must be a number");
+  const double v = o[key].get<double>();
+  if (!(v >= lo && v <= hi))
+    throw InputError(file, "'" + where + key + "' = " + std::to_string(v) + " is outside " + std::to_string(lo) +
+                               " .. " + std::to_string(hi));
+  return v;
+}
+
+bool boolField(const fs::path& file, const json& o, const std::string& where, const std::string& key, bool fallback) {
+  if (!o.contains(key)) return fallback;
+  if (!o[key].is_boolean()) throw InputError(file, "'" + where + key + "' must be true or false");
+  return o[key].get<bool>();
+}
+
+std::array<double, 3> tripleField(const fs::path& file, const json& o, const std::string& where,
+                                  const std::string& key, std::array<double, 3> fallback, double lo, double hi) {
+  if (!o.contains(key)) return fallback;
+  const json& a = o[key];
+  if (!a.is_array() || a.size() != 3) throw InputError(file, "'" + where + key + "' must be an array of 3 numbers");
+  std::array<double, 3> out{};
+  for (int i = 0; i < 3; ++i) {
+    if (!a[i].is_number()) throw InputError(file, "'" + where + key + "' must be an array of 3 numbers");
+    out[i] = a[i].get<double>();
+    if (!(out[i] >= lo && out[i] <= hi))
+      throw InputError(file, "'" + where + key + "' values must lie in " + std::to_string(lo) + " .. " + std::to_string(hi));
+  }
+  return out;
+}
+
+ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& where, int index) {
+  if (!j.is_object()) throw InputError(file, "'" + where + "' must be an object");
+  rejectUnknownKeys(file, j, where + ".",
+                    {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
+                     "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
+                     "background", "crop_min", "crop_max", "annotate"});
+  const std::string w = where + ".";
+  ViewConfig v;
+  v.name = stringField(file, j, w, "name", false);
+  if (v.name.empty()) v.name = "view" + std::to_string(index);
+  if (v.name.find_first_of("/\\") != std::string::npos || v.name == "." || v.name == "..")
+    throw InputError(file, "'" + w + "name' must be a plain file name");
+  if (j.contains("mode")) v.mode = stringField(file, j, w, "mode", true);
+  if (j.contains("view")) v.view = stringField(file, j, w, "view", true);
+  v.azimuth = numberField(file, j, w, "azimuth", 0.0, -3600, 3600);
+  v.elevation = numberField(file, j, w, "elevation", 0.0, -3600, 3600);
+  v.roll = numberField(file, j, w, "roll", 0.0, -3600, 3600);
+  v.zoom = numberField(file, j, w, "zoom", 1.0, 1e-3, 1e3);
+  v.perspective = boolField(file, j, w, "perspective", false);
+  v.width = static_cast<int>(numberField(file, j, w, "width", 512, 1, 8192));
+  v.height = static_cast<int>(numberField(file, j, w, "height", 512, 1, 8192));
+  v.preset = stringField(file, j, w, "preset", false);
+  if (j.contains("window")) v.window = numberField(file, j, w, "window", 0, 1e-9, 1e12);
+  if (j.contains("level")) v.level = numberField(file, j, w, "level", 0, -1e12, 1e12);
+  if (v.window.has_value() != v.level.has_value())
+    throw InputError(file, "'" + w + "window' and '" + w + "level' go together");
+  v.iso = numberField(file, j, w, "iso", 300.0, -1e12, 1e12);
+  v.shading = boolField(file, j, w, "shading", true);
+  if (j.contains("sampling")) v.sampling = stringField(file, j, w, "sampling", true);
+  if (v.sampling != "linear" && v.sampling != "nearest")
+    throw InputError(file, "'" + w + "sampling' must be linear or nearest");
+  v.stepMm = numberField(file, j, w, "step_mm", 0.0, 0.0, 100.0);
+  v.jitter = boolField(file, j, w, "jitter", true);
+  v.seed = static_cast<unsigned>(numberField(file, j, w, "seed", 1, 0, 4294967295.0));
+  v.background = tripleField(file, j, w, "background", v.background, 0.0, 1.0);
+  v.cropMin = tripleField(file, j, w, "crop_min", v.cropMin, 0.0, 1.0);
+  v.cropMax = tripleField(file, j, w, "crop_max", v.cropMax, 0.0, 1.0);
+  for (int a = 0; a < 3; ++a)
+    if (v.cropMin[a] >= v.cropMax[a]) throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
+  v.annotate = boolField(file, j, w, "annotate", true);
+  return v;
+}
+
 }  // namespace
 
 StudyConfig loadStudyConfig(const fs::path& file) {
@@ -71,7 +146,7 @@ StudyConfig loadStudyConfig(const fs::path& file) {
     throw InputError(file, std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(file, "a study config must be a JSON object");
-  rejectUnknownKeys(file, j, "", {"name", "anatomical", "functional"});
+  rejectUnknownKeys(file, j, "", {"name", "anatomical", "functional", "render"});
   StudyConfig config;
   config.file = file;
   config.name = stringField(file, j, "", "name", false);
@@ -88,6 +163,26 @@ StudyConfig loadStudyConfig(const fs::path& file) {
       config.functionalKind = it->second;
     }
   }
+  if (j.contains("render")) {
+    const json& r = j["render"];
+    if (!r.is_object()) throw InputError(file, "'render' must be an object");
+    rejectUnknownKeys(file, r, "render.", {"views"});
+    if (r.contains("views")) {
+      if (!r["views"].is_array()) throw InputError(file, "'render.views' must be an array");
+      for (std::size_t i = 0; i < r["views"].size(); ++i)
+        config.render.views.push_back(viewConfig(file, r["views"][i], "render.views[" + std::to_string(i) + "]",
+                                                 static_cast<int>(i)));
+    }
+  }
+  if (config.render.views.empty()) {
+    ViewConfig defaults;
+    defaults.name = "view0";
+    config.render.views.push_back(defaults);
+  }
+  for (std::size_t a = 0; a < config.render.views.size(); ++a)
+    for (std::size_t b = a + 1; b < config.render.views.size(); ++b)
+      if (config.render.views[a].name == config.render.views[b].name)
+        throw InputError(file, "two views are named '" + config.render.views[a].name + "'");
   return config;
 }
 

@@ -5,12 +5,16 @@
 //
 //   { "name": "Cranium CT",
 //     "anatomical": { "path": "../data/cranium/dicom", "series": "" },
-//     "functional": { "path": "../data/pet.nii.gz", "kind": "pet" } }
+//     "functional": { "path": "../data/pet.nii.gz", "kind": "pet" },
+//     "render": { "views": [ { "name": "bone", "mode": "composite", "view": "anterior",
+//                              "preset": "ct-bone", "width": 512, "height": 512 } ] } }
 //
 // Relative paths are relative to the config file's folder.
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace mvw::config {
 
@@ -21,12 +25,40 @@ struct VolumeSource {
 
 enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };
 
+// One rendered view ("render": {"views": [...]}). Names of modes, standard views and presets
+// are checked by the app against the renderer's lists before any GL work.
+struct ViewConfig {
+  std::string name;                  // output file stem; default "view<N>"
+  std::string mode = "composite";    // composite | isosurface | mip | minip | average
+  std::string view = "anterior";     // anterior | posterior | left | right | superior | inferior
+  double azimuth = 0.0, elevation = 0.0, roll = 0.0;  // degrees
+  double zoom = 1.0;
+  bool perspective = false;
+  int width = 512, height = 512;
+  std::string preset;                // transfer function preset; "" = by modality
+  std::optional<double> window, level;
+  double iso = 300.0;
+  bool shading = true;
+  std::string sampling = "linear";   // linear | nearest
+  double stepMm = 0.0;               // 0 = half the smallest voxel spacing
+  bool jitter = true;
+  unsigned seed = 1;
+  std::array<double, 3> background{0.0, 0.0, 0.0};
+  std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};  // fractions of the box
+  bool annotate = true;
+};
+
+struct RenderConfig {
+  std::vector<ViewConfig> views;  // default: one composite anterior view
+};
+
 struct StudyConfig {
   std::filesystem::path file;  // where it was loaded from
   std::string name;
   VolumeSource anatomical;
   std::optional<VolumeSource> functional;
   FunctionalKind functionalKind = FunctionalKind::Other;
+  RenderConfig render;
 };
 
 StudyConfig loadStudyConfig(const std::filesystem::path& file);

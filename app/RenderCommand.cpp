@@ -1,0 +1,226 @@
+#include "RenderCommand.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+#include "mvw/io/PngWriter.h"
+#include "mvw/io/VolumeReader.h"
+#include "mvw/render/Annotations.h"
+#include "mvw/render/VolumeRenderer.h"
+
+namespace mvw::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderOptions {
+  std::string study;
+  std::string outDir;
+  std::optional<std::string> mode, view, preset, sampling;
+  std::optional<int> size;
+  std::optional<double> azimuth, elevation, roll, zoom, window, level, iso;
+  bool noAnnotate = false;
+  bool perspective = false;
+};
+
+std::string defaultPreset(const Volume& v) {
+  if (v.metadata().modality == "CT" || v.metadata().unit == "HU") return "ct-bone";
+  if (v.metadata().modality == "PT" || v.metadata().modality == "NM") return "pet-hot-metal";
+  return "mr-default";
+}
+
+std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (std::uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+struct PlannedView {
+  config::ViewConfig config;
+  render::RenderSettings settings;
+  std::string presetName;
+};
+
+// Everything is validated before the volume is read or a GL context exists.
+std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOptions& o) {
+  std::vector<PlannedView> out;
+  for (config::ViewConfig v : study.render.views) {
+    if (o.mode) v.mode = *o.mode;
+    if (o.view) v.view = *o.view;
+    if (o.preset) v.preset = *o.preset;
+    if (o.sampling) v.sampling = *o.sampling;
+    if (o.size) v.width = v.height = *o.size;
+    if (o.azimuth) v.azimuth = *o.azimuth;
+    if (o.elevation) v.elevation = *o.elevation;
+    if (o.roll) v.roll = *o.roll;
+    if (o.zoom) v.zoom = *o.zoom;
+    if (o.window) v.window = *o.window;
+    if (o.level) v.level = *o.level;
+    if (o.iso) v.iso = *o.iso;
+    if (o.noAnnotate) v.annotate = false;
+    if (o.perspective) v.perspective = true;
+    PlannedView p;
+    auto& s = p.settings;
+    const auto mode = render::parseRenderMode(v.mode);
+    if (!mode) throw InputError(study.file, "view '" + v.name + "': unknown mode '" + v.mode +
+                                                "' (composite, isosurface, mip, minip, average)");
+    const auto sv = render::parseStandardView(v.view);
+    if (!sv) throw InputError(study.file, "view '" + v.name + "': unknown view '" + v.view +
+                                              "' (anterior, posterior, left, right, superior, inferior)");
+    if (v.sampling != "linear" && v.sampling != "nearest")
+      throw InputError(study.file, "view '" + v.name + "': sampling must be linear or nearest");
+    if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
+      throw InputError(study.file, "view '" + v.name + "': size must be 1..8192");
+    if (v.window && !(*v.window > 0)) throw InputError(study.file, "view '" + v.name + "': window must be positive");
+    if (!v.preset.empty()) {
+      try {
+        s.transfer = render::transferPreset(v.preset);
+      } catch (const Error& e) {
+        throw InputError(study.file, "view '" + v.name + "': " + e.what());
+      }
+    }
+    s.mode = *mode;
+    s.size = {v.width, v.height};
+    s.camera.view = *sv;
+    s.camera.azimuthDeg = v.azimuth;
+    s.camera.elevationDeg = v.elevation;
+    s.camera.rollDeg = v.roll;
+    s.camera.zoom = v.zoom;
+    s.camera.perspective = v.perspective;
+    s.window = v.window.value_or(0.0);
+    s.level = v.level.value_or(0.0);
+    s.isoValue = v.iso;
+    s.stepMm = v.stepMm;
+    s.shading = v.shading;
+    s.linear = v.sampling == "linear";
+    s.jitter = v.jitter;
+    s.seed = v.seed;
+    s.background = {v.background[0], v.background[1], v.background[2]};
+    s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
+    s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
+    p.presetName = v.preset;
+    p.config = v;
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+void runRender(const RenderOptions& o) {
+  const config::StudyConfig study = config::loadStudyConfig(o.study);
+  std::vector<PlannedView> views = plan(study, o);
+  io::ReadOptions read;
+  read.series = study.anatomical.series;
+  const Volume anatomy = io::readVolume(study.anatomical.path, read);
+
+  auto context = render::createHeadlessContext({16, 16});
+  render::VolumeRenderer renderer(*context, anatomy);
+  const auto [lo, hi] = renderer.valueRange();
+  struct Output {
+    std::string file;
+    Image image;
+    nlohmann::json record;
+  };
+  std::vector<Output> outputs;
+  for (auto& v : views) {
+    if (v.presetName.empty()) {
+      v.presetName = defaultPreset(anatomy);
+      v.settings.transfer = render::transferPreset(v.presetName);
+    }
+    render::Frame frame = renderer.render(v.settings);
+    const double window = v.settings.window > 0 ? v.settings.window : hi - lo;
+    const double level = v.settings.window > 0 ? v.settings.level : 0.5 * (hi + lo);
+    std::string caption = v.config.mode;
+    if (v.settings.mode == render::RenderMode::Composite) caption += "  " + v.presetName;
+    else if (v.settings.mode == render::RenderMode::Isosurface) caption += "  iso " + std::to_string(static_cast<int>(v.settings.isoValue));
+    else caption += "  W " + std::to_string(static_cast<int>(window)) + " L " + std::to_string(static_cast<int>(level));
+    if (v.config.annotate) render::annotate(frame.image, frame.camera, caption);
+    nlohmann::json r;
+    r["file"] = v.config.name + ".png";
+    r["mode"] = v.config.mode;
+    r["view"] = v.config.view;
+    r["azimuth_deg"] = v.config.azimuth;
+    r["elevation_deg"] = v.config.elevation;
+    r["roll_deg"] = v.config.roll;
+    r["zoom"] = v.config.zoom;
+    r["perspective"] = v.config.perspective;
+    r["size"] = {v.config.width, v.config.height};
+    r["transfer_preset"] = v.presetName;
+    r["window"] = window;
+    r["level"] = level;
+    r["iso"] = v.settings.isoValue;
+    r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : 0.5 * std::min({anatomy.spacing().x, anatomy.spacing().y, anatomy.spacing().z});
+    r["sampling"] = v.config.sampling;
+    r["shading"] = v.settings.shading;
+    r["jitter"] = v.settings.jitter;
+    r["seed"] = v.settings.seed;
+    r["annotated"] = v.config.annotate;
+    r["ms_per_frame"] = frame.milliseconds;
+    r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);
+    outputs.push_back({v.config.name + ".png", std::move(frame.image), r});
+    std::cerr << "rendered " << v.config.name << " (" << v.config.mode << ", " << v.config.view << ") in "
+              << static_cast<int>(frame.milliseconds) << " ms\n";
+  }
+  // All frames exist before anything is written: a failure leaves no partial output.
+  fs::create_directories(o.outDir);
+  nlohmann::json report;
+  report["study"] = study.file.string();
+  report["anatomical"] = anatomy.metadata().sourcePath;
+  report["value_range"] = {lo, hi};
+  report["gl_renderer"] = context->renderer();
+  report["gl_version"] = context->version();
+  report["mvw_version"] = "0.1.0";
+  report["views"] = nlohmann::json::array();
+  for (const auto& out : outputs) {
+    io::writePng(out.image, fs::path(o.outDir) / out.file);
+    report["views"].push_back(out.record);
+  }
+  const fs::path json = fs::path(o.outDir) / "render.json";
+  const fs::path tmp = fs::path(o.outDir) / ".render.json.tmp";
+  std::ofstream(tmp) << report.dump(2) << "\n";
+  fs::rename(tmp, json);
+  std::cout << "wrote " << outputs.size() << " view(s) and render.json to " << o.outDir << "\n";
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand("render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
+  cmd->add_option("study", o->study, "Study config (.json)")->required();
+  cmd->add_option("-o,--output", o->outDir, "Output folder")->required();
+  cmd->add_option("--mode", o->mode, "composite | isosurface | mip | minip | average (all views)");
+  cmd->add_option("--view", o->view, "anterior | posterior | left | right | superior | inferior");
+  cmd->add_option("--preset", o->preset, "Transfer function: ct-bone, ct-skin, ct-muscle-bone, mr-default, pet-hot-metal");
+  cmd->add_option("--size", o->size, "Image width and height in pixels")->check(CLI::Range(1, 8192));
+  cmd->add_option("--azimuth", o->azimuth, "Degrees about the view's up axis");
+  cmd->add_option("--elevation", o->elevation, "Degrees about the view's right axis");
+  cmd->add_option("--roll", o->roll, "Degrees about the line of sight");
+  cmd->add_option("--zoom", o->zoom, "Magnification (1 fits the volume)")->check(CLI::PositiveNumber);
+  cmd->add_option("--window", o->window, "Window width for projections")->check(CLI::PositiveNumber);
+  cmd->add_option("--level", o->level, "Window centre for projections");
+  cmd->add_option("--iso", o->iso, "Isosurface value");
+  cmd->add_option("--sampling", o->sampling, "linear | nearest");
+  cmd->add_flag("--perspective", o->perspective, "Perspective instead of orthographic projection");
+  cmd->add_flag("--no-annotate", o->noAnnotate, "No orientation labels, scale bar or caption");
+  cmd->callback([o] {
+    if (o->window.has_value() != o->level.has_value())
+      throw InputError(o->study, "--window and --level go together");
+    runRender(*o);
+  });
+}
+
+}  // namespace mvw::app

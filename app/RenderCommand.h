@@ -1,0 +1,10 @@
+#pragma once
+#include <CLI/App.hpp>
+
+namespace mvw::app {
+
+// `mvw render STUDY.json -o DIR`: headless renders of the views the config lists, one PNG
+// per view plus render.json (parameters, GL renderer, time per frame, image checksum).
+void addRenderCommand(CLI::App& app);
+
+}  // namespace mvw::app

@@ -1,0 +1,17 @@
+#pragma once
+// Text and marks burned into headless renders (OpenCV Hershey fonts): orientation labels at
+// the four edges, a scale bar in mm (orthographic views), and a caption (mode, window/level).
+#include <string>
+
+#include "mvw/core/Image.h"
+#include "mvw/render/Camera.h"
+
+namespace mvw::render {
+
+// The patient side a world (LPS) direction points toward: "L", "P", "S", ... with a second
+// letter for directions more than ~22 degrees off the main axis ("LA").
+std::string orientationLabel(const glm::dvec3& worldDirection);
+
+void annotate(Image& image, const Camera& camera, const std::string& caption);
+
+}  // namespace mvw::render

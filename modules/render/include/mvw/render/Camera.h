@@ -1,0 +1,50 @@
+#pragma once
+// The camera in LPS world millimetres. The six standard views are named as radiologists
+// name them: "anterior" looks at the patient's face (the patient's left is on the screen's
+// right), "left" looks at the patient's left side, "superior" looks down from the vertex
+// (anterior up), "inferior" up from the feet (anterior up, patient's right on screen left).
+// Azimuth turns about the view's up axis, elevation about its right axis, roll about the
+// line of sight; zoom > 1 magnifies; pan moves the view in screen-plane millimetres.
+#include <optional>
+#include <string>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace mvw::render {
+
+enum class StandardView { Anterior, Posterior, Left, Right, Superior, Inferior };
+
+std::optional<StandardView> parseStandardView(const std::string& name);
+std::string toString(StandardView view);
+
+struct CameraSettings {
+  StandardView view = StandardView::Anterior;
+  double azimuthDeg = 0.0;
+  double elevationDeg = 0.0;
+  double rollDeg = 0.0;
+  double zoom = 1.0;
+  glm::dvec2 panMm{0.0};
+  bool perspective = false;
+  double fovDeg = 30.0;  // vertical, perspective only
+};
+
+struct Camera {
+  glm::dvec3 eye{0.0};       // world position (perspective) or a point on the view plane
+  glm::dvec3 forward{0.0};   // unit line of sight
+  glm::dvec3 up{0.0};        // unit, screen up
+  glm::dvec3 right{0.0};     // unit, screen right
+  bool perspective = false;
+  double halfHeightMm = 0.0;  // orthographic: half the view height in mm
+  double tanHalfFov = 0.0;    // perspective
+  double aspect = 1.0;        // width / height
+  glm::dmat4 worldFromClip{1.0};  // inverse of projection * view
+  glm::dmat4 clipFromWorld{1.0};
+};
+
+// A camera that shows a sphere of `radius` mm around `centre` whole at zoom 1.
+Camera makeCamera(const CameraSettings& settings, const glm::dvec3& centre, double radius,
+                  glm::ivec2 imageSize);
+
+}  // namespace mvw::render

@@ -1,0 +1,69 @@
+#pragma once
+// GLSL ray casting of one volume in LPS world space with its full geometry (anisotropic
+// spacing, direction matrix). Modes: composite DVR (1D transfer function, Phong shading),
+// isosurface (bisection + Phong), MIP, MinIP, average intensity. The same shaders serve the
+// headless (OSMesa) and the windowed context.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "mvw/core/Image.h"
+#include "mvw/core/Volume.h"
+#include "mvw/render/Camera.h"
+#include "mvw/render/GlContext.h"
+#include "mvw/render/TransferFunction.h"
+
+namespace mvw::render {
+
+enum class RenderMode { Composite, Isosurface, Mip, MinIp, Average };
+std::optional<RenderMode> parseRenderMode(const std::string& name);
+std::string toString(RenderMode mode);
+
+struct RenderSettings {
+  RenderMode mode = RenderMode::Composite;
+  glm::ivec2 size{512, 512};
+  CameraSettings camera;
+  TransferFunction transfer = transferPreset("ct-bone");
+  double window = 0.0;   // projections: window width; <= 0 means the full value range
+  double level = 0.0;    // window centre
+  double isoValue = 300.0;
+  double stepMm = 0.0;   // <= 0: half the smallest voxel spacing
+  bool shading = true;
+  bool linear = true;    // trilinear (true) or nearest-neighbour sampling
+  bool jitter = true;
+  std::uint32_t seed = 1;
+  glm::vec3 background{0.0f};
+  glm::vec4 isoColor{0.92f, 0.86f, 0.76f, 1.0f};
+  glm::vec4 light{0.25f, 0.7f, 0.25f, 24.0f};  // ambient, diffuse, specular, shininess
+  glm::dvec3 cropMin{0.0};  // crop box as fractions of the volume box
+  glm::dvec3 cropMax{1.0};
+};
+
+struct Frame {
+  Image image;          // with depth: the ray distance (mm) of the reported sample, -1 for none
+  double milliseconds = 0.0;
+  Camera camera;
+};
+
+class VolumeRenderer {
+ public:
+  // Uploads the volume (first component), its gradient and its block min/max grid.
+  // The context must be current. Throws mvw::Error if the GL cannot hold the volume.
+  VolumeRenderer(GlContext& context, const Volume& volume);
+  ~VolumeRenderer();
+  VolumeRenderer(const VolumeRenderer&) = delete;
+  VolumeRenderer& operator=(const VolumeRenderer&) = delete;
+
+  Frame render(const RenderSettings& settings);
+  std::pair<double, double> valueRange() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mvw::render

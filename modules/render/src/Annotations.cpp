@@ -1,0 +1,71 @@
+#include "mvw/render/Annotations.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+#include <opencv2/imgproc.hpp>
+
+namespace mvw::render {
+
+std::string orientationLabel(const glm::dvec3& w) {
+  static constexpr char kToward[3][2] = {{'L', 'R'}, {'P', 'A'}, {'S', 'I'}};
+  std::array<int, 3> order = {0, 1, 2};
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(w[a]) > std::abs(w[b]); });
+  const double len = glm::length(w);
+  std::string label(1, kToward[order[0]][w[order[0]] >= 0 ? 0 : 1]);
+  if (len > 0 && std::abs(w[order[1]]) / len > 0.38) label += kToward[order[1]][w[order[1]] >= 0 ? 0 : 1];
+  return label;
+}
+
+void annotate(Image& image, const Camera& camera, const std::string& caption) {
+  cv::Mat m(image.height, image.width, CV_8UC4, image.rgba.data());
+  const double scale = std::max(0.4, std::min(image.width, image.height) / 600.0);
+  const int thick = std::max(1, static_cast<int>(std::lround(scale * 1.5)));
+  const cv::Scalar yellow(255, 230, 60, 255), black(0, 0, 0, 255);
+  auto text = [&](const std::string& s, cv::Point at, double sc) {
+    cv::putText(m, s, at, cv::FONT_HERSHEY_SIMPLEX, sc, black, thick + 2, cv::LINE_AA);
+    cv::putText(m, s, at, cv::FONT_HERSHEY_SIMPLEX, sc, yellow, thick, cv::LINE_AA);
+  };
+  auto size = [&](const std::string& s, double sc) {
+    int base = 0;
+    return cv::getTextSize(s, cv::FONT_HERSHEY_SIMPLEX, sc, thick, &base);
+  };
+  const double labelScale = 0.9 * scale;
+  const int pad = static_cast<int>(8 * scale);
+  const std::string right = orientationLabel(camera.right), left = orientationLabel(-camera.right);
+  const std::string top = orientationLabel(camera.up), bottom = orientationLabel(-camera.up);
+  const int w = image.width, h = image.height;
+  cv::Size sz = size(left, labelScale);
+  text(left, {pad, h / 2 + sz.height / 2}, labelScale);
+  sz = size(right, labelScale);
+  text(right, {w - pad - sz.width, h / 2 + sz.height / 2}, labelScale);
+  sz = size(top, labelScale);
+  text(top, {w / 2 - sz.width / 2, pad + sz.height}, labelScale);
+  sz = size(bottom, labelScale);
+  text(bottom, {w / 2 - sz.width / 2, h - pad}, labelScale);
+
+  const double captionScale = 0.5 * scale;
+  if (!caption.empty()) text(caption, {pad, h - pad - static_cast<int>(28 * scale)}, captionScale);
+  if (!camera.perspective && camera.halfHeightMm > 0) {
+    // A round length near a quarter of the width.
+    const double mmPerPixel = 2.0 * camera.halfHeightMm / h;
+    const double target = 0.25 * w * mmPerPixel;
+    const double pow10 = std::pow(10.0, std::floor(std::log10(target)));
+    double mm = pow10;
+    for (double f : {2.0, 5.0, 10.0})
+      if (f * pow10 <= target) mm = f * pow10;
+    const int px = static_cast<int>(std::lround(mm / mmPerPixel));
+    const int y = h - pad - static_cast<int>(8 * scale);
+    const cv::Point a(w - pad - px, y), b(w - pad, y);
+    cv::line(m, a, b, black, thick + 3);
+    cv::line(m, a, b, yellow, thick);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g mm", mm);
+    sz = size(buf, captionScale);
+    text(buf, {w - pad - sz.width, y - static_cast<int>(6 * scale)}, captionScale);
+  }
+}
+
+}  // namespace mvw::render

@@ -1,0 +1,90 @@
+#include "mvw/render/Camera.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace mvw::render {
+
+namespace {
+
+struct Basis {
+  glm::dvec3 forward, up;
+};
+
+Basis standardBasis(StandardView view) {
+  // LPS: +x patient left, +y posterior, +z superior.
+  switch (view) {
+    case StandardView::Anterior: return {{0, 1, 0}, {0, 0, 1}};
+    case StandardView::Posterior: return {{0, -1, 0}, {0, 0, 1}};
+    case StandardView::Left: return {{-1, 0, 0}, {0, 0, 1}};
+    case StandardView::Right: return {{1, 0, 0}, {0, 0, 1}};
+    case StandardView::Superior: return {{0, 0, -1}, {0, -1, 0}};
+    case StandardView::Inferior: return {{0, 0, 1}, {0, -1, 0}};
+  }
+  return {{0, 1, 0}, {0, 0, 1}};
+}
+
+const char* kNames[] = {"anterior", "posterior", "left", "right", "superior", "inferior"};
+
+}  // namespace
+
+std::optional<StandardView> parseStandardView(const std::string& name) {
+  for (int i = 0; i < 6; ++i)
+    if (name == kNames[i]) return static_cast<StandardView>(i);
+  return std::nullopt;
+}
+
+std::string toString(StandardView view) { return kNames[static_cast<int>(view)]; }
+
+Camera makeCamera(const CameraSettings& s, const glm::dvec3& centre, double radius, glm::ivec2 imageSize) {
+  Basis b = standardBasis(s.view);
+  glm::dvec3 right = glm::cross(b.forward, b.up);
+  auto rotate = [](const glm::dvec3& v, const glm::dvec3& axis, double deg) {
+    return glm::dvec3(glm::rotate(glm::dmat4(1.0), glm::radians(deg), axis) * glm::dvec4(v, 0.0));
+  };
+  // Azimuth: the camera orbits about the up axis (positive: toward the camera's right).
+  b.forward = rotate(b.forward, b.up, -s.azimuthDeg);
+  right = rotate(right, b.up, -s.azimuthDeg);
+  // Elevation: the camera rises (positive) about its right axis.
+  b.forward = rotate(b.forward, right, -s.elevationDeg);
+  b.up = rotate(b.up, right, -s.elevationDeg);
+  // Roll: the image turns clockwise for positive roll.
+  b.up = rotate(b.up, b.forward, s.rollDeg);
+  right = rotate(right, b.forward, s.rollDeg);
+
+  Camera c;
+  c.forward = glm::normalize(b.forward);
+  c.up = glm::normalize(b.up);
+  c.right = glm::normalize(right);
+  c.perspective = s.perspective;
+  c.aspect = static_cast<double>(imageSize.x) / imageSize.y;
+  const double zoom = s.zoom > 0 ? s.zoom : 1.0;
+  const glm::dvec3 target = centre - c.right * s.panMm.x - c.up * s.panMm.y;
+  // Fit the bounding sphere in the shorter image side.
+  const double fitHalf = radius / std::min(1.0, c.aspect) / zoom;
+  double nearPlane = 0.0, farPlane = 0.0;
+  if (s.perspective) {
+    c.tanHalfFov = std::tan(glm::radians(s.fovDeg) / 2.0);
+    const double distance = fitHalf / c.tanHalfFov + radius;
+    c.eye = target - c.forward * distance;
+    nearPlane = std::max(distance - radius * 1.01, 1e-3 * distance);
+    farPlane = distance + radius * 1.01;
+  } else {
+    c.halfHeightMm = fitHalf;
+    c.eye = target - c.forward * (radius * 2.0);
+    nearPlane = radius * 0.99;
+    farPlane = radius * 3.01;
+  }
+  const glm::dmat4 viewFromWorld = glm::lookAt(c.eye, c.eye + c.forward, c.up);
+  const glm::dmat4 clipFromView =
+      s.perspective
+          ? glm::perspective(2.0 * std::atan(c.tanHalfFov), c.aspect, nearPlane, farPlane)
+          : glm::ortho(-c.halfHeightMm * c.aspect, c.halfHeightMm * c.aspect, -c.halfHeightMm,
+                       c.halfHeightMm, nearPlane, farPlane);
+  c.clipFromWorld = clipFromView * viewFromWorld;
+  c.worldFromClip = glm::inverse(c.clipFromWorld);
+  return c;
+}
+
+}  // namespace mvw::render

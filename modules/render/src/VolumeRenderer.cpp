@@ -1,0 +1,320 @@
+#include "mvw/render/VolumeRenderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <thread>
+
+#include <glad/gl.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "GlObjects.h"
+#include "mvw/core/Error.h"
+#include "mvw/render/ShaderProgram.h"
+
+namespace mvw::render {
+
+namespace {
+
+constexpr int kBlock = 8;
+
+const std::map<RenderMode, std::string> kModeNames = {{RenderMode::Composite, "composite"},
+                                                      {RenderMode::Isosurface, "isosurface"},
+                                                      {RenderMode::Mip, "mip"},
+                                                      {RenderMode::MinIp, "minip"},
+                                                      {RenderMode::Average, "average"}};
+
+// Values of component 0 as float, in the volume's physical unit.
+std::vector<float> valuesOf(const Volume& v) {
+  std::vector<float> out(v.voxelCount());
+  const int nc = v.components();
+  dispatchScalar(v.scalarType(), [&](auto t) {
+    using T = decltype(t);
+    const T* p = reinterpret_cast<const T*>(v.data());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(p[i * nc]);
+    return 0;
+  });
+  return out;
+}
+
+// Central differences on the voxel grid with physical spacing (one-sided at the border),
+// turned into world (LPS) directions with the direction matrix: the seed's gradient volume.
+std::vector<float> gradientOf(const std::vector<float>& v, glm::ivec3 d, const glm::dvec3& spacing,
+                              const glm::dmat3& direction) {
+  std::vector<float> g(v.size() * 4);
+  auto at = [&](int i, int j, int k) { return v[(static_cast<std::size_t>(k) * d.y + j) * d.x + i]; };
+  auto work = [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < d.y; ++j)
+        for (int i = 0; i < d.x; ++i) {
+          const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, d.x - 1);
+          const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, d.y - 1);
+          const int kk0 = std::max(k - 1, 0), kk1 = std::min(k + 1, d.z - 1);
+          const glm::dvec3 local(
+              i1 > i0 ? (at(i1, j, k) - at(i0, j, k)) / ((i1 - i0) * spacing.x) : 0.0,
+              j1 > j0 ? (at(i, j1, k) - at(i, j0, k)) / ((j1 - j0) * spacing.y) : 0.0,
+              kk1 > kk0 ? (at(i, j, kk1) - at(i, j, kk0)) / ((kk1 - kk0) * spacing.z) : 0.0);
+          const glm::dvec3 w = direction * local;
+          float* out = &g[((static_cast<std::size_t>(k) * d.y + j) * d.x + i) * 4];
+          out[0] = static_cast<float>(w.x);
+          out[1] = static_cast<float>(w.y);
+          out[2] = static_cast<float>(w.z);
+          out[3] = static_cast<float>(glm::length(w));
+        }
+  };
+  const int half = d.z / 2;
+  std::thread other(work, 0, half);
+  work(half, d.z);
+  other.join();
+  return g;
+}
+
+void setSampling(GLuint tex, GLenum target, bool linear) {
+  glBindTexture(target, tex);
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
+}
+
+void checkGl(const char* what) {
+  const GLenum e = glGetError();
+  if (e == GL_OUT_OF_MEMORY) throw Error(std::string(what) + ": the GL implementation is out of memory for this volume");
+  if (e != GL_NO_ERROR) throw Error(std::string(what) + ": GL error 0x" + [&] {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%x", e);
+    return std::string(buf);
+  }());
+}
+
+}  // namespace
+
+std::optional<RenderMode> parseRenderMode(const std::string& name) {
+  for (const auto& [mode, n] : kModeNames)
+    if (n == name) return mode;
+  return std::nullopt;
+}
+
+std::string toString(RenderMode mode) { return kModeNames.at(mode); }
+
+struct VolumeRenderer::Impl {
+  GlContext& context;
+  glm::ivec3 dims;
+  glm::dmat4 worldFromIndex;
+  glm::dvec3 spacing;
+  std::pair<double, double> range;
+  glm::ivec3 blockCount;
+  std::vector<glm::vec2> blockMinMax;
+  detail::Texture intensity, gradient, blocks, transfer;
+  detail::VertexArray vao;
+  std::map<std::string, ShaderProgram> programs;
+
+  explicit Impl(GlContext& c) : context(c) {}
+
+  ShaderProgram& program(RenderMode mode) {
+    std::string file = "projection.frag.glsl";
+    std::vector<std::string> defines;
+    switch (mode) {
+      case RenderMode::Composite: file = "composite.frag.glsl"; break;
+      case RenderMode::Isosurface: file = "isosurface.frag.glsl"; break;
+      case RenderMode::Mip: defines = {"MVW_MIP 1"}; break;
+      case RenderMode::MinIp: defines = {"MVW_MINIP 1"}; break;
+      case RenderMode::Average: defines = {"MVW_AVERAGE 1"}; break;
+    }
+    const std::string key = toString(mode);
+    auto it = programs.find(key);
+    if (it == programs.end()) it = programs.emplace(key, ShaderProgram("fullscreen.vert.glsl", file, defines)).first;
+    return it->second;
+  }
+};
+
+VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume) : impl_(std::make_unique<Impl>(context)) {
+  Impl& m = *impl_;
+  context.makeCurrent();
+  m.dims = volume.dimensions();
+  m.worldFromIndex = volume.worldFromIndex();
+  m.spacing = volume.spacing();
+  GLint max3d = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+  if (m.dims.x > max3d || m.dims.y > max3d || m.dims.z > max3d)
+    throw Error("volume " + std::to_string(m.dims.x) + " x " + std::to_string(m.dims.y) + " x " +
+                std::to_string(m.dims.z) + " exceeds the GL's largest 3D texture (" + std::to_string(max3d) + ")");
+  const std::vector<float> values = valuesOf(volume);
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  m.range = {*lo, *hi};
+
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  m.intensity = detail::makeTexture();
+  glBindTexture(GL_TEXTURE_3D, m.intensity.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, m.dims.x, m.dims.y, m.dims.z, 0, GL_RED, GL_FLOAT, values.data());
+  checkGl("uploading the volume");
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+
+  const std::vector<float> grad = gradientOf(values, m.dims, m.spacing, volume.direction());
+  m.gradient = detail::makeTexture();
+  glBindTexture(GL_TEXTURE_3D, m.gradient.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, m.dims.x, m.dims.y, m.dims.z, 0, GL_RGBA, GL_FLOAT, grad.data());
+  checkGl("uploading the gradient volume");
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  setSampling(m.gradient.id(), GL_TEXTURE_3D, true);
+
+  // Min/max per 8^3 block, widened by one voxel: trilinear samples near a block's face read
+  // the neighbour's voxels too.
+  m.blockCount = (m.dims + kBlock - 1) / kBlock;
+  m.blockMinMax.assign(static_cast<std::size_t>(m.blockCount.x) * m.blockCount.y * m.blockCount.z,
+                       glm::vec2(3.4e38f, -3.4e38f));
+  for (int k = 0; k < m.dims.z; ++k)
+    for (int j = 0; j < m.dims.y; ++j)
+      for (int i = 0; i < m.dims.x; ++i) {
+        const float v = values[(static_cast<std::size_t>(k) * m.dims.y + j) * m.dims.x + i];
+        for (int bk = std::max(0, (k - 1) / kBlock); bk <= std::min(m.blockCount.z - 1, (k + 1) / kBlock); ++bk)
+          for (int bj = std::max(0, (j - 1) / kBlock); bj <= std::min(m.blockCount.y - 1, (j + 1) / kBlock); ++bj)
+            for (int bi = std::max(0, (i - 1) / kBlock); bi <= std::min(m.blockCount.x - 1, (i + 1) / kBlock); ++bi) {
+              glm::vec2& b = m.blockMinMax[(static_cast<std::size_t>(bk) * m.blockCount.y + bj) * m.blockCount.x + bi];
+              b.x = std::min(b.x, v);
+              b.y = std::max(b.y, v);
+            }
+      }
+  m.blocks = detail::makeTexture();
+  m.transfer = detail::makeTexture();
+  m.vao = detail::makeVertexArray();
+}
+
+VolumeRenderer::~VolumeRenderer() = default;
+
+std::pair<double, double> VolumeRenderer::valueRange() const { return impl_->range; }
+
+Frame VolumeRenderer::render(const RenderSettings& s) {
+  Impl& m = *impl_;
+  m.context.makeCurrent();
+  if (s.size.x <= 0 || s.size.y <= 0 || s.size.x > 8192 || s.size.y > 8192)
+    throw Error("image size must be 1..8192 pixels a side");
+  const auto start = std::chrono::steady_clock::now();
+
+  // Camera around the volume's bounding sphere.
+  const glm::dvec3 corner0 = glm::dvec3(m.worldFromIndex * glm::dvec4(-0.5, -0.5, -0.5, 1.0));
+  const glm::dvec3 corner1 = glm::dvec3(m.worldFromIndex * glm::dvec4(glm::dvec3(m.dims) - 0.5, 1.0));
+  const glm::dvec3 centre = 0.5 * (corner0 + corner1);
+  const double radius = 0.5 * glm::length(glm::dvec3(m.dims) * m.spacing);
+  Frame frame;
+  frame.camera = makeCamera(s.camera, centre, radius, s.size);
+
+  // Transfer function LUT over the value range, and the block visibility for this frame.
+  const int lutSize = 1024;
+  const double lo = m.range.first, hi = m.range.second > m.range.first ? m.range.second : m.range.first + 1.0;
+  const std::vector<glm::vec4> lut = sampleTransferFunction(s.transfer, lo, hi, lutSize, lo, hi);
+  glBindTexture(GL_TEXTURE_1D, m.transfer.id());
+  glTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, lutSize, 0, GL_RGBA, GL_FLOAT, lut.data());
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  std::vector<std::uint8_t> visible(m.blockMinMax.size(), 1);
+  if (s.mode == RenderMode::Composite) {
+    for (std::size_t b = 0; b < visible.size(); ++b) {
+      const auto e0 = static_cast<int>(std::floor((m.blockMinMax[b].x - lo) / (hi - lo) * (lutSize - 1)));
+      const auto e1 = static_cast<int>(std::ceil((m.blockMinMax[b].y - lo) / (hi - lo) * (lutSize - 1)));
+      bool any = false;
+      for (int e = std::max(0, e0); e <= std::min(lutSize - 1, e1) && !any; ++e) any = lut[e].a > 0.0f;
+      visible[b] = any;
+    }
+  }
+  glBindTexture(GL_TEXTURE_3D, m.blocks.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, m.blockCount.x, m.blockCount.y, m.blockCount.z, 0, GL_RED_INTEGER,
+               GL_UNSIGNED_BYTE, visible.data());
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  setSampling(m.intensity.id(), GL_TEXTURE_3D, s.linear);
+
+  // Targets: RGBA8 colour and R32F ray depth.
+  detail::Texture colorTex = detail::makeTexture(), depthTex = detail::makeTexture();
+  glBindTexture(GL_TEXTURE_2D, colorTex.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, s.size.x, s.size.y, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glBindTexture(GL_TEXTURE_2D, depthTex.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, s.size.x, s.size.y, 0, GL_RED, GL_FLOAT, nullptr);
+  detail::Framebuffer fbo = detail::makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colorTex.id(), 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, depthTex.id(), 0);
+  const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glDrawBuffers(2, buffers);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("render target of " + std::to_string(s.size.x) + " x " + std::to_string(s.size.y) + " is not supported");
+  checkGl("creating the render target");
+
+  ShaderProgram& p = m.program(s.mode);
+  p.use();
+  // textureFromWorld = textureFromIndex * indexFromWorld; texel centres at (i + 0.5) / n.
+  glm::dmat4 textureFromIndex(1.0);
+  for (int a = 0; a < 3; ++a) {
+    textureFromIndex[a][a] = 1.0 / m.dims[a];
+    textureFromIndex[3][a] = 0.5 / m.dims[a];
+  }
+  const glm::mat4 textureFromWorld(textureFromIndex * glm::inverse(m.worldFromIndex));
+  const double minSpacing = std::min({m.spacing.x, m.spacing.y, m.spacing.z});
+  const double step = s.stepMm > 0 ? s.stepMm : 0.5 * minSpacing;
+  glUniformMatrix4fv(p.uniform("uVolume.textureFromWorld"), 1, GL_FALSE, glm::value_ptr(textureFromWorld));
+  glUniform3f(p.uniform("uVolume.dimensions"), float(m.dims.x), float(m.dims.y), float(m.dims.z));
+  glUniform1f(p.uniform("uVolume.referenceStep"), float(minSpacing));
+  glUniform2f(p.uniform("uVolume.valueRange"), float(lo), float(hi));
+  glUniform3f(p.uniform("uBlockCount"), float(m.blockCount.x), float(m.blockCount.y), float(m.blockCount.z));
+  const glm::mat4 worldFromClip(frame.camera.worldFromClip);
+  glUniformMatrix4fv(p.uniform("uWorldFromClip"), 1, GL_FALSE, glm::value_ptr(worldFromClip));
+  glUniform2f(p.uniform("uViewport"), float(s.size.x), float(s.size.y));
+  glUniform1f(p.uniform("uStep"), float(step));
+  glUniform1i(p.uniform("uMaxSteps"), static_cast<int>(std::ceil(2.0 * radius / step)) + 2);
+  glUniform1i(p.uniform("uJitter"), s.jitter ? 1 : 0);
+  glUniform1ui(p.uniform("uSeed"), s.seed);
+  const glm::dvec3 cmin = glm::clamp(s.cropMin, 0.0, 1.0), cmax = glm::clamp(s.cropMax, 0.0, 1.0);
+  glUniform3f(p.uniform("uBoxMin"), float(cmin.x), float(cmin.y), float(cmin.z));
+  glUniform3f(p.uniform("uBoxMax"), float(cmax.x), float(cmax.y), float(cmax.z));
+  glUniform3f(p.uniform("uBackground"), s.background.r, s.background.g, s.background.b);
+  glUniform4f(p.uniform("uLight"), s.light.x, s.light.y, s.light.z, s.light.w);
+  glUniform2f(p.uniform("uTransferRange"), float(lo), float(hi));
+  glUniform1i(p.uniform("uShading"), s.shading ? 1 : 0);
+  const double window = s.window > 0 ? s.window : hi - lo;
+  const double level = s.window > 0 ? s.level : 0.5 * (hi + lo);
+  glUniform2f(p.uniform("uWindowLevel"), float(window), float(level));
+  glUniform1f(p.uniform("uIsoValue"), float(s.isoValue));
+  glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
+  const struct { const char* name; GLenum target; GLuint id; } units[] = {
+      {"uIntensity", GL_TEXTURE_3D, m.intensity.id()}, {"uGradient", GL_TEXTURE_3D, m.gradient.id()},
+      {"uBlocks", GL_TEXTURE_3D, m.blocks.id()},       {"uTransfer", GL_TEXTURE_1D, m.transfer.id()}};
+  for (int u = 0; u < 4; ++u) {
+    glActiveTexture(GL_TEXTURE0 + u);
+    glBindTexture(units[u].target, units[u].id);
+    glUniform1i(p.uniform(units[u].name), u);
+  }
+  glActiveTexture(GL_TEXTURE0);
+
+  glViewport(0, 0, s.size.x, s.size.y);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindVertexArray(m.vao.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  Image& img = frame.image;
+  img = Image(s.size.x, s.size.y);
+  img.depth.resize(static_cast<std::size_t>(s.size.x) * s.size.y);
+  std::vector<std::uint8_t> rgba(img.rgba.size());
+  std::vector<float> depth(img.depth.size());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glReadPixels(0, 0, s.size.x, s.size.y, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  glReadBuffer(GL_COLOR_ATTACHMENT1);
+  glReadPixels(0, 0, s.size.x, s.size.y, GL_RED, GL_FLOAT, depth.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkGl("rendering");
+  // GL rows start at the bottom; images at the top.
+  const std::size_t row = static_cast<std::size_t>(s.size.x) * 4;
+  for (int y = 0; y < s.size.y; ++y) {
+    std::copy_n(rgba.data() + (s.size.y - 1 - y) * row, row, img.rgba.data() + y * row);
+    std::copy_n(depth.data() + static_cast<std::size_t>(s.size.y - 1 - y) * s.size.x, s.size.x,
+                img.depth.data() + static_cast<std::size_t>(y) * s.size.x);
+  }
+  frame.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return frame;
+}
+
+}  // namespace mvw::render

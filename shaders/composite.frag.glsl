@@ -1,0 +1,43 @@
+// Composite DVR: 1D transfer function, opacity corrected for the step, front-to-back
+// compositing with associated (opacity-weighted) colours, early ray termination at 0.99,
+// optional Phong shading from the precomputed gradient.
+#include "raycast/common.glsl"
+
+uniform sampler1D uTransfer;  // RGBA, opacity per reference step
+uniform vec2 uTransferRange;  // values at the first and last LUT entries
+uniform bool uShading;
+
+struct RayState {
+  vec4 color;   // associated colour, alpha
+  float depth;  // distance where the opacity first passed 0.5
+};
+
+void setupHook(inout RayState s) {
+  s.color = vec4(0.0);
+  s.depth = -1.0;
+}
+
+bool skipHook(vec3 tex) { return !blockVisible(tex); }
+
+bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
+  float u = (value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x);
+  vec4 c = texture(uTransfer, clamp(u, 0.0, 1.0));
+  if (c.a <= 0.0) return true;
+  float alpha = 1.0 - pow(1.0 - min(c.a, 0.999999), uStep / uVolume.referenceStep);
+  vec3 rgb = c.rgb;
+  if (uShading) {
+    vec4 g = sampleGradient(tex);
+    if (g.a > 1e-6) rgb = phong(rgb, -g.xyz / g.a, ray.dir);
+  }
+  s.color.rgb += (1.0 - s.color.a) * alpha * rgb;
+  s.color.a += (1.0 - s.color.a) * alpha;
+  if (s.depth < 0.0 && s.color.a >= 0.5) s.depth = t;
+  return s.color.a < 0.99;
+}
+
+void finishHook(inout RayState s, Ray ray, vec2 span) {
+  fragColor = vec4(s.color.rgb + (1.0 - s.color.a) * uBackground, 1.0);
+  fragDepth = s.depth;
+}
+
+#include "raycast/template.glsl"

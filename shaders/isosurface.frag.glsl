@@ -1,0 +1,54 @@
+// Isosurface ray casting: the first step that crosses uIsoValue is refined by bisection
+// (8 halvings: 1/256 of a step), then shaded with Phong from the gradient at the hit.
+#include "raycast/common.glsl"
+
+uniform float uIsoValue;
+uniform vec4 uIsoColor;
+
+struct RayState {
+  float previousT;
+  float previousValue;
+  float hitT;
+};
+
+void setupHook(inout RayState s) {
+  s.previousT = -1.0;
+  s.previousValue = 0.0;
+  s.hitT = -1.0;
+}
+
+bool skipHook(vec3 tex) { return false; }
+
+bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
+  if (value >= uIsoValue) {
+    if (s.previousT < 0.0) {
+      s.hitT = t;  // the ray starts inside the surface
+      return false;
+    }
+    float lo = s.previousT, hi = t;
+    for (int i = 0; i < 8; ++i) {
+      float mid = 0.5 * (lo + hi);
+      if (sampleValue(toTexture(ray.origin + mid * ray.dir)) >= uIsoValue) hi = mid;
+      else lo = mid;
+    }
+    s.hitT = 0.5 * (lo + hi);
+    return false;
+  }
+  s.previousT = t;
+  s.previousValue = value;
+  return true;
+}
+
+void finishHook(inout RayState s, Ray ray, vec2 span) {
+  if (s.hitT < 0.0) {
+    fragColor = vec4(uBackground, 1.0);
+    fragDepth = -1.0;
+    return;
+  }
+  vec4 g = sampleGradient(toTexture(ray.origin + s.hitT * ray.dir));
+  vec3 n = g.a > 1e-6 ? -g.xyz / g.a : -ray.dir;
+  fragColor = vec4(phong(uIsoColor.rgb, n, ray.dir), 1.0);
+  fragDepth = s.hitT;
+}
+
+#include "raycast/template.glsl"

@@ -1,0 +1,90 @@
+// Shared state of the ray caster: the volume as one struct uniform, rays in LPS world mm,
+// box intersection in texture space, sampling. Distances t along a ray are world mm.
+#ifndef MVW_RAYCAST_COMMON
+#define MVW_RAYCAST_COMMON
+
+// Outputs: colour, and the ray distance (mm) of the sample the mode reports (-1: none).
+layout(location = 0) out vec4 fragColor;
+layout(location = 1) out float fragDepth;
+
+struct VolumeInfo {
+  mat4 textureFromWorld;  // world mm -> texture coordinates (0..1 across the voxel box)
+  vec3 dimensions;        // voxels
+  float referenceStep;    // mm: opacity in transfer functions is per this step (min spacing)
+  vec2 valueRange;        // min, max of the values (physical unit)
+};
+
+uniform VolumeInfo uVolume;
+uniform sampler3D uIntensity;  // R32F, physical values (HU, SUV, ...)
+uniform sampler3D uGradient;   // RGBA16F: world-space gradient (unit/mm) and its magnitude
+uniform usampler3D uBlocks;    // R8UI per 8^3 block: 1 if the block can contribute
+uniform vec3 uBlockCount;
+uniform mat4 uWorldFromClip;
+uniform vec2 uViewport;
+uniform float uStep;           // mm
+uniform int uMaxSteps;
+uniform bool uJitter;
+uniform uint uSeed;
+uniform vec3 uBoxMin;          // crop box in texture coordinates
+uniform vec3 uBoxMax;
+uniform vec3 uBackground;
+
+struct Ray {
+  vec3 origin;  // world mm
+  vec3 dir;     // unit, world
+};
+
+Ray makeRay() {
+  vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0;
+  vec4 nearPoint = uWorldFromClip * vec4(ndc, -1.0, 1.0);
+  vec4 farPoint = uWorldFromClip * vec4(ndc, 1.0, 1.0);
+  Ray r;
+  r.origin = nearPoint.xyz / nearPoint.w;
+  r.dir = normalize(farPoint.xyz / farPoint.w - r.origin);
+  return r;
+}
+
+vec3 toTexture(vec3 world) { return (uVolume.textureFromWorld * vec4(world, 1.0)).xyz; }
+
+// Entry and exit distances (world mm) of the ray through the crop box; empty if x >= y.
+vec2 intersectBox(Ray r) {
+  vec3 o = toTexture(r.origin);
+  vec3 d = (uVolume.textureFromWorld * vec4(r.dir, 0.0)).xyz;
+  vec3 inv = 1.0 / d;  // +-inf on axis-parallel rays is handled by min/max below
+  vec3 t0 = (uBoxMin - o) * inv;
+  vec3 t1 = (uBoxMax - o) * inv;
+  vec3 lo = min(t0, t1);
+  vec3 hi = max(t0, t1);
+  float tNear = max(max(lo.x, lo.y), max(lo.z, 0.0));
+  float tFar = min(min(hi.x, hi.y), hi.z);
+  return vec2(tNear, tFar);
+}
+
+// A hash of the pixel and the seed in [0, 1): seeded jitter against wood-grain artefacts,
+// the same every run for the same seed.
+float jitterOffset() {
+  uvec2 p = uvec2(gl_FragCoord.xy);
+  uint h = p.x * 1973u + p.y * 9277u + uSeed * 26699u;
+  h = (h ^ (h >> 16)) * 0x7feb352du;
+  h = (h ^ (h >> 15)) * 0x846ca68bu;
+  h ^= h >> 16;
+  return float(h & 0xffffffu) / 16777216.0;
+}
+
+float sampleValue(vec3 tex) { return texture(uIntensity, tex).r; }
+vec4 sampleGradient(vec3 tex) { return texture(uGradient, tex); }
+bool blockVisible(vec3 tex) {
+  ivec3 b = ivec3(clamp(tex * uBlockCount, vec3(0.0), uBlockCount - 1.0));
+  return texelFetch(uBlocks, b, 0).r != 0u;
+}
+
+// Phong with a headlight; n is the unit surface normal facing the viewer.
+uniform vec4 uLight;  // ambient, diffuse, specular, shininess
+vec3 phong(vec3 color, vec3 n, vec3 viewDir) {
+  float diffuse = abs(dot(n, -viewDir));
+  vec3 h = normalize(-viewDir - viewDir);
+  float specular = pow(max(abs(dot(n, h)), 0.0), uLight.w);
+  return color * (uLight.x + uLight.y * diffuse) + vec3(uLight.z * specular);
+}
+
+#endif

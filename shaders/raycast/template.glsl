@@ -1,0 +1,24 @@
+// The ray-caster template. A mode file defines the hooks, then includes this file:
+//   void setupHook(inout RayState s)                       before the first sample
+//   bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray)
+//                                                          per sample; false ends the ray
+//                                                          (early termination)
+//   void finishHook(inout RayState s, Ray ray, vec2 span)  writes fragColor and fragDepth
+//   bool skipHook(vec3 tex)                                true: the block can be skipped
+// RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
+// mode reports (first hit, maximum, ...), or -1 where the ray reports none.
+void main() {
+  Ray ray = makeRay();
+  vec2 span = intersectBox(ray);
+  RayState s;
+  setupHook(s);
+  if (span.x < span.y) {
+    float t = span.x + (uJitter ? jitterOffset() : 0.0) * uStep;
+    for (int i = 0; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
+      vec3 tex = toTexture(ray.origin + t * ray.dir);
+      if (skipHook(tex)) continue;
+      if (!sampleHook(s, t, tex, sampleValue(tex), ray)) break;
+    }
+  }
+  finishHook(s, ray, span);
+}
