@@ -13,7 +13,9 @@ void main() {
   RayState s;
   setupHook(s);
   if (span.x < span.y) {
-    float t = span.x + (uJitter ? jitterOffset() : 0.0) * uStep;
+    // Without jitter, samples sit at the middle of each step (midpoint rule): a ray through a
+    // slab of thickness L takes exactly L / step samples.
+    float t = span.x + (uJitter ? jitterOffset() : 0.5) * uStep;
     for (int i = 0; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
       vec3 tex = toTexture(ray.origin + t * ray.dir);
       if (skipHook(tex)) continue;

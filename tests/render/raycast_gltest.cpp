@@ -1,0 +1,203 @@
+// The ray caster against numbers that can be checked by hand: a real CT's maximum projection,
+// a sphere's isosurface distance, Beer-Lambert through a slab, and where L, P and S land.
+#include <cmath>
+#include <functional>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <gtest/gtest.h>
+
+#include "../unit/TestUtil.h"
+#include "mvw/io/VolumeReader.h"
+#include "mvw/render/VolumeRenderer.h"
+
+namespace mvw::render {
+namespace {
+
+Volume makeVolume(glm::ivec3 dims, const glm::dmat4& worldFromIndex, const std::function<float(glm::dvec3)>& f) {
+  Volume v(dims, 1, ScalarType::Float32, worldFromIndex);
+  float* p = v.dataAs<float>();
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i) *p++ = f(v.worldFromIndexPoint({i, j, k}));
+  return v;
+}
+
+double radiusOf(const Volume& v) { return 0.5 * glm::length(glm::dvec3(v.dimensions()) * v.spacing()); }
+
+TEST(Raycast, MipAlongTheSliceAxisEqualsTheCtMaximumProjection) {
+  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
+  const glm::ivec3 d = ct.dimensions();
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, ct);
+  RenderSettings s;
+  s.mode = RenderMode::Mip;
+  s.size = {d.x, d.y};
+  // Superior view: screen right = patient right (-x, i decreasing), screen down = +y (j).
+  s.camera.view = StandardView::Superior;
+  s.camera.zoom = radiusOf(ct) / (0.5 * d.y * ct.spacing().y);  // one pixel per voxel
+  s.jitter = false;
+  s.stepMm = ct.spacing().z;  // with midpoint sampling every sample is a voxel centre
+  const Frame f = renderer.render(s);
+  const auto [lo, hi] = ct.valueRange();
+  double mse = 0.0;
+  int worst = 0;
+  for (int r = 0; r < d.y; ++r)
+    for (int c = 0; c < d.x; ++c) {
+      const int i = d.x - 1 - c, j = r;
+      double m = -1e30;
+      for (int k = 0; k < d.z; ++k) m = std::max(m, ct.value(i, j, k));
+      const double expected = std::clamp((m - lo) / (hi - lo), 0.0, 1.0) * 255.0;
+      const double got = f.image.pixel(c, r)[0];
+      mse += (got - expected) * (got - expected);
+      worst = std::max(worst, static_cast<int>(std::abs(got - expected) + 0.5));
+    }
+  mse /= d.x * d.y;
+  const double psnr = 10.0 * std::log10(255.0 * 255.0 / std::max(mse, 1e-12));
+  std::cout << "MIP vs max projection: PSNR " << psnr << " dB, worst pixel " << worst << "/255\n";
+  EXPECT_GE(psnr, 35.0);
+  EXPECT_LE(worst, 2);
+}
+
+TEST(Raycast, IsosurfaceBisectionFindsTheSphereWithinATenthOfAVoxel) {
+  // Value = R - distance to the centre: the 0-isosurface is the sphere of radius R.
+  const double R = 20.0;
+  const glm::dmat4 w = makeWorldFromIndex({-32, -32, -24}, {1.0, 1.0, 1.5}, glm::dmat3(1.0));
+  const glm::dvec3 centre(0.0, 0.0, 0.0);
+  const Volume v = makeVolume({65, 65, 33}, w, [&](glm::dvec3 p) { return static_cast<float>(R - glm::length(p - centre)); });
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, v);
+  RenderSettings s;
+  s.mode = RenderMode::Isosurface;
+  s.isoValue = 0.0;
+  s.size = {65, 65};  // odd: the middle pixel's ray passes through the centre
+  s.camera.zoom = 2.5;  // about 0.7 mm per pixel
+  s.jitter = false;
+  const Frame f = renderer.render(s);
+  const glm::dmat4& worldFromClip = f.camera.worldFromClip;
+  double worstErr = 0.0;
+  int checked = 0;
+  for (int r = 0; r < 65; ++r)
+    for (int c = 0; c < 65; ++c) {
+      const glm::dvec2 ndc((c + 0.5) / 65 * 2 - 1, 1 - (r + 0.5) / 65 * 2);
+      glm::dvec4 o = worldFromClip * glm::dvec4(ndc, -1, 1);
+      glm::dvec4 e = worldFromClip * glm::dvec4(ndc, 1, 1);
+      const glm::dvec3 origin = glm::dvec3(o) / o.w, dir = glm::normalize(glm::dvec3(e) / e.w - origin);
+      const double along = glm::dot(centre - origin, dir);
+      const double rho2 = glm::dot(centre - origin, centre - origin) - along * along;
+      if (rho2 > (0.9 * R) * (0.9 * R)) continue;
+      const double expected = along - std::sqrt(R * R - rho2);
+      const double got = f.image.depth[static_cast<std::size_t>(r) * 65 + c];
+      worstErr = std::max(worstErr, std::abs(got - expected));
+      ++checked;
+    }
+  std::cout << "isosurface: worst distance error " << worstErr << " mm over " << checked << " rays\n";
+  EXPECT_GT(checked, 1000);
+  EXPECT_LT(worstErr, 0.1);  // voxels are >= 1 mm: below a tenth of a voxel
+}
+
+TEST(Raycast, CompositeThroughAUniformSlabFollowsBeerLambert) {
+  // 16 mm of a medium with opacity 0.1 per 1 mm reference step: T = 0.9^16.
+  const Volume v = makeVolume({32, 32, 16}, makeWorldFromIndex({0, 0, 0}, {1, 1, 1}, glm::dmat3(1.0)),
+                              [](glm::dvec3) { return 100.0f; });
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, v);
+  RenderSettings s;
+  s.mode = RenderMode::Composite;
+  s.transfer = TransferFunction{"flat", false, {TfPoint{0, {1, 1, 1, 0.1f}}, TfPoint{200, {1, 1, 1, 0.1f}}}};
+  s.shading = false;
+  s.jitter = false;
+  s.camera.view = StandardView::Superior;
+  s.size = {33, 33};
+  for (double step : {0.5, 0.25, 1.0 / 3.0}) {
+    s.stepMm = step;
+    const Frame f = renderer.render(s);
+    const double expected = (1.0 - std::pow(0.9, 16.0)) * 255.0;
+    EXPECT_NEAR(f.image.pixel(16, 16)[0], expected, 1.0) << "step " << step;
+  }
+}
+
+// A dark cube with bright markers 15 mm toward the patient's left, posterior and superior.
+float markers(glm::dvec3 p) {
+  auto near = [&](glm::dvec3 c) { return glm::length(p - c) < 4.0; };
+  if (near({15, 0, 0})) return 1000.0f;  // L
+  if (near({0, 15, 0})) return 600.0f;   // P
+  if (near({0, 0, 15})) return 300.0f;   // S
+  return 0.0f;
+}
+
+struct Centroid {
+  double x = 0, y = 0;
+  int n = 0;
+};
+Centroid centroidOf(const Image& img, int lo, int hi) {
+  Centroid c;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const int g = img.pixel(x, y)[0];
+      if (g >= lo && g <= hi) {
+        c.x += x;
+        c.y += y;
+        ++c.n;
+      }
+    }
+  if (c.n) {
+    c.x /= c.n;
+    c.y /= c.n;
+  }
+  return c;
+}
+
+TEST(Raycast, MarkersAppearWhereTheOrientationLabelsSayForAnyStorageOrder) {
+  // The same world content stored in LPS order and in RAS order (flipped i and j).
+  const glm::ivec3 d(41, 41, 41);
+  const Volume lps = makeVolume(d, makeWorldFromIndex({-20, -20, -20}, {1, 1, 1}, glm::dmat3(1.0)), markers);
+  const Volume ras = makeVolume(
+      d, makeWorldFromIndex({20, 20, -20}, {1, 1, 1}, glm::dmat3(glm::dvec3(-1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1))),
+      markers);
+  auto ctx = createHeadlessContext({16, 16});
+  for (const Volume* v : {&lps, &ras}) {
+    VolumeRenderer renderer(*ctx, *v);
+    RenderSettings s;
+    s.mode = RenderMode::Mip;
+    s.size = {101, 101};
+    s.window = 1000;
+    s.level = 500;
+    s.jitter = false;
+    s.linear = false;  // nearest: marker edges keep their exact grey (255, 153, 76)
+    s.camera.view = StandardView::Anterior;  // screen right = patient left, up = superior
+    Frame f = renderer.render(s);
+    const Centroid left = centroidOf(f.image, 250, 255), sup = centroidOf(f.image, 70, 82);
+    ASSERT_GT(left.n, 10);
+    ASSERT_GT(sup.n, 10);
+    EXPECT_GT(left.x, 65);              // L marker on the right half
+    EXPECT_NEAR(left.y, 50, 3);
+    EXPECT_LT(sup.y, 35);               // S marker at the top
+    EXPECT_NEAR(sup.x, 50, 3);
+    s.camera.view = StandardView::Left;  // screen right = posterior
+    f = renderer.render(s);
+    const Centroid post = centroidOf(f.image, 148, 158);
+    ASSERT_GT(post.n, 10);
+    EXPECT_GT(post.x, 65);
+    EXPECT_NEAR(post.y, 50, 3);
+  }
+}
+
+TEST(Raycast, RenderingTwiceGivesIdenticalPixels) {
+  const Volume v = makeVolume({30, 20, 10}, makeWorldFromIndex({0, 0, 0}, {1, 1.5, 2}, glm::dmat3(1.0)),
+                              [](glm::dvec3 p) { return static_cast<float>(p.x * 10 + p.y * 3 + p.z); });
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, v);
+  RenderSettings s;
+  s.transfer = transferPreset("mr-default");
+  s.camera.azimuthDeg = 30;
+  s.camera.elevationDeg = 20;
+  s.size = {47, 31};
+  const Frame a = renderer.render(s), b = renderer.render(s);
+  EXPECT_EQ(a.image.rgba, b.image.rgba);
+  s.seed = 2;
+  const Frame c = renderer.render(s);
+  EXPECT_NE(a.image.rgba, c.image.rgba);  // the jitter follows the seed
+}
+
+}  // namespace
+}  // namespace mvw::render
