@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "BenchCommand.h"
 #include "InfoCommand.h"
 #include "RenderCommand.h"
 #include "mvw/core/Error.h"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "mvw 0.1.0");
   mvw::app::addInfoCommand(app);
   mvw::app::addRenderCommand(app);
+  mvw::app::addBenchCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

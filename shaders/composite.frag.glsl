@@ -17,11 +17,11 @@ void setupHook(inout RayState s) {
   s.depth = -1.0;
 }
 
-bool skipHook(vec3 tex) { return !blockVisible(tex); }
+bool skipHook(RayState s, vec3 tex) { return !blockVisible(tex); }
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   float u = (value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x);
-  vec4 c = texture(uTransfer, clamp(u, 0.0, 1.0));
+  vec4 c = textureLod(uTransfer, clamp(u, 0.0, 1.0), 0.0);
   if (c.a <= 0.0) return true;
   float alpha = 1.0 - pow(1.0 - min(c.a, 0.999999), uStep / uVolume.referenceStep);
   vec3 rgb = c.rgb;

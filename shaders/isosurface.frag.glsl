@@ -6,37 +6,31 @@ uniform float uIsoValue;
 uniform vec4 uIsoColor;
 
 struct RayState {
-  float previousT;
-  float previousValue;
   float hitT;
 };
 
-void setupHook(inout RayState s) {
-  s.previousT = -1.0;
-  s.previousValue = 0.0;
-  s.hitT = -1.0;
-}
+void setupHook(inout RayState s) { s.hitT = -1.0; }
 
-bool skipHook(vec3 tex) { return false; }
+// A block whose values all lie below the isovalue holds no crossing: skip it. The grid point
+// one step back is then a skipped sample, and below the surface too.
+bool skipHook(RayState s, vec3 tex) { return blockRange(tex).y < uIsoValue; }
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
-  if (value >= uIsoValue) {
-    if (s.previousT < 0.0) {
-      s.hitT = t;  // the ray starts inside the surface
-      return false;
-    }
-    float lo = s.previousT, hi = t;
-    for (int i = 0; i < 8; ++i) {
-      float mid = 0.5 * (lo + hi);
-      if (sampleValue(toTexture(ray.origin + mid * ray.dir)) >= uIsoValue) hi = mid;
-      else lo = mid;
-    }
-    s.hitT = 0.5 * (lo + hi);
+  if (value < uIsoValue) return true;
+  // The previous grid point (sampled or skipped) lies below the surface, or the ray entered
+  // within this step: bisect between.
+  float lo = max(t - uStep, gRayEntry), hi = t;
+  if (sampleValue(toTexture(ray.origin + lo * ray.dir)) >= uIsoValue) {
+    s.hitT = lo;  // the ray enters the box inside the surface
     return false;
   }
-  s.previousT = t;
-  s.previousValue = value;
-  return true;
+  for (int i = 0; i < 8; ++i) {
+    float mid = 0.5 * (lo + hi);
+    if (sampleValue(toTexture(ray.origin + mid * ray.dir)) >= uIsoValue) hi = mid;
+    else lo = mid;
+  }
+  s.hitT = 0.5 * (lo + hi);
+  return false;
 }
 
 void finishHook(inout RayState s, Ray ray, vec2 span) {

@@ -17,8 +17,9 @@ struct VolumeInfo {
 uniform VolumeInfo uVolume;
 uniform sampler3D uIntensity;  // R32F, physical values (HU, SUV, ...)
 uniform sampler3D uGradient;   // RGBA16F: world-space gradient (unit/mm) and its magnitude
-uniform usampler3D uBlocks;    // R8UI per 8^3 block: 1 if the block can contribute
-uniform vec3 uBlockCount;
+uniform usampler3D uBlocks;    // R8UI per 8^3 voxel block: 1 if the transfer function can show it
+uniform sampler3D uBlockRange; // RG32F per block: min and max value (one-voxel apron included)
+uniform float uBlockVoxels;    // voxels per block side
 uniform mat4 uWorldFromClip;
 uniform vec2 uViewport;
 uniform float uStep;           // mm
@@ -28,6 +29,8 @@ uniform uint uSeed;
 uniform vec3 uBoxMin;          // crop box in texture coordinates
 uniform vec3 uBoxMax;
 uniform vec3 uBackground;
+
+float gRayEntry;  // where the current ray enters the box (mm), set by the template
 
 struct Ray {
   vec3 origin;  // world mm
@@ -71,11 +74,28 @@ float jitterOffset() {
   return float(h & 0xffffffu) / 16777216.0;
 }
 
-float sampleValue(vec3 tex) { return texture(uIntensity, tex).r; }
-vec4 sampleGradient(vec3 tex) { return texture(uGradient, tex); }
-bool blockVisible(vec3 tex) {
-  ivec3 b = ivec3(clamp(tex * uBlockCount, vec3(0.0), uBlockCount - 1.0));
-  return texelFetch(uBlocks, b, 0).r != 0u;
+// Level 0 explicitly: the volumes have no mipmaps, and implicit derivatives inside the ray
+// loop cost a software rasteriser dearly.
+float sampleValue(vec3 tex) { return textureLod(uIntensity, tex, 0.0).r; }
+vec4 sampleGradient(vec3 tex) { return textureLod(uGradient, tex, 0.0); }
+
+ivec3 blockOf(vec3 tex) {
+  return clamp(ivec3(floor(tex * uVolume.dimensions / uBlockVoxels)), ivec3(0),
+               ivec3(ceil(uVolume.dimensions / uBlockVoxels)) - 1);
+}
+bool blockVisible(vec3 tex) { return texelFetch(uBlocks, blockOf(tex), 0).r != 0u; }
+vec2 blockRange(vec3 tex) { return texelFetch(uBlockRange, blockOf(tex), 0).rg; }
+
+// The last sample distance on this ray's step grid that still lies in the block holding
+// `tex`: the loop's next step then lands in the following block (empty-space skipping).
+float skipBlock(Ray r, float t, vec3 tex) {
+  vec3 o = toTexture(r.origin);
+  vec3 d = (uVolume.textureFromWorld * vec4(r.dir, 0.0)).xyz;
+  vec3 cell = vec3(blockOf(tex));
+  vec3 faces = (cell + step(vec3(0.0), d)) * uBlockVoxels / uVolume.dimensions;
+  vec3 tFaces = (faces - o) / d;  // +inf on axis-parallel rays
+  float tExit = min(min(tFaces.x, tFaces.y), tFaces.z);
+  return t + max(0.0, floor((tExit - t) / uStep)) * uStep;
 }
 
 // Phong with a headlight; n is the unit surface normal facing the viewer.

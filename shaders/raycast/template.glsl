@@ -4,12 +4,14 @@
 //                                                          per sample; false ends the ray
 //                                                          (early termination)
 //   void finishHook(inout RayState s, Ray ray, vec2 span)  writes fragColor and fragDepth
-//   bool skipHook(vec3 tex)                                true: the block can be skipped
+//   bool skipHook(RayState s, vec3 tex)                    true: nothing in this block can
+//                                                          change the result (skip to its exit)
 // RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
 void main() {
   Ray ray = makeRay();
   vec2 span = intersectBox(ray);
+  gRayEntry = span.x;
   RayState s;
   setupHook(s);
   if (span.x < span.y) {
@@ -18,7 +20,10 @@ void main() {
     float t = span.x + (uJitter ? jitterOffset() : 0.5) * uStep;
     for (int i = 0; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
       vec3 tex = toTexture(ray.origin + t * ray.dir);
-      if (skipHook(tex)) continue;
+      if (skipHook(s, tex)) {
+        t = skipBlock(ray, t, tex);
+        continue;
+      }
       if (!sampleHook(s, t, tex, sampleValue(tex), ray)) break;
     }
   }

@@ -105,7 +105,7 @@ struct VolumeRenderer::Impl {
   std::pair<double, double> range;
   glm::ivec3 blockCount;
   std::vector<glm::vec2> blockMinMax;
-  detail::Texture intensity, gradient, blocks, transfer;
+  detail::Texture intensity, gradient, blocks, blockRange, transfer;
   detail::VertexArray vao;
   std::map<std::string, ShaderProgram> programs;
 
@@ -178,6 +178,13 @@ VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume) : impl_
             }
       }
   m.blocks = detail::makeTexture();
+  m.blockRange = detail::makeTexture();
+  glBindTexture(GL_TEXTURE_3D, m.blockRange.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, m.blockCount.x, m.blockCount.y, m.blockCount.z, 0, GL_RG, GL_FLOAT,
+               m.blockMinMax.data());
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  checkGl("uploading the block grid");
   m.transfer = detail::makeTexture();
   m.vao = detail::makeVertexArray();
 }
@@ -258,7 +265,7 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   glUniform3f(p.uniform("uVolume.dimensions"), float(m.dims.x), float(m.dims.y), float(m.dims.z));
   glUniform1f(p.uniform("uVolume.referenceStep"), float(minSpacing));
   glUniform2f(p.uniform("uVolume.valueRange"), float(lo), float(hi));
-  glUniform3f(p.uniform("uBlockCount"), float(m.blockCount.x), float(m.blockCount.y), float(m.blockCount.z));
+  glUniform1f(p.uniform("uBlockVoxels"), float(kBlock));
   const glm::mat4 worldFromClip(frame.camera.worldFromClip);
   glUniformMatrix4fv(p.uniform("uWorldFromClip"), 1, GL_FALSE, glm::value_ptr(worldFromClip));
   glUniform2f(p.uniform("uViewport"), float(s.size.x), float(s.size.y));
@@ -280,8 +287,9 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
   const struct { const char* name; GLenum target; GLuint id; } units[] = {
       {"uIntensity", GL_TEXTURE_3D, m.intensity.id()}, {"uGradient", GL_TEXTURE_3D, m.gradient.id()},
-      {"uBlocks", GL_TEXTURE_3D, m.blocks.id()},       {"uTransfer", GL_TEXTURE_1D, m.transfer.id()}};
-  for (int u = 0; u < 4; ++u) {
+      {"uBlocks", GL_TEXTURE_3D, m.blocks.id()},       {"uTransfer", GL_TEXTURE_1D, m.transfer.id()},
+      {"uBlockRange", GL_TEXTURE_3D, m.blockRange.id()}};
+  for (int u = 0; u < 5; ++u) {
     glActiveTexture(GL_TEXTURE0 + u);
     glBindTexture(units[u].target, units[u].id);
     glUniform1i(p.uniform(units[u].name), u);
