@@ -77,10 +77,11 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     auto& s = p.settings;
     const auto mode = render::parseRenderMode(v.mode);
     if (!mode) throw InputError(study.file, "view '" + v.name + "': unknown mode '" + v.mode +
-                                                "' (composite, isosurface, mip, minip, average)");
+                                                "' (composite, isosurface, mip, minip, average, mpr)");
     const auto sv = render::parseStandardView(v.view);
     if (!sv) throw InputError(study.file, "view '" + v.name + "': unknown view '" + v.view +
-                                              "' (anterior, posterior, left, right, superior, inferior)");
+                                              "' (anterior, posterior, left, right, superior, inferior, "
+                                              "axial, coronal, sagittal)");
     if (v.sampling != "linear" && v.sampling != "nearest")
       throw InputError(study.file, "view '" + v.name + "': sampling must be linear or nearest");
     if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
@@ -112,6 +113,11 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     s.background = {v.background[0], v.background[1], v.background[2]};
     s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
     s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
+    s.planeOffsetMm = v.planeOffsetMm;
+    s.slabMm = v.slabMm;
+    s.overlay = v.overlay;
+    s.overlayOpacity = static_cast<float>(v.overlayOpacity);
+    s.overlayThreshold = static_cast<float>(v.overlayThreshold);
     p.presetName = v.preset;
     p.config = v;
     out.push_back(std::move(p));
@@ -126,8 +132,18 @@ void runRender(const RenderOptions& o) {
   read.series = study.anatomical.series;
   const Volume anatomy = io::readVolume(study.anatomical.path, read);
 
+  std::optional<Volume> functional;
+  if (study.functional) {
+    io::ReadOptions f;
+    f.series = study.functional->series;
+    functional = io::readVolume(study.functional->path, f);
+  }
+
   auto context = render::createHeadlessContext({16, 16});
   render::VolumeRenderer renderer(*context, anatomy);
+  // Until a registration is given, the functional volume is placed by its own world
+  // coordinates (both volumes are in LPS mm).
+  if (functional) renderer.setFunctional(*functional, glm::dmat4(1.0));
   const auto [lo, hi] = renderer.valueRange();
   struct Output {
     std::string file;
@@ -144,10 +160,20 @@ void runRender(const RenderOptions& o) {
     const double window = v.settings.window > 0 ? v.settings.window : hi - lo;
     const double level = v.settings.window > 0 ? v.settings.level : 0.5 * (hi + lo);
     std::string caption = v.config.mode;
+    if (v.settings.mode == render::RenderMode::Mpr) caption += " " + v.config.view;
+    if (v.settings.mode == render::RenderMode::Mpr && v.settings.slabMm > 0)
+      caption += "  slab " + std::to_string(static_cast<int>(v.settings.slabMm)) + " mm";
     if (v.settings.mode == render::RenderMode::Composite) caption += "  " + v.presetName;
     else if (v.settings.mode == render::RenderMode::Isosurface) caption += "  iso " + std::to_string(static_cast<int>(v.settings.isoValue));
     else caption += "  W " + std::to_string(static_cast<int>(window)) + " L " + std::to_string(static_cast<int>(level));
-    if (v.config.annotate) render::annotate(frame.image, frame.camera, caption);
+    const bool overlayShown = v.settings.mode == render::RenderMode::Mpr && v.settings.overlay && functional;
+    if (v.config.annotate) {
+      render::annotate(frame.image, frame.camera, caption);
+      if (overlayShown) {
+        const auto [flo, fhi] = renderer.functionalRange();
+        render::drawColourBar(frame.image, flo, fhi, functional->metadata().unit);
+      }
+    }
     nlohmann::json r;
     r["file"] = v.config.name + ".png";
     r["mode"] = v.config.mode;
@@ -168,6 +194,16 @@ void runRender(const RenderOptions& o) {
     r["jitter"] = v.settings.jitter;
     r["seed"] = v.settings.seed;
     r["annotated"] = v.config.annotate;
+    if (v.settings.mode == render::RenderMode::Mpr) {
+      r["plane_offset_mm"] = v.settings.planeOffsetMm;
+      r["slab_mm"] = v.settings.slabMm;
+      r["functional_overlay"] = overlayShown;
+      if (overlayShown) {
+        r["overlay_opacity"] = v.settings.overlayOpacity;
+        r["overlay_threshold"] = v.settings.overlayThreshold;
+        r["functional_placement"] = "world coordinates (no registration transform)";
+      }
+    }
     r["ms_per_frame"] = frame.milliseconds;
     r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);
     outputs.push_back({v.config.name + ".png", std::move(frame.image), r});
@@ -179,6 +215,7 @@ void runRender(const RenderOptions& o) {
   nlohmann::json report;
   report["study"] = study.file.string();
   report["anatomical"] = anatomy.metadata().sourcePath;
+  if (functional) report["functional"] = functional->metadata().sourcePath;
   report["value_range"] = {lo, hi};
   report["gl_renderer"] = context->renderer();
   report["gl_version"] = context->version();
@@ -202,8 +239,9 @@ void addRenderCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("-o,--output", o->outDir, "Output folder")->required();
-  cmd->add_option("--mode", o->mode, "composite | isosurface | mip | minip | average (all views)");
-  cmd->add_option("--view", o->view, "anterior | posterior | left | right | superior | inferior");
+  cmd->add_option("--mode", o->mode, "composite | isosurface | mip | minip | average | mpr (all views)");
+  cmd->add_option("--view", o->view,
+                  "anterior | posterior | left | right | superior | inferior (MPR: axial | coronal | sagittal)");
   cmd->add_option("--preset", o->preset, "Transfer function: ct-bone, ct-skin, ct-muscle-bone, mr-default, pet-hot-metal");
   cmd->add_option("--size", o->size, "Image width and height in pixels")->check(CLI::Range(1, 8192));
   cmd->add_option("--azimuth", o->azimuth, "Degrees about the view's up axis");

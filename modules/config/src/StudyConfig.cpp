@@ -96,7 +96,8 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   rejectUnknownKeys(file, j, where + ".",
                     {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
                      "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
-                     "background", "crop_min", "crop_max", "annotate"});
+                     "background", "crop_min", "crop_max", "annotate", "plane_offset_mm", "slab_mm", "overlay",
+                     "overlay_opacity", "overlay_threshold"});
   const std::string w = where + ".";
   ViewConfig v;
   v.name = stringField(file, j, w, "name", false);
@@ -131,6 +132,11 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   for (int a = 0; a < 3; ++a)
     if (v.cropMin[a] >= v.cropMax[a]) throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
   v.annotate = boolField(file, j, w, "annotate", true);
+  v.planeOffsetMm = numberField(file, j, w, "plane_offset_mm", 0.0, -1e4, 1e4);
+  v.slabMm = numberField(file, j, w, "slab_mm", 0.0, 0.0, 1e4);
+  v.overlay = boolField(file, j, w, "overlay", true);
+  v.overlayOpacity = numberField(file, j, w, "overlay_opacity", 0.5, 0.0, 1.0);
+  v.overlayThreshold = numberField(file, j, w, "overlay_threshold", 0.25, 0.0, 1.0);
   return v;
 }
 

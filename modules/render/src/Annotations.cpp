@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "mvw/render/TransferFunction.h"
+
 namespace mvw::render {
 
 std::string orientationLabel(const glm::dvec3& w) {
@@ -65,6 +67,34 @@ void annotate(Image& image, const Camera& camera, const std::string& caption) {
     std::snprintf(buf, sizeof buf, "%g mm", mm);
     sz = size(buf, captionScale);
     text(buf, {w - pad - sz.width, y - static_cast<int>(6 * scale)}, captionScale);
+  }
+}
+
+void drawColourBar(Image& image, double lo, double hi, const std::string& unit) {
+  cv::Mat m(image.height, image.width, CV_8UC4, image.rgba.data());
+  const double scale = std::max(0.4, std::min(image.width, image.height) / 600.0);
+  const int barW = std::max(6, static_cast<int>(14 * scale));
+  const int top = image.height / 4, bottom = image.height * 3 / 4;
+  const int x0 = image.width - barW - static_cast<int>(44 * scale), x1 = x0 + barW;
+  const auto lut = sampleTransferFunction(transferPreset("pet-hot-metal"), 0.0, 1.0, 256, 0.0, 1.0);
+  for (int y = top; y <= bottom; ++y) {
+    const glm::vec4 c = lut[static_cast<std::size_t>(255.0 * (bottom - y) / std::max(1, bottom - top))];
+    cv::line(m, {x0, y}, {x1, y}, cv::Scalar(255 * c.r, 255 * c.g, 255 * c.b, 255));
+  }
+  cv::rectangle(m, {x0 - 1, top - 1}, {x1 + 1, bottom + 1}, cv::Scalar(200, 200, 200, 255), 1);
+  const double textScale = 0.4 * scale;
+  const int thick = std::max(1, static_cast<int>(std::lround(scale)));
+  auto label = [&](double v, int y) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    cv::putText(m, buf, {x0 - 2, y}, cv::FONT_HERSHEY_SIMPLEX, textScale, cv::Scalar(0, 0, 0, 255), thick + 2, cv::LINE_AA);
+    cv::putText(m, buf, {x0 - 2, y}, cv::FONT_HERSHEY_SIMPLEX, textScale, cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
+  };
+  label(hi, top - static_cast<int>(6 * scale));
+  label(lo, bottom + static_cast<int>(16 * scale));
+  if (!unit.empty()) {
+    cv::putText(m, unit, {x0 - 2, bottom + static_cast<int>(32 * scale)}, cv::FONT_HERSHEY_SIMPLEX, textScale,
+                cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
   }
 }
 

@@ -32,6 +32,11 @@ const char* kNames[] = {"anterior", "posterior", "left", "right", "superior", "i
 std::optional<StandardView> parseStandardView(const std::string& name) {
   for (int i = 0; i < 6; ++i)
     if (name == kNames[i]) return static_cast<StandardView>(i);
+  // The MPR planes as radiology displays them: axial seen from the feet, coronal from the
+  // front, sagittal from the patient's left.
+  if (name == "axial") return StandardView::Inferior;
+  if (name == "coronal") return StandardView::Anterior;
+  if (name == "sagittal") return StandardView::Left;
   return std::nullopt;
 }
 

@@ -23,7 +23,8 @@ const std::map<RenderMode, std::string> kModeNames = {{RenderMode::Composite, "c
                                                       {RenderMode::Isosurface, "isosurface"},
                                                       {RenderMode::Mip, "mip"},
                                                       {RenderMode::MinIp, "minip"},
-                                                      {RenderMode::Average, "average"}};
+                                                      {RenderMode::Average, "average"},
+                                                      {RenderMode::Mpr, "mpr"}};
 
 // Values of component 0 as float, in the volume's physical unit.
 std::vector<float> valuesOf(const Volume& v) {
@@ -106,6 +107,9 @@ struct VolumeRenderer::Impl {
   glm::ivec3 blockCount;
   std::vector<glm::vec2> blockMinMax;
   detail::Texture intensity, gradient, blocks, blockRange, transfer;
+  detail::Texture functional, colormap;
+  glm::dmat4 functionalTextureFromAnatomicalWorld{1.0};
+  std::pair<double, double> functionalRange{0.0, 1.0};
   detail::VertexArray vao;
   std::map<std::string, ShaderProgram> programs;
 
@@ -120,6 +124,7 @@ struct VolumeRenderer::Impl {
       case RenderMode::Mip: defines = {"MVW_MIP 1"}; break;
       case RenderMode::MinIp: defines = {"MVW_MINIP 1"}; break;
       case RenderMode::Average: defines = {"MVW_AVERAGE 1"}; break;
+      case RenderMode::Mpr: file = "mpr.frag.glsl"; break;
     }
     const std::string key = toString(mode);
     auto it = programs.find(key);
@@ -193,6 +198,45 @@ VolumeRenderer::~VolumeRenderer() = default;
 
 std::pair<double, double> VolumeRenderer::valueRange() const { return impl_->range; }
 
+bool VolumeRenderer::hasFunctional() const { return impl_->functional.id() != 0; }
+
+std::pair<double, double> VolumeRenderer::functionalRange() const { return impl_->functionalRange; }
+
+void VolumeRenderer::setFunctional(const Volume& functional, const glm::dmat4& anatomicalFromFunctional) {
+  Impl& m = *impl_;
+  m.context.makeCurrent();
+  const glm::ivec3 d = functional.dimensions();
+  const std::vector<float> values = valuesOf(functional);
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  m.functionalRange = {*lo, *hi > *lo ? *hi : *lo + 1.0f};
+  m.functional = detail::makeTexture();
+  glBindTexture(GL_TEXTURE_3D, m.functional.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, d.x, d.y, d.z, 0, GL_RED, GL_FLOAT, values.data());
+  checkGl("uploading the functional volume");
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  // Label maps keep their classes: nearest; other attributes are interpolated.
+  setSampling(m.functional.id(), GL_TEXTURE_3D, !isInteger(functional.scalarType()));
+  glm::dmat4 textureFromIndex(1.0);
+  for (int a = 0; a < 3; ++a) {
+    textureFromIndex[a][a] = 1.0 / d[a];
+    textureFromIndex[3][a] = 0.5 / d[a];
+  }
+  m.functionalTextureFromAnatomicalWorld =
+      textureFromIndex * glm::inverse(functional.worldFromIndex()) * glm::inverse(anatomicalFromFunctional);
+  const std::vector<glm::vec4> lut =
+      sampleTransferFunction(transferPreset("pet-hot-metal"), 0.0, 1.0, 256, 0.0, 1.0);
+  std::vector<glm::vec4> opaque = lut;
+  for (auto& c : opaque) c.a = 1.0f;
+  m.colormap = detail::makeTexture();
+  glBindTexture(GL_TEXTURE_1D, m.colormap.id());
+  glTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, 256, 0, GL_RGBA, GL_FLOAT, opaque.data());
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+}
+
 Frame VolumeRenderer::render(const RenderSettings& s) {
   Impl& m = *impl_;
   m.context.makeCurrent();
@@ -206,7 +250,9 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   const glm::dvec3 centre = 0.5 * (corner0 + corner1);
   const double radius = 0.5 * glm::length(glm::dvec3(m.dims) * m.spacing);
   Frame frame;
-  frame.camera = makeCamera(s.camera, centre, radius, s.size);
+  CameraSettings cameraSettings = s.camera;
+  if (s.mode == RenderMode::Mpr) cameraSettings.perspective = false;
+  frame.camera = makeCamera(cameraSettings, centre, radius, s.size);
 
   // Transfer function LUT over the value range, and the block visibility for this frame.
   const int lutSize = 1024;
@@ -285,11 +331,22 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   glUniform2f(p.uniform("uWindowLevel"), float(window), float(level));
   glUniform1f(p.uniform("uIsoValue"), float(s.isoValue));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
+  const glm::vec3 planeCentre(centre + frame.camera.forward * s.planeOffsetMm);
+  glUniform3f(p.uniform("uPlaneCentre"), planeCentre.x, planeCentre.y, planeCentre.z);
+  glUniform1f(p.uniform("uSlab"), float(std::max(0.0, s.slabMm)));
+  const bool overlay = s.overlay && m.functional.id() != 0;
+  glUniform1i(p.uniform("uHasFunctional"), overlay ? 1 : 0);
+  const glm::mat4 functionalFromWorld(m.functionalTextureFromAnatomicalWorld);
+  glUniformMatrix4fv(p.uniform("uFunctionalFromWorld"), 1, GL_FALSE, glm::value_ptr(functionalFromWorld));
+  glUniform2f(p.uniform("uFunctionalRange"), float(m.functionalRange.first), float(m.functionalRange.second));
+  glUniform1f(p.uniform("uOverlayOpacity"), s.overlayOpacity);
+  glUniform1f(p.uniform("uOverlayThreshold"), s.overlayThreshold);
   const struct { const char* name; GLenum target; GLuint id; } units[] = {
       {"uIntensity", GL_TEXTURE_3D, m.intensity.id()}, {"uGradient", GL_TEXTURE_3D, m.gradient.id()},
       {"uBlocks", GL_TEXTURE_3D, m.blocks.id()},       {"uTransfer", GL_TEXTURE_1D, m.transfer.id()},
-      {"uBlockRange", GL_TEXTURE_3D, m.blockRange.id()}};
-  for (int u = 0; u < 5; ++u) {
+      {"uBlockRange", GL_TEXTURE_3D, m.blockRange.id()}, {"uFunctional", GL_TEXTURE_3D, m.functional.id()},
+      {"uColormap", GL_TEXTURE_1D, m.colormap.id()}};
+  for (int u = 0; u < 7; ++u) {
     glActiveTexture(GL_TEXTURE0 + u);
     glBindTexture(units[u].target, units[u].id);
     glUniform1i(p.uniform(units[u].name), u);

@@ -29,8 +29,9 @@ enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };
 // are checked by the app against the renderer's lists before any GL work.
 struct ViewConfig {
   std::string name;                  // output file stem; default "view<N>"
-  std::string mode = "composite";    // composite | isosurface | mip | minip | average
+  std::string mode = "composite";    // composite | isosurface | mip | minip | average | mpr
   std::string view = "anterior";     // anterior | posterior | left | right | superior | inferior
+                                     // (| axial | coronal | sagittal)
   double azimuth = 0.0, elevation = 0.0, roll = 0.0;  // degrees
   double zoom = 1.0;
   bool perspective = false;
@@ -46,6 +47,11 @@ struct ViewConfig {
   std::array<double, 3> background{0.0, 0.0, 0.0};
   std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};  // fractions of the box
   bool annotate = true;
+  double planeOffsetMm = 0.0;        // mpr: plane moved along the line of sight
+  double slabMm = 0.0;               // mpr: thick-slab MIP thickness, 0 = single plane
+  bool overlay = true;               // mpr: show the functional volume when there is one
+  double overlayOpacity = 0.5;
+  double overlayThreshold = 0.25;    // fraction of the functional value range
 };
 
 struct RenderConfig {

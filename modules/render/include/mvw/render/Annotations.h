@@ -14,4 +14,7 @@ std::string orientationLabel(const glm::dvec3& worldDirection);
 
 void annotate(Image& image, const Camera& camera, const std::string& caption);
 
+// A vertical colour bar (hot metal) at the right edge, labelled with the value range.
+void drawColourBar(Image& image, double lo, double hi, const std::string& unit);
+
 }  // namespace mvw::render

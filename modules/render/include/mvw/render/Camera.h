@@ -3,6 +3,7 @@
 // name them: "anterior" looks at the patient's face (the patient's left is on the screen's
 // right), "left" looks at the patient's left side, "superior" looks down from the vertex
 // (anterior up), "inferior" up from the feet (anterior up, patient's right on screen left).
+// The MPR names are aliases: axial = inferior, coronal = anterior, sagittal = left.
 // Azimuth turns about the view's up axis, elevation about its right axis, roll about the
 // line of sight; zoom > 1 magnifies; pan moves the view in screen-plane millimetres.
 #include <optional>

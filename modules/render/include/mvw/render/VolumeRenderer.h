@@ -19,7 +19,7 @@
 
 namespace mvw::render {
 
-enum class RenderMode { Composite, Isosurface, Mip, MinIp, Average };
+enum class RenderMode { Composite, Isosurface, Mip, MinIp, Average, Mpr };
 std::optional<RenderMode> parseRenderMode(const std::string& name);
 std::string toString(RenderMode mode);
 
@@ -41,6 +41,14 @@ struct RenderSettings {
   glm::vec4 light{0.25f, 0.7f, 0.25f, 24.0f};  // ambient, diffuse, specular, shininess
   glm::dvec3 cropMin{0.0};  // crop box as fractions of the volume box
   glm::dvec3 cropMax{1.0};
+  // MPR: the plane faces the camera through the volume centre, moved along the line of
+  // sight; a slab > 0 mm is a thick-slab MIP. (Always orthographic.)
+  double planeOffsetMm = 0.0;
+  double slabMm = 0.0;
+  // Functional overlay (MPR), when the renderer holds a functional volume.
+  bool overlay = true;
+  float overlayOpacity = 0.5f;
+  float overlayThreshold = 0.25f;  // fraction of the functional range
 };
 
 struct Frame {
@@ -60,6 +68,12 @@ class VolumeRenderer {
 
   Frame render(const RenderSettings& settings);
   std::pair<double, double> valueRange() const;
+
+  // A functional volume on its own grid (component 0), placed by the registration:
+  // anatomicalFromFunctional maps functional world points (LPS mm) to anatomical ones.
+  void setFunctional(const Volume& functional, const glm::dmat4& anatomicalFromFunctional);
+  bool hasFunctional() const;
+  std::pair<double, double> functionalRange() const;
 
  private:
   struct Impl;
