@@ -113,6 +113,8 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     s.background = {v.background[0], v.background[1], v.background[2]};
     s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
     s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
+    s.gradientOpacityLow = v.gradientOpacity[0];
+    s.gradientOpacityHigh = v.gradientOpacity[1];
     s.planeOffsetMm = v.planeOffsetMm;
     s.slabMm = v.slabMm;
     s.overlay = v.overlay;
@@ -185,6 +187,8 @@ void runRender(const RenderOptions& o) {
     r["perspective"] = v.config.perspective;
     r["size"] = {v.config.width, v.config.height};
     r["transfer_preset"] = v.presetName;
+    if (v.settings.gradientOpacityHigh > 0)
+      r["gradient_opacity"] = {v.settings.gradientOpacityLow, v.settings.gradientOpacityHigh};
     r["window"] = window;
     r["level"] = level;
     r["iso"] = v.settings.isoValue;

@@ -1,10 +1,13 @@
-// Composite DVR: 1D transfer function, opacity corrected for the step, front-to-back
-// compositing with associated (opacity-weighted) colours, early ray termination at 0.99,
-// optional Phong shading from the precomputed gradient.
+// Composite DVR: a transfer function over value (1D) or over value x gradient magnitude
+// (2D), its opacity already corrected for the step on the CPU; front-to-back compositing
+// with associated (opacity-weighted) colours, early ray termination at 0.99, optional
+// Phong shading from the precomputed gradient.
 #include "raycast/common.glsl"
 
-uniform sampler1D uTransfer;  // RGBA, opacity per reference step
-uniform vec2 uTransferRange;  // values at the first and last LUT entries
+uniform sampler2D uTransfer;   // RGBA over (value, |gradient| / uGradientMax); alpha per step
+uniform vec2 uTransferRange;   // values at the first and last columns
+uniform bool uTransfer2D;      // rows vary with the gradient magnitude
+uniform float uGradientMax;    // |gradient| at the last row (unit/mm)
 uniform bool uShading;
 
 struct RayState {
@@ -20,13 +23,20 @@ void setupHook(inout RayState s) {
 bool skipHook(RayState s, vec3 tex) { return !blockVisible(tex); }
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
-  float u = (value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x);
-  vec4 c = textureLod(uTransfer, clamp(u, 0.0, 1.0), 0.0);
+  float u = clamp((value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x), 0.0, 1.0);
+  vec4 g = vec4(0.0);
+  vec4 c;
+  if (uTransfer2D) {
+    g = sampleGradient(tex);
+    c = textureLod(uTransfer, vec2(u, clamp(g.a / uGradientMax, 0.0, 1.0)), 0.0);
+  } else {
+    c = textureLod(uTransfer, vec2(u, 0.5), 0.0);
+  }
   if (c.a <= 0.0) return true;
-  float alpha = 1.0 - pow(1.0 - min(c.a, 0.999999), uStep / uVolume.referenceStep);
+  float alpha = c.a;
   vec3 rgb = c.rgb;
   if (uShading) {
-    vec4 g = sampleGradient(tex);
+    if (!uTransfer2D) g = sampleGradient(tex);
     if (g.a > 1e-6) rgb = phong(rgb, -g.xyz / g.a, ray.dir);
   }
   s.color.rgb += (1.0 - s.color.a) * alpha * rgb;

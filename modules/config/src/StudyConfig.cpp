@@ -97,7 +97,7 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
                     {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
                      "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
                      "background", "crop_min", "crop_max", "annotate", "plane_offset_mm", "slab_mm", "overlay",
-                     "overlay_opacity", "overlay_threshold"});
+                     "overlay_opacity", "overlay_threshold", "gradient_opacity"});
   const std::string w = where + ".";
   ViewConfig v;
   v.name = stringField(file, j, w, "name", false);
@@ -132,6 +132,13 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   for (int a = 0; a < 3; ++a)
     if (v.cropMin[a] >= v.cropMax[a]) throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
   v.annotate = boolField(file, j, w, "annotate", true);
+  if (j.contains("gradient_opacity")) {
+    const json& g = j["gradient_opacity"];
+    if (!g.is_array() || g.size() != 2 || !g[0].is_number() || !g[1].is_number() ||
+        !(g[0].get<double>() >= 0.0 && g[0].get<double>() < g[1].get<double>()))
+      throw InputError(file, "'" + w + "gradient_opacity' must be [low, high] with 0 <= low < high (unit/mm)");
+    v.gradientOpacity = {g[0].get<double>(), g[1].get<double>()};
+  }
   v.planeOffsetMm = numberField(file, j, w, "plane_offset_mm", 0.0, -1e4, 1e4);
   v.slabMm = numberField(file, j, w, "slab_mm", 0.0, 0.0, 1e4);
   v.overlay = boolField(file, j, w, "overlay", true);

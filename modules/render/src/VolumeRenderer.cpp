@@ -254,15 +254,37 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   if (s.mode == RenderMode::Mpr) cameraSettings.perspective = false;
   frame.camera = makeCamera(cameraSettings, centre, radius, s.size);
 
-  // Transfer function LUT over the value range, and the block visibility for this frame.
+  // Transfer function table over the value range (and the gradient magnitude for a 2D
+  // function), its opacity corrected for this frame's step here rather than per sample.
   const int lutSize = 1024;
   const double lo = m.range.first, hi = m.range.second > m.range.first ? m.range.second : m.range.first + 1.0;
+  const double minSpacing = std::min({m.spacing.x, m.spacing.y, m.spacing.z});
+  const double step = s.stepMm > 0 ? s.stepMm : 0.5 * minSpacing;
   const std::vector<glm::vec4> lut = sampleTransferFunction(s.transfer, lo, hi, lutSize, lo, hi);
-  glBindTexture(GL_TEXTURE_1D, m.transfer.id());
-  glTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, lutSize, 0, GL_RGBA, GL_FLOAT, lut.data());
-  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  const bool transfer2d = s.gradientOpacityHigh > 0.0;
+  const int rows = transfer2d ? 64 : 1;
+  const double gradientMax = transfer2d ? 2.0 * s.gradientOpacityHigh : 1.0;
+  std::vector<glm::vec4> table(static_cast<std::size_t>(lutSize) * rows);
+  for (int r = 0; r < rows; ++r) {
+    double scale = 1.0;
+    if (transfer2d) {
+      const double g = gradientMax * r / (rows - 1);
+      const double x = std::clamp((g - s.gradientOpacityLow) / std::max(1e-9, s.gradientOpacityHigh - s.gradientOpacityLow), 0.0, 1.0);
+      scale = x * x * (3.0 - 2.0 * x);
+    }
+    for (int i = 0; i < lutSize; ++i) {
+      glm::vec4 c = lut[i];
+      const double a = std::min(0.999999, c.a * scale);
+      c.a = static_cast<float>(1.0 - std::pow(1.0 - a, step / minSpacing));
+      table[static_cast<std::size_t>(r) * lutSize + i] = c;
+    }
+  }
+  glBindTexture(GL_TEXTURE_2D, m.transfer.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, lutSize, rows, 0, GL_RGBA, GL_FLOAT, table.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   std::vector<std::uint8_t> visible(m.blockMinMax.size(), 1);
   if (s.mode == RenderMode::Composite) {
     for (std::size_t b = 0; b < visible.size(); ++b) {
@@ -305,8 +327,6 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
     textureFromIndex[3][a] = 0.5 / m.dims[a];
   }
   const glm::mat4 textureFromWorld(textureFromIndex * glm::inverse(m.worldFromIndex));
-  const double minSpacing = std::min({m.spacing.x, m.spacing.y, m.spacing.z});
-  const double step = s.stepMm > 0 ? s.stepMm : 0.5 * minSpacing;
   glUniformMatrix4fv(p.uniform("uVolume.textureFromWorld"), 1, GL_FALSE, glm::value_ptr(textureFromWorld));
   glUniform3f(p.uniform("uVolume.dimensions"), float(m.dims.x), float(m.dims.y), float(m.dims.z));
   glUniform1f(p.uniform("uVolume.referenceStep"), float(minSpacing));
@@ -326,6 +346,8 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   glUniform4f(p.uniform("uLight"), s.light.x, s.light.y, s.light.z, s.light.w);
   glUniform2f(p.uniform("uTransferRange"), float(lo), float(hi));
   glUniform1i(p.uniform("uShading"), s.shading ? 1 : 0);
+  glUniform1i(p.uniform("uTransfer2D"), transfer2d ? 1 : 0);
+  glUniform1f(p.uniform("uGradientMax"), float(gradientMax));
   const double window = s.window > 0 ? s.window : hi - lo;
   const double level = s.window > 0 ? s.level : 0.5 * (hi + lo);
   glUniform2f(p.uniform("uWindowLevel"), float(window), float(level));
@@ -343,7 +365,7 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   glUniform1f(p.uniform("uOverlayThreshold"), s.overlayThreshold);
   const struct { const char* name; GLenum target; GLuint id; } units[] = {
       {"uIntensity", GL_TEXTURE_3D, m.intensity.id()}, {"uGradient", GL_TEXTURE_3D, m.gradient.id()},
-      {"uBlocks", GL_TEXTURE_3D, m.blocks.id()},       {"uTransfer", GL_TEXTURE_1D, m.transfer.id()},
+      {"uBlocks", GL_TEXTURE_3D, m.blocks.id()},       {"uTransfer", GL_TEXTURE_2D, m.transfer.id()},
       {"uBlockRange", GL_TEXTURE_3D, m.blockRange.id()}, {"uFunctional", GL_TEXTURE_3D, m.functional.id()},
       {"uColormap", GL_TEXTURE_1D, m.colormap.id()}};
   for (int u = 0; u < 7; ++u) {

@@ -37,6 +37,7 @@ struct ViewConfig {
   bool perspective = false;
   int width = 512, height = 512;
   std::string preset;                // transfer function preset; "" = by modality
+  std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   std::optional<double> window, level;
   double iso = 300.0;
   bool shading = true;

@@ -28,6 +28,9 @@ struct RenderSettings {
   glm::ivec2 size{512, 512};
   CameraSettings camera;
   TransferFunction transfer = transferPreset("ct-bone");
+  // 2D transfer function: opacity scaled by smoothstep(g0, g1, |gradient|) (unit/mm), which
+  // keeps boundaries and hides homogeneous regions (Levoy). g1 <= 0: 1D only.
+  double gradientOpacityLow = 0.0, gradientOpacityHigh = 0.0;
   double window = 0.0;   // projections: window width; <= 0 means the full value range
   double level = 0.0;    // window centre
   double isoValue = 300.0;
