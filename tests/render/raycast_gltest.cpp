@@ -129,6 +129,7 @@ struct Centroid {
   double x = 0, y = 0;
   int n = 0;
 };
+// Centroid of the pixels whose red channel lies in [lo, hi].
 Centroid centroidOf(const Image& img, int lo, int hi) {
   Centroid c;
   for (int y = 0; y < img.height; ++y)
@@ -252,21 +253,7 @@ TEST(Mpr, FunctionalOverlayFollowsTheRegistrationTransform) {
   s.level = 50;
   s.overlayOpacity = 1.0f;
   s.overlayThreshold = 0.5f;
-  auto hotCentroid = [&](const Image& img) {
-    Centroid c;
-    for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x)
-        if (img.pixel(x, y)[0] > 128) {
-          c.x += x;
-          c.y += y;
-          ++c.n;
-        }
-    if (c.n) {
-      c.x /= c.n;
-      c.y /= c.n;
-    }
-    return c;
-  };
+  auto hotCentroid = [](const Image& img) { return centroidOf(img, 129, 255); };
   renderer.setFunctional(hot, glm::dmat4(1.0));
   const Centroid at = hotCentroid(renderer.render(s).image);
   ASSERT_GT(at.n, 20);

@@ -78,6 +78,22 @@ void setSampling(GLuint tex, GLenum target, bool linear) {
   glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
 }
 
+void checkGl(const char* what);
+
+// A 3D float texture, clamped at the edges: the volume, its gradient, the functional volume.
+detail::Texture upload3D(glm::ivec3 d, GLint internalFormat, GLenum format, const float* data, bool linear,
+                         const char* what) {
+  detail::Texture tex = detail::makeTexture();
+  glBindTexture(GL_TEXTURE_3D, tex.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, d.x, d.y, d.z, 0, format, GL_FLOAT, data);
+  checkGl(what);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  setSampling(tex.id(), GL_TEXTURE_3D, linear);
+  return tex;
+}
+
 void checkGl(const char* what) {
   const GLenum e = glGetError();
   if (e == GL_OUT_OF_MEMORY) throw Error(std::string(what) + ": the GL implementation is out of memory for this volume");
@@ -148,22 +164,10 @@ VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume) : impl_
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
   m.range = {*lo, *hi};
 
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  m.intensity = detail::makeTexture();
-  glBindTexture(GL_TEXTURE_3D, m.intensity.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, m.dims.x, m.dims.y, m.dims.z, 0, GL_RED, GL_FLOAT, values.data());
-  checkGl("uploading the volume");
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
-
+  // Sampling of the intensity (linear or nearest) is set per frame.
+  m.intensity = upload3D(m.dims, GL_R32F, GL_RED, values.data(), true, "uploading the volume");
   const std::vector<float> grad = gradientOf(values, m.dims, m.spacing, volume.direction());
-  m.gradient = detail::makeTexture();
-  glBindTexture(GL_TEXTURE_3D, m.gradient.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, m.dims.x, m.dims.y, m.dims.z, 0, GL_RGBA, GL_FLOAT, grad.data());
-  checkGl("uploading the gradient volume");
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
-  setSampling(m.gradient.id(), GL_TEXTURE_3D, true);
+  m.gradient = upload3D(m.dims, GL_RGBA16F, GL_RGBA, grad.data(), true, "uploading the gradient volume");
 
   // Min/max per 8^3 block, widened by one voxel: trilinear samples near a block's face read
   // the neighbour's voxels too.
@@ -209,15 +213,9 @@ void VolumeRenderer::setFunctional(const Volume& functional, const glm::dmat4& a
   const std::vector<float> values = valuesOf(functional);
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
   m.functionalRange = {*lo, *hi > *lo ? *hi : *lo + 1.0f};
-  m.functional = detail::makeTexture();
-  glBindTexture(GL_TEXTURE_3D, m.functional.id());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, d.x, d.y, d.z, 0, GL_RED, GL_FLOAT, values.data());
-  checkGl("uploading the functional volume");
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
   // Label maps keep their classes: nearest; other attributes are interpolated.
-  setSampling(m.functional.id(), GL_TEXTURE_3D, !isInteger(functional.scalarType()));
+  m.functional = upload3D(d, GL_R32F, GL_RED, values.data(), !isInteger(functional.scalarType()),
+                          "uploading the functional volume");
   glm::dmat4 textureFromIndex(1.0);
   for (int a = 0; a < 3; ++a) {
     textureFromIndex[a][a] = 1.0 / d[a];
