@@ -31,6 +31,7 @@ struct RenderOptions {
   std::optional<std::string> mode, view, preset, sampling;
   std::optional<int> size;
   std::optional<double> azimuth, elevation, roll, zoom, window, level, iso;
+  std::optional<double> cueBrightness, cueAmount, cueContrast;
   bool noAnnotate = false;
   bool perspective = false;
 };
@@ -72,6 +73,10 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     if (o.level) v.level = *o.level;
     if (o.iso) v.iso = *o.iso;
     if (o.noAnnotate) v.annotate = false;
+    if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue = true;
+    if (o.cueBrightness) v.cueBrightness = *o.cueBrightness;
+    if (o.cueAmount) v.cueAmount = *o.cueAmount;
+    if (o.cueContrast) v.cueContrast = *o.cueContrast;
     if (o.perspective) v.perspective = true;
     PlannedView p;
     auto& s = p.settings;
@@ -113,6 +118,10 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     s.background = {v.background[0], v.background[1], v.background[2]};
     s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
     s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
+    s.depthCue = v.depthCue;
+    s.cueBrightness = v.cueBrightness;
+    s.cueAmount = v.cueAmount;
+    s.cueContrast = v.cueContrast;
     s.gradientOpacityLow = v.gradientOpacity[0];
     s.gradientOpacityHigh = v.gradientOpacity[1];
     s.planeOffsetMm = v.planeOffsetMm;
@@ -168,6 +177,12 @@ void runRender(const RenderOptions& o) {
     if (v.settings.mode == render::RenderMode::Composite) caption += "  " + v.presetName;
     else if (v.settings.mode == render::RenderMode::Isosurface) caption += "  iso " + std::to_string(static_cast<int>(v.settings.isoValue));
     else caption += "  W " + std::to_string(static_cast<int>(window)) + " L " + std::to_string(static_cast<int>(level));
+    if (v.settings.mode == render::RenderMode::Mip && v.settings.depthCue) {
+      char cue[96];
+      std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", v.settings.cueBrightness,
+                    v.settings.cueAmount, v.settings.cueContrast);
+      caption += cue;
+    }
     const bool overlayShown = v.settings.mode == render::RenderMode::Mpr && v.settings.overlay && functional;
     if (v.config.annotate) {
       render::annotate(frame.image, frame.camera, caption);
@@ -192,6 +207,9 @@ void runRender(const RenderOptions& o) {
     r["window"] = window;
     r["level"] = level;
     r["iso"] = v.settings.isoValue;
+    if (v.settings.mode == render::RenderMode::Mip && v.settings.depthCue)
+      r["depth_cue"] = {{"brightness", v.settings.cueBrightness}, {"amount", v.settings.cueAmount},
+                        {"contrast", v.settings.cueContrast}};
     r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : 0.5 * std::min({anatomy.spacing().x, anatomy.spacing().y, anatomy.spacing().z});
     r["sampling"] = v.config.sampling;
     r["shading"] = v.settings.shading;
@@ -256,6 +274,9 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--level", o->level, "Window centre for projections");
   cmd->add_option("--iso", o->iso, "Isosurface value");
   cmd->add_option("--sampling", o->sampling, "linear | nearest");
+  cmd->add_option("--cue-brightness", o->cueBrightness, "MIP depth cue: brightness beta0 (Heidrich 1995)");
+  cmd->add_option("--cue-amount", o->cueAmount, "MIP depth cue: amount a (0 = none)");
+  cmd->add_option("--cue-contrast", o->cueContrast, "MIP depth cue: contrast b (1 = plain MIP)");
   cmd->add_flag("--perspective", o->perspective, "Perspective instead of orthographic projection");
   cmd->add_flag("--no-annotate", o->noAnnotate, "No orientation labels, scale bar or caption");
   cmd->callback([o] {

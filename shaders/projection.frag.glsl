@@ -6,6 +6,20 @@
 
 uniform vec2 uWindowLevel;  // window width, level (centre), in the volume's unit
 
+// Depth-cued maximum projection (Heidrich, McCool and Stevens 1995), MIP only. Emission
+// phi is the windowed value in 0..1; z runs along the projector from 0 at the background
+// (the far side of the bounding sphere) to 1 at the image side. The ramp
+// beta(z') = beta0 + beta_m z' with z' = a z + b (section 2.3, beta_m = 1) multiplies phi
+// BEFORE the maximum (eq. 3), so a dim near structure can beat a brighter far one;
+// a = 0, b = 1, beta0 = 0 is plain MIP.
+uniform bool uDepthCue;
+uniform vec3 uCue;          // beta0 (brightness), a (depth cue amount), b (contrast)
+uniform vec4 uBoundingSphere;  // centre (world mm), radius
+
+float emission(float v) {
+  return clamp((v - (uWindowLevel.y - 0.5 * uWindowLevel.x)) / uWindowLevel.x, 0.0, 1.0);
+}
+
 struct RayState {
   float value;
   float depth;
@@ -28,6 +42,12 @@ bool skipHook(RayState s, vec3 tex) { return false; }
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 #if defined(MVW_MIP)
+  if (uDepthCue) {
+    float tFront = dot(uBoundingSphere.xyz - ray.origin, ray.dir) - uBoundingSphere.w;
+    float z = 1.0 - (t - tFront) / (2.0 * uBoundingSphere.w);
+    value = (uCue.x + uCue.y * z + uCue.z) * emission(value);  // eq. (3): beta(z') phi(z)
+  }
+  // Strictly greater: of equally bright samples the first, nearest the viewer, wins.
   if (value > s.value) { s.value = value; s.depth = t; }
 #elif defined(MVW_MINIP)
   if (value < s.value) { s.value = value; s.depth = t; }
@@ -48,7 +68,11 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
 #if defined(MVW_AVERAGE)
   v /= float(s.count);
 #endif
-  float grey = clamp((v - (uWindowLevel.y - 0.5 * uWindowLevel.x)) / uWindowLevel.x, 0.0, 1.0);
+  float grey = emission(v);
+#if defined(MVW_MIP)
+  // eq. (3): the background term beta0 Phi[0] competes in the maximum.
+  if (uDepthCue) grey = clamp(max(v, uCue.x * dot(uBackground, vec3(1.0 / 3.0))), 0.0, 1.0);
+#endif
   fragColor = vec4(vec3(grey), 1.0);
   fragDepth = s.depth;
 }

@@ -272,3 +272,66 @@ TEST(Mpr, FunctionalOverlayFollowsTheRegistrationTransform) {
 
 }  // namespace
 }  // namespace mvw::render
+
+namespace mvw::render {
+namespace {
+
+// Two spheres one behind the other as seen from the front: a dim one (600) near the viewer
+// (anterior, -y) and a bright one (800) far behind it.
+float nearDimFarBright(glm::dvec3 p) {
+  if (glm::length(p - glm::dvec3(0, -20, 0)) < 8.0) return 600.0f;
+  if (glm::length(p - glm::dvec3(0, 20, 0)) < 8.0) return 800.0f;
+  return 0.0f;
+}
+
+TEST(DepthCuedMip, NeutralSettingsReproducePlainMipExactly) {
+  const Volume v = makeVolume({41, 51, 31}, makeWorldFromIndex({-20, -25, -15}, {1, 1, 1}, glm::dmat3(1.0)),
+                              [](glm::dvec3 p) { return static_cast<float>(nearDimFarBright(p) + 30 * std::sin(p.x * 0.3) + p.z); });
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, v);
+  RenderSettings s;
+  s.mode = RenderMode::Mip;
+  s.size = {63, 47};
+  s.window = 900;
+  s.level = 400;
+  s.camera.azimuthDeg = 20;
+  const Frame plain = renderer.render(s);
+  s.depthCue = true;  // contrast 100 %, depth cue 0, brightness 0
+  const Frame neutral = renderer.render(s);
+  EXPECT_EQ(plain.image.rgba, neutral.image.rgba);
+}
+
+TEST(DepthCuedMip, TheRampIsAppliedBeforeTheMaximum) {
+  const Volume v = makeVolume({41, 61, 41}, makeWorldFromIndex({-20, -30, -20}, {1, 1, 1}, glm::dmat3(1.0)), nearDimFarBright);
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, v);
+  RenderSettings s;
+  s.mode = RenderMode::Mip;
+  s.size = {41, 41};  // odd: the middle ray passes through both centres
+  s.window = 1000;
+  s.level = 500;  // emission = value / 1000
+  s.jitter = false;
+  s.linear = false;
+  s.camera.view = StandardView::Anterior;
+  const Frame plain = renderer.render(s);
+  EXPECT_NEAR(plain.image.pixel(20, 20)[0], 0.8 * 255, 1.0);  // the bright far sphere wins
+  s.depthCue = true;
+  s.cueBrightness = 0.0;
+  s.cueAmount = 1.0;  // beta = z: 1 at the image side of the bounding sphere, 0 behind it
+  s.cueContrast = 0.0;
+  const Frame cued = renderer.render(s);
+  // Along the middle ray z = 1 - (t - tFront) / 2R with R the bounding sphere's radius; the
+  // spheres' front surfaces lie at y = -28 and y = 12, i.e. R - 28 and R + 12 mm behind tFront.
+  const double R = radiusOf(v);
+  const double zNear = 1.0 - (R - 28.0) / (2.0 * R), zFar = 1.0 - (R + 12.0) / (2.0 * R);
+  const double expected = std::max(zNear * 0.6, zFar * 0.8);
+  ASSERT_GT(zNear * 0.6, zFar * 0.8) << "the phantom must show the inversion";
+  EXPECT_NEAR(cued.image.pixel(20, 20)[0], expected * 255.0, 3.0);
+  // The depth channel reports where the maximum was taken: the near sphere's front.
+  const glm::dvec4 o = cued.camera.worldFromClip * glm::dvec4(0, 0, -1, 1);
+  const double tFront = glm::dot(glm::dvec3(0.0) - glm::dvec3(o) / o.w, cued.camera.forward) - R;
+  EXPECT_NEAR(cued.image.depth[20 * 41 + 20], tFront + (R - 28.0), 1.0);
+}
+
+}  // namespace
+}  // namespace mvw::render

@@ -97,7 +97,7 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
                     {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
                      "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
                      "background", "crop_min", "crop_max", "annotate", "plane_offset_mm", "slab_mm", "overlay",
-                     "overlay_opacity", "overlay_threshold", "gradient_opacity"});
+                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue"});
   const std::string w = where + ".";
   ViewConfig v;
   v.name = stringField(file, j, w, "name", false);
@@ -132,6 +132,15 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   for (int a = 0; a < 3; ++a)
     if (v.cropMin[a] >= v.cropMax[a]) throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
   v.annotate = boolField(file, j, w, "annotate", true);
+  if (j.contains("depth_cue")) {
+    const json& c = j["depth_cue"];
+    if (!c.is_object()) throw InputError(file, "'" + w + "depth_cue' must be an object");
+    rejectUnknownKeys(file, c, w + "depth_cue.", {"brightness", "amount", "contrast"});
+    v.depthCue = true;
+    v.cueBrightness = numberField(file, c, w + "depth_cue.", "brightness", 0.0, 0.0, 10.0);
+    v.cueAmount = numberField(file, c, w + "depth_cue.", "amount", 0.0, -10.0, 10.0);
+    v.cueContrast = numberField(file, c, w + "depth_cue.", "contrast", 1.0, 0.0, 10.0);
+  }
   if (j.contains("gradient_opacity")) {
     const json& g = j["gradient_opacity"];
     if (!g.is_array() || g.size() != 2 || !g[0].is_number() || !g[1].is_number() ||

@@ -350,6 +350,9 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   const double level = s.window > 0 ? s.level : 0.5 * (hi + lo);
   glUniform2f(p.uniform("uWindowLevel"), float(window), float(level));
   glUniform1f(p.uniform("uIsoValue"), float(s.isoValue));
+  glUniform1i(p.uniform("uDepthCue"), s.depthCue ? 1 : 0);
+  glUniform3f(p.uniform("uCue"), float(s.cueBrightness), float(s.cueAmount), float(s.cueContrast));
+  glUniform4f(p.uniform("uBoundingSphere"), float(centre.x), float(centre.y), float(centre.z), float(radius));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
   const glm::vec3 planeCentre(centre + frame.camera.forward * s.planeOffsetMm);
   glUniform3f(p.uniform("uPlaneCentre"), planeCentre.x, planeCentre.y, planeCentre.z);

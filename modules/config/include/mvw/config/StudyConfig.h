@@ -40,6 +40,9 @@ struct ViewConfig {
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   std::optional<double> window, level;
   double iso = 300.0;
+  // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.
+  bool depthCue = false;
+  double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
   bool shading = true;
   std::string sampling = "linear";   // linear | nearest
   double stepMm = 0.0;               // 0 = half the smallest voxel spacing

@@ -34,6 +34,10 @@ struct RenderSettings {
   double window = 0.0;   // projections: window width; <= 0 means the full value range
   double level = 0.0;    // window centre
   double isoValue = 300.0;
+  // MIP with depth cueing (Heidrich et al. 1995, eq. 3 and section 2.3): brightness beta0,
+  // depth cue amount a, contrast b. Off, or a = 0, b = 1, beta0 = 0: plain MIP.
+  bool depthCue = false;
+  double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
   double stepMm = 0.0;   // <= 0: half the smallest voxel spacing
   bool shading = true;
   bool linear = true;    // trilinear (true) or nearest-neighbour sampling
