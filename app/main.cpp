@@ -7,6 +7,7 @@
 
 #include "BenchCommand.h"
 #include "InfoCommand.h"
+#include "RegisterCommand.h"
 #include "RenderCommand.h"
 #include "mvw/core/Error.h"
 
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "mvw 0.1.0");
   mvw::app::addInfoCommand(app);
+  mvw::app::addRegisterCommand(app);
   mvw::app::addRenderCommand(app);
   mvw::app::addBenchCommand(app);
   try {

@@ -1,0 +1,209 @@
+#include "RegisterCommand.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "mvw/core/Error.h"
+#include "mvw/io/VolumeReader.h"
+#include "mvw/io/VolumeWriter.h"
+#include "mvw/resampling/Resample.h"
+#include "mvw/resampling/RigidRegistration.h"
+#include "mvw/resampling/Transform.h"
+
+namespace mvw::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace mvw::resampling;
+
+struct RegisterOptions {
+  std::string fixed, moving, output;
+  std::string fixedSeries, movingSeries;
+  std::string interpolation = "auto";
+  std::string initialisation = "auto";
+  std::uint64_t seed = RegistrationOptions{}.seed;
+  bool noSuv = false;
+};
+
+const std::map<std::string, Interpolation> kInterpolations = {{"auto", Interpolation::Automatic},
+                                                              {"linear", Interpolation::Linear},
+                                                              {"nearest", Interpolation::Nearest},
+                                                              {"cubic", Interpolation::Cubic}};
+const std::map<std::string, Initialisation> kInitialisations = {
+    {"auto", Initialisation::Automatic},
+    {"world", Initialisation::WorldCoordinates},
+    {"centre", Initialisation::GeometricCentre},
+    {"mass", Initialisation::CentreOfMass}};
+
+std::string name(Interpolation i) {
+  for (const auto& [k, v] : kInterpolations)
+    if (v == i) return k;
+  return "?";
+}
+
+nlohmann::json rows(const glm::dmat4& m) {
+  auto j = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) j.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
+  return j;
+}
+
+nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+nlohmann::json vec(const glm::ivec3& v) { return {v.x, v.y, v.z}; }
+
+// Everything is written into a staging folder first and moved into place at the end, so a
+// failure at any step leaves no partial result in the output folder.
+class Staging {
+ public:
+  explicit Staging(const fs::path& output) : output_(output) {
+    std::error_code ec;
+    if (fs::exists(output_, ec) && !fs::is_directory(output_, ec))
+      throw InputError(output_, "exists and is not a folder");
+    fs::path absolute = fs::absolute(output_);
+    if (!absolute.has_filename()) absolute = absolute.parent_path();  // "out/" names "out"
+    output_ = absolute;
+    const fs::path parent = absolute.parent_path();
+    if (!fs::is_directory(parent, ec))
+      throw InputError(output_, "its parent folder does not exist");
+    dir_ = parent / (".mvw-register-" + std::to_string(::getpid()));
+    fs::remove_all(dir_, ec);
+    if (!fs::create_directory(dir_, ec))
+      throw Error(dir_.string() + ": cannot create a staging folder");
+  }
+  ~Staging() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  fs::path file(const std::string& name) const { return dir_ / name; }
+  void commit(const std::vector<std::string>& names) {
+    std::error_code ec;
+    fs::create_directories(output_, ec);
+    if (ec) throw Error(output_.string() + ": cannot create the output folder: " + ec.message());
+    for (const auto& n : names) {
+      fs::rename(dir_ / n, output_ / n, ec);
+      if (ec) throw Error((output_ / n).string() + ": cannot write: " + ec.message());
+    }
+  }
+
+ private:
+  fs::path output_, dir_;
+};
+
+void runRegister(const RegisterOptions& opt) {
+  const auto interpolation = kInterpolations.at(opt.interpolation);
+  // Checked before any heavy work: a wrong -o should not cost a registration.
+  Staging staging(opt.output);
+
+  io::ReadOptions fixedRead, movingRead;
+  fixedRead.series = opt.fixedSeries;
+  movingRead.series = opt.movingSeries;
+  fixedRead.suv = movingRead.suv = !opt.noSuv;
+  const Volume fixed = io::readVolume(opt.fixed, fixedRead);
+  const Volume moving = io::readVolume(opt.moving, movingRead);
+
+  RegistrationOptions options;
+  options.seed = opt.seed;
+  options.initialisation = kInitialisations.at(opt.initialisation);
+  if (::isatty(STDERR_FILENO))
+    options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  const RegistrationResult r = registerRigid(fixed, moving, options);
+
+  ResampleOptions resampleOptions;
+  resampleOptions.interpolation = interpolation;
+  const Interpolation used = chosenInterpolation(moving, resampleOptions);
+  const Volume onGrid = resample(moving, gridOf(fixed), r.transform, resampleOptions);
+
+  r.transform.writeItk(staging.file("transform.tfm"));
+  io::writeVolume(onGrid, staging.file("functional_on_anatomical.nii.gz"));
+
+  nlohmann::json j;
+  j["fixed"] = opt.fixed;
+  j["moving"] = opt.moving;
+  j["method"] = "rigid, Mattes mutual information, regular-step gradient descent";
+  j["initialisation"] = toString(r.initialisation);
+  j["initial_translation_mm"] = vec(r.initialTranslationMm);
+  j["seed"] = opt.seed;
+  j["converged"] = r.converged;
+  j["iterations"] = r.iterations;
+  j["seconds"] = r.seconds;
+  j["levels"] = nlohmann::json::array();
+  for (const auto& l : r.levels)
+    j["levels"].push_back({{"smoothing_mm", l.smoothingMm},
+                           {"fixed_dimensions", vec(l.fixedDimensions)},
+                           {"moving_dimensions", vec(l.movingDimensions)},
+                           {"samples", l.samples},
+                           {"valid_samples", l.validSamples},
+                           {"iterations", l.iterations},
+                           {"rejected_steps", l.rejectedSteps},
+                           {"mutual_information_start", l.metricStart},
+                           {"mutual_information_end", l.metricEnd},
+                           {"final_step_mm", l.finalStepMm},
+                           {"converged", l.converged},
+                           {"seconds", l.seconds}});
+  const glm::dvec3 degrees = r.parameters.angles * (180.0 / std::numbers::pi);
+  // The parameters describe movingFromFixed (ITK's direction), about the centre.
+  j["parameters"] = {
+      {"convention", "moving = R (fixed - centre) + centre + translation, R = Rz Rx Ry"},
+      {"angles_rad", vec(r.parameters.angles)},
+      {"angles_deg", vec(degrees)},
+      {"translation_mm", vec(r.parameters.translation)},
+      {"centre_mm", vec(r.transform.centre())}};
+  j["fixed_from_moving"] = rows(r.transform.fixedFromMoving());
+  j["moving_from_fixed"] = rows(r.transform.movingFromFixed());
+  j["interpolation"] = name(used);
+  j["outputs"] = {"transform.tfm", "functional_on_anatomical.nii.gz", "registration.json"};
+  {
+    std::ofstream out(staging.file("registration.json"));
+    out << j.dump(2) << "\n";
+    if (!out) throw Error(staging.file("registration.json").string() + ": cannot write");
+  }
+  staging.commit({"transform.tfm", "functional_on_anatomical.nii.gz", "registration.json"});
+
+  std::cout << "registered " << opt.moving << " to " << opt.fixed << " in " << r.seconds << " s, "
+            << r.iterations << " iterations" << (r.converged ? "" : " (NOT converged)") << "\n"
+            << "  rotation " << degrees.x << ", " << degrees.y << ", " << degrees.z
+            << " deg, translation " << r.parameters.translation.x << ", "
+            << r.parameters.translation.y << ", " << r.parameters.translation.z << " mm\n"
+            << "  wrote " << (fs::path(opt.output) / "transform.tfm").string() << ", "
+            << (fs::path(opt.output) / "functional_on_anatomical.nii.gz").string() << " ("
+            << name(used) << "), " << (fs::path(opt.output) / "registration.json").string() << "\n";
+}
+
+}  // namespace
+
+void addRegisterCommand(CLI::App& app) {
+  auto opt = std::make_shared<RegisterOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "register",
+      "Rigidly register a functional volume to an anatomical one and resample it onto its grid");
+  cmd->add_option("--fixed", opt->fixed,
+                  "Anatomical (reference) volume: DICOM folder or file, NIfTI, MetaImage")
+      ->required();
+  cmd->add_option("--moving", opt->moving, "Functional volume to align")->required();
+  cmd->add_option("-o,--output", opt->output, "Output folder (created if missing)")->required();
+  cmd->add_option("--fixed-series", opt->fixedSeries,
+                  "DICOM series of the fixed volume: UID, number or description");
+  cmd->add_option("--moving-series", opt->movingSeries, "DICOM series of the moving volume");
+  cmd->add_option("--interpolation", opt->interpolation,
+                  "Resampling: auto (nearest for label maps, else linear), linear, nearest, cubic")
+      ->check(CLI::IsMember({"auto", "linear", "nearest", "cubic"}));
+  cmd->add_option("--init", opt->initialisation,
+                  "Initialisation: auto, world (headers as they are), centre (bounding boxes), "
+                  "mass (centroids)")
+      ->check(CLI::IsMember({"auto", "world", "centre", "mass"}));
+  cmd->add_option("--seed", opt->seed, "Seed of the sample points (same seed, same result)");
+  cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
+  cmd->callback([opt] { runRegister(*opt); });
+}
+
+}  // namespace mvw::app

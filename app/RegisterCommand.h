@@ -1,0 +1,10 @@
+#pragma once
+#include <CLI/App.hpp>
+
+namespace mvw::app {
+
+// `mvw register --fixed ANATOMICAL --moving FUNCTIONAL -o DIR`: rigid mutual-information
+// registration, the functional volume resampled onto the anatomical grid, and a report.
+void addRegisterCommand(CLI::App& app);
+
+}  // namespace mvw::app

@@ -1,0 +1,80 @@
+#pragma once
+// Rigid (6 degrees of freedom) registration of a moving volume to a fixed one by Mattes
+// mutual information: multi-resolution (Gaussian pyramid), a seeded random subset of fixed
+// points per level, regular-step gradient descent on the analytic gradient, with rotation
+// scaled to millimetres so one step moves a point near the head's surface about as far as
+// the same step of translation does.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mvw/core/Volume.h"
+#include "mvw/resampling/Transform.h"
+
+namespace mvw::resampling {
+
+enum class Initialisation {
+  Automatic,         // world coordinates when the volumes overlap there, else centre of mass
+  WorldCoordinates,  // trust both headers (same frame of reference)
+  GeometricCentre,   // align the centres of the two bounding boxes
+  CentreOfMass,      // align the intensity centroids
+};
+std::string toString(Initialisation initialisation);
+
+struct RegistrationOptions {
+  // Gaussian sigma per level in mm, coarse to fine; 0 means the volume as it is. Empty:
+  // {2r, r, 0} with r the larger voxel size (cube root of the voxel volume) of the two.
+  std::vector<double> smoothingMm;
+  // Fixed sample points per level (coarse to fine); the last entry repeats for extra levels.
+  // The finest level decides the accuracy: on the CT / PET-like test pair 30000 points
+  // (0.4 % of the CT's voxels) halve the error of 12000 for the same few iterations.
+  std::vector<int> samples = {4000, 6000, 30000};
+  int histogramBins = 32;
+  int maxIterationsPerLevel = 300;
+  double rotationScaleMm = 80.0;  // radians x this = mm: about a head's radius
+  double maxStepMm = 4.0;         // first step of the coarsest level, halved per finer level
+  double minStepMm = 0.005;       // a level has converged when the step falls below this
+  double relaxation = 0.5;        // step factor when the gradient turns back
+  std::uint64_t seed = 20261123;
+  Initialisation initialisation = Initialisation::Automatic;
+  int threads = 0;  // 0: every core
+  // Called with one line per finished level (for a terminal); may be empty.
+  std::function<void(const std::string&)> progress;
+};
+
+struct LevelReport {
+  double smoothingMm = 0.0;
+  glm::ivec3 fixedDimensions{0};
+  glm::ivec3 movingDimensions{0};
+  int samples = 0;
+  int validSamples = 0;      // at the end of the level
+  int iterations = 0;        // metric evaluations after the first
+  int rejectedSteps = 0;     // steps that lowered the metric, undone
+  double metricStart = 0.0;  // mutual information, nats
+  double metricEnd = 0.0;
+  double finalStepMm = 0.0;
+  bool converged = false;  // the step fell below minStepMm before maxIterationsPerLevel
+  double seconds = 0.0;
+};
+
+struct RegistrationResult {
+  Transform transform;  // fixedFromMoving (anatomicalFromFunctional); centre = rotation centre
+  RigidParameters parameters;  // of transform.movingFromFixed() about transform.centre()
+  Initialisation initialisation = Initialisation::Automatic;  // the one used
+  glm::dvec3 initialTranslationMm{0.0};
+  std::vector<LevelReport> levels;
+  int iterations = 0;
+  bool converged = false;  // the finest level converged
+  double seconds = 0.0;
+};
+
+// Bad input (an empty, 2-D or constant volume, NaNs, no overlap after initialisation, or
+// an optimiser that drifts out of the moving volume) throws mvw::InputError naming the
+// volume's source file.
+RegistrationResult registerRigid(const Volume& fixed, const Volume& moving,
+                                 const RegistrationOptions& options = {});
+
+}  // namespace mvw::resampling

@@ -1,0 +1,598 @@
+// Transforms, resampling and rigid registration (issue 3). Geometry is checked analytically
+// (a linear ramp survives trilinear resampling exactly, a shifted cube moves by whole voxels);
+// registration against a known truth on a PET-like volume made from the real cranium CT.
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "TestUtil.h"
+#include "mvw/core/Error.h"
+#include "mvw/io/VolumeReader.h"
+#include "mvw/resampling/MutualInformation.h"
+#include "mvw/resampling/Resample.h"
+#include "mvw/resampling/RigidRegistration.h"
+#include "mvw/resampling/Transform.h"
+
+namespace mvw::resampling {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+double maxAbsDifference(const glm::dmat4& a, const glm::dmat4& b) {
+  double d = 0.0;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) d = std::max(d, std::abs(a[c][r] - b[c][r]));
+  return d;
+}
+
+glm::dmat4 someAffine() {
+  glm::dmat4 m = rigidMatrix({{0.3, -0.2, 0.7}, {12.5, -3.25, 40.0}}, {1.0, 2.0, 3.0});
+  m[0][1] += 0.05;  // shear and scale: the file must carry a general affine too
+  m[2][2] *= 1.1;
+  return m;
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// ---------------------------------------------------------------------------------------
+// Transform
+
+TEST(Transform, ItkFileRoundTripKeepsTheMatrix) {
+  const fs::path file = test::scratchDir() / "affine.tfm";
+  const Transform t(someAffine(), {-4.0, 7.5, 100.25});
+  t.writeItk(file);
+  const Transform r = Transform::readItk(file);
+  EXPECT_LT(maxAbsDifference(r.fixedFromMoving(), t.fixedFromMoving()), 1e-9);
+  EXPECT_LT(maxAbsDifference(r.movingFromFixed(), t.movingFromFixed()), 1e-9);
+  EXPECT_LT(glm::length(r.centre() - t.centre()), 1e-12);
+  EXPECT_FALSE(fs::exists(fs::path(file) += ".tmp"));
+}
+
+TEST(Transform, ItkFileHoldsMovingFromFixedWithTranslationAboutTheCentre) {
+  // The functional volume's content sits 10 mm further left (+x in LPS) than the anatomy's:
+  // anatomicalFromFunctional shifts by -10, and ITK's file (fixed -> moving) by +10.
+  const glm::dmat4 fixedFromMoving = glm::translate(glm::dmat4(1.0), glm::dvec3(-10.0, 0.0, 0.0));
+  const fs::path file = test::scratchDir() / "shift.tfm";
+  Transform(fixedFromMoving, {5.0, 6.0, 7.0}).writeItk(file);
+  std::ifstream in(file);
+  std::string header, index, type, parameters, fixed;
+  std::getline(in, header);
+  std::getline(in, index);
+  std::getline(in, type);
+  std::getline(in, parameters);
+  std::getline(in, fixed);
+  EXPECT_EQ(header, "#Insight Transform File V1.0");
+  EXPECT_EQ(type, "Transform: AffineTransform_double_3_3");
+  EXPECT_EQ(parameters, "Parameters: 1 0 0 0 1 0 0 0 1 10 0 0");
+  EXPECT_EQ(fixed, "FixedParameters: 5 6 7");
+
+  // An ITK Euler3D file: 90 degrees about z around (10, 0, 0) plus (0, 0, 2) maps the fixed
+  // point (11, 0, 0) to the moving point (10, 1, 2).
+  const fs::path euler = test::scratchDir() / "euler.tfm";
+  writeText(euler,
+            "#Insight Transform File V1.0\n#Transform 0\nTransform: Euler3DTransform_double_3_3\n"
+            "Parameters: 0 0 1.5707963267948966 0 0 2\nFixedParameters: 10 0 0 0\n");
+  const Transform e = Transform::readItk(euler);
+  EXPECT_LT(glm::length(e.movingFromFixedPoint({11, 0, 0}) - glm::dvec3(10, 1, 2)), 1e-12);
+  EXPECT_LT(glm::length(e.fixedFromMovingPoint({10, 1, 2}) - glm::dvec3(11, 0, 0)), 1e-12);
+  EXPECT_TRUE(e.isRigid());
+}
+
+TEST(Transform, BadFilesThrowInputErrorNamingTheFile) {
+  const fs::path dir = test::scratchDir();
+  const std::string head = "#Insight Transform File V1.0\n#Transform 0\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"empty.tfm", ""},
+      {"noheader.tfm",
+       "Transform: AffineTransform_double_3_3\nParameters: 1 0 0 0 1 0 0 0 1 0 0 "
+       "0\nFixedParameters: 0 0 0\n"},
+      {"short.tfm", head + "Transform: AffineTransform_double_3_3\nParameters: 1 0 0 0 1 0 0 0 1 0 "
+                           "0\nFixedParameters: 0 0 0\n"},
+      {"text.tfm", head + "Transform: AffineTransform_double_3_3\nParameters: 1 0 0 0 one 0 0 0 1 "
+                          "0 0 0\nFixedParameters: 0 0 0\n"},
+      {"nan.tfm", head + "Transform: AffineTransform_double_3_3\nParameters: 1 0 0 0 nan 0 0 0 1 0 "
+                         "0 0\nFixedParameters: 0 0 0\n"},
+      {"singular.tfm", head + "Transform: AffineTransform_double_3_3\nParameters: 1 0 0 2 0 0 0 0 "
+                              "1 0 0 0\nFixedParameters: 0 0 0\n"},
+      {"bspline.tfm",
+       head +
+           "Transform: BSplineTransform_double_3_3\nParameters: 0 0 0\nFixedParameters: 0 0 0\n"},
+      {"two.tfm",
+       head + "Transform: TranslationTransform_double_3_3\nParameters: 1 2 3\nFixedParameters:\n"
+              "#Transform 1\nTransform: TranslationTransform_double_3_3\nParameters: 1 2 "
+              "3\nFixedParameters:\n"},
+      {"nofixed.tfm",
+       head + "Transform: AffineTransform_double_3_3\nParameters: 1 0 0 0 1 0 0 0 1 0 0 0\n"},
+  };
+  for (const auto& [name, text] : cases) {
+    writeText(dir / name, text);
+    try {
+      Transform::readItk(dir / name);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), dir / name) << e.what();
+    }
+  }
+  EXPECT_THROW(Transform::readItk(dir / "missing.tfm"), InputError);
+  // The same content with a good matrix is read, so the cases above fail for their reason.
+  writeText(
+      dir / "good.tfm",
+      head + "Transform: TranslationTransform_double_3_3\nParameters: 1 2 3\nFixedParameters:\n");
+  EXPECT_LT(glm::length(Transform::readItk(dir / "good.tfm").movingFromFixedPoint({0, 0, 0}) -
+                        glm::dvec3(1, 2, 3)),
+            1e-12);
+}
+
+TEST(Transform, RigidParametersRoundTrip) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(-1.4, 1.4), shift(-50.0, 50.0);
+  for (int n = 0; n < 200; ++n) {
+    const RigidParameters p{{angle(rng), angle(rng), angle(rng)},
+                            {shift(rng), shift(rng), shift(rng)}};
+    const glm::dvec3 centre(shift(rng), shift(rng), shift(rng));
+    const glm::dmat4 m = rigidMatrix(p, centre);
+    EXPECT_TRUE(Transform(m).isRigid());
+    const RigidParameters q = rigidParameters(m, centre);
+    EXPECT_LT(glm::length(q.angles - p.angles), 1e-9);
+    EXPECT_LT(glm::length(q.translation - p.translation), 1e-9);
+    EXPECT_LT(maxAbsDifference(rigidMatrix(q, centre), m), 1e-9);
+  }
+  // The centre is a fixed point of the rotation part: R (c - c) + c + t = c + t.
+  const glm::dvec3 c(10, -20, 30);
+  const glm::dmat4 m = rigidMatrix({{0.2, 0.3, -0.4}, {1, 2, 3}}, c);
+  EXPECT_LT(glm::length(glm::dvec3(m * glm::dvec4(c, 1.0)) - (c + glm::dvec3(1, 2, 3))), 1e-12);
+  EXPECT_FALSE(Transform(someAffine()).isRigid());
+}
+
+// ---------------------------------------------------------------------------------------
+// Resampling
+
+// A volume whose value is a linear function of the world position: trilinear interpolation
+// reproduces it exactly, so every resampled voxel can be checked against the formula.
+double ramp(const glm::dvec3& world) { return 2.0 * world.x + 3.0 * world.y - world.z + 100.0; }
+
+Volume rampVolume() {
+  const glm::dmat3 dir(glm::rotate(glm::dmat4(1.0), 0.5, glm::normalize(glm::dvec3(1, 2, -1))));
+  Volume v({23, 19, 17}, 1, ScalarType::Float64,
+           makeWorldFromIndex({-30.0, -20.0, -15.0}, {2.5, 3.0, 3.5}, dir));
+  for (int k = 0; k < 17; ++k)
+    for (int j = 0; j < 19; ++j)
+      for (int i = 0; i < 23; ++i) v.setValue(i, j, k, 0, ramp(v.worldFromIndexPoint({i, j, k})));
+  return v;
+}
+
+TEST(Resample, OutputLiesOnTheFixedGridAndHonoursDirectionsAndTransform) {
+  const Volume moving = rampVolume();
+  // Oblique, left-handed fixed grid with other spacings: every geometry path is exercised.
+  glm::dmat3 dir(glm::rotate(glm::dmat4(1.0), -0.3, glm::normalize(glm::dvec3(0.2, 1, 0.4))));
+  dir[2] = -dir[2];
+  // Centred on the moving volume and larger than it: both inside and outside voxels.
+  const glm::ivec3 dims(31, 27, 21);
+  const glm::dvec3 spacing(2.3, 2.6, 3.1);
+  const glm::dvec3 middle = moving.worldFromIndexPoint(glm::dvec3(moving.dimensions() - 1) * 0.5);
+  const Grid grid{dims, makeWorldFromIndex(middle - dir * (spacing * glm::dvec3(dims - 1) * 0.5),
+                                           spacing, dir)};
+  const Transform fixedFromMoving(rigidMatrix({{0.1, -0.15, 0.2}, {4.0, -6.0, 2.5}}, {0, 0, 0}));
+  ResampleOptions options;
+  options.background = -12345.0;
+  const Volume out = resample(moving, grid, fixedFromMoving, options);
+
+  ASSERT_EQ(out.dimensions(), grid.dimensions);
+  EXPECT_EQ(out.worldFromIndex(), grid.worldFromIndex);  // exactly, not approximately
+  EXPECT_EQ(out.scalarType(), ScalarType::Float64);
+  const glm::dmat4 movingIndexFromWorld = glm::inverse(moving.worldFromIndex());
+  int inside = 0, outside = 0;
+  for (int k = 0; k < grid.dimensions.z; ++k)
+    for (int j = 0; j < grid.dimensions.y; ++j)
+      for (int i = 0; i < grid.dimensions.x; ++i) {
+        const glm::dvec3 fixedWorld = out.worldFromIndexPoint({i, j, k});
+        const glm::dvec3 movingWorld = fixedFromMoving.movingFromFixedPoint(fixedWorld);
+        const glm::dvec3 idx(movingIndexFromWorld * glm::dvec4(movingWorld, 1.0));
+        const glm::dvec3 hi = glm::dvec3(moving.dimensions()) - 1.0;
+        const double margin = 0.45;  // away from the half-voxel border band
+        if (glm::all(glm::greaterThan(idx, glm::dvec3(margin))) &&
+            glm::all(glm::lessThan(idx, hi - margin))) {
+          ++inside;
+          // vtkImageReslice carries positions and weights partly in float (about 1e-6
+          // relative here); a geometry error of 0.001 mm would already show as 0.004.
+          ASSERT_NEAR(out.value(i, j, k), ramp(movingWorld), 1e-3) << i << "," << j << "," << k;
+        } else if (glm::any(glm::lessThan(idx, glm::dvec3(-0.55))) ||
+                   glm::any(glm::greaterThan(idx, hi + 0.55))) {
+          ++outside;
+          ASSERT_EQ(out.value(i, j, k), -12345.0);
+        }
+      }
+  EXPECT_GT(inside, 1000);
+  EXPECT_GT(outside, 1000);
+}
+
+TEST(Resample, KnownShiftMovesABrightCubeByWholeVoxels) {
+  const glm::dmat3 flip(glm::dvec3(-1, 0, 0), glm::dvec3(0, 0, 1),
+                        glm::dvec3(0, -1, 0));  // an LAI-like grid
+  Volume moving({40, 36, 30}, 1, ScalarType::Int16,
+                makeWorldFromIndex({50, -40, 30}, {2.0, 2.0, 2.0}, flip));
+  for (int k = 10; k < 18; ++k)
+    for (int j = 12; j < 20; ++j)
+      for (int i = 14; i < 22; ++i) moving.setValue(i, j, k, 0, 1000);
+  // The cube's content appears 6 mm further +x (left) and 4 mm further -z in the fixed world.
+  const Transform fixedFromMoving(glm::translate(glm::dmat4(1.0), glm::dvec3(6.0, 0.0, -4.0)));
+  const Grid grid = gridOf(moving);
+  for (auto mode : {Interpolation::Nearest, Interpolation::Linear, Interpolation::Cubic}) {
+    ResampleOptions options;
+    options.interpolation = mode;
+    const Volume out = resample(moving, grid, fixedFromMoving, options);
+    // Each output voxel reads the moving volume 6 mm toward -x (+3 voxels along i, which
+    // points to -x) and 4 mm toward +z (+2 voxels along j, which points to +z).
+    for (int k = 0; k < 30; ++k)
+      for (int j = 0; j < 36; ++j)
+        for (int i = 0; i < 40; ++i) {
+          const bool in = i >= 11 && i < 19 && j >= 10 && j < 18 && k >= 10 && k < 18;
+          ASSERT_EQ(out.value(i, j, k), in ? 1000.0 : 0.0)
+              << static_cast<int>(mode) << " " << i << "," << j << "," << k;
+        }
+  }
+}
+
+TEST(Resample, NearestNeighbourOnALabelMapCreatesNoNewLabels) {
+  Volume labels({30, 28, 26}, 1, ScalarType::UInt8,
+                makeWorldFromIndex({0, 0, 0}, {1.5, 1.5, 2.0}, glm::dmat3(1.0)));
+  const std::set<double> allowed = {0, 3, 7, 200};
+  for (int k = 0; k < 26; ++k)
+    for (int j = 0; j < 28; ++j)
+      for (int i = 0; i < 30; ++i)
+        labels.setValue(i, j, k, 0,
+                        (i / 6 + j / 7 + k / 5) % 2 ? (i < 15 ? 3 : 200) : (k < 13 ? 7 : 0));
+  EXPECT_TRUE(looksLikeLabelMap(labels));
+  EXPECT_EQ(chosenInterpolation(labels, {}), Interpolation::Nearest);
+  const Transform t(rigidMatrix({{0.2, 0.1, -0.3}, {1.3, -2.1, 0.7}}, {22, 21, 26}));
+  const Grid fine{{50, 45, 40}, makeWorldFromIndex({-2, -1, 1}, {0.9, 1.0, 1.3}, glm::dmat3(1.0))};
+  auto valuesOf = [](const Volume& v) {
+    std::set<double> s;
+    for (std::size_t n = 0; n < v.voxelCount(); ++n)
+      s.insert(static_cast<double>(v.dataAs<std::uint8_t>()[n]));
+    return s;
+  };
+  const std::set<double> automatic = valuesOf(resample(labels, fine, t));
+  for (double v : automatic) EXPECT_TRUE(allowed.count(v)) << "new label " << v;
+  EXPECT_EQ(automatic, allowed);
+  // The check can fail: linear interpolation of the same map does invent labels.
+  ResampleOptions linear;
+  linear.interpolation = Interpolation::Linear;
+  const std::set<double> blended = valuesOf(resample(labels, fine, t, linear));
+  EXPECT_GT(blended.size(), allowed.size());
+  // A CT is not a label map.
+  const Volume ramp16 = rampVolume().converted(ScalarType::Int16);
+  EXPECT_FALSE(looksLikeLabelMap(ramp16));
+}
+
+TEST(Resample, AllComponentsOrTheFirst) {
+  Volume v({9, 8, 7}, 3, ScalarType::Float32,
+           makeWorldFromIndex({0, 0, 0}, {2, 2, 2}, glm::dmat3(1.0)));
+  for (int k = 0; k < 7; ++k)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 9; ++i)
+        for (int c = 0; c < 3; ++c) v.setValue(i, j, k, c, i + 10 * j + 100 * k + 1000 * c);
+  const Transform shift(glm::translate(glm::dmat4(1.0), glm::dvec3(2.0, 0.0, 0.0)));
+  const Volume all = resample(v, gridOf(v), shift);
+  ResampleOptions first;
+  first.allComponents = false;
+  const Volume one = resample(v, gridOf(v), shift, first);
+  ASSERT_EQ(all.components(), 3);
+  ASSERT_EQ(one.components(), 1);
+  for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(all.value(4, 3, 2, c), 3 + 30 + 200 + 1000 * c);
+  EXPECT_FLOAT_EQ(one.value(4, 3, 2, 0), 233);
+}
+
+// ---------------------------------------------------------------------------------------
+// Mutual information
+
+// Two smooth blobs: enough structure for MI, smooth enough for a finite-difference check.
+Volume blobs(const glm::dvec3& offset) {
+  Volume v({40, 38, 36}, 1, ScalarType::Float32,
+           makeWorldFromIndex({-40, -38, -36}, {2, 2, 2}, glm::dmat3(1.0)));
+  for (int k = 0; k < 36; ++k)
+    for (int j = 0; j < 38; ++j)
+      for (int i = 0; i < 40; ++i) {
+        const glm::dvec3 w = v.worldFromIndexPoint({i, j, k}) - offset;
+        const double a =
+            std::exp(-glm::dot(w - glm::dvec3(8, 0, 0), w - glm::dvec3(8, 0, 0)) / 300.0);
+        const double b =
+            std::exp(-glm::dot(w + glm::dvec3(0, 12, 6), w + glm::dvec3(0, 12, 6)) / 120.0);
+        v.setValue(i, j, k, 0, 100.0 * a + 60.0 * b);
+      }
+  return v;
+}
+
+TEST(MutualInformation, AnalyticGradientMatchesFiniteDifferences) {
+  const Volume fixed = blobs({0, 0, 0});
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<glm::dvec3> points;
+  std::vector<float> values;
+  for (int n = 0; n < 6000; ++n) {
+    const glm::dvec3 idx(5 + 29 * u(rng), 5 + 27 * u(rng), 5 + 25 * u(rng));
+    points.push_back(fixed.worldFromIndexPoint(idx));
+    values.push_back(static_cast<float>(fixed.value(static_cast<int>(std::lround(idx.x)),
+                                                    static_cast<int>(std::lround(idx.y)),
+                                                    static_cast<int>(std::lround(idx.z)))));
+  }
+  const MattesMutualInformation mi(points, values, blobs({1.5, -1.0, 0.5}), 32, 2);
+  const RigidParameters p{{0.02, -0.03, 0.04}, {1.0, -0.5, 0.3}};
+  const glm::dvec3 centre(1, 2, 3);
+  const auto r = mi.evaluateRigid(p, centre);
+  EXPECT_EQ(r.validSamples, 6000);
+  EXPECT_GT(r.value, 0.1);
+  for (int k = 0; k < 6; ++k) {
+    const double h = k < 3 ? 2e-4 : 0.01;
+    RigidParameters a = p, b = p;
+    if (k < 3)
+      a.angles[k] += h, b.angles[k] -= h;
+    else
+      a.translation[k - 3] += h, b.translation[k - 3] -= h;
+    const double fd =
+        (mi.evaluateRigid(a, centre).value - mi.evaluateRigid(b, centre).value) / (2 * h);
+    const double g = r.gradient[static_cast<std::size_t>(k)];
+    EXPECT_NEAR(g, fd, 0.05 * std::abs(fd) + 1e-3) << "parameter " << k;
+  }
+  // The metric is larger at the true alignment than away from it.
+  const auto aligned = mi.evaluateRigid({{0, 0, 0}, {1.5, -1.0, 0.5}}, centre);
+  EXPECT_GT(aligned.value, r.value);
+  EXPECT_NEAR(mi.evaluate(rigidMatrix(p, centre)).value, r.value, 1e-12);
+}
+
+// ---------------------------------------------------------------------------------------
+// Registration
+
+// The cranium CT and a PET-like volume made from it: uptake from HU (soft tissue and brain
+// medium, bone low, air none) plus two hot spheres, blurred to ~6 mm FWHM, read onto a 4 mm
+// grid under a known rigid transform, with seeded count-like noise.
+class KnownTransform : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ct_ = new Volume(io::readVolume(test::sampleData("cranium/cranium.nii.gz")));
+    uptake_ = new Volume(makeUptake(*ct_));
+    centre_ = ct_->worldFromIndexPoint(glm::dvec3(ct_->dimensions() - 1) * 0.5);
+  }
+  static void TearDownTestSuite() {
+    delete ct_;
+    delete uptake_;
+    ct_ = uptake_ = nullptr;
+  }
+
+  static Volume makeUptake(const Volume& ct) {
+    Volume u(ct.dimensions(), 1, ScalarType::Float32, ct.worldFromIndex());
+    const glm::ivec3 d = ct.dimensions();
+    float* p = u.dataAs<float>();
+    for (int k = 0; k < d.z; ++k)
+      for (int j = 0; j < d.y; ++j)
+        for (int i = 0; i < d.x; ++i) {
+          const double hu = ct.value(i, j, k);
+          double v = 0.0;
+          if (hu >= 600)
+            v = 0.25;
+          else if (hu >= 150)
+            v = 1.0 - 0.75 * (hu - 150) / 450;
+          else if (hu >= -100)
+            v = 1.0;
+          else if (hu >= -500)
+            v = 0.8 * (hu + 500) / 400;
+          p[ct.linearIndex(i, j, k)] = static_cast<float>(v);
+        }
+    // Hot lesions near the middle of the head, where the CT's brain is.
+    const glm::dvec3 mid = ct.worldFromIndexPoint(glm::dvec3(d - 1) * 0.5);
+    for (const auto& [offset, radius] :
+         {std::pair{glm::dvec3(25, 15, 20), 9.0}, std::pair{glm::dvec3(-20, -25, 5), 7.0}}) {
+      const glm::dmat4 indexFromWorld = glm::inverse(ct.worldFromIndex());
+      const glm::dvec3 c(indexFromWorld * glm::dvec4(mid + offset, 1.0));
+      for (int k = 0; k < d.z; ++k)
+        for (int j = 0; j < d.y; ++j)
+          for (int i = 0; i < d.x; ++i)
+            if (glm::length(ct.worldFromIndexPoint({i, j, k}) - ct.worldFromIndexPoint(c)) < radius)
+              p[ct.linearIndex(i, j, k)] = 4.0f;
+    }
+    blur(u, 6.0 / 2.3548);
+    return u;
+  }
+
+  // Separable Gaussian, sigma in mm, zero outside.
+  static void blur(Volume& v, double sigmaMm) {
+    const glm::ivec3 d = v.dimensions();
+    const glm::dvec3 s = v.spacing();
+    float* p = v.dataAs<float>();
+    std::vector<float> line;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double sv = sigmaMm / s[axis];
+      const int r = static_cast<int>(std::ceil(3 * sv));
+      std::vector<double> k(static_cast<std::size_t>(2 * r + 1));
+      double sum = 0;
+      for (int t = -r; t <= r; ++t)
+        sum += k[static_cast<std::size_t>(t + r)] = std::exp(-0.5 * t * t / (sv * sv));
+      for (auto& w : k) w /= sum;
+      const int n = d[axis];
+      const std::size_t stride = axis == 0   ? 1
+                                 : axis == 1 ? static_cast<std::size_t>(d.x)
+                                             : static_cast<std::size_t>(d.x) * d.y;
+      line.resize(static_cast<std::size_t>(n));
+      const glm::ivec3 other = axis == 0   ? glm::ivec3(1, d.y, d.z)
+                               : axis == 1 ? glm::ivec3(d.x, 1, d.z)
+                                           : glm::ivec3(d.x, d.y, 1);
+      for (int c = 0; c < other.z; ++c)
+        for (int b = 0; b < other.y; ++b)
+          for (int a = 0; a < other.x; ++a) {
+            float* base = p + v.linearIndex(a, b, c);
+            for (int x = 0; x < n; ++x) line[static_cast<std::size_t>(x)] = base[x * stride];
+            for (int x = 0; x < n; ++x) {
+              double acc = 0;
+              for (int t = std::max(-r, -x); t <= std::min(r, n - 1 - x); ++t)
+                acc += k[static_cast<std::size_t>(t + r)] * line[static_cast<std::size_t>(x + t)];
+              base[x * stride] = static_cast<float>(acc);
+            }
+          }
+    }
+  }
+
+  // The PET-like volume whose world relates to the CT's by movingFromFixed (PET from CT).
+  // The grid is centred on the CT's centre, or (followHead) on where the head lands in the
+  // PET world, for transforms far larger than a field of view.
+  static Volume makePet(const glm::dmat4& movingFromFixed, unsigned seed, bool followHead = false) {
+    const glm::ivec3 dims(64, 64, 44);
+    const glm::dvec3 middle =
+        followHead ? glm::dvec3(movingFromFixed * glm::dvec4(centre_, 1.0)) : centre_;
+    const glm::dvec3 origin = middle - 4.0 * glm::dvec3(dims - 1) * 0.5;
+    const Grid grid{dims, makeWorldFromIndex(origin, {4, 4, 4}, glm::dmat3(1.0))};
+    // resample reads the source (CT world) at fixedFromMoving^-1 = ctFromPet of each PET voxel.
+    const Transform petFromCt(movingFromFixed);
+    ResampleOptions linear;
+    linear.interpolation = Interpolation::Linear;
+    Volume pet = resample(*uptake_, grid, petFromCt, linear);
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> gauss(0.0, 1.0);
+    float* p = pet.dataAs<float>();
+    for (std::size_t n = 0; n < pet.voxelCount(); ++n)
+      p[n] = static_cast<float>(std::max(
+          0.0,
+          p[n] + 0.1 * std::sqrt(std::max<double>(p[n], 0.0)) * gauss(rng) + 0.01 * gauss(rng)));
+    pet.metadata().modality = "PT";
+    return pet;
+  }
+
+  // Mean distance between the estimated and the true PET position of points every 10 mm
+  // inside the head (CT above -300 HU).
+  static double meanTre(const glm::dmat4& estimated, const glm::dmat4& truth) {
+    const glm::ivec3 d = ct_->dimensions();
+    double sum = 0;
+    int n = 0;
+    for (int k = 0; k < d.z; k += 7)
+      for (int j = 0; j < d.y; j += 10)
+        for (int i = 0; i < d.x; i += 10) {
+          if (ct_->value(i, j, k) < -300) continue;
+          const glm::dvec4 x(ct_->worldFromIndexPoint({i, j, k}), 1.0);
+          sum += glm::length(glm::dvec3(estimated * x) - glm::dvec3(truth * x));
+          ++n;
+        }
+    EXPECT_GT(n, 500);
+    return sum / n;
+  }
+
+  static Volume* ct_;
+  static Volume* uptake_;
+  static glm::dvec3 centre_;
+};
+
+Volume* KnownTransform::ct_ = nullptr;
+Volume* KnownTransform::uptake_ = nullptr;
+glm::dvec3 KnownTransform::centre_{0.0};
+
+TEST_F(KnownTransform, IdentityOnIdenticalInputs) {
+  const Volume pet = makePet(glm::dmat4(1.0), 11);
+  const auto r = registerRigid(pet, pet);
+  const double tre = meanTre(r.transform.movingFromFixed(), glm::dmat4(1.0));
+  std::cout << "identity: TRE " << tre << " mm, " << r.iterations << " iterations, " << r.seconds
+            << " s\n";
+  RecordProperty("tre_mm", std::to_string(tre));
+  EXPECT_LT(tre, 0.1);
+  EXPECT_TRUE(r.converged);
+  EXPECT_EQ(r.initialisation, Initialisation::WorldCoordinates);
+}
+
+TEST_F(KnownTransform, RecoversRigidTransformsFromCtToPetLike) {
+  struct Case {
+    glm::dvec3 degrees, mm;
+  };
+  const std::vector<Case> cases = {
+      {{3, -2, 4}, {5, -8, 6}},      {{-5, 4, -3}, {-10, 6, 12}},  {{2, 6, -5}, {12, 10, -5}},
+      {{0, 0, 20}, {-6, -12, 5}},    {{12, -10, 14}, {8, 10, -7}}, {{0, 25, 0}, {10, -10, 10}},
+      {{-18, 12, 15}, {-12, 8, 14}}, {{30, 0, 0}, {0, 10, 0}},     {{0, 0, -30}, {15, 0, 0}},
+  };
+  double worst = 0.0;
+  unsigned seed = 100;
+  for (const auto& c : cases) {
+    const glm::dmat4 truth = rigidMatrix({c.degrees * kDegree, c.mm}, centre_);
+    const Volume pet = makePet(truth, ++seed);
+    const auto r = registerRigid(*ct_, pet);
+    const double tre = meanTre(r.transform.movingFromFixed(), truth);
+    const double before = meanTre(glm::dmat4(1.0), truth);
+    std::cout << "rotation (" << c.degrees.x << ", " << c.degrees.y << ", " << c.degrees.z
+              << ") deg, shift (" << c.mm.x << ", " << c.mm.y << ", " << c.mm.z << ") mm: TRE "
+              << before << " -> " << tre << " mm, " << r.iterations << " iterations, " << r.seconds
+              << " s, converged " << r.converged << "\n";
+    for (const auto& l : r.levels)
+      std::cout << "    sigma " << l.smoothingMm << " mm: " << l.iterations << " it, MI "
+                << l.metricStart << " -> " << l.metricEnd << ", " << l.seconds << " s\n";
+    EXPECT_LT(tre, 1.0) << "rotation " << c.degrees.x << "," << c.degrees.y << "," << c.degrees.z;
+    EXPECT_TRUE(r.converged);
+    worst = std::max(worst, tre);
+  }
+  RecordProperty("worst_tre_mm", std::to_string(worst));
+}
+
+TEST_F(KnownTransform, DifferentFramesOfReferenceStartFromTheCentresOfMass) {
+  // The PET's world is 300 mm away (another scanner's origin): no overlap in world
+  // coordinates, so the automatic initialisation aligns the centroids first.
+  const glm::dmat4 truth = rigidMatrix({glm::dvec3(4, -6, 8) * kDegree, {300, -120, 250}}, centre_);
+  const Volume pet = makePet(truth, 21, true);
+  const auto r = registerRigid(*ct_, pet);
+  const double tre = meanTre(r.transform.movingFromFixed(), truth);
+  std::cout << "far frames: TRE " << meanTre(glm::dmat4(1.0), truth) << " -> " << tre << " mm, "
+            << toString(r.initialisation) << ", " << r.seconds << " s\n";
+  EXPECT_EQ(r.initialisation, Initialisation::CentreOfMass);
+  EXPECT_LT(tre, 1.0);
+  RegistrationOptions world;
+  world.initialisation = Initialisation::WorldCoordinates;
+  EXPECT_THROW(registerRigid(*ct_, pet, world), InputError);
+}
+
+TEST_F(KnownTransform, SameSeedSameResult) {
+  const glm::dmat4 truth = rigidMatrix({glm::dvec3(2, -3, 4) * kDegree, {4, 5, -6}}, centre_);
+  const Volume pet = makePet(truth, 5);
+  const auto a = registerRigid(*ct_, pet);
+  const auto b = registerRigid(*ct_, pet);
+  EXPECT_EQ(a.transform.movingFromFixed(), b.transform.movingFromFixed());
+  EXPECT_EQ(a.iterations, b.iterations);
+}
+
+TEST(RigidRegistration, BadInputIsRefusedWithTheFileName) {
+  Volume good = blobs({0, 0, 0});
+  good.metadata().sourcePath = "good.nii";
+  Volume flat({20, 20, 1}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  flat.metadata().sourcePath = "flat.nii";
+  Volume constant({20, 20, 20}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  constant.metadata().sourcePath = "constant.nii";
+  Volume nan = blobs({0, 0, 0});
+  nan.setValue(3, 4, 5, 0, std::nan(""));
+  nan.metadata().sourcePath = "nan.nii";
+  Volume far = blobs({0, 0, 0});
+  far.setWorldFromIndex(glm::translate(glm::dmat4(1.0), glm::dvec3(1000, 0, 0)) *
+                        far.worldFromIndex());
+  far.metadata().sourcePath = "far.nii";
+  RegistrationOptions world;
+  world.initialisation = Initialisation::WorldCoordinates;
+  auto expectRefused = [&](const Volume& fixed, const Volume& moving, const std::string& file) {
+    try {
+      registerRigid(fixed, moving, world);
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file().string(), file) << e.what();
+    }
+  };
+  expectRefused(good, flat, "flat.nii");
+  expectRefused(constant, good, "constant.nii");
+  expectRefused(good, nan, "nan.nii");
+  expectRefused(good, Volume(), "moving volume");
+  expectRefused(good, far, "far.nii");
+  // Automatic initialisation notices the missing overlap and starts from the centroids.
+  const auto r = registerRigid(good, far);
+  EXPECT_EQ(r.initialisation, Initialisation::CentreOfMass);
+  EXPECT_LT(glm::length(r.transform.movingFromFixedPoint({0, 0, 0}) - glm::dvec3(1000, 0, 0)), 0.5);
+}
+
+}  // namespace
+}  // namespace mvw::resampling
