@@ -1,6 +1,7 @@
 #include "RenderCommand.h"
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -15,8 +16,10 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/PngWriter.h"
+#include "mvw/io/VolumeWriter.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/render/Annotations.h"
+#include "mvw/render/GlyphMap.h"
 #include "mvw/render/VolumeRenderer.h"
 
 namespace mvw::app {
@@ -118,6 +121,19 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     s.background = {v.background[0], v.background[1], v.background[2]};
     s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
     s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
+    s.glyphs = v.glyphs;
+    s.glyphSizeControl = v.glyphMethod == "sized";
+    s.glyphConvexity = v.glyphConvexity == "convex" ? 0 : v.glyphConvexity == "concave" ? 1 : 2;
+    s.glyphDiameterMm = v.glyphDiameterMm;
+    s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
+    if (v.glyphs && !study.functional)
+      throw InputError(study.file, "view '" + v.name + "': glyphs need a functional volume in the study");
+    if (v.glyphs && (s.mode != render::RenderMode::Composite && s.mode != render::RenderMode::Isosurface))
+      throw InputError(study.file, "view '" + v.name + "': glyphs work in composite and isosurface modes");
+    if (v.functionalWindow) {
+      s.functionalLow = (*v.functionalWindow)[0];
+      s.functionalHigh = (*v.functionalWindow)[1];
+    }
     s.depthCue = v.depthCue;
     s.cueBrightness = v.cueBrightness;
     s.cueAmount = v.cueAmount;
@@ -177,6 +193,7 @@ void runRender(const RenderOptions& o) {
     if (v.settings.mode == render::RenderMode::Composite) caption += "  " + v.presetName;
     else if (v.settings.mode == render::RenderMode::Isosurface) caption += "  iso " + std::to_string(static_cast<int>(v.settings.isoValue));
     else caption += "  W " + std::to_string(static_cast<int>(window)) + " L " + std::to_string(static_cast<int>(level));
+    if (v.settings.glyphs) caption += "  glyphs " + v.config.glyphMethod + " " + v.config.glyphConvexity;
     if (v.settings.mode == render::RenderMode::Mip && v.settings.depthCue) {
       char cue[96];
       std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", v.settings.cueBrightness,
@@ -207,6 +224,13 @@ void runRender(const RenderOptions& o) {
     r["window"] = window;
     r["level"] = level;
     r["iso"] = v.settings.isoValue;
+    if (v.settings.glyphs)
+      r["glyphs"] = {{"method", v.config.glyphMethod}, {"convexity", v.config.glyphConvexity},
+                     {"diameter_mm", v.config.glyphDiameterMm}, {"count", v.config.glyphCount},
+                     {"seed", v.config.glyphSeed}, {"map_size", v.config.glyphMapSize},
+                     {"map_diameter", v.config.glyphMapDiameter}};
+    if (v.settings.functionalHigh > v.settings.functionalLow)
+      r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
     if (v.settings.mode == render::RenderMode::Mip && v.settings.depthCue)
       r["depth_cue"] = {{"brightness", v.settings.cueBrightness}, {"amount", v.settings.cueAmount},
                         {"contrast", v.settings.cueContrast}};
@@ -256,7 +280,45 @@ void runRender(const RenderOptions& o) {
 
 }  // namespace
 
+struct GlyphMapOptions {
+  std::string output;
+  render::GlyphMapSettings settings;
+  double voxelMm = 1.0;
+};
+
+// `mvw glyphmap -o FILE`: the normal map as a 4-component float volume (RGB normal, A distance
+// to the glyph centre / radius, -1 outside) for inspection in any NIfTI/MetaImage viewer.
+void runGlyphMap(const GlyphMapOptions& o) {
+  const render::GlyphMap map = render::makeGlyphMap(o.settings);
+  Volume v({map.size, map.size, map.size}, 4, ScalarType::Float32,
+           makeWorldFromIndex(glm::dvec3(0.0), glm::dvec3(o.voxelMm), glm::dmat3(1.0)));
+  std::memcpy(v.data(), map.texels.data(), v.byteSize());
+  v.metadata().seriesDescription = "mvw glyph normal map";
+  io::writeVolume(v, o.output);
+  std::cout << "wrote " << map.centres.size() << " glyphs of " << 2 * map.radius << " voxels in a " << map.size
+            << "^3 map to " << o.output << "\n";
+}
+
 void addRenderCommand(CLI::App& app) {
+  {
+    auto g = std::make_shared<GlyphMapOptions>();
+    CLI::App* cmd = app.add_subcommand("glyphmap", "Export the volumetric normal glyph map (NIfTI or MetaImage)");
+    cmd->add_option("-o,--output", g->output, "Output file (.nii, .nii.gz, .mha, .mhd)")->required();
+    cmd->add_option("--size", g->settings.size, "Voxels per side")->check(CLI::Range(8, 512));
+    cmd->add_option("--count", g->settings.count, "Number of glyphs")->check(CLI::Range(1, 4096));
+    cmd->add_option("--diameter", g->settings.diameter, "Glyph diameter in map voxels");
+    cmd->add_option("--seed", g->settings.seed, "Random seed of the positions");
+    cmd->add_option("--voxel-mm", g->voxelMm, "Voxel size written to the file")->check(CLI::PositiveNumber);
+    cmd->callback([g] {
+      try {
+        runGlyphMap(*g);
+      } catch (const InputError&) {
+        throw;
+      } catch (const Error& e) {
+        throw InputError(g->output, e.what());  // impossible glyph requests are bad input
+      }
+    });
+  }
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
   cmd->add_option("study", o->study, "Study config (.json)")->required();

@@ -3,6 +3,7 @@
 // with associated (opacity-weighted) colours, early ray termination at 0.99, optional
 // Phong shading from the precomputed gradient.
 #include "raycast/common.glsl"
+#include "common/glyphs.glsl"
 
 uniform sampler2D uTransfer;   // RGBA over (value, |gradient| / uGradientMax); alpha per step
 uniform vec2 uTransferRange;   // values at the first and last columns
@@ -37,7 +38,11 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   vec3 rgb = c.rgb;
   if (uShading) {
     if (!uTransfer2D) g = sampleGradient(tex);
-    if (g.a > 1e-6) rgb = phong(rgb, -g.xyz / g.a, ray.dir);
+    if (g.a > 1e-6) {
+      vec3 n = -g.xyz / g.a;
+      if (uGlyphs) n = glyphNormal(ray.origin + t * ray.dir, n);
+      rgb = phong(rgb, n, ray.dir);
+    }
   }
   s.color.rgb += (1.0 - s.color.a) * alpha * rgb;
   s.color.a += (1.0 - s.color.a) * alpha;

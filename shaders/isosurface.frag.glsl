@@ -1,6 +1,7 @@
 // Isosurface ray casting: the first step that crosses uIsoValue is refined by bisection
 // (8 halvings: 1/256 of a step), then shaded with Phong from the gradient at the hit.
 #include "raycast/common.glsl"
+#include "common/glyphs.glsl"
 
 uniform float uIsoValue;
 uniform vec4 uIsoColor;
@@ -39,8 +40,10 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
     fragDepth = -1.0;
     return;
   }
-  vec4 g = sampleGradient(toTexture(ray.origin + s.hitT * ray.dir));
+  vec3 hit = ray.origin + s.hitT * ray.dir;
+  vec4 g = sampleGradient(toTexture(hit));
   vec3 n = g.a > 1e-6 ? -g.xyz / g.a : -ray.dir;
+  if (uGlyphs) n = glyphNormal(hit, n);
   fragColor = vec4(phong(uIsoColor.rgb, n, ray.dir), 1.0);
   fragDepth = s.hitT;
 }

@@ -5,15 +5,12 @@
 // point through its own textureFromWorld (which includes the registration), so no
 // resampled copy is needed.
 #include "raycast/common.glsl"
+#include "common/functional.glsl"
 
 uniform vec3 uPlaneCentre;   // world mm
 uniform float uSlab;         // mm, 0: a single plane
 uniform vec2 uWindowLevel;   // window width, centre
 
-uniform bool uHasFunctional;
-uniform sampler3D uFunctional;        // R32F, physical values
-uniform mat4 uFunctionalFromWorld;    // world mm -> functional texture coordinates
-uniform vec2 uFunctionalRange;        // values mapped to the ends of the colour map
 uniform sampler1D uColormap;
 uniform float uOverlayOpacity;
 uniform float uOverlayThreshold;      // 0..1 of the functional range
@@ -42,14 +39,10 @@ void main() {
   float grey = clamp((value - (uWindowLevel.y - 0.5 * uWindowLevel.x)) / uWindowLevel.x, 0.0, 1.0);
   vec3 rgb = vec3(grey);
   if (uHasFunctional) {
-    vec3 ftex = (uFunctionalFromWorld * vec4(world, 1.0)).xyz;
-    if (all(greaterThanEqual(ftex, vec3(0.0))) && all(lessThanEqual(ftex, vec3(1.0)))) {
-      float u = (textureLod(uFunctional, ftex, 0.0).r - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
-      if (u > uOverlayThreshold) {
-        vec3 c = textureLod(uColormap, clamp(u, 0.0, 1.0), 0.0).rgb;
-        rgb = mix(rgb, c, uOverlayOpacity);
-      }
-    }
+    bool inside;
+    float v = functionalValue(world, inside);
+    float u = (v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
+    if (inside && u > uOverlayThreshold) rgb = mix(rgb, textureLod(uColormap, clamp(u, 0.0, 1.0), 0.0).rgb, uOverlayOpacity);
   }
   fragColor = vec4(rgb, 1.0);
   fragDepth = t0;

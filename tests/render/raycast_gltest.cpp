@@ -335,3 +335,97 @@ TEST(DepthCuedMip, TheRampIsAppliedBeforeTheMaximum) {
 
 }  // namespace
 }  // namespace mvw::render
+
+namespace mvw::render {
+namespace {
+
+// A sphere (radius 25 mm) seen as an isosurface, and a functional attribute that is zero
+// on the patient's right (x < 0) and `level` on the left (x > 0).
+struct GlyphScene {
+  Volume anatomy = makeVolume({61, 61, 61}, makeWorldFromIndex({-30, -30, -30}, {1, 1, 1}, glm::dmat3(1.0)),
+                              [](glm::dvec3 p) { return static_cast<float>(25.0 - glm::length(p)); });
+  static Volume attribute(float level) {
+    return makeVolume({16, 16, 16}, makeWorldFromIndex({-30, -30, -30}, {4, 4, 4}, glm::dmat3(1.0)),
+                      [level](glm::dvec3 p) { return p.x > 2.0 ? level : 0.0f; });
+  }
+};
+
+int changedPixels(const Image& a, const Image& b, int* leftHalfChanges = nullptr) {
+  int n = 0, rightOfScreen = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const auto* p = a.pixel(x, y);
+      const auto* q = b.pixel(x, y);
+      if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) {
+        ++n;
+        if (x < a.width / 2 - 1) ++rightOfScreen;
+      }
+    }
+  if (leftHalfChanges) *leftHalfChanges = rightOfScreen;
+  return n;
+}
+
+TEST(Glyphs, NoAttributeGivesPlainShadingAndGlyphsStayWhereTheAttributeIs) {
+  GlyphScene scene;
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, scene.anatomy);
+  RenderSettings s;
+  s.mode = RenderMode::Isosurface;
+  s.isoValue = 0.0;
+  s.size = {241, 241};
+  s.jitter = false;
+  s.camera.view = StandardView::Anterior;  // screen right = patient left = +x
+  const Frame plain = renderer.render(s);
+  // beta = 0 everywhere: bit for bit the plain image.
+  renderer.setFunctional(GlyphScene::attribute(0.0f), glm::dmat4(1.0));
+  s.glyphs = true;
+  s.glyphDiameterMm = 4.0;  // many glyphs over the 50 mm sphere
+  s.functionalLow = 0.0;
+  s.functionalHigh = 1.0;
+  EXPECT_EQ(renderer.render(s).image.rgba, plain.image.rgba);
+  // beta > 0 on the left half only: changes appear, and only on the screen's right half.
+  renderer.setFunctional(GlyphScene::attribute(0.8f), glm::dmat4(1.0));
+  int wrongSide = 0;
+  const int changed = changedPixels(renderer.render(s).image, plain.image, &wrongSide);
+  // 16 glyphs of 32 voxels in a 128^3 map fill 13 % of space; on the sphere's right half
+  // (about 5000 pixels here) half of the cut glyphs face the viewer.
+  EXPECT_GT(changed, 150);
+  EXPECT_EQ(wrongSide, 0);
+}
+
+TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
+  GlyphScene scene;
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, scene.anatomy);
+  RenderSettings s;
+  s.mode = RenderMode::Isosurface;
+  s.isoValue = 0.0;
+  s.size = {241, 241};
+  s.jitter = false;
+  s.glyphs = true;
+  s.glyphDiameterMm = 4.0;
+  s.functionalLow = 0.0;
+  s.functionalHigh = 1.0;
+  const Frame plain = [&] {
+    RenderSettings p = s;
+    p.glyphs = false;
+    return renderer.render(p);
+  }();
+  int previous = 0;
+  for (float level : {0.25f, 0.5f, 1.0f}) {
+    renderer.setFunctional(GlyphScene::attribute(level), glm::dmat4(1.0));
+    const int changed = changedPixels(renderer.render(s).image, plain.image);
+    std::cout << "beta " << level << ": " << changed << " pixels changed\n";
+    EXPECT_GT(changed, previous) << "beta " << level;
+    previous = changed;
+  }
+  // Dimples change the same places as bumps, with other shading.
+  renderer.setFunctional(GlyphScene::attribute(1.0f), glm::dmat4(1.0));
+  const Frame bumps = renderer.render(s);
+  s.glyphConvexity = 1;
+  const Frame dimples = renderer.render(s);
+  EXPECT_GT(changedPixels(bumps.image, dimples.image), previous / 2);
+}
+
+}  // namespace
+}  // namespace mvw::render

@@ -97,7 +97,7 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
                     {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
                      "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
                      "background", "crop_min", "crop_max", "annotate", "plane_offset_mm", "slab_mm", "overlay",
-                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue"});
+                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue", "glyphs", "functional_window"});
   const std::string w = where + ".";
   ViewConfig v;
   v.name = stringField(file, j, w, "name", false);
@@ -132,6 +132,31 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   for (int a = 0; a < 3; ++a)
     if (v.cropMin[a] >= v.cropMax[a]) throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
   v.annotate = boolField(file, j, w, "annotate", true);
+  if (j.contains("glyphs")) {
+    const json& g = j["glyphs"];
+    const std::string gw = w + "glyphs.";
+    if (!g.is_object()) throw InputError(file, "'" + w + "glyphs' must be an object");
+    rejectUnknownKeys(file, g, gw, {"method", "convexity", "diameter_mm", "count", "seed", "map_size", "map_diameter"});
+    v.glyphs = true;
+    if (g.contains("method")) v.glyphMethod = stringField(file, g, gw, "method", true);
+    if (v.glyphMethod != "sized" && v.glyphMethod != "simple")
+      throw InputError(file, "'" + gw + "method' must be sized or simple");
+    if (g.contains("convexity")) v.glyphConvexity = stringField(file, g, gw, "convexity", true);
+    if (v.glyphConvexity != "convex" && v.glyphConvexity != "concave" && v.glyphConvexity != "both")
+      throw InputError(file, "'" + gw + "convexity' must be convex, concave or both");
+    v.glyphDiameterMm = numberField(file, g, gw, "diameter_mm", 6.0, 0.1, 1000.0);
+    v.glyphCount = static_cast<int>(numberField(file, g, gw, "count", 16, 1, 4096));
+    v.glyphSeed = static_cast<unsigned>(numberField(file, g, gw, "seed", 1, 0, 4294967295.0));
+    v.glyphMapSize = static_cast<int>(numberField(file, g, gw, "map_size", 128, 8, 512));
+    v.glyphMapDiameter = numberField(file, g, gw, "map_diameter", 32, 2, 256);
+  }
+  if (j.contains("functional_window")) {
+    const json& fw = j["functional_window"];
+    if (!fw.is_array() || fw.size() != 2 || !fw[0].is_number() || !fw[1].is_number() ||
+        !(fw[0].get<double>() < fw[1].get<double>()))
+      throw InputError(file, "'" + w + "functional_window' must be [low, high] with low < high");
+    v.functionalWindow = std::array<double, 2>{fw[0].get<double>(), fw[1].get<double>()};
+  }
   if (j.contains("depth_cue")) {
     const json& c = j["depth_cue"];
     if (!c.is_object()) throw InputError(file, "'" + w + "depth_cue' must be an object");

@@ -123,7 +123,8 @@ struct VolumeRenderer::Impl {
   glm::ivec3 blockCount;
   std::vector<glm::vec2> blockMinMax;
   detail::Texture intensity, gradient, blocks, blockRange, transfer;
-  detail::Texture functional, colormap;
+  detail::Texture functional, colormap, glyphMap;
+  GlyphMapSettings glyphMapSettings{0, 0, 0.0, 0};  // of the uploaded map
   glm::dmat4 functionalTextureFromAnatomicalWorld{1.0};
   std::pair<double, double> functionalRange{0.0, 1.0};
   detail::VertexArray vao;
@@ -357,19 +358,43 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   const glm::vec3 planeCentre(centre + frame.camera.forward * s.planeOffsetMm);
   glUniform3f(p.uniform("uPlaneCentre"), planeCentre.x, planeCentre.y, planeCentre.z);
   glUniform1f(p.uniform("uSlab"), float(std::max(0.0, s.slabMm)));
+  if (s.glyphs && m.functional.id() == 0)
+    throw Error("glyph rendering needs a functional volume (the study has none)");
+  if (s.glyphs && !(s.glyphDiameterMm > 0)) throw Error("glyph diameter must be positive");
+  if (s.glyphs) {
+    const GlyphMapSettings& g = s.glyphMap;
+    if (!m.glyphMap.id() || g.size != m.glyphMapSettings.size || g.count != m.glyphMapSettings.count ||
+        g.diameter != m.glyphMapSettings.diameter || g.seed != m.glyphMapSettings.seed) {
+      const GlyphMap map = makeGlyphMap(g);
+      m.glyphMap = detail::makeTexture();
+      glBindTexture(GL_TEXTURE_3D, m.glyphMap.id());
+      glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, map.size, map.size, map.size, 0, GL_RGBA, GL_FLOAT, map.texels.data());
+      checkGl("uploading the glyph map");
+      for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTexParameteri(GL_TEXTURE_3D, wrap, GL_REPEAT);  // the map is periodic
+      setSampling(m.glyphMap.id(), GL_TEXTURE_3D, false);
+      m.glyphMapSettings = g;
+    }
+  }
+  glUniform1i(p.uniform("uGlyphs"), s.glyphs ? 1 : 0);
+  glUniform1f(p.uniform("uGlyphPeriod"), float(s.glyphDiameterMm * s.glyphMap.size / s.glyphMap.diameter));
+  glUniform1i(p.uniform("uGlyphMethod"), s.glyphSizeControl ? 1 : 0);
+  glUniform1i(p.uniform("uGlyphConvexity"), s.glyphConvexity);
   const bool overlay = s.overlay && m.functional.id() != 0;
   glUniform1i(p.uniform("uHasFunctional"), overlay ? 1 : 0);
   const glm::mat4 functionalFromWorld(m.functionalTextureFromAnatomicalWorld);
   glUniformMatrix4fv(p.uniform("uFunctionalFromWorld"), 1, GL_FALSE, glm::value_ptr(functionalFromWorld));
-  glUniform2f(p.uniform("uFunctionalRange"), float(m.functionalRange.first), float(m.functionalRange.second));
+  const bool userWindow = s.functionalHigh > s.functionalLow;
+  glUniform2f(p.uniform("uFunctionalRange"), float(userWindow ? s.functionalLow : m.functionalRange.first),
+              float(userWindow ? s.functionalHigh : m.functionalRange.second));
   glUniform1f(p.uniform("uOverlayOpacity"), s.overlayOpacity);
   glUniform1f(p.uniform("uOverlayThreshold"), s.overlayThreshold);
   const struct { const char* name; GLenum target; GLuint id; } units[] = {
       {"uIntensity", GL_TEXTURE_3D, m.intensity.id()}, {"uGradient", GL_TEXTURE_3D, m.gradient.id()},
       {"uBlocks", GL_TEXTURE_3D, m.blocks.id()},       {"uTransfer", GL_TEXTURE_2D, m.transfer.id()},
       {"uBlockRange", GL_TEXTURE_3D, m.blockRange.id()}, {"uFunctional", GL_TEXTURE_3D, m.functional.id()},
-      {"uColormap", GL_TEXTURE_1D, m.colormap.id()}};
-  for (int u = 0; u < 7; ++u) {
+      {"uColormap", GL_TEXTURE_1D, m.colormap.id()},   {"uGlyphMap", GL_TEXTURE_3D, m.glyphMap.id()}};
+  for (int u = 0; u < 8; ++u) {
     glActiveTexture(GL_TEXTURE0 + u);
     glBindTexture(units[u].target, units[u].id);
     glUniform1i(p.uniform(units[u].name), u);

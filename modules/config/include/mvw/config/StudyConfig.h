@@ -38,6 +38,17 @@ struct ViewConfig {
   int width = 512, height = 512;
   std::string preset;                // transfer function preset; "" = by modality
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
+  // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
+  // "convexity": "convex" | "concave" | "both", "diameter_mm", "count", "seed", "map_size",
+  // "map_diameter"}; the functional attribute is mapped to beta 0..1 by functional_window.
+  bool glyphs = false;
+  std::string glyphMethod = "sized";
+  std::string glyphConvexity = "convex";
+  double glyphDiameterMm = 6.0;
+  int glyphCount = 16, glyphMapSize = 128;
+  double glyphMapDiameter = 32.0;
+  unsigned glyphSeed = 1;
+  std::optional<std::array<double, 2>> functionalWindow;  // values -> 0..1 (overlay, glyph beta)
   std::optional<double> window, level;
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.

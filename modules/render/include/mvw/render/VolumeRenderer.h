@@ -15,6 +15,7 @@
 #include "mvw/core/Volume.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/GlContext.h"
+#include "mvw/render/GlyphMap.h"
 #include "mvw/render/TransferFunction.h"
 
 namespace mvw::render {
@@ -52,6 +53,16 @@ struct RenderSettings {
   // sight; a slab > 0 mm is a thick-slab MIP. (Always orthographic.)
   double planeOffsetMm = 0.0;
   double slabMm = 0.0;
+  // Volumetric normal glyphs (Seipel 2007) in composite and isosurface modes: the functional
+  // attribute (mapped to 0..1 by functionalWindow) perturbs the shading normal with glyphs
+  // from a periodic normal map. Needs a functional volume.
+  bool glyphs = false;
+  bool glyphSizeControl = true;  // eqs. (2)-(3); false: simple blending, eq. (1)
+  int glyphConvexity = 0;        // 0 convex bumps, 1 concave dimples, 2 both (below/above mid-range)
+  double glyphDiameterMm = 12.0;
+  GlyphMapSettings glyphMap;     // size, count, diameter in map voxels, seed
+  // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
+  double functionalLow = 0.0, functionalHigh = 0.0;
   // Functional overlay (MPR), when the renderer holds a functional volume.
   bool overlay = true;
   float overlayOpacity = 0.5f;

@@ -1,0 +1,73 @@
+#include "mvw/render/GlyphMap.h"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::render {
+
+namespace {
+
+// Shortest offset from b to a on the periodic lattice of period n.
+glm::dvec3 periodicDelta(const glm::dvec3& a, const glm::dvec3& b, double n) {
+  glm::dvec3 d = a - b;
+  for (int c = 0; c < 3; ++c) d[c] -= n * std::round(d[c] / n);
+  return d;
+}
+
+}  // namespace
+
+const glm::vec4& GlyphMap::at(int i, int j, int k) const {
+  auto wrap = [&](int v) { return ((v % size) + size) % size; };
+  return texels[(static_cast<std::size_t>(wrap(k)) * size + wrap(j)) * size + wrap(i)];
+}
+
+GlyphMap makeGlyphMap(const GlyphMapSettings& s) {
+  if (s.size < 8 || s.size > 512) throw Error("glyph map size must be 8..512 voxels");
+  if (s.count < 1 || s.count > 4096) throw Error("glyph count must be 1..4096");
+  if (!(s.diameter >= 2.0) || s.diameter > s.size / 2.0)
+    throw Error("glyph diameter must be 2 .. half the map size (" + std::to_string(s.size / 2) + ") voxels");
+  GlyphMap map;
+  map.size = s.size;
+  map.radius = s.diameter / 2.0;
+  const double n = s.size;
+  std::mt19937 rng(s.seed);
+  std::uniform_real_distribution<double> position(0.0, n);
+  // Rejection sampling: a glyph may not come closer than one diameter to another (a voxel of
+  // clearance, so neighbours never touch), measured on the periodic lattice.
+  const double minDistance = s.diameter + 1.0;
+  for (int attempts = 0; static_cast<int>(map.centres.size()) < s.count; ++attempts) {
+    if (attempts > 200000)
+      throw Error("cannot place " + std::to_string(s.count) + " glyphs of " + std::to_string(s.diameter) +
+                  " voxels without overlap in a " + std::to_string(s.size) + "^3 map");
+    const glm::dvec3 c(position(rng), position(rng), position(rng));
+    bool free = true;
+    for (const auto& other : map.centres) free &= glm::length(periodicDelta(c, other, n)) >= minDistance;
+    if (free) map.centres.push_back(c);
+  }
+  map.texels.assign(static_cast<std::size_t>(s.size) * s.size * s.size, glm::vec4(0, 0, 0, -1));
+  const int reach = static_cast<int>(std::ceil(map.radius)) + 1;
+  for (const auto& c : map.centres) {
+    const glm::ivec3 base(std::floor(c.x), std::floor(c.y), std::floor(c.z));
+    for (int dk = -reach; dk <= reach; ++dk)
+      for (int dj = -reach; dj <= reach; ++dj)
+        for (int di = -reach; di <= reach; ++di) {
+          const glm::ivec3 v = base + glm::ivec3(di, dj, dk);
+          // Texel centres sit at integer + 0.5 in map coordinates.
+          const glm::dvec3 d = periodicDelta(glm::dvec3(v) + 0.5, c, n);
+          const double r = glm::length(d);
+          if (r > map.radius) continue;
+          const glm::dvec3 normal = r > 1e-9 ? d / r : glm::dvec3(0, 0, 1);
+          auto wrap = [&](int x) { return ((x % s.size) + s.size) % s.size; };
+          map.texels[(static_cast<std::size_t>(wrap(v.z)) * s.size + wrap(v.y)) * s.size + wrap(v.x)] =
+              glm::vec4(glm::vec3(normal), static_cast<float>(r / map.radius));
+        }
+  }
+  return map;
+}
+
+}  // namespace mvw::render

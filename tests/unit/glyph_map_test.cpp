@@ -1,0 +1,77 @@
+// The volumetric normal map (Seipel 2007, section 3.1), checked texel by texel.
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include <gtest/gtest.h>
+
+#include "mvw/core/Error.h"
+#include "mvw/render/GlyphMap.h"
+
+namespace mvw::render {
+namespace {
+
+glm::dvec3 periodic(glm::dvec3 d, double n) {
+  for (int c = 0; c < 3; ++c) d[c] -= n * std::round(d[c] / n);
+  return d;
+}
+
+TEST(GlyphMap, SixteenSeparateSpheresOfTheRequestedDiameter) {
+  const GlyphMap map = makeGlyphMap({128, 16, 32.0, 7});
+  ASSERT_EQ(map.centres.size(), 16u);
+  EXPECT_DOUBLE_EQ(map.radius, 16.0);
+  for (std::size_t a = 0; a < map.centres.size(); ++a)
+    for (std::size_t b = a + 1; b < map.centres.size(); ++b)
+      EXPECT_GE(glm::length(periodic(map.centres[a] - map.centres[b], 128)), 32.0) << a << "," << b;
+  // Every texel inside a glyph: a unit normal pointing away from that glyph's centre, and
+  // A = distance / radius. Outside: no glyph (A = -1, RGB = 0).
+  std::vector<int> inside(map.centres.size(), 0);
+  for (int k = 0; k < 128; ++k)
+    for (int j = 0; j < 128; ++j)
+      for (int i = 0; i < 128; ++i) {
+        const glm::vec4& t = map.at(i, j, k);
+        const glm::dvec3 p = glm::dvec3(i, j, k) + 0.5;
+        std::size_t nearest = 0;
+        double best = 1e30;
+        for (std::size_t c = 0; c < map.centres.size(); ++c) {
+          const double d = glm::length(periodic(p - map.centres[c], 128));
+          if (d < best) best = d, nearest = c;
+        }
+        if (best <= map.radius) {
+          ++inside[nearest];
+          ASSERT_NEAR(t.a, best / map.radius, 1e-5);
+          if (best > 0.5) {
+            ASSERT_NEAR(glm::length(glm::dvec3(t)), 1.0, 1e-5);
+            const glm::dvec3 away = glm::normalize(periodic(p - map.centres[nearest], 128));
+            ASSERT_GT(glm::dot(glm::dvec3(t), away), 0.9999);
+          }
+        } else {
+          ASSERT_EQ(t.a, -1.0f);
+          ASSERT_EQ(glm::length(glm::vec3(t)), 0.0f);
+        }
+      }
+  // Each sphere holds about (4/3) pi r^3 texels (a lattice count: within 2 %).
+  const double volume = 4.0 / 3.0 * std::numbers::pi * std::pow(16.0, 3);
+  for (int n : inside) EXPECT_NEAR(n, volume, 0.02 * volume);
+}
+
+TEST(GlyphMap, RepeatsAlongEveryAxisAndFollowsTheSeed) {
+  const GlyphMap map = makeGlyphMap({64, 6, 16.0, 3});
+  for (int i = 0; i < 64; i += 7) {
+    EXPECT_EQ(map.at(i, 5, 9), map.at(i + 64, 5, 9));
+    EXPECT_EQ(map.at(3, i, 9), map.at(3, i - 64, 9));
+    EXPECT_EQ(map.at(3, 5, i), map.at(3, 5, i + 128));
+  }
+  EXPECT_EQ(makeGlyphMap({64, 6, 16.0, 3}).texels, map.texels);
+  EXPECT_NE(makeGlyphMap({64, 6, 16.0, 4}).centres, map.centres);
+}
+
+TEST(GlyphMap, ImpossibleRequestsAreErrors) {
+  EXPECT_THROW(makeGlyphMap({32, 200, 15.0, 1}), Error);  // cannot fit without overlap
+  EXPECT_THROW(makeGlyphMap({64, 4, 40.0, 1}), Error);    // wider than half the map
+  EXPECT_THROW(makeGlyphMap({4, 1, 2.0, 1}), Error);
+}
+
+}  // namespace
+}  // namespace mvw::render
