@@ -143,6 +143,10 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     s.planeOffsetMm = v.planeOffsetMm;
     s.slabMm = v.slabMm;
     s.overlay = v.overlay;
+    s.fusion = v.fusion;
+    s.functionalClasses = v.functionalClasses;
+    if (v.fusion && !study.functional)
+      throw InputError(study.file, "view '" + v.name + "': fusion needs a functional volume in the study");
     s.overlayOpacity = static_cast<float>(v.overlayOpacity);
     s.overlayThreshold = static_cast<float>(v.overlayThreshold);
     p.presetName = v.preset;
@@ -194,13 +198,15 @@ void runRender(const RenderOptions& o) {
     else if (v.settings.mode == render::RenderMode::Isosurface) caption += "  iso " + std::to_string(static_cast<int>(v.settings.isoValue));
     else caption += "  W " + std::to_string(static_cast<int>(window)) + " L " + std::to_string(static_cast<int>(level));
     if (v.settings.glyphs) caption += "  glyphs " + v.config.glyphMethod + " " + v.config.glyphConvexity;
+    if (v.settings.fusion) caption += "  + colour fusion";
     if (v.settings.mode == render::RenderMode::Mip && v.settings.depthCue) {
       char cue[96];
       std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", v.settings.cueBrightness,
                     v.settings.cueAmount, v.settings.cueContrast);
       caption += cue;
     }
-    const bool overlayShown = v.settings.mode == render::RenderMode::Mpr && v.settings.overlay && functional;
+    const bool overlayShown =
+        functional && (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion);
     if (v.config.annotate) {
       render::annotate(frame.image, frame.camera, caption);
       if (overlayShown) {
@@ -229,6 +235,7 @@ void runRender(const RenderOptions& o) {
                      {"diameter_mm", v.config.glyphDiameterMm}, {"count", v.config.glyphCount},
                      {"seed", v.config.glyphSeed}, {"map_size", v.config.glyphMapSize},
                      {"map_diameter", v.config.glyphMapDiameter}};
+    if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
     if (v.settings.functionalHigh > v.settings.functionalLow)
       r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
     if (v.settings.mode == render::RenderMode::Mip && v.settings.depthCue)
@@ -243,12 +250,12 @@ void runRender(const RenderOptions& o) {
     if (v.settings.mode == render::RenderMode::Mpr) {
       r["plane_offset_mm"] = v.settings.planeOffsetMm;
       r["slab_mm"] = v.settings.slabMm;
-      r["functional_overlay"] = overlayShown;
-      if (overlayShown) {
-        r["overlay_opacity"] = v.settings.overlayOpacity;
-        r["overlay_threshold"] = v.settings.overlayThreshold;
-        r["functional_placement"] = "world coordinates (no registration transform)";
-      }
+    }
+    r["functional_overlay"] = overlayShown;
+    if (overlayShown) {
+      r["overlay_opacity"] = v.settings.overlayOpacity;
+      r["overlay_threshold"] = v.settings.overlayThreshold;
+      r["functional_placement"] = "world coordinates (no registration transform)";
     }
     r["ms_per_frame"] = frame.milliseconds;
     r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);

@@ -36,6 +36,7 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   if (c.a <= 0.0) return true;
   float alpha = c.a;
   vec3 rgb = c.rgb;
+  if (uHasFunctional) rgb = fuseColour(rgb, ray.origin + t * ray.dir);  // colour fusion
   if (uShading) {
     if (!uTransfer2D) g = sampleGradient(tex);
     if (g.a > 1e-6) {

@@ -44,7 +44,8 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
   vec4 g = sampleGradient(toTexture(hit));
   vec3 n = g.a > 1e-6 ? -g.xyz / g.a : -ray.dir;
   if (uGlyphs) n = glyphNormal(hit, n);
-  fragColor = vec4(phong(uIsoColor.rgb, n, ray.dir), 1.0);
+  vec3 colour = uHasFunctional ? fuseColour(uIsoColor.rgb, hit) : uIsoColor.rgb;  // colour fusion
+  fragColor = vec4(phong(colour, n, ray.dir), 1.0);
   fragDepth = s.hitT;
 }
 

@@ -11,9 +11,6 @@ uniform vec3 uPlaneCentre;   // world mm
 uniform float uSlab;         // mm, 0: a single plane
 uniform vec2 uWindowLevel;   // window width, centre
 
-uniform sampler1D uColormap;
-uniform float uOverlayOpacity;
-uniform float uOverlayThreshold;      // 0..1 of the functional range
 
 bool inside(vec3 tex) { return all(greaterThanEqual(tex, uBoxMin)) && all(lessThanEqual(tex, uBoxMax)); }
 
@@ -38,12 +35,7 @@ void main() {
   }
   float grey = clamp((value - (uWindowLevel.y - 0.5 * uWindowLevel.x)) / uWindowLevel.x, 0.0, 1.0);
   vec3 rgb = vec3(grey);
-  if (uHasFunctional) {
-    bool inside;
-    float v = functionalValue(world, inside);
-    float u = (v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
-    if (inside && u > uOverlayThreshold) rgb = mix(rgb, textureLod(uColormap, clamp(u, 0.0, 1.0), 0.0).rgb, uOverlayOpacity);
-  }
+  if (uHasFunctional) rgb = fuseColour(rgb, world);
   fragColor = vec4(rgb, 1.0);
   fragDepth = t0;
 }

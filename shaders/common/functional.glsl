@@ -16,11 +16,34 @@ float functionalValue(vec3 world, out bool inside) {
   return inside ? textureLod(uFunctional, tex, 0.0).r : 0.0;
 }
 
-// 0 .. 1 over uFunctionalRange (0 outside the functional volume).
+// Nominal attributes (atlas labels): with uFunctionalClasses = K > 0 a label L > 0 maps to
+// class (L mod K) + 1 of K, so neighbouring labels get distinct glyph sizes; 0 stays 0.
+uniform int uFunctionalClasses;
+
+// 0 .. 1 over uFunctionalRange, or by class (0 outside the functional volume).
 float functionalFraction(vec3 world) {
   bool inside;
   float v = functionalValue(world, inside);
-  return inside ? clamp((v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x), 0.0, 1.0) : 0.0;
+  if (!inside) return 0.0;
+  if (uFunctionalClasses > 0) {
+    int label = int(round(v));
+    return label <= 0 ? 0.0 : float(label % uFunctionalClasses + 1) / float(uFunctionalClasses);
+  }
+  return clamp((v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x), 0.0, 1.0);
+}
+
+// Colour fusion: the functional colour map blended over an anatomy colour where the attribute
+// exceeds the threshold (MPR overlay, and DVR / isosurface fusion).
+uniform sampler1D uColormap;
+uniform float uOverlayOpacity;
+uniform float uOverlayThreshold;  // 0..1 of the functional range
+
+vec3 fuseColour(vec3 anatomy, vec3 world) {
+  bool inside;
+  float v = functionalValue(world, inside);
+  float u = (v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
+  if (!inside || u <= uOverlayThreshold) return anatomy;
+  return mix(anatomy, textureLod(uColormap, clamp(u, 0.0, 1.0), 0.0).rgb, uOverlayOpacity);
 }
 
 #endif

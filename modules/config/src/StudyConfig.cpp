@@ -97,7 +97,7 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
                     {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
                      "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
                      "background", "crop_min", "crop_max", "annotate", "plane_offset_mm", "slab_mm", "overlay",
-                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue", "glyphs", "functional_window"});
+                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue", "glyphs", "functional_window", "fusion", "functional_classes"});
   const std::string w = where + ".";
   ViewConfig v;
   v.name = stringField(file, j, w, "name", false);
@@ -176,6 +176,8 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   v.planeOffsetMm = numberField(file, j, w, "plane_offset_mm", 0.0, -1e4, 1e4);
   v.slabMm = numberField(file, j, w, "slab_mm", 0.0, 0.0, 1e4);
   v.overlay = boolField(file, j, w, "overlay", true);
+  v.fusion = boolField(file, j, w, "fusion", false);
+  v.functionalClasses = static_cast<int>(numberField(file, j, w, "functional_classes", 0, 0, 64));
   v.overlayOpacity = numberField(file, j, w, "overlay_opacity", 0.5, 0.0, 1.0);
   v.overlayThreshold = numberField(file, j, w, "overlay_threshold", 0.25, 0.0, 1.0);
   return v;

@@ -377,10 +377,11 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
     }
   }
   glUniform1i(p.uniform("uGlyphs"), s.glyphs ? 1 : 0);
+  glUniform1i(p.uniform("uFunctionalClasses"), std::max(0, s.functionalClasses));
   glUniform1f(p.uniform("uGlyphPeriod"), float(s.glyphDiameterMm * s.glyphMap.size / s.glyphMap.diameter));
   glUniform1i(p.uniform("uGlyphMethod"), s.glyphSizeControl ? 1 : 0);
   glUniform1i(p.uniform("uGlyphConvexity"), s.glyphConvexity);
-  const bool overlay = s.overlay && m.functional.id() != 0;
+  const bool overlay = m.functional.id() != 0 && (s.mode == RenderMode::Mpr ? s.overlay : s.fusion);
   glUniform1i(p.uniform("uHasFunctional"), overlay ? 1 : 0);
   const glm::mat4 functionalFromWorld(m.functionalTextureFromAnatomicalWorld);
   glUniformMatrix4fv(p.uniform("uFunctionalFromWorld"), 1, GL_FALSE, glm::value_ptr(functionalFromWorld));

@@ -49,6 +49,7 @@ struct ViewConfig {
   double glyphMapDiameter = 32.0;
   unsigned glyphSeed = 1;
   std::optional<std::array<double, 2>> functionalWindow;  // values -> 0..1 (overlay, glyph beta)
+  int functionalClasses = 0;  // labels: K > 0 gives label L the glyph size (L mod K + 1) / K
   std::optional<double> window, level;
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.
@@ -65,6 +66,7 @@ struct ViewConfig {
   double planeOffsetMm = 0.0;        // mpr: plane moved along the line of sight
   double slabMm = 0.0;               // mpr: thick-slab MIP thickness, 0 = single plane
   bool overlay = true;               // mpr: show the functional volume when there is one
+  bool fusion = false;               // composite / isosurface: blend the functional colour in
   double overlayOpacity = 0.5;
   double overlayThreshold = 0.25;    // fraction of the functional value range
 };

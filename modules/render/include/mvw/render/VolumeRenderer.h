@@ -63,8 +63,13 @@ struct RenderSettings {
   GlyphMapSettings glyphMap;     // size, count, diameter in map voxels, seed
   // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
   double functionalLow = 0.0, functionalHigh = 0.0;
-  // Functional overlay (MPR), when the renderer holds a functional volume.
+  // Nominal attribute (labels): K > 0 maps label L > 0 to glyph size (L mod K + 1) / K.
+  int functionalClasses = 0;
+  // Functional colour overlay, when the renderer holds a functional volume: on MPR by
+  // default (overlay), on composite and isosurface renders when asked (fusion: the colour
+  // map blended into the anatomy's colour before shading).
   bool overlay = true;
+  bool fusion = false;
   float overlayOpacity = 0.5f;
   float overlayThreshold = 0.25f;  // fraction of the functional range
 };
