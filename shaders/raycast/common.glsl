@@ -98,12 +98,18 @@ float skipBlock(Ray r, float t, vec3 tex) {
   return t + max(0.0, floor((tExit - t) / uStep)) * uStep;
 }
 
-// Phong with a headlight; n is the unit surface normal facing the viewer.
-uniform vec4 uLight;  // ambient, diffuse, specular, shininess
+// Phong. By default a headlight (the light at the eye, along each ray); otherwise a
+// directional light from uLightDir (world, unit, from the scene toward the light). Normals
+// are made to face the viewer first, so surfaces are lit from either side.
+uniform vec4 uLight;     // ambient, diffuse, specular, shininess
+uniform bool uHeadlight;
+uniform vec3 uLightDir;
 vec3 phong(vec3 color, vec3 n, vec3 viewDir) {
-  float diffuse = abs(dot(n, -viewDir));
-  vec3 h = normalize(-viewDir - viewDir);
-  float specular = pow(max(abs(dot(n, h)), 0.0), uLight.w);
+  if (dot(n, viewDir) > 0.0) n = -n;
+  vec3 l = uHeadlight ? -viewDir : uLightDir;
+  float diffuse = max(dot(n, l), 0.0);
+  vec3 h = normalize(l - viewDir);
+  float specular = pow(max(dot(n, h), 0.0), uLight.w);
   return color * (uLight.x + uLight.y * diffuse) + vec3(uLight.z * specular);
 }
 

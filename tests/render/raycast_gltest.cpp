@@ -429,3 +429,102 @@ TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
 
 }  // namespace
 }  // namespace mvw::render
+
+namespace mvw::render {
+namespace {
+
+TEST(Glyphs, ConvexAndConcaveFlipTheLitSide) {
+  // One glyph (map period 80 mm, glyph 20 mm); a slab whose anterior face lies 3 mm in front
+  // of the glyph's centre, lit from the screen's left. A bump is brighter on its left half, a
+  // dimple on its right half.
+  GlyphMapSettings one{64, 1, 16.0, 5};
+  const GlyphMap map = makeGlyphMap(one);
+  const double period = 80.0, R = 10.0;
+  const glm::dvec3 c = map.centres[0] / 64.0 * period;  // world mm (one period from 0)
+  const double face = c.y - 3.0;
+  // Both volumes centred on the glyph, so its centre is the middle of the image.
+  const glm::dvec3 origin = c - 40.0;
+  const Volume slab = makeVolume({81, 81, 81}, makeWorldFromIndex(origin, {1, 1, 1}, glm::dmat3(1.0)),
+                                 [face](glm::dvec3 p) { return static_cast<float>(p.y - face); });
+  const Volume attribute = makeVolume({9, 9, 9}, makeWorldFromIndex(origin, {10, 10, 10}, glm::dmat3(1.0)),
+                                      [](glm::dvec3) { return 1.0f; });
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, slab);
+  renderer.setFunctional(attribute, glm::dmat4(1.0));
+  RenderSettings s;
+  s.mode = RenderMode::Isosurface;
+  s.isoValue = 0.0;
+  s.size = {161, 161};
+  s.jitter = false;
+  s.camera.view = StandardView::Anterior;  // screen right = +x, up = +z
+  s.camera.zoom = radiusOf(slab) / 40.5;  // 0.5 mm per pixel over the 80 mm slab
+  s.glyphs = true;
+  s.glyphMap = one;
+  s.glyphDiameterMm = 2 * R;
+  s.functionalLow = 0.0;
+  s.functionalHigh = 1.0;
+  s.lightOffset = {-1.0, 0.0};
+  const double px = 80.0, py = 80.0;  // the glyph centre on screen
+  auto sides = [&](const Image& img) {
+    double left = 0, right = 0;
+    int nl = 0, nr = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const double dx = x - px, dy = y - py;
+        if (dx * dx + dy * dy > (0.8 * R * 2) * (0.8 * R * 2) || std::abs(dx) < 2) continue;
+        (dx < 0 ? left : right) += img.pixel(x, y)[0];
+        ++(dx < 0 ? nl : nr);
+      }
+    return std::pair<double, double>{left / std::max(nl, 1), right / std::max(nr, 1)};
+  };
+  s.glyphConvexity = 0;
+  const auto [bumpLeft, bumpRight] = sides(renderer.render(s).image);
+  s.glyphConvexity = 1;
+  const auto [dimpleLeft, dimpleRight] = sides(renderer.render(s).image);
+  std::cout << "bump left/right " << bumpLeft << "/" << bumpRight << ", dimple " << dimpleLeft << "/"
+            << dimpleRight << "\n";
+  EXPECT_GT(bumpLeft, bumpRight + 10);
+  EXPECT_GT(dimpleRight, dimpleLeft + 10);
+}
+
+TEST(DepthCuedMip, IdenticalBlobsAreDimmedByTheRampRatio) {
+  // Two identical bright blobs side by side on screen, one 30 mm nearer than the other.
+  auto blobs = [](glm::dvec3 p) {
+    if (glm::length(p - glm::dvec3(-12, -15, 0)) < 5.0) return 900.0f;  // near (anterior)
+    if (glm::length(p - glm::dvec3(12, 15, 0)) < 5.0) return 900.0f;    // far
+    return 0.0f;
+  };
+  const Volume v = makeVolume({61, 61, 41}, makeWorldFromIndex({-30, -30, -20}, {1, 1, 1}, glm::dmat3(1.0)), blobs);
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, v);
+  RenderSettings s;
+  s.mode = RenderMode::Mip;
+  s.size = {121, 121};
+  s.window = 1000;
+  s.level = 500;
+  s.jitter = false;
+  s.linear = false;
+  s.depthCue = true;
+  s.cueAmount = 1.0;
+  s.cueContrast = 0.0;
+  const Frame f = renderer.render(s);
+  // The brightest pixel of each blob: its front point, 5 mm before the centre.
+  auto brightest = [&](int x0, int x1) {
+    int best = 0;
+    for (int y = 0; y < 121; ++y)
+      for (int x = x0; x < x1; ++x) best = std::max<int>(best, f.image.pixel(x, y)[0]);
+    return best;
+  };
+  const int nearPeak = brightest(0, 60), farPeak = brightest(61, 121);
+  const double R = radiusOf(v);
+  // z of a point at depth y (mm along +y, the anterior view's line of sight) through the
+  // volume centre: 1 at y = -R, 0 at y = +R.
+  const double zNear = 1.0 - ((-15.0 - 5.0) + R) / (2.0 * R), zFar = 1.0 - ((15.0 - 5.0) + R) / (2.0 * R);
+  std::cout << "near " << nearPeak << " far " << farPeak << " expected ratio " << zFar / zNear << "\n";
+  EXPECT_NEAR(nearPeak, 0.9 * zNear * 255, 3.0);
+  EXPECT_NEAR(farPeak, 0.9 * zFar * 255, 3.0);
+  EXPECT_NEAR(static_cast<double>(farPeak) / nearPeak, zFar / zNear, 0.03);
+}
+
+}  // namespace
+}  // namespace mvw::render

@@ -343,6 +343,10 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   glUniform3f(p.uniform("uBoxMax"), float(cmax.x), float(cmax.y), float(cmax.z));
   glUniform3f(p.uniform("uBackground"), s.background.r, s.background.g, s.background.b);
   glUniform4f(p.uniform("uLight"), s.light.x, s.light.y, s.light.z, s.light.w);
+  const glm::vec3 lightDir(glm::normalize(-frame.camera.forward + s.lightOffset.x * frame.camera.right +
+                                          s.lightOffset.y * frame.camera.up));
+  glUniform3f(p.uniform("uLightDir"), lightDir.x, lightDir.y, lightDir.z);
+  glUniform1i(p.uniform("uHeadlight"), s.lightOffset == glm::dvec2(0.0) ? 1 : 0);
   glUniform2f(p.uniform("uTransferRange"), float(lo), float(hi));
   glUniform1i(p.uniform("uShading"), s.shading ? 1 : 0);
   glUniform1i(p.uniform("uTransfer2D"), transfer2d ? 1 : 0);

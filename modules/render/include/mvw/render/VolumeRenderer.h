@@ -47,6 +47,9 @@ struct RenderSettings {
   glm::vec3 background{0.0f};
   glm::vec4 isoColor{0.92f, 0.86f, 0.76f, 1.0f};
   glm::vec4 light{0.25f, 0.7f, 0.25f, 24.0f};  // ambient, diffuse, specular, shininess
+  // Where the light comes from, in screen terms: (0, 0) is a headlight; (-1, 1) from the
+  // upper left at 45 degrees off the line of sight.
+  glm::dvec2 lightOffset{0.0};
   glm::dvec3 cropMin{0.0};  // crop box as fractions of the volume box
   glm::dvec3 cropMax{1.0};
   // MPR: the plane faces the camera through the volume centre, moved along the line of
