@@ -15,6 +15,7 @@
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/VesselPhantom.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/io/VolumeReader.h"
@@ -306,7 +307,34 @@ void runGlyphMap(const GlyphMapOptions& o) {
             << "^3 map to " << o.output << "\n";
 }
 
+struct PhantomOptions {
+  std::string output;
+  VesselTreeSettings vessels;
+};
+
+// `mvw phantom vessels -o FILE`: the synthetic vessel tree of the depth-cued MIP tests.
+void runVesselPhantom(const PhantomOptions& o) {
+  const VesselTree tree = makeVesselTree(o.vessels);
+  io::writeVolume(tree.volume, o.output);
+  std::cout << "wrote a vessel tree of " << tree.segments.size() << " segments to " << o.output << "\n";
+}
+
 void addRenderCommand(CLI::App& app) {
+  {
+    auto ph = std::make_shared<PhantomOptions>();
+    CLI::App* phantom = app.add_subcommand("phantom", "Synthetic volumes with known geometry");
+    phantom->require_subcommand(1);
+    CLI::App* cmd = phantom->add_subcommand("vessels", "Branching tubes of decreasing radius on a dim noisy background");
+    cmd->add_option("-o,--output", ph->output, "Output file (.nii, .nii.gz, .mha, .mhd)")->required();
+    cmd->add_option("--size", ph->vessels.dimensions.x, "Voxels per side")->check(CLI::Range(16, 512));
+    cmd->add_option("--generations", ph->vessels.generations, "Branching generations")->check(CLI::Range(1, 12));
+    cmd->add_option("--seed", ph->vessels.seed, "Random seed");
+    cmd->add_option("--noise", ph->vessels.noiseSigma, "Noise sigma")->check(CLI::NonNegativeNumber);
+    cmd->callback([ph] {
+      ph->vessels.dimensions = glm::ivec3(ph->vessels.dimensions.x);
+      runVesselPhantom(*ph);
+    });
+  }
   {
     auto g = std::make_shared<GlyphMapOptions>();
     CLI::App* cmd = app.add_subcommand("glyphmap", "Export the volumetric normal glyph map (NIfTI or MetaImage)");
