@@ -86,7 +86,8 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     auto& s = p.settings;
     const auto mode = render::parseRenderMode(v.mode);
     if (!mode) throw InputError(study.file, "view '" + v.name + "': unknown mode '" + v.mode +
-                                                "' (composite, isosurface, mip, minip, average, mpr)");
+                                                "' (composite, isosurface, mip, minip, average, mpr, shells-mip, "
+                                                "shells-sum, shells-lit)");
     const auto sv = render::parseStandardView(v.view);
     if (!sv) throw InputError(study.file, "view '" + v.name + "': unknown view '" + v.view +
                                               "' (anterior, posterior, left, right, superior, inferior, "
@@ -134,6 +135,11 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
     if (v.functionalWindow) {
       s.functionalLow = (*v.functionalWindow)[0];
       s.functionalHigh = (*v.functionalWindow)[1];
+    }
+    s.shellCount = v.shells;
+    if (!v.shellsDisabled.empty()) {
+      s.shellEnabled.assign(static_cast<std::size_t>(v.shells), true);
+      for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
     }
     s.depthCue = v.depthCue;
     s.cueBrightness = v.cueBrightness;
@@ -200,7 +206,10 @@ void runRender(const RenderOptions& o) {
     else caption += "  W " + std::to_string(static_cast<int>(window)) + " L " + std::to_string(static_cast<int>(level));
     if (v.settings.glyphs) caption += "  glyphs " + v.config.glyphMethod + " " + v.config.glyphConvexity;
     if (v.settings.fusion) caption += "  + colour fusion";
-    if (v.settings.mode == render::RenderMode::Mip && v.settings.depthCue) {
+    const bool shellMode = v.settings.mode == render::RenderMode::ShellMip ||
+                           v.settings.mode == render::RenderMode::ShellSum || v.settings.mode == render::RenderMode::ShellLit;
+    if (shellMode) caption += "  " + std::to_string(v.settings.shellCount) + " shells";
+    if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue) {
       char cue[96];
       std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", v.settings.cueBrightness,
                     v.settings.cueAmount, v.settings.cueContrast);
@@ -239,7 +248,11 @@ void runRender(const RenderOptions& o) {
     if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
     if (v.settings.functionalHigh > v.settings.functionalLow)
       r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
-    if (v.settings.mode == render::RenderMode::Mip && v.settings.depthCue)
+    if (shellMode) {
+      r["shells"] = v.settings.shellCount;
+      r["shells_disabled"] = v.config.shellsDisabled;
+    }
+    if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue)
       r["depth_cue"] = {{"brightness", v.settings.cueBrightness}, {"amount", v.settings.cueAmount},
                         {"contrast", v.settings.cueContrast}};
     r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : 0.5 * std::min({anatomy.spacing().x, anatomy.spacing().y, anatomy.spacing().z});
@@ -358,7 +371,8 @@ void addRenderCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("-o,--output", o->outDir, "Output folder")->required();
-  cmd->add_option("--mode", o->mode, "composite | isosurface | mip | minip | average | mpr (all views)");
+  cmd->add_option("--mode", o->mode,
+                  "composite | isosurface | mip | minip | average | mpr | shells-mip | shells-sum | shells-lit");
   cmd->add_option("--view", o->view,
                   "anterior | posterior | left | right | superior | inferior (MPR: axial | coronal | sagittal)");
   cmd->add_option("--preset", o->preset, "Transfer function: ct-bone, ct-skin, ct-muscle-bone, mr-default, pet-hot-metal");

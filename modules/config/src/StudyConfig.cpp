@@ -97,7 +97,7 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
                     {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
                      "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
                      "background", "crop_min", "crop_max", "annotate", "plane_offset_mm", "slab_mm", "overlay",
-                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue", "glyphs", "functional_window", "fusion", "functional_classes"});
+                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue", "glyphs", "functional_window", "fusion", "functional_classes", "shells", "shells_disabled"});
   const std::string w = where + ".";
   ViewConfig v;
   v.name = stringField(file, j, w, "name", false);
@@ -177,6 +177,16 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   v.slabMm = numberField(file, j, w, "slab_mm", 0.0, 0.0, 1e4);
   v.overlay = boolField(file, j, w, "overlay", true);
   v.fusion = boolField(file, j, w, "fusion", false);
+  v.shells = static_cast<int>(numberField(file, j, w, "shells", 8, 1, 256));
+  if (j.contains("shells_disabled")) {
+    const json& d = j["shells_disabled"];
+    if (!d.is_array()) throw InputError(file, "'" + w + "shells_disabled' must be an array of shell numbers");
+    for (const auto& e : d) {
+      if (!e.is_number_integer() || e.get<int>() < 1 || e.get<int>() > v.shells)
+        throw InputError(file, "'" + w + "shells_disabled' holds shell numbers 1.." + std::to_string(v.shells));
+      v.shellsDisabled.push_back(e.get<int>());
+    }
+  }
   v.functionalClasses = static_cast<int>(numberField(file, j, w, "functional_classes", 0, 0, 64));
   v.overlayOpacity = numberField(file, j, w, "overlay_opacity", 0.5, 0.0, 1.0);
   v.overlayThreshold = numberField(file, j, w, "overlay_threshold", 0.25, 0.0, 1.0);

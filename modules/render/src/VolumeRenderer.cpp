@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "GlObjects.h"
+#include "ShellRenderer.h"
 #include "mvw/core/Error.h"
 #include "mvw/render/ShaderProgram.h"
 
@@ -24,7 +25,10 @@ const std::map<RenderMode, std::string> kModeNames = {{RenderMode::Composite, "c
                                                       {RenderMode::Mip, "mip"},
                                                       {RenderMode::MinIp, "minip"},
                                                       {RenderMode::Average, "average"},
-                                                      {RenderMode::Mpr, "mpr"}};
+                                                      {RenderMode::Mpr, "mpr"},
+                                                      {RenderMode::ShellMip, "shells-mip"},
+                                                      {RenderMode::ShellSum, "shells-sum"},
+                                                      {RenderMode::ShellLit, "shells-lit"}};
 
 // Values of component 0 as float, in the volume's physical unit.
 std::vector<float> valuesOf(const Volume& v) {
@@ -129,6 +133,8 @@ struct VolumeRenderer::Impl {
   std::pair<double, double> functionalRange{0.0, 1.0};
   detail::VertexArray vao;
   std::map<std::string, ShaderProgram> programs;
+  std::vector<float> values;  // kept for the shell modes' surface extraction
+  std::unique_ptr<detail::ShellRenderer> shells;
 
   explicit Impl(GlContext& c) : context(c) {}
 
@@ -142,6 +148,9 @@ struct VolumeRenderer::Impl {
       case RenderMode::MinIp: defines = {"MVW_MINIP 1"}; break;
       case RenderMode::Average: defines = {"MVW_AVERAGE 1"}; break;
       case RenderMode::Mpr: file = "mpr.frag.glsl"; break;
+      case RenderMode::ShellMip:
+      case RenderMode::ShellSum:
+      case RenderMode::ShellLit: break;  // drawn by detail::ShellRenderer
     }
     const std::string key = toString(mode);
     auto it = programs.find(key);
@@ -161,7 +170,8 @@ VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume) : impl_
   if (m.dims.x > max3d || m.dims.y > max3d || m.dims.z > max3d)
     throw Error("volume " + std::to_string(m.dims.x) + " x " + std::to_string(m.dims.y) + " x " +
                 std::to_string(m.dims.z) + " exceeds the GL's largest 3D texture (" + std::to_string(max3d) + ")");
-  const std::vector<float> values = valuesOf(volume);
+  m.values = valuesOf(volume);
+  const std::vector<float>& values = m.values;
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
   m.range = {*lo, *hi};
 
@@ -252,6 +262,36 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   CameraSettings cameraSettings = s.camera;
   if (s.mode == RenderMode::Mpr) cameraSettings.perspective = false;
   frame.camera = makeCamera(cameraSettings, centre, radius, s.size);
+
+  if (s.mode == RenderMode::ShellMip || s.mode == RenderMode::ShellSum || s.mode == RenderMode::ShellLit) {
+    // The paper's transform is affine in z, so the shells are drawn orthographically.
+    CameraSettings ortho = s.camera;
+    ortho.perspective = false;
+    frame.camera = makeCamera(ortho, centre, radius, s.size);
+    if (!m.shells) m.shells = std::make_unique<detail::ShellRenderer>(m.values, m.dims, m.worldFromIndex);
+    detail::ShellDraw d;
+    d.mode = s.mode == RenderMode::ShellMip ? detail::ShellMode::Maximum
+             : s.mode == RenderMode::ShellSum ? detail::ShellMode::Summation : detail::ShellMode::Lit;
+    d.size = s.size;
+    d.camera = frame.camera;
+    d.centre = centre;
+    d.radius = radius;
+    const double w = s.window > 0 ? s.window : m.range.second - m.range.first;
+    const double l = s.window > 0 ? s.level : 0.5 * (m.range.first + m.range.second);
+    d.windowLow = l - 0.5 * w;
+    d.windowWidth = w;
+    d.count = s.shellCount;
+    d.enabled = s.shellEnabled;
+    if (s.depthCue) {
+      d.cueBrightness = s.cueBrightness;
+      d.cueAmount = s.cueAmount;
+      d.cueContrast = s.cueContrast;
+    }
+    d.light = s.light;
+    frame.image = m.shells->draw(d);
+    frame.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return frame;
+  }
 
   // Transfer function table over the value range (and the gradient magnitude for a 2D
   // function), its opacity corrected for this frame's step here rather than per sample.

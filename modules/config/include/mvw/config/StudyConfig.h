@@ -29,7 +29,8 @@ enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };
 // are checked by the app against the renderer's lists before any GL work.
 struct ViewConfig {
   std::string name;                  // output file stem; default "view<N>"
-  std::string mode = "composite";    // composite | isosurface | mip | minip | average | mpr
+  std::string mode = "composite";    // composite | isosurface | mip | minip | average | mpr |
+                                     // shells-mip | shells-sum | shells-lit
   std::string view = "anterior";     // anterior | posterior | left | right | superior | inferior
                                      // (| axial | coronal | sagittal)
   double azimuth = 0.0, elevation = 0.0, roll = 0.0;  // degrees
@@ -55,6 +56,9 @@ struct ViewConfig {
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.
   bool depthCue = false;
   double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
+  // shells-mip | shells-sum | shells-lit: number of isosurface shells, and ones switched off.
+  int shells = 8;
+  std::vector<int> shellsDisabled;
   bool shading = true;
   std::string sampling = "linear";   // linear | nearest
   double stepMm = 0.0;               // 0 = half the smallest voxel spacing

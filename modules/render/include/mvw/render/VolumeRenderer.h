@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -20,7 +21,10 @@
 
 namespace mvw::render {
 
-enum class RenderMode { Composite, Isosurface, Mip, MinIp, Average, Mpr };
+// ShellMip, ShellSum, ShellLit: the paper's own discrete algorithm (Heidrich et al. 1995):
+// isosurface shells at n emission thresholds drawn as triangles, the GL depth test doing the
+// maximum (eq. 4), approximate summation (section 2.4), or lit shells.
+enum class RenderMode { Composite, Isosurface, Mip, MinIp, Average, Mpr, ShellMip, ShellSum, ShellLit };
 std::optional<RenderMode> parseRenderMode(const std::string& name);
 std::string toString(RenderMode mode);
 
@@ -39,6 +43,9 @@ struct RenderSettings {
   // depth cue amount a, contrast b. Off, or a = 0, b = 1, beta0 = 0: plain MIP.
   bool depthCue = false;
   double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
+  // Shell modes: n shells at emissions i/n of the window; shells can be disabled one by one.
+  int shellCount = 8;
+  std::vector<bool> shellEnabled;  // empty: all
   double stepMm = 0.0;   // <= 0: half the smallest voxel spacing
   bool shading = true;
   bool linear = true;    // trilinear (true) or nearest-neighbour sampling
