@@ -26,6 +26,7 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
+#include "DecoderGuard.h"
 #include "FileChecks.h"
 #include "Formats.h"
 #include "VtkBridge.h"
@@ -234,6 +235,7 @@ Volume stackFramesAsSlices(const Volume& in, int frames, int spp, vtkDICOMMetaDa
 Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& ref,
                   const ReadOptions& options) {
   const fs::path first(files->GetValue(0).c_str());
+  DecoderGuard guard(path);
   VtkMessageScope messages;
   vtkNew<vtkDICOMReader> reader;
   reader->SetFileNames(files);
@@ -314,6 +316,7 @@ SeriesRef seriesRefFrom(vtkDICOMMetaData* meta) {
 // that is not an image says what it is.
 Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
   regularFileSize(path);
+  DecoderGuard guard(path);
   VtkMessageScope messages;
   vtkNew<vtkDICOMMetaData> meta;
   vtkNew<vtkDICOMParser> parser;
@@ -345,6 +348,7 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
     one.push_back(readSingleFile(path, options));
     return one;
   }
+  DecoderGuard guard(path);
   VtkMessageScope messages;
   vtkNew<vtkDICOMDirectory> dir;
   dir->SetDirectoryName(path.c_str());

@@ -39,18 +39,34 @@ FileFormat detectFormat(const fs::path& path) {
   return FileFormat::Unknown;
 }
 
+namespace {
+
+// A header that makes a library allocate more than the machine has is bad input too.
+template <class F>
+auto refuseOutOfMemory(const fs::path& path, F&& read) {
+  try {
+    return read();
+  } catch (const std::bad_alloc&) {
+    throw InputError(path, "not enough memory to read this file (a length field claims more than the machine holds)");
+  }
+}
+
+}  // namespace
+
 std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& given) {
   ReadOptions options = given;
   if (options.maxBytes == 0) options.maxBytes = defaultMaxBytes();
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
-  switch (detectFormat(path)) {
-    case FileFormat::Dicom: return detail::readDicom(path, options, true);
-    case FileFormat::Nifti: { std::vector<Volume> v; v.push_back(detail::readNifti(path, options)); return v; }
-    case FileFormat::MetaImage: { std::vector<Volume> v; v.push_back(detail::readMetaImage(path, options)); return v; }
-    case FileFormat::Unknown: break;
-  }
-  throw InputError(path, "unknown file type (expected a DICOM file or folder, .nii, .nii.gz, .hdr, .mha or .mhd)");
+  return refuseOutOfMemory(path, [&]() -> std::vector<Volume> {
+    switch (detectFormat(path)) {
+      case FileFormat::Dicom: return detail::readDicom(path, options, true);
+      case FileFormat::Nifti: { std::vector<Volume> v; v.push_back(detail::readNifti(path, options)); return v; }
+      case FileFormat::MetaImage: { std::vector<Volume> v; v.push_back(detail::readMetaImage(path, options)); return v; }
+      case FileFormat::Unknown: break;
+    }
+    throw InputError(path, "unknown file type (expected a DICOM file or folder, .nii, .nii.gz, .hdr, .mha or .mhd)");
+  });
 }
 
 Volume readVolume(const fs::path& path, const ReadOptions& given) {
@@ -59,7 +75,7 @@ Volume readVolume(const fs::path& path, const ReadOptions& given) {
   if (detectFormat(path) == FileFormat::Dicom) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
-    auto volumes = detail::readDicom(path, options, false);
+    auto volumes = refuseOutOfMemory(path, [&] { return detail::readDicom(path, options, false); });
     return std::move(volumes.front());
   }
   auto volumes = readAllVolumes(path, options);
