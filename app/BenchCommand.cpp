@@ -1,5 +1,7 @@
 #include "BenchCommand.h"
 
+#include "BenchRegister.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -103,6 +105,7 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--step", o->stepMm, "Sample distance in mm (default: half the smallest spacing)");
   cmd->add_flag("--no-shading", o->noShading, "Composite without Phong shading");
   cmd->callback([o] { runBench(*o); });
+  addBenchRegisterCommand(*bench);
 }
 
 }  // namespace mvw::app

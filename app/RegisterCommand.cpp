@@ -14,8 +14,10 @@
 #include <nlohmann/json.hpp>
 
 #include "mvw/core/Error.h"
+#include "mvw/io/PngWriter.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
+#include "mvw/resampling/RegistrationQa.h"
 #include "mvw/resampling/Resample.h"
 #include "mvw/resampling/RigidRegistration.h"
 #include "mvw/resampling/Transform.h"
@@ -34,6 +36,8 @@ struct RegisterOptions {
   std::string initialisation = "auto";
   std::uint64_t seed = RegistrationOptions{}.seed;
   bool noSuv = false;
+  bool affine = false;
+  double rotationSearchDeg = 0.0;
 };
 
 const std::map<std::string, Interpolation> kInterpolations = {{"auto", Interpolation::Automatic},
@@ -108,12 +112,14 @@ void runRegister(const RegisterOptions& opt) {
   fixedRead.series = opt.fixedSeries;
   movingRead.series = opt.movingSeries;
   fixedRead.suv = movingRead.suv = !opt.noSuv;
-  const Volume fixed = io::readVolume(opt.fixed, fixedRead);
+  Volume fixed = io::readVolume(opt.fixed, fixedRead);
   const Volume moving = io::readVolume(opt.moving, movingRead);
 
   RegistrationOptions options;
   options.seed = opt.seed;
   options.initialisation = kInitialisations.at(opt.initialisation);
+  options.affine = opt.affine;
+  options.rotationSearchRangeDeg = opt.rotationSearchDeg;
   if (::isatty(STDERR_FILENO))
     options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   const RegistrationResult r = registerRigid(fixed, moving, options);
@@ -121,7 +127,12 @@ void runRegister(const RegisterOptions& opt) {
   ResampleOptions resampleOptions;
   resampleOptions.interpolation = interpolation;
   const Interpolation used = chosenInterpolation(moving, resampleOptions);
-  const Volume onGrid = resample(moving, gridOf(fixed), r.transform, resampleOptions);
+  // Before: the volumes as their headers place them in the world.
+  io::writePng(registrationQaImage(fixed, moving, Transform(), r.transform),
+               staging.file("registration_qa.png"));
+  const Grid grid = gridOf(fixed);
+  fixed = Volume();  // only its grid is needed from here: the peak memory is the output's
+  const Volume onGrid = resample(moving, grid, r.transform, resampleOptions);
 
   r.transform.writeItk(staging.file("transform.tfm"));
   io::writeVolume(onGrid, staging.file("functional_on_anatomical.nii.gz"));
@@ -129,7 +140,12 @@ void runRegister(const RegisterOptions& opt) {
   nlohmann::json j;
   j["fixed"] = opt.fixed;
   j["moving"] = opt.moving;
-  j["method"] = "rigid, Mattes mutual information, regular-step gradient descent";
+  j["method"] = std::string(r.affine ? "rigid then affine" : "rigid") +
+                ", Mattes mutual information, regular-step gradient descent";
+  if (r.searchedRotations > 0)
+    j["rotation_search"] = {{"range_deg", opt.rotationSearchDeg},
+                            {"rotations_scored", r.searchedRotations},
+                            {"best_angles_deg", vec(r.searchAngles * (180.0 / std::numbers::pi))}};
   j["initialisation"] = toString(r.initialisation);
   j["initial_translation_mm"] = vec(r.initialTranslationMm);
   j["seed"] = opt.seed;
@@ -138,7 +154,8 @@ void runRegister(const RegisterOptions& opt) {
   j["seconds"] = r.seconds;
   j["levels"] = nlohmann::json::array();
   for (const auto& l : r.levels)
-    j["levels"].push_back({{"smoothing_mm", l.smoothingMm},
+    j["levels"].push_back({{"stage", l.stage},
+                           {"smoothing_mm", l.smoothingMm},
                            {"fixed_dimensions", vec(l.fixedDimensions)},
                            {"moving_dimensions", vec(l.movingDimensions)},
                            {"samples", l.samples},
@@ -151,7 +168,9 @@ void runRegister(const RegisterOptions& opt) {
                            {"converged", l.converged},
                            {"seconds", l.seconds}});
   const glm::dvec3 degrees = r.parameters.angles * (180.0 / std::numbers::pi);
-  // The parameters describe movingFromFixed (ITK's direction), about the centre.
+  // The parameters describe movingFromFixed (ITK's direction), about the centre; with
+  // --affine they are the rigid stage's, and the matrices below the final affine map.
+  j["affine"] = r.affine;
   j["parameters"] = {
       {"convention", "moving = R (fixed - centre) + centre + translation, R = Rz Rx Ry"},
       {"angles_rad", vec(r.parameters.angles)},
@@ -161,22 +180,26 @@ void runRegister(const RegisterOptions& opt) {
   j["fixed_from_moving"] = rows(r.transform.fixedFromMoving());
   j["moving_from_fixed"] = rows(r.transform.movingFromFixed());
   j["interpolation"] = name(used);
-  j["outputs"] = {"transform.tfm", "functional_on_anatomical.nii.gz", "registration.json"};
+  const std::vector<std::string> outputs = {"transform.tfm", "functional_on_anatomical.nii.gz",
+                                            "registration_qa.png", "registration.json"};
+  j["outputs"] = outputs;
   {
     std::ofstream out(staging.file("registration.json"));
     out << j.dump(2) << "\n";
     if (!out) throw Error(staging.file("registration.json").string() + ": cannot write");
   }
-  staging.commit({"transform.tfm", "functional_on_anatomical.nii.gz", "registration.json"});
+  staging.commit(outputs);
 
-  std::cout << "registered " << opt.moving << " to " << opt.fixed << " in " << r.seconds << " s, "
-            << r.iterations << " iterations" << (r.converged ? "" : " (NOT converged)") << "\n"
+  std::cout << (r.affine ? "registered (rigid + affine) " : "registered ") << opt.moving << " to "
+            << opt.fixed << " in " << r.seconds << " s, " << r.iterations << " iterations"
+            << (r.converged ? "" : " (NOT converged)") << "\n"
             << "  rotation " << degrees.x << ", " << degrees.y << ", " << degrees.z
             << " deg, translation " << r.parameters.translation.x << ", "
             << r.parameters.translation.y << ", " << r.parameters.translation.z << " mm\n"
             << "  wrote " << (fs::path(opt.output) / "transform.tfm").string() << ", "
             << (fs::path(opt.output) / "functional_on_anatomical.nii.gz").string() << " ("
-            << name(used) << "), " << (fs::path(opt.output) / "registration.json").string() << "\n";
+            << name(used) << "), " << (fs::path(opt.output) / "registration_qa.png").string()
+            << ", " << (fs::path(opt.output) / "registration.json").string() << "\n";
 }
 
 }  // namespace
@@ -185,7 +208,8 @@ void addRegisterCommand(CLI::App& app) {
   auto opt = std::make_shared<RegisterOptions>();
   CLI::App* cmd = app.add_subcommand(
       "register",
-      "Rigidly register a functional volume to an anatomical one and resample it onto its grid");
+      "Register a functional volume to an anatomical one (rigid, optionally affine) and resample "
+      "it onto its grid");
   cmd->add_option("--fixed", opt->fixed,
                   "Anatomical (reference) volume: DICOM folder or file, NIfTI, MetaImage")
       ->required();
@@ -202,6 +226,13 @@ void addRegisterCommand(CLI::App& app) {
                   "mass (centroids)")
       ->check(CLI::IsMember({"auto", "world", "centre", "mass"}));
   cmd->add_option("--seed", opt->seed, "Seed of the sample points (same seed, same result)");
+  cmd->add_flag(
+      "--affine", opt->affine,
+      "After the rigid stage, an affine one (12 degrees of freedom: scaling and shear too)");
+  cmd->add_option("--rotation-search", opt->rotationSearchDeg,
+                  "Before refining, score rotations up to this many degrees about each axis in "
+                  "30-degree steps on the coarsest level (for large misalignment); 0: off")
+      ->check(CLI::Range(0.0, 180.0));
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
   cmd->callback([opt] { runRegister(*opt); });
 }

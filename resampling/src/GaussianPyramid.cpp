@@ -26,9 +26,9 @@ std::vector<float> gaussianKernel(double sigmaVoxels) {
 
 // One separable pass along `axis`: out[.., o, ..] = sum_t k[t] in[.., clamp(s*o + t), ..].
 // Borders replicate the edge voxel, so a volume's outer intensity does not fade to zero.
-std::vector<float> pass(const std::vector<float>& in, glm::ivec3 dims, int axis,
-                        const std::vector<float>& kernel, int shrink, glm::ivec3& outDims,
-                        WorkerPool& pool) {
+template <typename T>
+std::vector<float> pass(const T* in, glm::ivec3 dims, int axis, const std::vector<float>& kernel,
+                        int shrink, glm::ivec3& outDims, WorkerPool& pool) {
   const int radius = static_cast<int>(kernel.size() / 2);
   outDims = dims;
   outDims[axis] = (dims[axis] - 1) / shrink + 1;
@@ -42,12 +42,12 @@ std::vector<float> pass(const std::vector<float>& in, glm::ivec3 dims, int axis,
     for (long j = 0; j < oy; ++j) {
       float* o = out.data() + (k * oy + j) * ox;
       if (axis == 0) {
-        const float* row = in.data() + (k * ny + j) * nx;
+        const T* row = in + (k * ny + j) * nx;
         for (long i = 0; i < ox; ++i) {
           float sum = 0.0f;
           for (int t = -radius; t <= radius; ++t)
             sum += kernel[static_cast<std::size_t>(t + radius)] *
-                   row[clampIndex(static_cast<int>(i) * shrink + t)];
+                   static_cast<float>(row[clampIndex(static_cast<int>(i) * shrink + t)]);
           o[i] = sum;
         }
       } else {
@@ -56,8 +56,8 @@ std::vector<float> pass(const std::vector<float>& in, glm::ivec3 dims, int axis,
           const float w = kernel[static_cast<std::size_t>(t + radius)];
           const long src = axis == 1 ? clampIndex(static_cast<int>(j) * shrink + t) : j;
           const long srcK = axis == 2 ? clampIndex(static_cast<int>(k) * shrink + t) : k;
-          const float* row = in.data() + (srcK * ny + src) * nx;
-          for (long i = 0; i < ox; ++i) o[i] += w * row[i];
+          const T* row = in + (srcK * ny + src) * nx;
+          for (long i = 0; i < ox; ++i) o[i] += w * static_cast<float>(row[i]);
         }
       }
     }
@@ -82,10 +82,13 @@ Volume firstComponentAsFloat(const Volume& volume) {
 }
 
 Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool) {
-  MVW_CHECK(image.scalarType() == ScalarType::Float32 && image.components() == 1);
+  MVW_CHECK(image.components() == 1);
   const glm::dvec3 spacing = image.spacing();
   glm::ivec3 dims = image.dimensions();
-  std::vector<float> data(image.dataAs<float>(), image.dataAs<float>() + image.voxelCount());
+  // The first pass reads the image in place (whatever its type): a full-resolution float
+  // copy of a CT would be the largest allocation of a registration.
+  std::vector<float> data;
+  bool first = true;
   glm::ivec3 shrink(1);
   for (int axis = 0; axis < 3; ++axis) {
     // Capped at a quarter of the axis: smoothing a slab of 3 slices with a sigma of 2 slices
@@ -97,11 +100,20 @@ Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool) {
     // voxel thick would leave that axis undetermined.
     while (shrink[axis] > 1 && (dims[axis] - 1) / shrink[axis] + 1 < 4) --shrink[axis];
     glm::ivec3 outDims;
-    data = pass(data, dims, axis, gaussianKernel(sigmaVoxels), shrink[axis], outDims, pool);
+    const auto kernel = gaussianKernel(sigmaVoxels);
+    if (first)
+      data = dispatchScalar(image.scalarType(), [&](auto zero) {
+        using T = decltype(zero);
+        return pass(image.dataAs<T>(), dims, axis, kernel, shrink[axis], outDims, pool);
+      });
+    else
+      data = pass(data.data(), dims, axis, kernel, shrink[axis], outDims, pool);
+    first = false;
     dims = outDims;
   }
   glm::dmat4 worldFromIndex = image.worldFromIndex();
   for (int axis = 0; axis < 3; ++axis) worldFromIndex[axis] *= static_cast<double>(shrink[axis]);
+  if (first) return firstComponentAsFloat(image);  // nothing to smooth
   Volume out(dims, 1, ScalarType::Float32, worldFromIndex);
   std::copy(data.begin(), data.end(), out.dataAs<float>());
   out.metadata() = image.metadata();

@@ -15,7 +15,8 @@ Volume firstComponentAsFloat(const Volume& volume);
 // sigma are left alone), then keeping
 // every s-th voxel along each axis, s = floor(sigmaMm / spacing) (at least 1), so the
 // coarse image has about one voxel per sigma and no aliasing worth the name. The geometry
-// follows: worldFromIndex' = worldFromIndex * diag(s). `image` must be float32, 1 component.
+// follows: worldFromIndex' = worldFromIndex * diag(s). `image`: any scalar type, 1 component;
+// the result is float32.
 Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool);
 
 }  // namespace mvw::resampling::detail

@@ -85,15 +85,21 @@ MattesMutualInformation::~MattesMutualInformation() = default;
 
 MattesMutualInformation::Result MattesMutualInformation::evaluate(
     const glm::dmat4& movingFromFixed) const {
-  return run(movingFromFixed, nullptr, glm::dvec3(0.0));
+  return run(movingFromFixed, Gradient::None, nullptr, glm::dvec3(0.0));
+}
+
+MattesMutualInformation::Result MattesMutualInformation::evaluateAffine(
+    const glm::dmat4& movingFromFixed, const glm::dvec3& centre) const {
+  return run(movingFromFixed, Gradient::Affine, nullptr, centre);
 }
 
 MattesMutualInformation::Result MattesMutualInformation::evaluateRigid(
     const RigidParameters& parameters, const glm::dvec3& centre) const {
-  return run(rigidMatrix(parameters, centre), &parameters, centre);
+  return run(rigidMatrix(parameters, centre), Gradient::Rigid, &parameters, centre);
 }
 
 MattesMutualInformation::Result MattesMutualInformation::run(const glm::dmat4& movingFromFixed,
+                                                             Gradient gradientKind,
                                                              const RigidParameters* rigid,
                                                              const glm::dvec3& centre) const {
   const int nb = bins_;
@@ -102,7 +108,7 @@ MattesMutualInformation::Result MattesMutualInformation::run(const glm::dmat4& m
   const glm::dmat3 indexFromWorldLinear(movingIndexFromWorld_);
   const glm::ivec3 dims = moving_.dimensions();
   const float* voxels = moving_.dataAs<float>();
-  const bool wantGradient = rigid != nullptr;
+  const bool wantGradient = gradientKind != Gradient::None;
 
   // Per sample: the moving value in bin units (negative: outside the moving volume) and
   // d(moving value)/d(moving world point), zero where the value was clamped to the range.
@@ -175,12 +181,12 @@ MattesMutualInformation::Result MattesMutualInformation::run(const glm::dmat4& m
 
   // dMI/dmu = sum_ij dp_ij/dmu log(p_ij / (pf_i pm_j)), and dp_ij/dmu collects, per sample of
   // fixed bin i, -B3'(j - bin) * dbin/dmu / N with dbin/dmu = (grad m . dx/dmu) / binWidth.
-  std::array<glm::dmat3, 3> dR;
-  for (int a = 0; a < 3; ++a)
-    dR[static_cast<std::size_t>(a)] = eulerRotationDerivative(rigid->angles, a);
-  std::vector<std::array<double, 6>> partialGradient(nChunks);
+  // With x = A (p - c) + c + t, dx/dA_rc = e_r (p - c)_c: accumulating the outer product
+  // w grad m (p - c)^T gives the affine gradient, and the rigid one follows from it by the
+  // chain rule through dR/dangle (dx/dangle = dR/dangle (p - c)).
+  std::vector<std::array<double, 12>> partialGradient(nChunks);
   pool_->parallelFor(nChunks, [&](std::size_t c) {
-    std::array<double, 6> g{};
+    std::array<double, 12> g{};
     for (std::size_t s = chunkBegin(c); s < chunkBegin(c + 1); ++s) {
       const double bin = movingBin[s];
       if (bin < 0.0) continue;
@@ -191,17 +197,32 @@ MattesMutualInformation::Result MattesMutualInformation::run(const glm::dmat4& m
       double w = 0.0;
       for (int j = pivot - 1; j <= pivot + 2; ++j) w -= bspline3Derivative(j - bin) * row[j];
       const glm::dvec3 local = points_[s] - centre;
-      for (int a = 0; a < 3; ++a)
-        g[static_cast<std::size_t>(a)] += w * glm::dot(gw, dR[static_cast<std::size_t>(a)] * local);
-      g[3] += w * gw.x;
-      g[4] += w * gw.y;
-      g[5] += w * gw.z;
+      for (int r = 0; r < 3; ++r) {
+        const double wg = w * gw[r];
+        for (int col = 0; col < 3; ++col)
+          g[static_cast<std::size_t>(3 * r + col)] += wg * local[col];
+        g[static_cast<std::size_t>(9 + r)] += wg;
+      }
     }
     partialGradient[c] = g;
   });
   const double scale = norm / movingBinWidth_;
   for (std::size_t c = 0; c < nChunks; ++c)
-    for (std::size_t k = 0; k < 6; ++k) result.gradient[k] += partialGradient[c][k] * scale;
+    for (std::size_t k = 0; k < 12; ++k) result.affineGradient[k] += partialGradient[c][k] * scale;
+  if (gradientKind == Gradient::Rigid) {
+    for (int a = 0; a < 3; ++a) {
+      const glm::dmat3 dR = eulerRotationDerivative(rigid->angles, a);
+      double d = 0.0;
+      for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col)
+          d += result.affineGradient[static_cast<std::size_t>(3 * r + col)] * dR[col][r];
+      result.gradient[static_cast<std::size_t>(a)] = d;
+    }
+    for (int a = 0; a < 3; ++a)
+      result.gradient[static_cast<std::size_t>(3 + a)] =
+          result.affineGradient[static_cast<std::size_t>(9 + a)];
+    result.affineGradient = {};
+  }
   return result;
 }
 

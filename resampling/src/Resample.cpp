@@ -1,5 +1,6 @@
 #include "mvw/resampling/Resample.h"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <unordered_set>
@@ -116,8 +117,9 @@ Volume resample(const Volume& moving, const Grid& fixedGrid, const Transform& fi
   const auto dims = fixedGrid.dimensions;
   if (dims.x < 1 || dims.y < 1 || dims.z < 1) throw Error("resample: the output grid is empty");
 
-  const Volume firstOnly = options.allComponents ? Volume() : firstComponent(moving);
-  const Volume& source = options.allComponents ? moving : firstOnly;
+  const bool asStored = options.allComponents || moving.components() == 1;
+  const Volume firstOnly = asStored ? Volume() : firstComponent(moving);
+  const Volume& source = asStored ? moving : firstOnly;
   const Interpolation interpolation = chosenInterpolation(source, options);
 
   // Output index -> input index: movingIndexFromWorld * movingFromFixed * fixedWorldFromIndex.
@@ -134,7 +136,6 @@ Volume resample(const Volume& moving, const Grid& fixedGrid, const Transform& fi
   reslice->SetResliceAxes(axes);
   reslice->SetOutputSpacing(1, 1, 1);
   reslice->SetOutputOrigin(0, 0, 0);
-  reslice->SetOutputExtent(0, dims.x - 1, 0, dims.y - 1, 0, dims.z - 1);
   reslice->SetOutputDimensionality(3);
   reslice->SetBackgroundLevel(options.background);
   switch (interpolation) {
@@ -149,15 +150,26 @@ Volume resample(const Volume& moving, const Grid& fixedGrid, const Transform& fi
       reslice->SetInterpolationModeToLinear();
       break;
   }
-  reslice->Update();
 
-  vtkImageData* image = reslice->GetOutput();
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  // Slabs of output slices, each copied into place: VTK's output buffer is then a slab, not
+  // a second copy of the whole output (which would double the peak memory of mvw register).
   Volume out(dims, source.components(), source.scalarType(), fixedGrid.worldFromIndex);
-  MVW_CHECK(scalars != nullptr);
-  MVW_CHECK_EQ(scalars->GetDataType(), vtkTypeOf(source.scalarType()));
-  MVW_CHECK_EQ(static_cast<std::size_t>(scalars->GetNumberOfValues()), out.valueCount());
-  std::memcpy(out.data(), scalars->GetVoidPointer(0), out.byteSize());
+  const std::size_t sliceBytes = out.byteSize() / static_cast<std::size_t>(dims.z);
+  const int slab = static_cast<int>(std::clamp<std::size_t>(
+      (4u << 20) / std::max<std::size_t>(sliceBytes, 1), 1, static_cast<std::size_t>(dims.z)));
+  for (int z0 = 0; z0 < dims.z; z0 += slab) {
+    const int z1 = std::min(dims.z, z0 + slab) - 1;
+    reslice->SetOutputExtent(0, dims.x - 1, 0, dims.y - 1, z0, z1);
+    reslice->Update();
+    vtkDataArray* scalars = reslice->GetOutput()->GetPointData()->GetScalars();
+    MVW_CHECK(scalars != nullptr);
+    MVW_CHECK_EQ(scalars->GetDataType(), vtkTypeOf(source.scalarType()));
+    MVW_CHECK_EQ(
+        static_cast<std::size_t>(scalars->GetNumberOfValues()) * scalarSize(source.scalarType()),
+        sliceBytes * static_cast<std::size_t>(z1 - z0 + 1));
+    std::memcpy(out.data() + sliceBytes * static_cast<std::size_t>(z0), scalars->GetVoidPointer(0),
+                sliceBytes * static_cast<std::size_t>(z1 - z0 + 1));
+  }
 
   out.metadata() = source.metadata();
   out.metadata().format.clear();

@@ -4,8 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <numbers>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -30,8 +33,8 @@ std::filesystem::path nameOf(const Volume& v, const char* role) {
                                          : std::filesystem::path(v.metadata().sourcePath);
 }
 
-// Refuses what would give a garbage transform silently; returns component 0 as float32.
-Volume checkedFloat(const Volume& v, const char* role) {
+// Refuses what would give a garbage transform silently. Reads component 0 in place.
+void checkVolume(const Volume& v, const char* role) {
   const auto name = nameOf(v, role);
   if (v.empty()) throw InputError(name, std::string("the ") + role + " is empty");
   const auto d = v.dimensions();
@@ -42,17 +45,29 @@ Volume checkedFloat(const Volume& v, const char* role) {
                      std::string("the ") + role + " is " + std::to_string(d.x) + " x " +
                          std::to_string(d.y) + " x " + std::to_string(d.z) +
                          ": registration needs a 3-D volume (at least 2 voxels along each axis)");
-  Volume f = detail::firstComponentAsFloat(v);
-  const float* p = f.dataAs<float>();
-  float lo = p[0], hi = p[0];
-  for (std::size_t i = 0; i < f.voxelCount(); ++i) {
-    if (!std::isfinite(p[i]))
-      throw InputError(name, std::string("the ") + role + " holds NaN or infinite values");
-    lo = std::min(lo, p[i]);
-    hi = std::max(hi, p[i]);
-  }
+  const std::size_t stride = static_cast<std::size_t>(v.components());
+  const auto [lo, hi] = dispatchScalar(v.scalarType(), [&](auto zero) {
+    using T = decltype(zero);
+    const T* p = v.dataAs<T>();
+    double low = static_cast<double>(p[0]), high = low;
+    for (std::size_t i = 0; i < v.voxelCount(); ++i) {
+      const double x = static_cast<double>(p[i * stride]);
+      if (!std::isfinite(x))
+        throw InputError(name, std::string("the ") + role + " holds NaN or infinite values");
+      low = std::min(low, x);
+      high = std::max(high, x);
+    }
+    return std::pair{low, high};
+  });
   if (!(hi > lo)) throw InputError(name, std::string("the ") + role + " is constant");
-  return f;
+}
+
+// Trilinear value of a single-component volume of any type at a continuous index.
+double sample(const Volume& v, const glm::dvec3& index) {
+  return dispatchScalar(v.scalarType(), [&](auto zero) {
+    using T = decltype(zero);
+    return detail::trilinear(v.dataAs<T>(), v.dimensions(), index);
+  });
 }
 
 glm::dvec3 geometricCentre(const Volume& v) {
@@ -61,7 +76,10 @@ glm::dvec3 geometricCentre(const Volume& v) {
 
 // Intensity centroid, weighting each voxel by how far it lies above the 1st percentile, so
 // the air around a head (or the zero background of a PET) weighs nothing.
-glm::dvec3 centreOfMass(const Volume& v) {
+glm::dvec3 centreOfMass(const Volume& volume) {
+  const Volume converted =
+      volume.scalarType() == ScalarType::Float32 ? Volume() : detail::firstComponentAsFloat(volume);
+  const Volume& v = volume.scalarType() == ScalarType::Float32 ? volume : converted;
   const float* p = v.dataAs<float>();
   const std::size_t n = v.voxelCount();
   std::vector<float> subset;
@@ -115,13 +133,125 @@ std::string toString(Initialisation initialisation) {
   return "automatic";
 }
 
+namespace {
+
+// One level's metric: off-grid sample points, uniform over the fixed image's continuous index
+// box, so no two levels (and no sample and voxel centre) line up and the histogram sees no
+// grid pattern. The moving image is copied in (it is the small one).
+MattesMutualInformation levelMetric(const Volume& fixedLevel, const Volume& movingLevel,
+                                    int nSamples, std::uint64_t seed,
+                                    const RegistrationOptions& options) {
+  std::mt19937_64 rng(seed);
+  const glm::ivec3 fd = fixedLevel.dimensions();
+  std::uniform_real_distribution<double> ux(0.0, fd.x - 1), uy(0.0, fd.y - 1), uz(0.0, fd.z - 1);
+  std::vector<glm::dvec3> points(static_cast<std::size_t>(nSamples));
+  std::vector<float> values(points.size());
+  for (auto i = 0u; i < points.size(); ++i) {
+    const glm::dvec3 index(ux(rng), uy(rng), uz(rng));
+    points[i] = fixedLevel.worldFromIndexPoint(index);
+    values[i] = static_cast<float>(sample(fixedLevel, index));
+  }
+  return MattesMutualInformation(std::move(points), values, movingLevel, options.histogramBins,
+                                 options.threads);
+}
+
+struct Evaluation {
+  double value = 0.0;
+  int validSamples = 0;
+  std::vector<double> gradient;  // d value / d x
+};
+using Objective = std::function<Evaluation(const std::vector<double>&)>;
+
+// Regular-step gradient ascent (ITK's RegularStepGradientDescent, maximising) on parameters x
+// in millimetre-like units: fixed-length steps along the gradient, shortened whenever the
+// gradient turns back. Unlike ITK, a step that lowers the metric (or leaves the moving
+// volume) is refused and the step shortened: the analytic gradient ignores samples entering
+// or leaving the overlap, and on a thin slab (a 3-slice fMRI) following it blindly walks out
+// of the volume. `current` is f(x) on entry and on return.
+void ascend(std::vector<double>& x, Evaluation& current, const Objective& f, double firstStep,
+            int minimumValid, const RegistrationOptions& options, LevelReport& report) {
+  double step = firstStep;
+  std::vector<double> previous(x.size(), 0.0);
+  bool havePrevious = false;
+  while (report.iterations < options.maxIterationsPerLevel) {
+    const std::vector<double>& g = current.gradient;
+    double norm = 0.0, dot = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      norm += g[k] * g[k];
+      dot += g[k] * previous[k];
+    }
+    norm = std::sqrt(norm);
+    if (norm == 0.0) {
+      report.converged = true;
+      break;
+    }
+    if (havePrevious && dot < 0.0) step *= options.relaxation;
+    if (step < options.minStepMm) {
+      report.converged = true;
+      break;
+    }
+    std::vector<double> trial = x;
+    for (std::size_t k = 0; k < x.size(); ++k) trial[k] += step * g[k] / norm;
+    ++report.iterations;
+    Evaluation next = f(trial);
+    if (next.validSamples < minimumValid || next.value < current.value) {
+      step *= options.relaxation;
+      ++report.rejectedSteps;
+      continue;
+    }
+    x = std::move(trial);
+    previous = g;
+    havePrevious = true;
+    current = std::move(next);
+  }
+  report.metricEnd = current.value;
+  report.validSamples = current.validSamples;
+  report.finalStepMm = step;
+}
+
+// Rigid parameters as optimiser coordinates: angles x scale (mm at the head's surface), mm.
+std::vector<double> rigidCoordinates(const RigidParameters& p, double scale) {
+  return {p.angles.x * scale, p.angles.y * scale, p.angles.z * scale,
+          p.translation.x,    p.translation.y,    p.translation.z};
+}
+RigidParameters rigidFromCoordinates(const std::vector<double>& x, double scale) {
+  return {{x[0] / scale, x[1] / scale, x[2] / scale}, {x[3], x[4], x[5]}};
+}
+
+// Affine coordinates: A row-major x scale (a change of 1 moves a point `scale` mm from the
+// centre by about 1 mm, as for the angles), then t, for x -> A (x - c) + c + t.
+std::vector<double> affineCoordinates(const glm::dmat4& m, const glm::dvec3& centre, double scale) {
+  std::vector<double> x(12);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) x[static_cast<std::size_t>(3 * r + c)] = m[c][r] * scale;
+  const glm::dvec3 t = glm::dvec3(m * glm::dvec4(centre, 1.0)) - centre;
+  for (int r = 0; r < 3; ++r) x[static_cast<std::size_t>(9 + r)] = t[r];
+  return x;
+}
+glm::dmat4 affineFromCoordinates(const std::vector<double>& x, const glm::dvec3& centre,
+                                 double scale) {
+  glm::dmat3 a(1.0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) a[c][r] = x[static_cast<std::size_t>(3 * r + c)] / scale;
+  glm::dmat4 m(a);
+  m[3] = glm::dvec4(centre + glm::dvec3(x[9], x[10], x[11]) - a * centre, 1.0);
+  return m;
+}
+
+}  // namespace
+
 RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& movingVolume,
                                  const RegistrationOptions& options) {
   const auto start = Clock::now();
   detail::WorkerPool pool(options.threads);
-  const Volume fixed = checkedFloat(fixedVolume, "fixed volume");
-  Volume moving =
-      checkedFloat(movingVolume, "moving volume");  // moved into the last level's metric
+  checkVolume(fixedVolume, "fixed volume");
+  checkVolume(movingVolume, "moving volume");
+  // The fixed image is used as stored (no full-resolution float copy of a CT); a
+  // multi-component one is reduced to its first component.
+  const Volume fixedFirst =
+      fixedVolume.components() == 1 ? Volume() : detail::firstComponentAsFloat(fixedVolume);
+  const Volume& fixed = fixedVolume.components() == 1 ? fixedVolume : fixedFirst;
+  const Volume moving = detail::firstComponentAsFloat(movingVolume);
 
   std::vector<double> smoothing = options.smoothingMm;
   if (smoothing.empty()) {
@@ -169,120 +299,159 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
         Transform::fromMovingFromFixed(rigidMatrix(result.parameters, centre), centre);
   }
   const glm::dvec3 centre = result.transform.centre();
-  RigidParameters params = result.parameters;
   const double scale = options.rotationScaleMm;
+  std::vector<double> x = rigidCoordinates(result.parameters, scale);
+
+  auto progress = [&](std::size_t level, std::size_t levels, const LevelReport& report) {
+    if (!options.progress) return;
+    char line[240];
+    std::snprintf(line, sizeof line,
+                  "%s level %zu/%zu: sigma %.1f mm, %d iterations, MI %.4f -> %.4f%s, %.2f s",
+                  report.stage.c_str(), level + 1, levels, report.smoothingMm, report.iterations,
+                  report.metricStart, report.metricEnd, report.converged ? "" : " (not converged)",
+                  report.seconds);
+    options.progress(line);
+  };
 
   double firstStep = options.maxStepMm;
   for (std::size_t level = 0; level < smoothing.size(); ++level, firstStep *= 0.5) {
     const auto levelStart = Clock::now();
-    const double sigma = smoothing[level];
     const Volume& fixedLevel = fixedAt(level);
-    // The metric owns its moving image; each image is moved in at its last use, not copied.
-    const bool last = level + 1 == smoothing.size();
-    Volume movingLevel = sigma > 0 ? std::move(movingLevels[level])
-                         : last    ? std::move(moving)
-                                   : moving;
-
-    // Off-grid sample points: uniform over the fixed volume's continuous index box, so no two
-    // levels (and no sample and voxel centre) line up and the histogram sees no grid pattern.
     const int nSamples = samplesAt(level);
-    std::mt19937_64 rng(options.seed + level);
-    const glm::ivec3 fd = fixedLevel.dimensions();
-    std::uniform_real_distribution<double> ux(0.0, fd.x - 1), uy(0.0, fd.y - 1), uz(0.0, fd.z - 1);
-    std::vector<glm::dvec3> points(static_cast<std::size_t>(nSamples));
-    std::vector<float> values(points.size());
-    for (auto i = 0u; i < points.size(); ++i) {
-      const glm::dvec3 index(ux(rng), uy(rng), uz(rng));
-      points[i] = fixedLevel.worldFromIndexPoint(index);
-      values[i] = static_cast<float>(detail::trilinear(fixedLevel.dataAs<float>(), fd, index));
-    }
+    const MattesMutualInformation metric =
+        levelMetric(fixedLevel, movingAt(level), nSamples, options.seed + level, options);
+    const Objective rigid = [&](const std::vector<double>& p) {
+      const auto r = metric.evaluateRigid(rigidFromCoordinates(p, scale), centre);
+      Evaluation e{r.value, r.validSamples,
+                   std::vector<double>(r.gradient.begin(), r.gradient.end())};
+      for (int a = 0; a < 3; ++a) e.gradient[static_cast<std::size_t>(a)] /= scale;
+      return e;
+    };
 
     LevelReport report;
-    report.smoothingMm = sigma;
-    report.fixedDimensions = fd;
-    report.movingDimensions = movingLevel.dimensions();
+    report.smoothingMm = smoothing[level];
+    report.fixedDimensions = fixedLevel.dimensions();
+    report.movingDimensions = movingAt(level).dimensions();
     report.samples = nSamples;
-    MattesMutualInformation metric(std::move(points), values, std::move(movingLevel),
-                                   options.histogramBins, options.threads);
-
-    auto current = metric.evaluateRigid(params, centre);
-    report.metricStart = current.value;
     const int minimumValid = std::max(64, nSamples / 20);
-    auto tooFewInside = [&](const std::string& when) {
+    auto tooFewInside = [&](int valid, const std::string& when) {
       return InputError(nameOf(movingVolume, "moving volume"),
-                        "does not overlap the fixed volume " + when + ": " +
-                            std::to_string(current.validSamples) + " of " +
-                            std::to_string(nSamples) + " sample points fall inside it");
+                        "does not overlap the fixed volume " + when + ": " + std::to_string(valid) +
+                            " of " + std::to_string(nSamples) + " sample points fall inside it");
     };
+
+    Evaluation current = rigid(x);
+    report.metricStart = current.value;
+    if (level == 0 && options.rotationSearchRangeDeg > 0.0) {
+      // Score a lattice of rotations about the centre (translation as initialised), then
+      // climb from the best few on this level and keep the highest.
+      const double range = options.rotationSearchRangeDeg * std::numbers::pi / 180.0;
+      const double stepAngle =
+          std::max(1.0, options.rotationSearchStepDeg) * std::numbers::pi / 180.0;
+      const int steps = static_cast<int>(std::floor(range / stepAngle + 1e-9));
+      std::vector<std::pair<double, std::vector<double>>> scored;
+      for (int a = -steps; a <= steps; ++a)
+        for (int b = -steps; b <= steps; ++b)
+          for (int c = -steps; c <= steps; ++c) {
+            std::vector<double> p = x;
+            p[0] += a * stepAngle * scale;
+            p[1] += b * stepAngle * scale;
+            p[2] += c * stepAngle * scale;
+            const auto r = metric.evaluate(rigidMatrix(rigidFromCoordinates(p, scale), centre));
+            ++result.searchedRotations;
+            if (r.validSamples >= minimumValid) scored.emplace_back(r.value, std::move(p));
+          }
+      std::sort(scored.begin(), scored.end(),
+                [](const auto& l, const auto& r) { return l.first > r.first; });
+      scored.resize(std::min<std::size_t>(
+          scored.size(), static_cast<std::size_t>(std::max(1, options.rotationSearchCandidates))));
+      double best = -1.0;
+      int iterations = 0, rejected = 0;
+      for (const auto& candidate : scored) {
+        std::vector<double> p = candidate.second;
+        Evaluation e = rigid(p);
+        LevelReport climb = report;
+        ascend(p, e, rigid, firstStep, minimumValid, options, climb);
+        iterations += climb.iterations;
+        rejected += climb.rejectedSteps;
+        if (e.value > best) {
+          best = e.value;
+          x = std::move(p);
+          current = std::move(e);
+          report.metricEnd = climb.metricEnd;
+          report.validSamples = climb.validSamples;
+          report.finalStepMm = climb.finalStepMm;
+          report.converged = climb.converged;
+        }
+      }
+      // The level's count covers every candidate's climb, the end state the best one's.
+      report.iterations = iterations;
+      report.rejectedSteps = rejected;
+      if (!scored.empty()) result.searchAngles = rigidFromCoordinates(x, scale).angles;
+    }
     if (current.validSamples < minimumValid)
-      throw tooFewInside(level == 0
+      throw tooFewInside(current.validSamples,
+                         level == 0
                              ? "after initialisation (" + toString(result.initialisation) + ")"
                              : "any more at level " + std::to_string(level + 1) +
-                                   " (the coarser levels drifted away: do the volumes show "
-                                   "the same anatomy?)");
-
-    // Regular-step gradient ascent (ITK's RegularStepGradientDescent, maximising): fixed-length
-    // steps along the scaled gradient, shortened whenever the gradient turns back. Unlike
-    // ITK, a step that lowers the metric (or leaves the moving volume) is refused and the
-    // step shortened: the analytic gradient ignores samples entering or leaving the overlap,
-    // and on a thin slab (a 3-slice fMRI) following it blindly walks out of the volume.
-    double step = firstStep;
-    std::array<double, 6> previous{};
-    bool havePrevious = false;
-    while (report.iterations < options.maxIterationsPerLevel) {
-      std::array<double, 6> g = current.gradient;
-      for (int a = 0; a < 3; ++a) g[static_cast<std::size_t>(a)] /= scale;
-      double norm = 0.0, dot = 0.0;
-      for (std::size_t k = 0; k < 6; ++k) {
-        norm += g[k] * g[k];
-        dot += g[k] * previous[k];
-      }
-      norm = std::sqrt(norm);
-      if (norm == 0.0) {
-        report.converged = true;
-        break;
-      }
-      if (havePrevious && dot < 0.0) step *= options.relaxation;
-      if (step < options.minStepMm) {
-        report.converged = true;
-        break;
-      }
-      RigidParameters trial = params;
-      for (int a = 0; a < 3; ++a)
-        trial.angles[a] += step * g[static_cast<std::size_t>(a)] / norm / scale;
-      for (int a = 0; a < 3; ++a)
-        trial.translation[a] += step * g[static_cast<std::size_t>(a + 3)] / norm;
-      ++report.iterations;
-      const auto next = metric.evaluateRigid(trial, centre);
-      if (next.validSamples < minimumValid || next.value < current.value) {
-        step *= options.relaxation;
-        ++report.rejectedSteps;
-        continue;
-      }
-      params = trial;
-      current = next;
-      previous = g;
-      havePrevious = true;
-    }
-    report.metricEnd = current.value;
-    report.validSamples = current.validSamples;
-    report.finalStepMm = step;
+                                   " (the coarser levels drifted away: do the volumes "
+                                   "show the same anatomy?)");
+    if (!(level == 0 && result.searchedRotations > 0))
+      ascend(x, current, rigid, firstStep, minimumValid, options, report);
     report.seconds = secondsSince(levelStart);
     result.iterations += report.iterations;
     result.levels.push_back(report);
-    if (options.progress) {
-      char line[200];
-      std::snprintf(line, sizeof line,
-                    "level %zu/%zu: sigma %.1f mm, %d iterations, MI %.4f -> %.4f%s, %.2f s",
-                    level + 1, smoothing.size(), sigma, report.iterations, report.metricStart,
-                    report.metricEnd, report.converged ? "" : " (not converged)", report.seconds);
-      options.progress(line);
-    }
+    progress(level, smoothing.size(), report);
   }
-
-  result.parameters = params;
-  result.transform = Transform::fromMovingFromFixed(rigidMatrix(params, centre), centre);
+  result.parameters = rigidFromCoordinates(x, scale);
+  result.transform = Transform::fromMovingFromFixed(rigidMatrix(result.parameters, centre), centre);
   result.converged = !result.levels.empty() && result.levels.back().converged;
+
+  if (options.affine) {
+    // The second stage: all 12 parameters, from the rigid result, on the finest levels with
+    // the same sample points as the rigid stage had there.
+    glm::dmat4 m = result.transform.movingFromFixed();
+    std::vector<double> y = affineCoordinates(m, centre, scale);
+    const std::size_t levels = smoothing.size();
+    const std::size_t first =
+        levels -
+        std::min<std::size_t>(levels, static_cast<std::size_t>(std::max(1, options.affineLevels)));
+    for (std::size_t level = first; level < levels; ++level) {
+      const auto levelStart = Clock::now();
+      const Volume& fixedLevel = fixedAt(level);
+      const int nSamples = samplesAt(level);
+      const MattesMutualInformation metric =
+          levelMetric(fixedLevel, movingAt(level), nSamples, options.seed + level, options);
+      const Objective affine = [&](const std::vector<double>& p) {
+        const auto r = metric.evaluateAffine(affineFromCoordinates(p, centre, scale), centre);
+        Evaluation e{r.value, r.validSamples,
+                     std::vector<double>(r.affineGradient.begin(), r.affineGradient.end())};
+        for (int k = 0; k < 9; ++k) e.gradient[static_cast<std::size_t>(k)] /= scale;
+        return e;
+      };
+      LevelReport report;
+      report.stage = "affine";
+      report.smoothingMm = smoothing[level];
+      report.fixedDimensions = fixedLevel.dimensions();
+      report.movingDimensions = movingAt(level).dimensions();
+      report.samples = nSamples;
+      Evaluation current = affine(y);
+      report.metricStart = current.value;
+      const double step = options.maxStepMm * std::pow(0.5, static_cast<double>(level + 1));
+      ascend(y, current, affine, step, std::max(64, nSamples / 20), options, report);
+      report.seconds = secondsSince(levelStart);
+      result.iterations += report.iterations;
+      result.levels.push_back(report);
+      progress(level, levels, report);
+    }
+    m = affineFromCoordinates(y, centre, scale);
+    if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-3)
+      throw InputError(nameOf(movingVolume, "moving volume"),
+                       "the affine stage collapsed the volume (determinant near 0)");
+    result.affine = true;
+    result.transform = Transform::fromMovingFromFixed(m, centre);
+    result.converged = result.levels.back().converged;
+  }
   result.seconds = secondsSince(start);
   return result;
 }

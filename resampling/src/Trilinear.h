@@ -1,6 +1,7 @@
 #pragma once
-// Trilinear sampling of a float32, single-component volume at a continuous voxel index, with
-// the gradient of the interpolant (what the metric's analytic derivative needs). Internal.
+// Trilinear sampling of a single-component volume (float32, or the stored type) at a continuous
+// voxel index, with the gradient of the interpolant (what the metric's analytic derivative needs).
+// Internal.
 #include <cmath>
 #include <cstddef>
 
@@ -16,7 +17,8 @@ inline bool insideIndex(const glm::ivec3& dims, const glm::dvec3& p) {
 
 // p must satisfy insideIndex and every dimension must be at least 2. `gradient`, when not
 // null, receives d value / d index.
-inline double trilinear(const float* v, const glm::ivec3& dims, const glm::dvec3& p,
+template <typename T>
+inline double trilinear(const T* v, const glm::ivec3& dims, const glm::dvec3& p,
                         glm::dvec3* gradient = nullptr) {
   auto base = [](double x, int n, double& f) {
     int i = static_cast<int>(x);  // x >= 0: truncation is floor
@@ -28,7 +30,7 @@ inline double trilinear(const float* v, const glm::ivec3& dims, const glm::dvec3
   const int i = base(p.x, dims.x, fx), j = base(p.y, dims.y, fy), k = base(p.z, dims.z, fz);
   const std::size_t sx = 1, sy = static_cast<std::size_t>(dims.x),
                     sz = sy * static_cast<std::size_t>(dims.y);
-  const float* c = v + static_cast<std::size_t>(i) + j * sy + k * sz;
+  const T* c = v + static_cast<std::size_t>(i) + j * sy + k * sz;
   const double c000 = c[0], c100 = c[sx], c010 = c[sy], c110 = c[sx + sy];
   const double c001 = c[sz], c101 = c[sx + sz], c011 = c[sy + sz], c111 = c[sx + sy + sz];
   const double c00 = c000 + fx * (c100 - c000), c10 = c010 + fx * (c110 - c010);

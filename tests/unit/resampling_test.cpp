@@ -3,6 +3,7 @@
 // registration against a known truth on a PET-like volume made from the real cranium CT.
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <set>
@@ -14,6 +15,8 @@
 #include "mvw/core/Error.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/resampling/MutualInformation.h"
+#include "mvw/resampling/PetPhantom.h"
+#include "mvw/resampling/RegistrationQa.h"
 #include "mvw/resampling/Resample.h"
 #include "mvw/resampling/RigidRegistration.h"
 #include "mvw/resampling/Transform.h"
@@ -214,6 +217,26 @@ TEST(Resample, OutputLiesOnTheFixedGridAndHonoursDirectionsAndTransform) {
   EXPECT_GT(outside, 1000);
 }
 
+TEST(Resample, LargeOutputsAreFilledSlabBySlabWithoutSeams) {
+  // 400 x 400 float64 slices (1.25 MiB each) come out of VTK a few slices at a time: every
+  // slice, the slab borders and the short last slab included, must hold its own values.
+  const Volume moving = rampVolume();
+  const glm::dvec3 middle = moving.worldFromIndexPoint(glm::dvec3(moving.dimensions() - 1) * 0.5);
+  const glm::ivec3 dims(400, 400, 20);
+  const glm::dvec3 spacing(0.1, 0.1, 1.5);
+  const Grid grid{dims, makeWorldFromIndex(middle - spacing * glm::dvec3(dims - 1) * 0.5, spacing,
+                                           glm::dmat3(1.0))};
+  const Transform t(rigidMatrix({{0.05, -0.1, 0.2}, {1.0, -2.0, 0.5}}, middle));
+  const Volume out = resample(moving, grid, t);
+  ASSERT_EQ(out.dimensions(), dims);
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; j += 37)
+      for (int i = 0; i < dims.x; i += 41)
+        ASSERT_NEAR(out.value(i, j, k),
+                    ramp(t.movingFromFixedPoint(out.worldFromIndexPoint({i, j, k}))), 1e-3)
+            << i << "," << j << "," << k;
+}
+
 TEST(Resample, KnownShiftMovesABrightCubeByWholeVoxels) {
   const glm::dmat3 flip(glm::dvec3(-1, 0, 0), glm::dvec3(0, 0, 1),
                         glm::dvec3(0, -1, 0));  // an LAI-like grid
@@ -349,146 +372,98 @@ TEST(MutualInformation, AnalyticGradientMatchesFiniteDifferences) {
 }
 
 // ---------------------------------------------------------------------------------------
+// QA picture
+
+// Mean absolute RGB difference between two equal-sized bands of rows of an image, right of
+// the 22-pixel margin that holds the row names.
+double bandDifference(const Image& image, int rowA, int rowB, int height) {
+  double sum = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 22; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        sum += std::abs(image.pixel(x, rowA + y)[c] - image.pixel(x, rowB + y)[c]);
+  return sum / (3.0 * height * (image.width - 22));
+}
+
+TEST(RegistrationQa, ShowsTheOverlayBeforeAndAfter) {
+  const Volume fixed = blobs({0, 0, 0});
+  const Volume moving = blobs({6, 0, 0});  // content 6 mm further +x
+  const Transform identity;
+  const Transform aligned(glm::translate(glm::dmat4(1.0), glm::dvec3(-6, 0, 0)));
+  RegistrationQaOptions options;
+  options.panelPixels = 120;
+  const Image image = registrationQaImage(fixed, moving, identity, aligned, options);
+  // Four rows of panels (overlay and checkerboard, before and after) under a title row.
+  ASSERT_GT(image.width, 3 * 100);
+  ASSERT_EQ(image.rgba.size(), static_cast<std::size_t>(image.width) * image.height * 4);
+  const int title = 22, cell = (image.height - title) / 4;
+  ASSERT_EQ(title + 4 * cell, image.height);
+  ASSERT_GE(cell, 100);
+
+  // Not blank: grey levels spread, and the functional volume shows in colour.
+  double sum = 0, sum2 = 0;
+  int coloured = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint8_t* p = image.pixel(x, y);
+      const double l = (p[0] + p[1] + p[2]) / 3.0;
+      sum += l;
+      sum2 += l * l;
+      coloured += std::abs(p[0] - p[2]) > 60;
+      ASSERT_EQ(p[3], 255);
+    }
+  const double n = double(image.width) * image.height;
+  EXPECT_GT(std::sqrt(sum2 / n - (sum / n) * (sum / n)), 20.0);
+  EXPECT_GT(coloured, 2000);
+  // Before and after differ where the transforms do, in the overlay and checkerboard rows.
+  EXPECT_GT(bandDifference(image, title, title + cell, cell), 2.0);
+  EXPECT_GT(bandDifference(image, title + 2 * cell, title + 3 * cell, cell), 2.0);
+  // ... and are the same picture when the transforms are the same.
+  const Image same = registrationQaImage(fixed, moving, aligned, aligned, options);
+  EXPECT_EQ(bandDifference(same, title, title + cell, cell), 0.0);
+  EXPECT_EQ(bandDifference(same, title + 2 * cell, title + 3 * cell, cell), 0.0);
+  // The "after" rows of both pictures match: the after overlay does not depend on `before`.
+  for (int y = title + cell; y < title + 2 * cell; ++y)
+    for (int x = title; x < image.width; ++x)
+      ASSERT_EQ(std::memcmp(same.pixel(x, y), image.pixel(x, y), 4), 0) << x << "," << y;
+}
+
+// ---------------------------------------------------------------------------------------
 // Registration
 
-// The cranium CT and a PET-like volume made from it: uptake from HU (soft tissue and brain
-// medium, bone low, air none) plus two hot spheres, blurred to ~6 mm FWHM, read onto a 4 mm
+// The cranium CT and a PET-like volume made from it (PetPhantom, shared with `mvw bench
+// register`): uptake from HU plus two hot spheres, blurred to ~6 mm FWHM, read onto a 4 mm
 // grid under a known rigid transform, with seeded count-like noise.
 class KnownTransform : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     ct_ = new Volume(io::readVolume(test::sampleData("cranium/cranium.nii.gz")));
-    uptake_ = new Volume(makeUptake(*ct_));
-    centre_ = ct_->worldFromIndexPoint(glm::dvec3(ct_->dimensions() - 1) * 0.5);
+    phantom_ = new PetPhantom(*ct_);
+    centre_ = phantom_->centre();
   }
   static void TearDownTestSuite() {
     delete ct_;
-    delete uptake_;
-    ct_ = uptake_ = nullptr;
+    delete phantom_;
+    ct_ = nullptr;
+    phantom_ = nullptr;
   }
 
-  static Volume makeUptake(const Volume& ct) {
-    Volume u(ct.dimensions(), 1, ScalarType::Float32, ct.worldFromIndex());
-    const glm::ivec3 d = ct.dimensions();
-    float* p = u.dataAs<float>();
-    for (int k = 0; k < d.z; ++k)
-      for (int j = 0; j < d.y; ++j)
-        for (int i = 0; i < d.x; ++i) {
-          const double hu = ct.value(i, j, k);
-          double v = 0.0;
-          if (hu >= 600)
-            v = 0.25;
-          else if (hu >= 150)
-            v = 1.0 - 0.75 * (hu - 150) / 450;
-          else if (hu >= -100)
-            v = 1.0;
-          else if (hu >= -500)
-            v = 0.8 * (hu + 500) / 400;
-          p[ct.linearIndex(i, j, k)] = static_cast<float>(v);
-        }
-    // Hot lesions near the middle of the head, where the CT's brain is.
-    const glm::dvec3 mid = ct.worldFromIndexPoint(glm::dvec3(d - 1) * 0.5);
-    for (const auto& [offset, radius] :
-         {std::pair{glm::dvec3(25, 15, 20), 9.0}, std::pair{glm::dvec3(-20, -25, 5), 7.0}}) {
-      const glm::dmat4 indexFromWorld = glm::inverse(ct.worldFromIndex());
-      const glm::dvec3 c(indexFromWorld * glm::dvec4(mid + offset, 1.0));
-      for (int k = 0; k < d.z; ++k)
-        for (int j = 0; j < d.y; ++j)
-          for (int i = 0; i < d.x; ++i)
-            if (glm::length(ct.worldFromIndexPoint({i, j, k}) - ct.worldFromIndexPoint(c)) < radius)
-              p[ct.linearIndex(i, j, k)] = 4.0f;
-    }
-    blur(u, 6.0 / 2.3548);
-    return u;
-  }
-
-  // Separable Gaussian, sigma in mm, zero outside.
-  static void blur(Volume& v, double sigmaMm) {
-    const glm::ivec3 d = v.dimensions();
-    const glm::dvec3 s = v.spacing();
-    float* p = v.dataAs<float>();
-    std::vector<float> line;
-    for (int axis = 0; axis < 3; ++axis) {
-      const double sv = sigmaMm / s[axis];
-      const int r = static_cast<int>(std::ceil(3 * sv));
-      std::vector<double> k(static_cast<std::size_t>(2 * r + 1));
-      double sum = 0;
-      for (int t = -r; t <= r; ++t)
-        sum += k[static_cast<std::size_t>(t + r)] = std::exp(-0.5 * t * t / (sv * sv));
-      for (auto& w : k) w /= sum;
-      const int n = d[axis];
-      const std::size_t stride = axis == 0   ? 1
-                                 : axis == 1 ? static_cast<std::size_t>(d.x)
-                                             : static_cast<std::size_t>(d.x) * d.y;
-      line.resize(static_cast<std::size_t>(n));
-      const glm::ivec3 other = axis == 0   ? glm::ivec3(1, d.y, d.z)
-                               : axis == 1 ? glm::ivec3(d.x, 1, d.z)
-                                           : glm::ivec3(d.x, d.y, 1);
-      for (int c = 0; c < other.z; ++c)
-        for (int b = 0; b < other.y; ++b)
-          for (int a = 0; a < other.x; ++a) {
-            float* base = p + v.linearIndex(a, b, c);
-            for (int x = 0; x < n; ++x) line[static_cast<std::size_t>(x)] = base[x * stride];
-            for (int x = 0; x < n; ++x) {
-              double acc = 0;
-              for (int t = std::max(-r, -x); t <= std::min(r, n - 1 - x); ++t)
-                acc += k[static_cast<std::size_t>(t + r)] * line[static_cast<std::size_t>(x + t)];
-              base[x * stride] = static_cast<float>(acc);
-            }
-          }
-    }
-  }
-
-  // The PET-like volume whose world relates to the CT's by movingFromFixed (PET from CT).
-  // The grid is centred on the CT's centre, or (followHead) on where the head lands in the
-  // PET world, for transforms far larger than a field of view.
   static Volume makePet(const glm::dmat4& movingFromFixed, unsigned seed, bool followHead = false) {
-    const glm::ivec3 dims(64, 64, 44);
-    const glm::dvec3 middle =
-        followHead ? glm::dvec3(movingFromFixed * glm::dvec4(centre_, 1.0)) : centre_;
-    const glm::dvec3 origin = middle - 4.0 * glm::dvec3(dims - 1) * 0.5;
-    const Grid grid{dims, makeWorldFromIndex(origin, {4, 4, 4}, glm::dmat3(1.0))};
-    // resample reads the source (CT world) at fixedFromMoving^-1 = ctFromPet of each PET voxel.
-    const Transform petFromCt(movingFromFixed);
-    ResampleOptions linear;
-    linear.interpolation = Interpolation::Linear;
-    Volume pet = resample(*uptake_, grid, petFromCt, linear);
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> gauss(0.0, 1.0);
-    float* p = pet.dataAs<float>();
-    for (std::size_t n = 0; n < pet.voxelCount(); ++n)
-      p[n] = static_cast<float>(std::max(
-          0.0,
-          p[n] + 0.1 * std::sqrt(std::max<double>(p[n], 0.0)) * gauss(rng) + 0.01 * gauss(rng)));
-    pet.metadata().modality = "PT";
-    return pet;
+    return phantom_->pet(movingFromFixed, seed, followHead);
   }
 
-  // Mean distance between the estimated and the true PET position of points every 10 mm
-  // inside the head (CT above -300 HU).
   static double meanTre(const glm::dmat4& estimated, const glm::dmat4& truth) {
-    const glm::ivec3 d = ct_->dimensions();
-    double sum = 0;
-    int n = 0;
-    for (int k = 0; k < d.z; k += 7)
-      for (int j = 0; j < d.y; j += 10)
-        for (int i = 0; i < d.x; i += 10) {
-          if (ct_->value(i, j, k) < -300) continue;
-          const glm::dvec4 x(ct_->worldFromIndexPoint({i, j, k}), 1.0);
-          sum += glm::length(glm::dvec3(estimated * x) - glm::dvec3(truth * x));
-          ++n;
-        }
-    EXPECT_GT(n, 500);
-    return sum / n;
+    EXPECT_GT(phantom_->lattice().size(), 500u);
+    return phantom_->meanTre(estimated, truth);
   }
 
   static Volume* ct_;
-  static Volume* uptake_;
+  static PetPhantom* phantom_;
   static glm::dvec3 centre_;
 };
 
 Volume* KnownTransform::ct_ = nullptr;
-Volume* KnownTransform::uptake_ = nullptr;
+PetPhantom* KnownTransform::phantom_ = nullptr;
 glm::dvec3 KnownTransform::centre_{0.0};
 
 TEST_F(KnownTransform, IdentityOnIdenticalInputs) {
@@ -557,6 +532,68 @@ TEST_F(KnownTransform, SameSeedSameResult) {
   const auto b = registerRigid(*ct_, pet);
   EXPECT_EQ(a.transform.movingFromFixed(), b.transform.movingFromFixed());
   EXPECT_EQ(a.iterations, b.iterations);
+}
+
+// A known affine map: the rigid part of a case above composed with small anisotropic
+// scaling and shear about the head's centre (a scanner's calibration error, a gantry tilt).
+TEST_F(KnownTransform, AffineStageRecoversScalingAndShear) {
+  glm::dmat3 a(1.0);
+  a[0][0] = 1.05;  // x stretched 5 %
+  a[1][1] = 0.96;  // y shrunk 4 %
+  a[2][2] = 1.03;
+  a[1][0] = 0.04;   // x sheared along y
+  a[2][1] = -0.03;  // y sheared along z
+  glm::dmat4 linear(a);
+  linear[3] = glm::dvec4(centre_ - a * centre_, 1.0);
+  const glm::dmat4 truth =
+      rigidMatrix({glm::dvec3(4, -3, 5) * kDegree, {6, -5, 8}}, centre_) * linear;
+  const Volume pet = makePet(truth, 31);
+
+  const auto rigid = registerRigid(*ct_, pet);
+  RegistrationOptions options;
+  options.affine = true;
+  const auto affine = registerRigid(*ct_, pet, options);
+  const double rigidTre = meanTre(rigid.transform.movingFromFixed(), truth);
+  const double affineTre = meanTre(affine.transform.movingFromFixed(), truth);
+  std::cout << "affine truth: TRE " << meanTre(glm::dmat4(1.0), truth) << " mm at the start, rigid "
+            << rigidTre << " mm, rigid + affine " << affineTre << " mm, " << affine.iterations
+            << " iterations, " << affine.seconds << " s\n";
+  for (const auto& l : affine.levels)
+    std::cout << "    " << l.stage << " sigma " << l.smoothingMm << " mm: " << l.iterations
+              << " it, MI " << l.metricStart << " -> " << l.metricEnd << "\n";
+  RecordProperty("affine_tre_mm", std::to_string(affineTre));
+  EXPECT_TRUE(affine.affine);
+  EXPECT_FALSE(affine.transform.isRigid());
+  EXPECT_LT(affineTre, 1.0);
+  // The second stage is what recovers it: a rigid map cannot.
+  EXPECT_GT(rigidTre, 2.0 * affineTre);
+  EXPECT_EQ(affine.levels.size(), rigid.levels.size() + 2);
+  EXPECT_EQ(affine.levels.back().stage, "affine");
+}
+
+// Large misalignment: gradient ascent from the identity stops in a local maximum; the coarse
+// rotation search finds the basin first.
+TEST_F(KnownTransform, RotationSearchRecoversLargeRotations) {
+  struct Case {
+    glm::dvec3 degrees, mm;
+  };
+  for (const Case& c : {Case{{0, 0, 75}, {8, -6, 4}}, Case{{-60, 20, 0}, {-5, 10, 6}},
+                        Case{{10, -85, 15}, {4, 4, -8}}}) {
+    const glm::dmat4 truth = rigidMatrix({c.degrees * kDegree, c.mm}, centre_);
+    const Volume pet = makePet(truth, 41);
+    RegistrationOptions options;
+    options.rotationSearchRangeDeg = 90.0;
+    const auto r = registerRigid(*ct_, pet, options);
+    const double tre = meanTre(r.transform.movingFromFixed(), truth);
+    const double plain = meanTre(registerRigid(*ct_, pet).transform.movingFromFixed(), truth);
+    std::cout << "rotation (" << c.degrees.x << ", " << c.degrees.y << ", " << c.degrees.z
+              << ") deg: TRE " << meanTre(glm::dmat4(1.0), truth) << " -> " << tre
+              << " mm with the search (" << r.searchedRotations << " rotations scored, "
+              << r.seconds << " s), " << plain << " mm without\n";
+    EXPECT_EQ(r.searchedRotations, 7 * 7 * 7);
+    EXPECT_LT(tre, 1.0) << c.degrees.x << "," << c.degrees.y << "," << c.degrees.z;
+    EXPECT_TRUE(r.converged);
+  }
 }
 
 TEST(RigidRegistration, BadInputIsRefusedWithTheFileName) {

@@ -213,6 +213,14 @@ VolumeRenderer::~VolumeRenderer() = default;
 
 std::pair<double, double> VolumeRenderer::valueRange() const { return impl_->range; }
 
+glm::dvec3 VolumeRenderer::centre() const {
+  const Impl& m = *impl_;
+  return 0.5 * (glm::dvec3(m.worldFromIndex * glm::dvec4(-0.5, -0.5, -0.5, 1.0)) +
+                glm::dvec3(m.worldFromIndex * glm::dvec4(glm::dvec3(m.dims) - 0.5, 1.0)));
+}
+
+double VolumeRenderer::radius() const { return 0.5 * glm::length(glm::dvec3(impl_->dims) * impl_->spacing); }
+
 bool VolumeRenderer::hasFunctional() const { return impl_->functional.id() != 0; }
 
 std::pair<double, double> VolumeRenderer::functionalRange() const { return impl_->functionalRange; }
@@ -254,10 +262,8 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   const auto start = std::chrono::steady_clock::now();
 
   // Camera around the volume's bounding sphere.
-  const glm::dvec3 corner0 = glm::dvec3(m.worldFromIndex * glm::dvec4(-0.5, -0.5, -0.5, 1.0));
-  const glm::dvec3 corner1 = glm::dvec3(m.worldFromIndex * glm::dvec4(glm::dvec3(m.dims) - 0.5, 1.0));
-  const glm::dvec3 centre = 0.5 * (corner0 + corner1);
-  const double radius = 0.5 * glm::length(glm::dvec3(m.dims) * m.spacing);
+  const glm::dvec3 centre = this->centre();
+  const double radius = this->radius();
   Frame frame;
   CameraSettings cameraSettings = s.camera;
   if (s.mode == RenderMode::Mpr) cameraSettings.perspective = false;

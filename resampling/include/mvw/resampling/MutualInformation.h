@@ -28,6 +28,8 @@ class MattesMutualInformation {
     double value = 0.0;                // mutual information, nats (larger is better)
     int validSamples = 0;              // samples that mapped inside the moving volume
     std::array<double, 6> gradient{};  // d value / d (angles rad, translation mm); rigid only
+    // d value / d (A row-major, t) for movingFromFixed x -> A (x - c) + c + t; affine only.
+    std::array<double, 12> affineGradient{};
   };
 
   // fixedPoints: sample positions in the fixed world (LPS mm); fixedValues: the fixed
@@ -44,11 +46,16 @@ class MattesMutualInformation {
   // The metric and its gradient for the rigid map movingFromFixed = rigidMatrix(p, centre).
   Result evaluateRigid(const RigidParameters& parameters, const glm::dvec3& centre) const;
 
+  // The metric and its gradient for the affine map x -> A (x - centre) + centre + t, with
+  // A = the linear part of movingFromFixed and t chosen so the map is movingFromFixed.
+  Result evaluateAffine(const glm::dmat4& movingFromFixed, const glm::dvec3& centre) const;
+
   int sampleCount() const { return static_cast<int>(points_.size()); }
   int bins() const { return bins_; }
 
  private:
-  Result run(const glm::dmat4& movingFromFixed, const RigidParameters* rigid,
+  enum class Gradient { None, Rigid, Affine };
+  Result run(const glm::dmat4& movingFromFixed, Gradient gradient, const RigidParameters* rigid,
              const glm::dvec3& centre) const;
 
   std::vector<glm::dvec3> points_;

@@ -4,6 +4,11 @@
 // points per level, regular-step gradient descent on the analytic gradient, with rotation
 // scaled to millimetres so one step moves a point near the head's surface about as far as
 // the same step of translation does.
+//
+// Optional extras: a coarse rotation search before the coarsest level (for misalignment of
+// tens of degrees, where gradient ascent from the identity ends in a local maximum), and an
+// affine (12 degrees of freedom) second stage on the finest levels, started from the rigid
+// result.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -40,12 +45,22 @@ struct RegistrationOptions {
   double relaxation = 0.5;        // step factor when the gradient turns back
   std::uint64_t seed = 20261123;
   Initialisation initialisation = Initialisation::Automatic;
+  // Coarse rotation search: every combination of angles -range, -range + step, ..., range
+  // about the three axes is scored on the coarsest level; the best few are refined there and
+  // the one with the highest metric goes on to the finer levels. Off when range is 0.
+  double rotationSearchRangeDeg = 0.0;
+  double rotationSearchStepDeg = 30.0;
+  int rotationSearchCandidates = 6;
+  // Affine second stage (scaling and shear too) on the last affineLevels levels.
+  bool affine = false;
+  int affineLevels = 2;
   int threads = 0;  // 0: every core
   // Called with one line per finished level (for a terminal); may be empty.
   std::function<void(const std::string&)> progress;
 };
 
 struct LevelReport {
+  std::string stage = "rigid";  // "rigid" or "affine"
   double smoothingMm = 0.0;
   glm::ivec3 fixedDimensions{0};
   glm::ivec3 movingDimensions{0};
@@ -62,18 +77,25 @@ struct LevelReport {
 
 struct RegistrationResult {
   Transform transform;  // fixedFromMoving (anatomicalFromFunctional); centre = rotation centre
-  RigidParameters parameters;  // of transform.movingFromFixed() about transform.centre()
+  // The rigid stage's result, movingFromFixed about transform.centre(); with `affine` the
+  // transform is the affine stage's (a general matrix), these stay the rigid start of it.
+  RigidParameters parameters;
+  bool affine = false;  // the transform comes from the affine stage
+  // The angles (radians) the rotation search led to on the coarsest level, and how many
+  // rotations it scored; 0: no search.
+  glm::dvec3 searchAngles{0.0};
+  int searchedRotations = 0;
   Initialisation initialisation = Initialisation::Automatic;  // the one used
   glm::dvec3 initialTranslationMm{0.0};
-  std::vector<LevelReport> levels;
+  std::vector<LevelReport> levels;  // rigid levels, then the affine ones
   int iterations = 0;
   bool converged = false;  // the finest level converged
   double seconds = 0.0;
 };
 
-// Bad input (an empty, 2-D or constant volume, NaNs, no overlap after initialisation, or
-// an optimiser that drifts out of the moving volume) throws mvw::InputError naming the
-// volume's source file.
+// Bad input (an empty, 2-D or constant volume, NaNs, no overlap after initialisation, an
+// optimiser that drifts out of the moving volume, or an affine stage that collapses it)
+// throws mvw::InputError naming the volume's source file.
 RegistrationResult registerRigid(const Volume& fixed, const Volume& moving,
                                  const RegistrationOptions& options = {});
 

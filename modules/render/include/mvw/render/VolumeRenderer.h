@@ -101,6 +101,9 @@ class VolumeRenderer {
 
   Frame render(const RenderSettings& settings);
   std::pair<double, double> valueRange() const;
+  // The sphere the camera frames: the centre of the voxel box and half its diagonal (mm).
+  glm::dvec3 centre() const;
+  double radius() const;
 
   // A functional volume on its own grid (component 0), placed by the registration:
   // anatomicalFromFunctional maps functional world points (LPS mm) to anatomical ones.
