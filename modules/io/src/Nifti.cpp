@@ -309,7 +309,7 @@ void writeNifti(const Volume& input, const fs::path& path) {
     flipped.setWorldFromIndex(m);
     volume = &flipped;
   }
-  auto image = imageFromVolume(*volume);
+  auto image = imageViewOfVolume(*volume);  // no copy of the voxels: writers only read
   const glm::dvec3 spacing = volume->spacing();
   image->SetSpacing(spacing.x, spacing.y, spacing.z);
   glm::dmat4 ras = kLpsFromRas * volume->worldFromIndex();

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkType.h>
@@ -58,12 +59,16 @@ Volume volumeFromImage(vtkImageData* image, const std::filesystem::path& file) {
   return volume;
 }
 
-vtkSmartPointer<vtkImageData> imageFromVolume(const Volume& volume) {
+vtkSmartPointer<vtkImageData> imageViewOfVolume(const Volume& volume) {
   auto image = vtkSmartPointer<vtkImageData>::New();
   const glm::ivec3 d = volume.dimensions();
   image->SetDimensions(d.x, d.y, d.z);
-  image->AllocateScalars(vtkTypeFromScalar(volume.scalarType()), volume.components());
-  std::memcpy(image->GetScalarPointer(), volume.data(), volume.byteSize());
+  vtkSmartPointer<vtkDataArray> array;
+  array.TakeReference(vtkDataArray::CreateDataArray(vtkTypeFromScalar(volume.scalarType())));
+  array->SetNumberOfComponents(volume.components());
+  // save = 1: VTK never frees or writes this memory; it belongs to the Volume.
+  array->SetVoidArray(const_cast<std::byte*>(volume.data()), static_cast<vtkIdType>(volume.valueCount()), 1);
+  image->GetPointData()->SetScalars(array);
   return image;
 }
 

@@ -14,8 +14,9 @@ namespace mvw::io::detail {
 // Throws InputError naming `file` for scalar types mvw does not handle.
 Volume volumeFromImage(vtkImageData* image, const std::filesystem::path& file);
 
-// An image holding a copy of the voxels, with origin 0 and unit spacing (geometry is the
-// caller's: each format places it differently).
-vtkSmartPointer<vtkImageData> imageFromVolume(const Volume& volume);
+// An image sharing the volume's voxels (no copy; writers only read), with origin 0 and unit
+// spacing (geometry is the caller's: each format places it differently). The volume must
+// outlive the image.
+vtkSmartPointer<vtkImageData> imageViewOfVolume(const Volume& volume);
 
 }  // namespace mvw::io::detail
