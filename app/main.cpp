@@ -7,6 +7,7 @@
 
 #include "BenchCommand.h"
 #include "InfoCommand.h"
+#include "view/ViewCommand.h"
 #include "RegisterCommand.h"
 #include "RenderCommand.h"
 #include "mvw/core/Error.h"
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   mvw::app::addRegisterCommand(app);
   mvw::app::addRenderCommand(app);
   mvw::app::addBenchCommand(app);
+  mvw::app::addViewCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,47 @@
+#include "GlfwContext.h"
+
+#include <GLFW/glfw3.h>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::app {
+
+namespace {
+std::string glfwReason() {
+  const char* text = nullptr;
+  glfwGetError(&text);
+  return text ? text : "unknown reason";
+}
+}  // namespace
+
+GlfwContext::GlfwContext(glm::ivec2 size, const std::string& title) {
+  if (!glfwInit()) throw Error("cannot start GLFW (no display? run under Xvfb or set DISPLAY): " + glfwReason());
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  window_ = glfwCreateWindow(size.x, size.y, title.c_str(), nullptr, nullptr);
+  if (!window_) {
+    const std::string reason = glfwReason();
+    glfwTerminate();
+    throw Error("cannot open an OpenGL 4.5 core window: " + reason);
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(0);
+  loadFunctions([](const char* name, void*) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }, nullptr);
+}
+
+GlfwContext::~GlfwContext() {
+  glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+void GlfwContext::makeCurrent() { glfwMakeContextCurrent(window_); }
+
+glm::ivec2 GlfwContext::size() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  return {w, h};
+}
+
+}  // namespace mvw::app

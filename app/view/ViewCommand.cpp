@@ -1,0 +1,64 @@
+#include "ViewCommand.h"
+
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "Viewer.h"
+#include "mvw/core/Error.h"
+#include "mvw/io/VolumeReader.h"
+
+namespace mvw::app {
+
+namespace {
+
+struct ViewOptions {
+  std::string study, anatomical, functional, script;
+  int width = 1400, height = 900;
+};
+
+void runView(const ViewOptions& o) {
+  ViewerOptions v;
+  if (!o.study.empty()) {
+    v.study = config::loadStudyConfig(o.study);
+  } else {
+    if (o.anatomical.empty()) throw InputError("mvw view", "give a study config or --anatomical");
+    v.study.anatomical.path = o.anatomical;
+    if (!o.functional.empty()) v.study.functional = config::VolumeSource{o.functional, ""};
+  }
+  io::ReadOptions read;
+  read.series = v.study.anatomical.series;
+  v.anatomical = io::readVolume(v.study.anatomical.path, read);
+  if (v.study.functional) {
+    io::ReadOptions f;
+    f.series = v.study.functional->series;
+    v.functional = io::readVolume(v.study.functional->path, f);
+  }
+  v.script = o.script;
+  v.width = o.width;
+  v.height = o.height;
+  runViewer(std::move(v));
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app) {
+  auto o = std::make_shared<ViewOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "view",
+      "Interactive viewer: 3D view + axial, coronal, sagittal MPR with a linked crosshair.\n"
+      "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom; MPR left click/drag moves the\n"
+      "crosshair, wheel scrolls slices, right-drag or Ctrl-drag window/level; double-click maximises a view.\n"
+      "Keys: 1 composite, 2 isosurface, 3 MIP, 4 MinIP, 5 average, D depth cue, G glyphs, F colour fusion,\n"
+      "P next preset, R reset, S screenshot, Ctrl+S save the state as a study config (mvw render reproduces it).");
+  cmd->add_option("study", o->study, "Study config (.json)");
+  cmd->add_option("--anatomical", o->anatomical, "Anatomical volume (DICOM folder or file, NIfTI, MetaImage)");
+  cmd->add_option("--functional", o->functional, "Functional volume");
+  cmd->add_option("--script", o->script, "Scripted events, one per line (tests; see app/view/Viewer.cpp)");
+  cmd->add_option("--width", o->width, "Window width")->check(CLI::Range(640, 8192));
+  cmd->add_option("--height", o->height, "Window height")->check(CLI::Range(480, 8192));
+  cmd->callback([o] { runView(*o); });
+}
+
+}  // namespace mvw::app

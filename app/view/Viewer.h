@@ -1,0 +1,24 @@
+#pragma once
+// `mvw view`: a 3D view and the three orthogonal MPR views with a linked crosshair, and a
+// control panel (Dear ImGui), on the same renderer and shaders as the headless path.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Volume.h"
+
+namespace mvw::app {
+
+struct ViewerOptions {
+  config::StudyConfig study;             // file may be empty (volumes given on the command line)
+  Volume anatomical;
+  std::optional<Volume> functional;
+  std::filesystem::path script;          // scripted events, for tests (see ViewCommand.cpp)
+  int width = 1400, height = 900;
+};
+
+// Runs until the window closes or the script says quit; returns the process exit code.
+int runViewer(ViewerOptions options);
+
+}  // namespace mvw::app
