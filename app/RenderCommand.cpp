@@ -1,5 +1,7 @@
 #include "RenderCommand.h"
 
+#include "FunctionalPlacement.h"
+
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "mvw/config/StudyConfig.h"
@@ -22,6 +25,8 @@
 #include "mvw/render/Annotations.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/VolumeRenderer.h"
+#include "mvw/resampling/PetPhantom.h"
+#include "mvw/resampling/Transform.h"
 
 namespace mvw::app {
 
@@ -136,6 +141,7 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
       s.functionalLow = (*v.functionalWindow)[0];
       s.functionalHigh = (*v.functionalWindow)[1];
     }
+    s.lightOffset = {v.light[0], v.light[1]};
     s.shellCount = v.shells;
     if (!v.shellsDisabled.empty()) {
       s.shellEnabled.assign(static_cast<std::size_t>(v.shells), true);
@@ -179,9 +185,12 @@ void runRender(const RenderOptions& o) {
 
   auto context = render::createHeadlessContext({16, 16});
   render::VolumeRenderer renderer(*context, anatomy);
-  // Until a registration is given, the functional volume is placed by its own world
-  // coordinates (both volumes are in LPS mm).
-  if (functional) renderer.setFunctional(*functional, glm::dmat4(1.0));
+  // The study's "registration" places the functional volume (none: by world coordinates).
+  std::optional<FunctionalPlacement> placement;
+  if (functional) {
+    placement = placeFunctional(study, anatomy, *functional);
+    renderer.setFunctional(*functional, placement->anatomicalFromFunctional);
+  }
   const auto [lo, hi] = renderer.valueRange();
   struct Output {
     std::string file;
@@ -220,7 +229,9 @@ void runRender(const RenderOptions& o) {
     if (v.config.annotate) {
       render::annotate(frame.image, frame.camera, caption);
       if (overlayShown) {
-        const auto [flo, fhi] = renderer.functionalRange();
+        auto [flo, fhi] = renderer.functionalRange();
+        if (v.settings.functionalHigh > v.settings.functionalLow)
+          flo = v.settings.functionalLow, fhi = v.settings.functionalHigh;
         render::drawColourBar(frame.image, flo, fhi, functional->metadata().unit);
       }
     }
@@ -269,7 +280,7 @@ void runRender(const RenderOptions& o) {
     if (overlayShown) {
       r["overlay_opacity"] = v.settings.overlayOpacity;
       r["overlay_threshold"] = v.settings.overlayThreshold;
-      r["functional_placement"] = "world coordinates (no registration transform)";
+      r["functional_placement"] = placement ? placement->report["method"] : nlohmann::json("none");
     }
     r["ms_per_frame"] = frame.milliseconds;
     r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);
@@ -282,7 +293,10 @@ void runRender(const RenderOptions& o) {
   nlohmann::json report;
   report["study"] = study.file.string();
   report["anatomical"] = anatomy.metadata().sourcePath;
-  if (functional) report["functional"] = functional->metadata().sourcePath;
+  if (functional) {
+    report["functional"] = functional->metadata().sourcePath;
+    report["registration"] = placement->report;
+  }
   report["value_range"] = {lo, hi};
   report["gl_renderer"] = context->renderer();
   report["gl_version"] = context->version();
@@ -332,6 +346,27 @@ void runVesselPhantom(const PhantomOptions& o) {
   std::cout << "wrote a vessel tree of " << tree.segments.size() << " segments to " << o.output << "\n";
 }
 
+struct PetPhantomOptions {
+  std::string ct, output;
+  std::vector<double> rotateDeg{0, 0, 0}, shiftMm{0, 0, 0};
+  unsigned seed = 1;
+};
+
+// `mvw phantom pet`: the PET-like test volume of the registration tests, as a file.
+void runPetPhantom(const PetPhantomOptions& o) {
+  const Volume ct = io::readVolume(o.ct);
+  const resampling::PetPhantom phantom(ct);
+  resampling::RigidParameters p;
+  p.angles = glm::radians(glm::dvec3(o.rotateDeg[0], o.rotateDeg[1], o.rotateDeg[2]));
+  p.translation = glm::dvec3(o.shiftMm[0], o.shiftMm[1], o.shiftMm[2]);
+  const glm::dmat4 petFromCt = resampling::rigidMatrix(p, phantom.centre());
+  Volume pet = phantom.pet(petFromCt, o.seed);
+  pet.metadata().seriesDescription = "mvw PET-like phantom";
+  io::writeVolume(pet, o.output);
+  std::cout << "wrote a PET-like volume (" << pet.dimensions().x << " x " << pet.dimensions().y << " x "
+            << pet.dimensions().z << ") to " << o.output << "\n";
+}
+
 void addRenderCommand(CLI::App& app) {
   {
     auto ph = std::make_shared<PhantomOptions>();
@@ -347,6 +382,15 @@ void addRenderCommand(CLI::App& app) {
       ph->vessels.dimensions = glm::ivec3(ph->vessels.dimensions.x);
       runVesselPhantom(*ph);
     });
+    auto pet = std::make_shared<PetPhantomOptions>();
+    CLI::App* petCmd = phantom->add_subcommand(
+        "pet", "A PET-like volume made from a CT (uptake model, 6 mm blur, 4 mm grid, noise) under a known rigid transform");
+    petCmd->add_option("--ct", pet->ct, "The CT (HU)")->required();
+    petCmd->add_option("-o,--output", pet->output, "Output file")->required();
+    petCmd->add_option("--rotate", pet->rotateDeg, "Rotation about x, y, z in degrees (ITK Euler order)")->expected(3);
+    petCmd->add_option("--shift", pet->shiftMm, "Translation in mm")->expected(3);
+    petCmd->add_option("--seed", pet->seed, "Noise seed");
+    petCmd->callback([pet] { runPetPhantom(*pet); });
   }
   {
     auto g = std::make_shared<GlyphMapOptions>();

@@ -43,6 +43,10 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
   vec3 hit = ray.origin + s.hitT * ray.dir;
   vec4 g = sampleGradient(toTexture(hit));
   vec3 n = g.a > 1e-6 ? -g.xyz / g.a : -ray.dir;
+  // Where the ray enters the (cropped) box already inside the surface, the visible surface
+  // is the cut face itself: shade it flat, facing the viewer, not with the gradient of
+  // whatever tissue was cut (noise, for a CT).
+  if (s.hitT <= gRayEntry) n = -ray.dir;
   if (uGlyphs) n = glyphNormal(hit, n);
   vec3 colour = uHasFunctional ? fuseColour(uIsoColor.rgb, hit) : uIsoColor.rgb;  // colour fusion
   fragColor = vec4(phong(colour, n, ray.dir), 1.0);

@@ -17,6 +17,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <nlohmann/json.hpp>
 
+#include "../FunctionalPlacement.h"
 #include "GlfwContext.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/PngWriter.h"
@@ -90,13 +91,20 @@ class Viewer {
   glm::dvec3 hoverWorld_{0.0};
   bool hoverValid_ = false;
   bool dragging_ = false;
+  std::string registration_ = "none";
 };
 
 std::vector<std::string> presetNames() { return render::transferPresetNames(); }
 
 void Viewer::setupRendering() {
   renderer_ = std::make_unique<render::VolumeRenderer>(*context_, opt_.anatomical);
-  if (opt_.functional) renderer_->setFunctional(*opt_.functional, glm::dmat4(1.0));
+  if (opt_.functional) {
+    const FunctionalPlacement placement = placeFunctional(opt_.study, opt_.anatomical, *opt_.functional);
+    renderer_->setFunctional(*opt_.functional, placement.anatomicalFromFunctional);
+    registration_ = opt_.study.registration.method;
+    if (placement.report.contains("mutual_information"))
+      registration_ += ", MI " + std::to_string(placement.report["mutual_information"].get<double>());
+  }
   const auto [lo, hi] = renderer_->valueRange();
   const bool ct = opt_.anatomical.metadata().modality == "CT" || opt_.anatomical.metadata().unit == "HU";
   presetName_ = ct ? "ct-bone" : "mr-default";
@@ -487,7 +495,7 @@ void Viewer::drawPanel() {
     if (ImGui::SliderFloat("glyph size mm", &gd, 1, 40)) view3d_.glyphDiameterMm = gd, panes_[k3d].dirty = true;
     const char* convexity[] = {"convex", "concave", "both"};
     if (ImGui::Combo("bumps", &view3d_.glyphConvexity, convexity, 3)) panes_[k3d].dirty = true;
-    ImGui::Text("registration: functional placed by world coordinates");
+    ImGui::TextWrapped("registration: %s", registration_ == "none" ? "none (world coordinates)" : registration_.c_str());
   }
   ImGui::Separator();
   ImGui::Text("crosshair %.1f, %.1f, %.1f mm (LPS)", crosshair_.x, crosshair_.y, crosshair_.z);

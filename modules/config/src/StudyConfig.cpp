@@ -97,7 +97,7 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
                     {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
                      "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
                      "background", "crop_min", "crop_max", "annotate", "plane_offset_mm", "slab_mm", "overlay",
-                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue", "glyphs", "functional_window", "fusion", "functional_classes", "shells", "shells_disabled"});
+                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue", "glyphs", "functional_window", "fusion", "functional_classes", "shells", "shells_disabled", "light"});
   const std::string w = where + ".";
   ViewConfig v;
   v.name = stringField(file, j, w, "name", false);
@@ -132,6 +132,12 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   for (int a = 0; a < 3; ++a)
     if (v.cropMin[a] >= v.cropMax[a]) throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
   v.annotate = boolField(file, j, w, "annotate", true);
+  if (j.contains("light")) {
+    const json& l = j["light"];
+    if (!l.is_array() || l.size() != 2 || !l[0].is_number() || !l[1].is_number())
+      throw InputError(file, "'" + w + "light' must be [right, up] (0, 0 is a headlight)");
+    v.light = {l[0].get<double>(), l[1].get<double>()};
+  }
   if (j.contains("glyphs")) {
     const json& g = j["glyphs"];
     const std::string gw = w + "glyphs.";
@@ -205,7 +211,7 @@ StudyConfig loadStudyConfig(const fs::path& file) {
     throw InputError(file, std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(file, "a study config must be a JSON object");
-  rejectUnknownKeys(file, j, "", {"name", "anatomical", "functional", "render"});
+  rejectUnknownKeys(file, j, "", {"name", "anatomical", "functional", "registration", "render"});
   StudyConfig config;
   config.file = file;
   config.name = stringField(file, j, "", "name", false);
@@ -221,6 +227,25 @@ StudyConfig loadStudyConfig(const fs::path& file) {
                                    "'; use pet, spect, fmri, perfusion, dose, labels or other");
       config.functionalKind = it->second;
     }
+  }
+  if (j.contains("registration")) {
+    const json& g = j["registration"];
+    if (!g.is_object()) throw InputError(file, "'registration' must be an object");
+    rejectUnknownKeys(file, g, "registration.", {"method", "transform", "rotation_search_deg"});
+    if (!config.functional) throw InputError(file, "'registration' needs a 'functional' volume");
+    if (g.contains("method")) config.registration.method = stringField(file, g, "registration.", "method", true);
+    const std::string& m = config.registration.method;
+    if (m != "none" && m != "rigid" && m != "affine" && m != "file")
+      throw InputError(file, "'registration.method' must be none, rigid, affine or file");
+    const std::string t = stringField(file, g, "registration.", "transform", m == "file");
+    if (!t.empty()) {
+      config.registration.transform = (fs::path(t).is_absolute() ? fs::path(t) : file.parent_path() / t).lexically_normal();
+      std::error_code ec;
+      if (m == "file" && !fs::exists(config.registration.transform, ec))
+        throw InputError(file, "'registration.transform' names " + config.registration.transform.string() +
+                                   ", which does not exist");
+    }
+    config.registration.rotationSearchDeg = numberField(file, g, "registration.", "rotation_search_deg", 0.0, 0.0, 180.0);
   }
   if (j.contains("render")) {
     const json& r = j["render"];

@@ -67,6 +67,7 @@ struct ViewConfig {
   std::array<double, 3> background{0.0, 0.0, 0.0};
   std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};  // fractions of the box
   bool annotate = true;
+  std::array<double, 2> light{0.0, 0.0};  // light direction offset in screen terms; 0, 0: headlight
   double planeOffsetMm = 0.0;        // mpr: plane moved along the line of sight
   double slabMm = 0.0;               // mpr: thick-slab MIP thickness, 0 = single plane
   bool overlay = true;               // mpr: show the functional volume when there is one
@@ -79,12 +80,23 @@ struct RenderConfig {
   std::vector<ViewConfig> views;  // default: one composite anterior view
 };
 
+// How the functional volume is placed on the anatomy ("registration": {...}):
+//   none: by world coordinates (both in LPS mm); rigid / affine: mutual-information
+//   registration when the study is opened; file: an ITK transform file (e.g. transform.tfm
+//   from `mvw register`). rotation_search_deg > 0 adds a coarse rotation search.
+struct RegistrationConfig {
+  std::string method = "none";
+  std::filesystem::path transform;
+  double rotationSearchDeg = 0.0;
+};
+
 struct StudyConfig {
   std::filesystem::path file;  // where it was loaded from
   std::string name;
   VolumeSource anatomical;
   std::optional<VolumeSource> functional;
   FunctionalKind functionalKind = FunctionalKind::Other;
+  RegistrationConfig registration;
   RenderConfig render;
 };
 
