@@ -1,5 +1,7 @@
 #include "GlfwContext.h"
 
+#include <dlfcn.h>
+
 #include <GLFW/glfw3.h>
 
 #include "mvw/core/Error.h"
@@ -15,6 +17,11 @@ std::string glfwReason() {
 }  // namespace
 
 GlfwContext::GlfwContext(glm::ivec2 size, const std::string& title) {
+  // Mesa's GL libraries and DRI driver stay loaded after glfwTerminate (RTLD_NODELETE):
+  // unloading swrast_dri.so at exit orphaned its global allocations, which LeakSanitizer then
+  // reported from an unknown module. (A library missing here is simply not pinned.)
+  for (const char* lib : {"libGL.so.1", "libGLX_mesa.so.0", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so"})
+    ::dlopen(lib, RTLD_LAZY | RTLD_NODELETE);
   if (!glfwInit()) throw Error("cannot start GLFW (no display? run under Xvfb or set DISPLAY): " + glfwReason());
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
