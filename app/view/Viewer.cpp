@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <thread>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +25,7 @@
 #include "mvw/io/PngWriter.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/VolumeRenderer.h"
+#include "mvw/resampling/RigidRegistration.h"
 
 namespace mvw::app {
 
@@ -92,7 +95,48 @@ class Viewer {
   bool hoverValid_ = false;
   bool dragging_ = false;
   std::string registration_ = "none";
+  // Registration re-run from the panel, on a worker thread: the UI keeps drawing.
+  std::thread registrationThread_;
+  std::atomic<bool> registrationDone_{false};
+  bool registering_ = false;
+  std::chrono::steady_clock::time_point registrationStart_;
+  resampling::RegistrationResult registrationResult_;
+  std::string registrationError_;
+  void startRegistration();
+  void finishRegistration();
 };
+
+void Viewer::startRegistration() {
+  if (registering_ || !opt_.functional) return;
+  registering_ = true;
+  registrationDone_ = false;
+  registrationError_.clear();
+  registrationStart_ = std::chrono::steady_clock::now();
+  registrationThread_ = std::thread([this] {
+    try {
+      registrationResult_ = resampling::registerRigid(opt_.anatomical, *opt_.functional);
+    } catch (const std::exception& e) {
+      registrationError_ = e.what();
+    }
+    registrationDone_ = true;
+  });
+}
+
+void Viewer::finishRegistration() {
+  if (!registering_ || !registrationDone_) return;
+  registrationThread_.join();
+  registering_ = false;
+  if (!registrationError_.empty()) {
+    status_ = "registration failed: " + registrationError_;
+    return;
+  }
+  renderer_->setFunctional(*opt_.functional, registrationResult_.transform.fixedFromMoving());
+  registration_ = "rigid (re-run), MI " + std::to_string(registrationResult_.levels.empty() ? 0.0
+                                                            : registrationResult_.levels.back().metricEnd) +
+                  (registrationResult_.converged ? ", converged" : ", NOT converged") + ", " +
+                  std::to_string(registrationResult_.seconds).substr(0, 4) + " s";
+  markAllDirty();
+}
 
 std::vector<std::string> presetNames() { return render::transferPresetNames(); }
 
@@ -333,7 +377,8 @@ void Viewer::saveConfig(const fs::path& file) const {
 
 // Script lines (for tests under Xvfb): key K [ctrl] | drag PANE dx dy [left|right|middle] |
 // click PANE x y | wheel PANE n | wait FRAMES | screenshot FILE | save-config FILE |
-// dump PANE FILE (the pane's full-resolution render, without annotations) | quit. PANE: 3d, axial, coronal,
+// dump PANE FILE (the pane's full-resolution render, without annotations) | register (re-run
+// the registration in the background) | wait-registration | quit. PANE: 3d, axial, coronal,
 // sagittal; coordinates are fractions of the pane.
 bool Viewer::stepScript() {
   if (scriptWait_ > 0) {
@@ -378,6 +423,10 @@ bool Viewer::stepScript() {
     if (cmd == "screenshot") screenshot(a);
     else if (cmd == "save-config") saveConfig(a);
     else io::writePng(panes_[static_cast<std::size_t>(paneOf(a))].raw, b);
+  } else if (cmd == "register") {
+    startRegistration();
+  } else if (cmd == "wait-registration") {
+    if (registering_) --scriptLine_;  // stay on this line until the worker is done
   } else if (cmd == "quit") {
     quit_ = true;
   } else {
@@ -496,6 +545,12 @@ void Viewer::drawPanel() {
     const char* convexity[] = {"convex", "concave", "both"};
     if (ImGui::Combo("bumps", &view3d_.glyphConvexity, convexity, 3)) panes_[k3d].dirty = true;
     ImGui::TextWrapped("registration: %s", registration_ == "none" ? "none (world coordinates)" : registration_.c_str());
+    if (registering_) {
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - registrationStart_).count();
+      ImGui::Text("registering (mutual information)... %.1f s", s);
+    } else if (ImGui::Button("re-run registration (rigid MI)")) {
+      startRegistration();
+    }
   }
   ImGui::Separator();
   ImGui::Text("crosshair %.1f, %.1f, %.1f mm (LPS)", crosshair_.x, crosshair_.y, crosshair_.z);
@@ -569,6 +624,7 @@ int Viewer::run() {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     dragging_ = false;
+    finishRegistration();
     drawUi();
     renderDirtyPanes(dragging_);
     ImGui::Render();
@@ -584,8 +640,9 @@ int Viewer::run() {
     ++frames;
     bool anyDirty = false;
     for (const auto& p : panes_) anyDirty |= p.dirty;
-    if (!anyDirty && script_.empty()) glfwWaitEventsTimeout(0.05);  // idle: no busy loop
+    if (!anyDirty && script_.empty() && !registering_) glfwWaitEventsTimeout(0.05);  // idle: no busy loop
   }
+  if (registrationThread_.joinable()) registrationThread_.join();
   for (auto& p : panes_)
     if (p.texture) glDeleteTextures(1, &p.texture);
   renderer_.reset();
