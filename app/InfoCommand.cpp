@@ -21,6 +21,7 @@ struct InfoOptions {
   std::string series;
   bool json = false;
   bool noSuv = false;
+  std::size_t maxMemory = 0;  // bytes; 0: the reader's default (a quarter of physical RAM)
 };
 
 bool isStudyConfig(const std::filesystem::path& p) { return p.extension() == ".json"; }
@@ -35,6 +36,7 @@ void runInfo(const InfoOptions& opt) {
   io::ReadOptions read;
   read.series = opt.series;
   read.suv = !opt.noSuv;
+  read.maxBytes = opt.maxMemory;
   for (const auto& p : opt.paths) {
     if (isStudyConfig(p)) {
       const auto study = config::loadStudyConfig(p);
@@ -78,6 +80,11 @@ void addInfoCommand(CLI::App& app) {
   cmd->add_option("--series", opt->series, "DICOM series to show: UID, number or part of the description");
   cmd->add_flag("--json", opt->json, "Print JSON instead of text");
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
+  cmd->add_option("--max-memory", opt->maxMemory,
+                  "Refuse a volume larger than this in memory, checked on the header before anything is "
+                  "allocated (e.g. 512M, 4G; default: a quarter of physical RAM)")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::PositiveNumber);
   cmd->callback([opt] { runInfo(*opt); });
 }
 

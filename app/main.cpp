@@ -10,6 +10,7 @@
 #include "view/ViewCommand.h"
 #include "RegisterCommand.h"
 #include "RenderCommand.h"
+#include "ValidateCommand.h"
 #include "mvw/core/Error.h"
 
 int main(int argc, char** argv) {
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   mvw::app::addRenderCommand(app);
   mvw::app::addBenchCommand(app);
   mvw::app::addViewCommand(app);
+  mvw::app::addValidateCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

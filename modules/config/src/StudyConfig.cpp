@@ -207,7 +207,7 @@ StudyConfig loadStudyConfig(const fs::path& file) {
   json j;
   try {
     j = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors, and numbers too large for a double (406)
     throw InputError(file, std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(file, "a study config must be a JSON object");

@@ -1,0 +1,55 @@
+#pragma once
+// Shared by the libFuzzer targets: the readers take paths, so each input is written to a
+// file in a per-process scratch folder under the name the reader's format detection expects.
+// Bad input must end in mvw::InputError; any other exception is an internal fault on bad
+// input (exit 1 from the CLI) and is reported as a finding, as are crashes and sanitizer
+// reports.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <new>
+#include <string>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::fuzz {
+
+// Far below libFuzzer's 2 GiB RSS limit: a header may claim any size, the reader must refuse
+// what exceeds the limit before allocating it (ReadOptions::maxBytes).
+inline constexpr std::size_t kMaxBytes = std::size_t(64) << 20;
+
+inline const std::filesystem::path& scratch() {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("mvw-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+inline std::filesystem::path writeInput(const std::uint8_t* data, std::size_t size,
+                                        const std::string& name) {
+  const auto p = scratch() / name;
+  std::ofstream f(p, std::ios::binary | std::ios::trunc);
+  f.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  return p;
+}
+
+template <class F>
+void expectInputErrorOnly(F&& read) {
+  try {
+    read();
+  } catch (const InputError&) {
+    // The expected end of bad input.
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mvw fuzz: bad input ended in a non-InputError exception: %s\n", e.what());
+    std::abort();
+  }
+}
+
+}  // namespace mvw::fuzz
