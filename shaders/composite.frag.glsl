@@ -7,7 +7,6 @@
 
 uniform sampler2D uTransfer;   // RGBA over (value, |gradient| / uGradientMax); alpha per step
 uniform vec2 uTransferRange;   // values at the first and last columns
-uniform bool uTransfer2D;      // rows vary with the gradient magnitude
 uniform float uGradientMax;    // |gradient| at the last row (unit/mm)
 uniform bool uShading;
 
@@ -16,7 +15,7 @@ struct RayState {
   float depth;  // distance where the opacity first passed 0.5
 };
 
-void setupHook(inout RayState s) {
+void setupHook(inout RayState s, Ray ray) {
   s.color = vec4(0.0);
   s.depth = -1.0;
 }
@@ -27,21 +26,30 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   float u = clamp((value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x), 0.0, 1.0);
   vec4 g = vec4(0.0);
   vec4 c;
-  if (uTransfer2D) {
-    g = sampleGradient(tex);
-    c = textureLod(uTransfer, vec2(u, clamp(g.a / uGradientMax, 0.0, 1.0)), 0.0);
-  } else {
-    c = textureLod(uTransfer, vec2(u, 0.5), 0.0);
-  }
+  // Variants are compile-time (#define from C++): as uniform branches the unused features
+  // cost this loop half its speed on llvmpipe.
+#if defined(MVW_TF2D)
+  g = sampleGradient(tex);
+  c = textureLod(uTransfer, vec2(u, clamp(g.a / uGradientMax, 0.0, 1.0)), 0.0);
+#else
+  c = textureLod(uTransfer, vec2(u, 0.5), 0.0);
+#endif
   if (c.a <= 0.0) return true;
   float alpha = c.a;
   vec3 rgb = c.rgb;
-  if (uHasFunctional) rgb = fuseColour(rgb, ray.origin + t * ray.dir);  // colour fusion
+#if defined(MVW_FUSION)
+  rgb = fuseColour(rgb, ray.origin + t * ray.dir);  // colour fusion
+#endif
   if (uShading) {
-    if (!uTransfer2D) g = sampleGradient(tex);
+#if !defined(MVW_TF2D)
+    g = sampleGradient(tex);
+#endif
     if (g.a > 1e-6) {
       vec3 n = -g.xyz / g.a;
-      if (uGlyphs) n = glyphNormal(ray.origin + t * ray.dir, n);
+#if defined(MVW_GLYPHS)
+      // A sample that adds less than one grey level to the pixel cannot show a glyph.
+      if ((1.0 - s.color.a) * alpha > 1.0 / 255.0) n = glyphNormal(ray.origin + t * ray.dir, n);
+#endif
       rgb = phong(rgb, n, ray.dir);
     }
   }

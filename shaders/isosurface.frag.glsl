@@ -10,7 +10,7 @@ struct RayState {
   float hitT;
 };
 
-void setupHook(inout RayState s) { s.hitT = -1.0; }
+void setupHook(inout RayState s, Ray ray) { s.hitT = -1.0; }
 
 // A block whose values all lie below the isovalue holds no crossing: skip it. The grid point
 // one step back is then a skipped sample, and below the surface too.
@@ -47,7 +47,9 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
   // is the cut face itself: shade it flat, facing the viewer, not with the gradient of
   // whatever tissue was cut (noise, for a CT).
   if (s.hitT <= gRayEntry) n = -ray.dir;
-  if (uGlyphs) n = glyphNormal(hit, n);
+#if defined(MVW_GLYPHS)
+  n = glyphNormal(hit, n);
+#endif
   vec3 colour = uHasFunctional ? fuseColour(uIsoColor.rgb, hit) : uIsoColor.rgb;  // colour fusion
   fragColor = vec4(phong(colour, n, ray.dir), 1.0);
   fragDepth = s.hitT;

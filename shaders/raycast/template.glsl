@@ -1,5 +1,5 @@
 // The ray-caster template. A mode file defines the hooks, then includes this file:
-//   void setupHook(inout RayState s)                       before the first sample
+//   void setupHook(inout RayState s, Ray ray)              before the first sample
 //   bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray)
 //                                                          per sample; false ends the ray
 //                                                          (early termination)
@@ -13,7 +13,7 @@ void main() {
   vec2 span = intersectBox(ray);
   gRayEntry = span.x;
   RayState s;
-  setupHook(s);
+  setupHook(s, ray);
   if (span.x < span.y) {
     // Without jitter, samples sit at the middle of each step (midpoint rule): a ray through a
     // slab of thickness L takes exactly L / step samples.

@@ -138,13 +138,25 @@ struct VolumeRenderer::Impl {
 
   explicit Impl(GlContext& c) : context(c) {}
 
-  ShaderProgram& program(RenderMode mode) {
+  // The program for a mode and its compile-time variants (features off cost nothing).
+  ShaderProgram& program(RenderMode mode, const RenderSettings& s, bool fusion) {
     std::string file = "projection.frag.glsl";
     std::vector<std::string> defines;
+    if (mode == RenderMode::Mip && s.depthCue) defines.push_back("MVW_DEPTH_CUE 1");
+    if (mode == RenderMode::Composite) {
+      if (s.gradientOpacityHigh > 0.0) defines.push_back("MVW_TF2D 1");
+      if (fusion) defines.push_back("MVW_FUSION 1");
+    }
+    if ((mode == RenderMode::Composite || mode == RenderMode::Isosurface) && s.glyphs) {
+      defines.push_back("MVW_GLYPHS 1");
+      if (!s.glyphSizeControl) defines.push_back("MVW_GLYPH_SIMPLE 1");
+      if (s.glyphConvexity == 1) defines.push_back("MVW_GLYPH_CONCAVE 1");
+      if (s.glyphConvexity == 2) defines.push_back("MVW_GLYPH_BOTH 1");
+    }
     switch (mode) {
       case RenderMode::Composite: file = "composite.frag.glsl"; break;
       case RenderMode::Isosurface: file = "isosurface.frag.glsl"; break;
-      case RenderMode::Mip: defines = {"MVW_MIP 1"}; break;
+      case RenderMode::Mip: defines.push_back("MVW_MIP 1"); break;
       case RenderMode::MinIp: defines = {"MVW_MINIP 1"}; break;
       case RenderMode::Average: defines = {"MVW_AVERAGE 1"}; break;
       case RenderMode::Mpr: file = "mpr.frag.glsl"; break;
@@ -152,7 +164,8 @@ struct VolumeRenderer::Impl {
       case RenderMode::ShellSum:
       case RenderMode::ShellLit: break;  // drawn by detail::ShellRenderer
     }
-    const std::string key = toString(mode);
+    std::string key = toString(mode);
+    for (const auto& d : defines) key += "+" + d;
     auto it = programs.find(key);
     if (it == programs.end()) it = programs.emplace(key, ShaderProgram("fullscreen.vert.glsl", file, defines)).first;
     return it->second;
@@ -363,7 +376,8 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
     throw Error("render target of " + std::to_string(s.size.x) + " x " + std::to_string(s.size.y) + " is not supported");
   checkGl("creating the render target");
 
-  ShaderProgram& p = m.program(s.mode);
+  const bool overlay = m.functional.id() != 0 && (s.mode == RenderMode::Mpr ? s.overlay : s.fusion);
+  ShaderProgram& p = m.program(s.mode, s, overlay);
   p.use();
   // textureFromWorld = textureFromIndex * indexFromWorld; texel centres at (i + 0.5) / n.
   glm::dmat4 textureFromIndex(1.0);
@@ -395,13 +409,11 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   glUniform1i(p.uniform("uHeadlight"), s.lightOffset == glm::dvec2(0.0) ? 1 : 0);
   glUniform2f(p.uniform("uTransferRange"), float(lo), float(hi));
   glUniform1i(p.uniform("uShading"), s.shading ? 1 : 0);
-  glUniform1i(p.uniform("uTransfer2D"), transfer2d ? 1 : 0);
   glUniform1f(p.uniform("uGradientMax"), float(gradientMax));
   const double window = s.window > 0 ? s.window : hi - lo;
   const double level = s.window > 0 ? s.level : 0.5 * (hi + lo);
   glUniform2f(p.uniform("uWindowLevel"), float(window), float(level));
   glUniform1f(p.uniform("uIsoValue"), float(s.isoValue));
-  glUniform1i(p.uniform("uDepthCue"), s.depthCue ? 1 : 0);
   glUniform3f(p.uniform("uCue"), float(s.cueBrightness), float(s.cueAmount), float(s.cueContrast));
   glUniform4f(p.uniform("uBoundingSphere"), float(centre.x), float(centre.y), float(centre.z), float(radius));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
@@ -416,9 +428,18 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
     if (!m.glyphMap.id() || g.size != m.glyphMapSettings.size || g.count != m.glyphMapSettings.count ||
         g.diameter != m.glyphMapSettings.diameter || g.seed != m.glyphMapSettings.seed) {
       const GlyphMap map = makeGlyphMap(g);
+      // Packed to RGBA8 (see shaders/common/glyphs.glsl): normal (n + 1) / 2, A = 0 outside,
+      // else 1 + 254 r/R.
+      std::vector<std::uint8_t> packed(map.texels.size() * 4);
+      for (std::size_t i = 0; i < map.texels.size(); ++i) {
+        const glm::vec4& t = map.texels[i];
+        for (int c = 0; c < 3; ++c)
+          packed[i * 4 + c] = static_cast<std::uint8_t>(std::lround(std::clamp((t[c] + 1.0f) * 127.5f, 0.0f, 255.0f)));
+        packed[i * 4 + 3] = t.a < 0.0f ? 0 : static_cast<std::uint8_t>(1 + std::lround(std::clamp(t.a, 0.0f, 1.0f) * 254.0f));
+      }
       m.glyphMap = detail::makeTexture();
       glBindTexture(GL_TEXTURE_3D, m.glyphMap.id());
-      glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, map.size, map.size, map.size, 0, GL_RGBA, GL_FLOAT, map.texels.data());
+      glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, map.size, map.size, map.size, 0, GL_RGBA, GL_UNSIGNED_BYTE, packed.data());
       checkGl("uploading the glyph map");
       for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
         glTexParameteri(GL_TEXTURE_3D, wrap, GL_REPEAT);  // the map is periodic
@@ -426,12 +447,8 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
       m.glyphMapSettings = g;
     }
   }
-  glUniform1i(p.uniform("uGlyphs"), s.glyphs ? 1 : 0);
   glUniform1i(p.uniform("uFunctionalClasses"), std::max(0, s.functionalClasses));
   glUniform1f(p.uniform("uGlyphPeriod"), float(s.glyphDiameterMm * s.glyphMap.size / s.glyphMap.diameter));
-  glUniform1i(p.uniform("uGlyphMethod"), s.glyphSizeControl ? 1 : 0);
-  glUniform1i(p.uniform("uGlyphConvexity"), s.glyphConvexity);
-  const bool overlay = m.functional.id() != 0 && (s.mode == RenderMode::Mpr ? s.overlay : s.fusion);
   glUniform1i(p.uniform("uHasFunctional"), overlay ? 1 : 0);
   const glm::mat4 functionalFromWorld(m.functionalTextureFromAnatomicalWorld);
   glUniformMatrix4fv(p.uniform("uFunctionalFromWorld"), 1, GL_FALSE, glm::value_ptr(functionalFromWorld));
