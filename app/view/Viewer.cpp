@@ -511,6 +511,9 @@ void Viewer::drawPanel() {
     }
     ImGui::TreePop();
   }
+  // Sampling quality: the ray step in mm (0 = half the smallest voxel spacing).
+  float step = static_cast<float>(view3d_.stepMm);
+  if (ImGui::SliderFloat("step mm (0 auto)", &step, 0.0f, 4.0f)) view3d_.stepMm = step, panes_[k3d].dirty = true;
   float iso = static_cast<float>(view3d_.isoValue);
   const auto [lo, hi] = renderer_->valueRange();
   if (ImGui::SliderFloat("iso value", &iso, float(lo), float(hi))) view3d_.isoValue = iso, panes_[k3d].dirty = true;
