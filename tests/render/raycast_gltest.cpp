@@ -345,6 +345,21 @@ namespace {
 struct GlyphScene {
   Volume anatomy = makeVolume({61, 61, 61}, makeWorldFromIndex({-30, -30, -30}, {1, 1, 1}, glm::dmat3(1.0)),
                               [](glm::dvec3 p) { return static_cast<float>(25.0 - glm::length(p)); });
+  // An isosurface of the sphere, seen from the front (screen right = patient left = +x),
+  // glyphs on, the attribute mapped 0..1, many glyphs (4 mm) over the 50 mm sphere.
+  static RenderSettings settings() {
+    RenderSettings s;
+    s.mode = RenderMode::Isosurface;
+    s.isoValue = 0.0;
+    s.size = {241, 241};
+    s.jitter = false;
+    s.camera.view = StandardView::Anterior;
+    s.glyphs = true;
+    s.glyphDiameterMm = 4.0;
+    s.functionalLow = 0.0;
+    s.functionalHigh = 1.0;
+    return s;
+  }
   static Volume attribute(float level) {
     return makeVolume({16, 16, 16}, makeWorldFromIndex({-30, -30, -30}, {4, 4, 4}, glm::dmat3(1.0)),
                       [level](glm::dvec3 p) { return p.x > 2.0 ? level : 0.0f; });
@@ -370,19 +385,12 @@ TEST(Glyphs, NoAttributeGivesPlainShadingAndGlyphsStayWhereTheAttributeIs) {
   GlyphScene scene;
   auto ctx = createHeadlessContext({16, 16});
   VolumeRenderer renderer(*ctx, scene.anatomy);
-  RenderSettings s;
-  s.mode = RenderMode::Isosurface;
-  s.isoValue = 0.0;
-  s.size = {241, 241};
-  s.jitter = false;
-  s.camera.view = StandardView::Anterior;  // screen right = patient left = +x
+  RenderSettings s = GlyphScene::settings();
+  s.glyphs = false;
   const Frame plain = renderer.render(s);
   // beta = 0 everywhere: bit for bit the plain image.
   renderer.setFunctional(GlyphScene::attribute(0.0f), glm::dmat4(1.0));
   s.glyphs = true;
-  s.glyphDiameterMm = 4.0;  // many glyphs over the 50 mm sphere
-  s.functionalLow = 0.0;
-  s.functionalHigh = 1.0;
   EXPECT_EQ(renderer.render(s).image.rgba, plain.image.rgba);
   // beta > 0 on the left half only: changes appear, and only on the screen's right half.
   renderer.setFunctional(GlyphScene::attribute(0.8f), glm::dmat4(1.0));
@@ -398,15 +406,7 @@ TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
   GlyphScene scene;
   auto ctx = createHeadlessContext({16, 16});
   VolumeRenderer renderer(*ctx, scene.anatomy);
-  RenderSettings s;
-  s.mode = RenderMode::Isosurface;
-  s.isoValue = 0.0;
-  s.size = {241, 241};
-  s.jitter = false;
-  s.glyphs = true;
-  s.glyphDiameterMm = 4.0;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 1.0;
+  RenderSettings s = GlyphScene::settings();
   const Frame plain = [&] {
     RenderSettings p = s;
     p.glyphs = false;
