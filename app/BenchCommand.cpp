@@ -1,6 +1,7 @@
 #include "BenchCommand.h"
 
 #include "BenchRegister.h"
+#include "StudyVolumes.h"
 
 #include <chrono>
 #include <cmath>
@@ -15,7 +16,6 @@
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
-#include "mvw/io/VolumeReader.h"
 #include "mvw/render/VolumeRenderer.h"
 
 namespace mvw::app {
@@ -52,9 +52,7 @@ void runBench(const BenchOptions& o) {
     modes.push_back(*m);
   }
   const auto study = config::loadStudyConfig(o.study);
-  io::ReadOptions read;
-  read.series = study.anatomical.series;
-  const Volume volume = io::readVolume(study.anatomical.path, read);
+  const Volume volume = readSource(study.anatomical);
   auto context = render::createHeadlessContext({16, 16});
   const auto t0 = std::chrono::steady_clock::now();
   render::VolumeRenderer renderer(*context, volume);

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "StudyVolumes.h"
 #include "VolumeReport.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/io/VolumeReader.h"
@@ -40,15 +41,10 @@ void runInfo(const InfoOptions& opt) {
   for (const auto& p : opt.paths) {
     if (isStudyConfig(p)) {
       const auto study = config::loadStudyConfig(p);
-      io::ReadOptions a = read;
-      a.series = study.anatomical.series;
-      items.push_back({"anatomical", io::readVolume(study.anatomical.path, a)});
-      if (study.functional) {
-        io::ReadOptions f = read;
-        f.series = study.functional->series;
+      items.push_back({"anatomical", readSource(study.anatomical, read)});
+      if (study.functional)
         items.push_back({"functional (" + config::toString(study.functionalKind) + ")",
-                         io::readVolume(study.functional->path, f)});
-      }
+                         readSource(*study.functional, read)});
     } else {
       for (auto& v : io::readAllVolumes(p, read)) items.push_back({"", std::move(v)});
     }

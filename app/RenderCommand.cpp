@@ -1,6 +1,7 @@
 #include "RenderCommand.h"
 
 #include "FunctionalPlacement.h"
+#include "StudyVolumes.h"
 
 #include <cstdio>
 #include <cstring>
@@ -172,16 +173,9 @@ std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOpti
 void runRender(const RenderOptions& o) {
   const config::StudyConfig study = config::loadStudyConfig(o.study);
   std::vector<PlannedView> views = plan(study, o);
-  io::ReadOptions read;
-  read.series = study.anatomical.series;
-  const Volume anatomy = io::readVolume(study.anatomical.path, read);
-
+  const Volume anatomy = readSource(study.anatomical);
   std::optional<Volume> functional;
-  if (study.functional) {
-    io::ReadOptions f;
-    f.series = study.functional->series;
-    functional = io::readVolume(study.functional->path, f);
-  }
+  if (study.functional) functional = readSource(*study.functional);
 
   auto context = render::createHeadlessContext({16, 16});
   render::VolumeRenderer renderer(*context, anatomy);

@@ -1,5 +1,7 @@
 #include "ValidateCommand.h"
 
+#include "StudyVolumes.h"
+
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -749,11 +751,7 @@ bool runValidate(const ValidateOptions& o) {
     }
     for (std::size_t k = 0; k < c.checks.size(); ++k) {
       const fs::path& anatomical = study.anatomical.path;
-      if (!volumes.count(anatomical)) {
-        io::ReadOptions read;
-        read.series = study.anatomical.series;
-        volumes.emplace(anatomical, io::readVolume(anatomical, read));
-      }
+      if (!volumes.count(anatomical)) volumes.emplace(anatomical, readSource(study.anatomical));
       plans[ci].push_back(planMip(volumes.at(anatomical), c.checks[k], suite.file,
                                   where + " check " + std::to_string(k + 1)));
       makeJob(plans[ci].back().view, static_cast<int>(k));

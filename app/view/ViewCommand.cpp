@@ -5,9 +5,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "../StudyVolumes.h"
 #include "Viewer.h"
 #include "mvw/core/Error.h"
-#include "mvw/io/VolumeReader.h"
 
 namespace mvw::app {
 
@@ -27,14 +27,8 @@ void runView(const ViewOptions& o) {
     v.study.anatomical.path = o.anatomical;
     if (!o.functional.empty()) v.study.functional = config::VolumeSource{o.functional, ""};
   }
-  io::ReadOptions read;
-  read.series = v.study.anatomical.series;
-  v.anatomical = io::readVolume(v.study.anatomical.path, read);
-  if (v.study.functional) {
-    io::ReadOptions f;
-    f.series = v.study.functional->series;
-    v.functional = io::readVolume(v.study.functional->path, f);
-  }
+  v.anatomical = readSource(v.study.anatomical);
+  if (v.study.functional) v.functional = readSource(*v.study.functional);
   v.script = o.script;
   v.width = o.width;
   v.height = o.height;
