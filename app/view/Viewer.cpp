@@ -288,8 +288,7 @@ void Viewer::onDrag(int pane, double dx, double dy, int button, bool ctrl) {
 void Viewer::onClick(int pane, double x, double y) {
   if (pane == k3d) return;
   const render::Camera& cam = panes_[static_cast<std::size_t>(pane)].camera;
-  const glm::dvec4 o = cam.worldFromClip * glm::dvec4(x * 2.0 - 1.0, 1.0 - y * 2.0, -1.0, 1.0);
-  const glm::dvec3 origin = glm::dvec3(o) / o.w;
+  const glm::dvec3 origin = render::rayThrough(cam, {x * 2.0 - 1.0, 1.0 - y * 2.0}).origin;
   const double along = glm::dot(crosshair_ - origin, cam.forward);  // stay on this pane's plane
   crosshair_ = origin + along * cam.forward;
   for (int p = kAxial; p < kPaneCount; ++p) panes_[static_cast<std::size_t>(p)].dirty = true;
@@ -456,8 +455,7 @@ void Viewer::drawPane(int pane, ImVec2 pos, ImVec2 size) {
     if (io.MouseWheel != 0.0f) onWheel(pane, io.MouseWheel);
     if (pane != k3d && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.KeyCtrl) onClick(pane, fx, fy);
     if (pane != k3d) {
-      const glm::dvec4 o = p.camera.worldFromClip * glm::dvec4(fx * 2 - 1, 1 - fy * 2, -1, 1);
-      const glm::dvec3 origin = glm::dvec3(o) / o.w;
+      const glm::dvec3 origin = render::rayThrough(p.camera, {fx * 2 - 1, 1 - fy * 2}).origin;
       hoverWorld_ = origin + glm::dot(crosshair_ - origin, p.camera.forward) * p.camera.forward;
       hoverValid_ = true;
     }

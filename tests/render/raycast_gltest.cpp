@@ -74,15 +74,13 @@ TEST(Raycast, IsosurfaceBisectionFindsTheSphereWithinATenthOfAVoxel) {
   s.camera.zoom = 2.5;  // about 0.7 mm per pixel
   s.jitter = false;
   const Frame f = renderer.render(s);
-  const glm::dmat4& worldFromClip = f.camera.worldFromClip;
   double worstErr = 0.0;
   int checked = 0;
   for (int r = 0; r < 65; ++r)
     for (int c = 0; c < 65; ++c) {
       const glm::dvec2 ndc((c + 0.5) / 65 * 2 - 1, 1 - (r + 0.5) / 65 * 2);
-      glm::dvec4 o = worldFromClip * glm::dvec4(ndc, -1, 1);
-      glm::dvec4 e = worldFromClip * glm::dvec4(ndc, 1, 1);
-      const glm::dvec3 origin = glm::dvec3(o) / o.w, dir = glm::normalize(glm::dvec3(e) / e.w - origin);
+      const WorldRay ray = rayThrough(f.camera, ndc);
+      const glm::dvec3 origin = ray.origin, dir = ray.direction;
       const double along = glm::dot(centre - origin, dir);
       const double rho2 = glm::dot(centre - origin, centre - origin) - along * along;
       if (rho2 > (0.9 * R) * (0.9 * R)) continue;
@@ -329,8 +327,7 @@ TEST(DepthCuedMip, TheRampIsAppliedBeforeTheMaximum) {
   ASSERT_GT(zNear * 0.6, zFar * 0.8) << "the phantom must show the inversion";
   EXPECT_NEAR(cued.image.pixel(20, 20)[0], expected * 255.0, 3.0);
   // The depth channel reports where the maximum was taken: the near sphere's front.
-  const glm::dvec4 o = cued.camera.worldFromClip * glm::dvec4(0, 0, -1, 1);
-  const double tFront = glm::dot(glm::dvec3(0.0) - glm::dvec3(o) / o.w, cued.camera.forward) - R;
+  const double tFront = glm::dot(-rayThrough(cued.camera, {0, 0}).origin, cued.camera.forward) - R;
   EXPECT_NEAR(cued.image.depth[20 * 41 + 20], tFront + (R - 28.0), 1.0);
 }
 
@@ -564,9 +561,10 @@ TEST(DepthCuedMip, OverlappingVesselsShowTheNearerOne) {
   for (int r = 0; r < 128; ++r)
     for (int c = 0; c < 128; ++c) {
       const glm::dvec2 ndc((c + 0.5) / 128 * 2 - 1, 1 - (r + 0.5) / 128 * 2);
-      const glm::dvec4 o4 = f.camera.worldFromClip * glm::dvec4(ndc, -1, 1);
+      const WorldRay ray = rayThrough(f.camera, ndc);
+      const glm::dvec3 o = ray.origin, dir = ray.direction;
+      // The far end of the projector, where the march stops.
       const glm::dvec4 e4 = f.camera.worldFromClip * glm::dvec4(ndc, 1, 1);
-      const glm::dvec3 o = glm::dvec3(o4) / o4.w, dir = glm::normalize(glm::dvec3(e4) / e4.w - o);
       std::vector<std::pair<double, double>> runs;
       std::vector<double> runRadius;  // the thickest tube in each run
       bool in = false;

@@ -42,6 +42,15 @@ std::optional<StandardView> parseStandardView(const std::string& name) {
 
 std::string toString(StandardView view) { return kNames[static_cast<int>(view)]; }
 
+WorldRay rayThrough(const Camera& camera, const glm::dvec2& ndc) {
+  const glm::dvec4 nearPoint = camera.worldFromClip * glm::dvec4(ndc, -1.0, 1.0);
+  const glm::dvec4 farPoint = camera.worldFromClip * glm::dvec4(ndc, 1.0, 1.0);
+  WorldRay ray;
+  ray.origin = glm::dvec3(nearPoint) / nearPoint.w;
+  ray.direction = glm::normalize(glm::dvec3(farPoint) / farPoint.w - ray.origin);
+  return ray;
+}
+
 Camera makeCamera(const CameraSettings& s, const glm::dvec3& centre, double radius, glm::ivec2 imageSize) {
   Basis b = standardBasis(s.view);
   glm::dvec3 right = glm::cross(b.forward, b.up);

@@ -44,6 +44,15 @@ struct Camera {
   glm::dmat4 clipFromWorld{1.0};
 };
 
+// The projector through a point of the image, given in normalised device coordinates (-1..1,
+// y up): its origin on the near plane and its unit direction, both in world mm. The ray caster
+// starts its distances t at this origin.
+struct WorldRay {
+  glm::dvec3 origin{0.0};
+  glm::dvec3 direction{0.0};
+};
+WorldRay rayThrough(const Camera& camera, const glm::dvec2& ndc);
+
 // A camera that shows a sphere of `radius` mm around `centre` whole at zoom 1.
 Camera makeCamera(const CameraSettings& settings, const glm::dvec3& centre, double radius,
                   glm::ivec2 imageSize);
