@@ -1,5 +1,7 @@
 #include "mvw/resampling/Resample.h"
 
+#include "mvw/io/VtkImageView.h"
+
 #include <algorithm>
 #include <cstring>
 #include <string>
@@ -11,7 +13,6 @@
 #include <vtkMatrix4x4.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
-#include <vtkType.h>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "mvw/core/Check.h"
@@ -20,47 +21,6 @@
 namespace mvw::resampling {
 
 namespace {
-
-int vtkTypeOf(ScalarType type) {
-  switch (type) {
-    case ScalarType::UInt8:
-      return VTK_UNSIGNED_CHAR;
-    case ScalarType::Int8:
-      return VTK_SIGNED_CHAR;
-    case ScalarType::UInt16:
-      return VTK_UNSIGNED_SHORT;
-    case ScalarType::Int16:
-      return VTK_SHORT;
-    case ScalarType::UInt32:
-      return VTK_UNSIGNED_INT;
-    case ScalarType::Int32:
-      return VTK_INT;
-    case ScalarType::Float32:
-      return VTK_FLOAT;
-    case ScalarType::Float64:
-      break;
-  }
-  return VTK_DOUBLE;
-}
-
-// The moving voxels seen by VTK without a copy, on an image with unit spacing and zero
-// origin: all geometry, direction included, goes into the reslice axes, so nothing depends
-// on which VTK filters honour vtkImageData's own direction matrix.
-vtkSmartPointer<vtkImageData> wrap(const Volume& volume) {
-  const auto d = volume.dimensions();
-  vtkSmartPointer<vtkDataArray> array;
-  array.TakeReference(vtkDataArray::CreateDataArray(vtkTypeOf(volume.scalarType())));
-  array->SetNumberOfComponents(volume.components());
-  // save = 1: VTK never frees or writes these bytes; reslice only reads its input.
-  array->SetVoidArray(const_cast<std::byte*>(volume.data()),
-                      static_cast<vtkIdType>(volume.valueCount()), 1);
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(d.x, d.y, d.z);
-  image->SetSpacing(1, 1, 1);
-  image->SetOrigin(0, 0, 0);
-  image->GetPointData()->SetScalars(array);
-  return image;
-}
 
 Volume firstComponent(const Volume& volume) {
   Volume out(volume.dimensions(), 1, volume.scalarType(), volume.worldFromIndex());
@@ -132,7 +92,11 @@ Volume resample(const Volume& moving, const Grid& fixedGrid, const Transform& fi
       axes->SetElement(row, col, movingIndexFromFixedIndex[col][row]);
 
   auto reslice = vtkSmartPointer<vtkImageReslice>::New();
-  reslice->SetInputData(wrap(source));
+  // The moving voxels seen by VTK without a copy, on an image with unit spacing and zero
+  // origin: all geometry, direction included, goes into the reslice axes, so nothing depends
+  // on which VTK filters honour vtkImageData's own direction matrix.
+  const vtkSmartPointer<vtkImageData> input = io::imageViewOfVolume(source);
+  reslice->SetInputData(input);
   reslice->SetResliceAxes(axes);
   reslice->SetOutputSpacing(1, 1, 1);
   reslice->SetOutputOrigin(0, 0, 0);
@@ -163,7 +127,7 @@ Volume resample(const Volume& moving, const Grid& fixedGrid, const Transform& fi
     reslice->Update();
     vtkDataArray* scalars = reslice->GetOutput()->GetPointData()->GetScalars();
     MVW_CHECK(scalars != nullptr);
-    MVW_CHECK_EQ(scalars->GetDataType(), vtkTypeOf(source.scalarType()));
+    MVW_CHECK_EQ(scalars->GetDataType(), input->GetScalarType());
     MVW_CHECK_EQ(
         static_cast<std::size_t>(scalars->GetNumberOfValues()) * scalarSize(source.scalarType()),
         sliceBytes * static_cast<std::size_t>(z1 - z0 + 1));

@@ -21,6 +21,7 @@
 #include "VtkBridge.h"
 #include "VtkMessages.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/VtkImageView.h"
 
 namespace mvw::io::detail {
 
@@ -309,7 +310,7 @@ void writeNifti(const Volume& input, const fs::path& path) {
     flipped.setWorldFromIndex(m);
     volume = &flipped;
   }
-  auto image = imageViewOfVolume(*volume);  // no copy of the voxels: writers only read
+  auto image = io::imageViewOfVolume(*volume);  // no copy of the voxels: writers only read
   const glm::dvec3 spacing = volume->spacing();
   image->SetSpacing(spacing.x, spacing.y, spacing.z);
   glm::dmat4 ras = kLpsFromRas * volume->worldFromIndex();

@@ -1,5 +1,7 @@
 #include "VtkBridge.h"
 
+#include "mvw/io/VtkImageView.h"
+
 #include <cstring>
 
 #include <vtkDataArray.h>
@@ -59,12 +61,16 @@ Volume volumeFromImage(vtkImageData* image, const std::filesystem::path& file) {
   return volume;
 }
 
+}  // namespace mvw::io::detail
+
+namespace mvw::io {
+
 vtkSmartPointer<vtkImageData> imageViewOfVolume(const Volume& volume) {
   auto image = vtkSmartPointer<vtkImageData>::New();
   const glm::ivec3 d = volume.dimensions();
   image->SetDimensions(d.x, d.y, d.z);
   vtkSmartPointer<vtkDataArray> array;
-  array.TakeReference(vtkDataArray::CreateDataArray(vtkTypeFromScalar(volume.scalarType())));
+  array.TakeReference(vtkDataArray::CreateDataArray(detail::vtkTypeFromScalar(volume.scalarType())));
   array->SetNumberOfComponents(volume.components());
   // save = 1: VTK never frees or writes this memory; it belongs to the Volume.
   array->SetVoidArray(const_cast<std::byte*>(volume.data()), static_cast<vtkIdType>(volume.valueCount()), 1);
@@ -72,4 +78,4 @@ vtkSmartPointer<vtkImageData> imageViewOfVolume(const Volume& volume) {
   return image;
 }
 
-}  // namespace mvw::io::detail
+}  // namespace mvw::io

@@ -14,9 +14,6 @@ namespace mvw::io::detail {
 // Throws InputError naming `file` for scalar types mvw does not handle.
 Volume volumeFromImage(vtkImageData* image, const std::filesystem::path& file);
 
-// An image sharing the volume's voxels (no copy; writers only read), with origin 0 and unit
-// spacing (geometry is the caller's: each format places it differently). The volume must
-// outlive the image.
-vtkSmartPointer<vtkImageData> imageViewOfVolume(const Volume& volume);
+// The other direction is mvw/io/VtkImageView.h (imageViewOfVolume), shared with resampling.
 
 }  // namespace mvw::io::detail
