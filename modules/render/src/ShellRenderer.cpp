@@ -7,7 +7,6 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "mvw/core/Error.h"
-#include "mvw/render/ShaderProgram.h"
 
 namespace mvw::render::detail {
 
@@ -75,9 +74,13 @@ Image ShellRenderer::draw(const ShellDraw& d) {
   if (!d.enabled.empty() && static_cast<int>(d.enabled.size()) != d.count)
     throw Error("one enabled flag per shell is needed");
   ensureShells(d);
-  const char* define = d.mode == ShellMode::Maximum ? "MVW_SHELL_MAX 1"
-                       : d.mode == ShellMode::Summation ? "MVW_SHELL_SUM 1" : "MVW_SHELL_LIT 1";
-  ShaderProgram program("shells.vert.glsl", "shells.frag.glsl", {define});
+  auto found = programs_.find(d.mode);
+  if (found == programs_.end()) {
+    const char* define = d.mode == ShellMode::Maximum ? "MVW_SHELL_MAX 1"
+                         : d.mode == ShellMode::Summation ? "MVW_SHELL_SUM 1" : "MVW_SHELL_LIT 1";
+    found = programs_.emplace(d.mode, ShaderProgram("shells.vert.glsl", "shells.frag.glsl", {define})).first;
+  }
+  ShaderProgram& program = found->second;
 
   Texture color = makeTexture(), depthOut = makeTexture();
   glBindTexture(GL_TEXTURE_2D, color.id());

@@ -12,6 +12,7 @@
 #include "IsoShells.h"
 #include "mvw/core/Image.h"
 #include "mvw/render/Camera.h"
+#include "mvw/render/ShaderProgram.h"
 
 namespace mvw::render::detail {
 
@@ -46,6 +47,7 @@ class ShellRenderer {
   double cachedLow_ = 0.0, cachedWidth_ = 0.0;
   int cachedCount_ = 0;
   std::vector<std::unique_ptr<Gpu>> shells_;
+  std::map<ShellMode, ShaderProgram> programs_;  // compiled once per mode
 };
 
 }  // namespace mvw::render::detail
