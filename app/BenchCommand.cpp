@@ -1,5 +1,6 @@
 #include "BenchCommand.h"
 
+#include "BenchFeatures.h"
 #include "BenchRegister.h"
 #include "StudyVolumes.h"
 
@@ -104,6 +105,7 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_flag("--no-shading", o->noShading, "Composite without Phong shading");
   cmd->callback([o] { runBench(*o); });
   addBenchRegisterCommand(*bench);
+  addBenchFeaturesCommand(*bench);
 }
 
 }  // namespace mvw::app

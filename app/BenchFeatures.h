@@ -1,0 +1,11 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace mvw::app {
+
+// `mvw bench features STUDY`: what each view's feature (glyphs, colour fusion, depth cue)
+// costs over the same view without it, rendered interleaved over an azimuth orbit (see
+// tests/bench/feature-cost).
+void addBenchFeaturesCommand(CLI::App& bench);
+
+}  // namespace mvw::app

@@ -1,0 +1,126 @@
+#include "ViewPlan.h"
+
+#include "mvw/core/Error.h"
+
+namespace mvw::app {
+
+namespace {
+
+std::string defaultPreset(const Volume& v) {
+  if (v.metadata().modality == "CT" || v.metadata().unit == "HU") return "ct-bone";
+  if (v.metadata().modality == "PT" || v.metadata().modality == "NM") return "pet-hot-metal";
+  return "mr-default";
+}
+
+}  // namespace
+
+std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& o) {
+  std::vector<PlannedView> out;
+  for (config::ViewConfig v : study.render.views) {
+    if (o.mode) v.mode = *o.mode;
+    if (o.view) v.view = *o.view;
+    if (o.preset) v.preset = *o.preset;
+    if (o.sampling) v.sampling = *o.sampling;
+    if (o.size) v.width = v.height = *o.size;
+    if (o.azimuth) v.azimuth = *o.azimuth;
+    if (o.elevation) v.elevation = *o.elevation;
+    if (o.roll) v.roll = *o.roll;
+    if (o.zoom) v.zoom = *o.zoom;
+    if (o.window) v.window = *o.window;
+    if (o.level) v.level = *o.level;
+    if (o.iso) v.iso = *o.iso;
+    if (o.noAnnotate) v.annotate = false;
+    if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue = true;
+    if (o.cueBrightness) v.cueBrightness = *o.cueBrightness;
+    if (o.cueAmount) v.cueAmount = *o.cueAmount;
+    if (o.cueContrast) v.cueContrast = *o.cueContrast;
+    if (o.perspective) v.perspective = true;
+    PlannedView p;
+    auto& s = p.settings;
+    const auto mode = render::parseRenderMode(v.mode);
+    if (!mode) throw InputError(study.file, "view '" + v.name + "': unknown mode '" + v.mode +
+                                                "' (composite, isosurface, mip, minip, average, mpr, shells-mip, "
+                                                "shells-sum, shells-lit)");
+    const auto sv = render::parseStandardView(v.view);
+    if (!sv) throw InputError(study.file, "view '" + v.name + "': unknown view '" + v.view +
+                                              "' (anterior, posterior, left, right, superior, inferior, "
+                                              "axial, coronal, sagittal)");
+    if (v.sampling != "linear" && v.sampling != "nearest")
+      throw InputError(study.file, "view '" + v.name + "': sampling must be linear or nearest");
+    if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
+      throw InputError(study.file, "view '" + v.name + "': size must be 1..8192");
+    if (v.window && !(*v.window > 0)) throw InputError(study.file, "view '" + v.name + "': window must be positive");
+    if (!v.preset.empty()) {
+      try {
+        s.transfer = render::transferPreset(v.preset);
+      } catch (const Error& e) {
+        throw InputError(study.file, "view '" + v.name + "': " + e.what());
+      }
+    }
+    s.mode = *mode;
+    s.size = {v.width, v.height};
+    s.camera.view = *sv;
+    s.camera.azimuthDeg = v.azimuth;
+    s.camera.elevationDeg = v.elevation;
+    s.camera.rollDeg = v.roll;
+    s.camera.zoom = v.zoom;
+    s.camera.perspective = v.perspective;
+    s.window = v.window.value_or(0.0);
+    s.level = v.level.value_or(0.0);
+    s.isoValue = v.iso;
+    s.stepMm = v.stepMm;
+    s.shading = v.shading;
+    s.linear = v.sampling == "linear";
+    s.jitter = v.jitter;
+    s.seed = v.seed;
+    s.background = {v.background[0], v.background[1], v.background[2]};
+    s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
+    s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
+    s.glyphs = v.glyphs;
+    s.glyphSizeControl = v.glyphMethod == "sized";
+    s.glyphConvexity = v.glyphConvexity == "convex" ? 0 : v.glyphConvexity == "concave" ? 1 : 2;
+    s.glyphDiameterMm = v.glyphDiameterMm;
+    s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
+    if (v.glyphs && !study.functional)
+      throw InputError(study.file, "view '" + v.name + "': glyphs need a functional volume in the study");
+    if (v.glyphs && (s.mode != render::RenderMode::Composite && s.mode != render::RenderMode::Isosurface))
+      throw InputError(study.file, "view '" + v.name + "': glyphs work in composite and isosurface modes");
+    if (v.functionalWindow) {
+      s.functionalLow = (*v.functionalWindow)[0];
+      s.functionalHigh = (*v.functionalWindow)[1];
+    }
+    s.lightOffset = {v.light[0], v.light[1]};
+    s.shellCount = v.shells;
+    if (!v.shellsDisabled.empty()) {
+      s.shellEnabled.assign(static_cast<std::size_t>(v.shells), true);
+      for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
+    }
+    s.depthCue = v.depthCue;
+    s.cueBrightness = v.cueBrightness;
+    s.cueAmount = v.cueAmount;
+    s.cueContrast = v.cueContrast;
+    s.gradientOpacityLow = v.gradientOpacity[0];
+    s.gradientOpacityHigh = v.gradientOpacity[1];
+    s.planeOffsetMm = v.planeOffsetMm;
+    s.slabMm = v.slabMm;
+    s.overlay = v.overlay;
+    s.fusion = v.fusion;
+    s.functionalClasses = v.functionalClasses;
+    if (v.fusion && !study.functional)
+      throw InputError(study.file, "view '" + v.name + "': fusion needs a functional volume in the study");
+    s.overlayOpacity = static_cast<float>(v.overlayOpacity);
+    s.overlayThreshold = static_cast<float>(v.overlayThreshold);
+    p.presetName = v.preset;
+    p.config = v;
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+void applyDefaultPreset(PlannedView& view, const Volume& anatomy) {
+  if (!view.presetName.empty()) return;
+  view.presetName = defaultPreset(anatomy);
+  view.settings.transfer = render::transferPreset(view.presetName);
+}
+
+}  // namespace mvw::app

@@ -1,0 +1,36 @@
+#pragma once
+// A study's render views turned into renderer settings, validated before any volume is read
+// or GL context exists; shared by `mvw render` and `mvw bench features`.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Volume.h"
+#include "mvw/render/VolumeRenderer.h"
+
+namespace mvw::app {
+
+// Command-line values that replace each view's own.
+struct ViewOverrides {
+  std::optional<std::string> mode, view, preset, sampling;
+  std::optional<int> size;
+  std::optional<double> azimuth, elevation, roll, zoom, window, level, iso;
+  std::optional<double> cueBrightness, cueAmount, cueContrast;
+  bool noAnnotate = false;
+  bool perspective = false;
+};
+
+struct PlannedView {
+  config::ViewConfig config;
+  render::RenderSettings settings;
+  std::string presetName;  // empty until the anatomy is known: see applyDefaultPreset
+};
+
+// Throws InputError naming the study file for any view the renderer cannot honour.
+std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& overrides = {});
+
+// Views without a preset get the one that suits the anatomy's modality.
+void applyDefaultPreset(PlannedView& view, const Volume& anatomy);
+
+}  // namespace mvw::app
