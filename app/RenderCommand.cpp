@@ -2,6 +2,7 @@
 
 #include "FunctionalPlacement.h"
 #include "StudyVolumes.h"
+#include "ViewPlan.h"
 
 #include <cstdio>
 #include <cstring>
@@ -38,19 +39,8 @@ namespace fs = std::filesystem;
 struct RenderOptions {
   std::string study;
   std::string outDir;
-  std::optional<std::string> mode, view, preset, sampling;
-  std::optional<int> size;
-  std::optional<double> azimuth, elevation, roll, zoom, window, level, iso;
-  std::optional<double> cueBrightness, cueAmount, cueContrast;
-  bool noAnnotate = false;
-  bool perspective = false;
+  ViewOverrides overrides;
 };
-
-std::string defaultPreset(const Volume& v) {
-  if (v.metadata().modality == "CT" || v.metadata().unit == "HU") return "ct-bone";
-  if (v.metadata().modality == "PT" || v.metadata().modality == "NM") return "pet-hot-metal";
-  return "mr-default";
-}
 
 std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
   std::uint64_t h = 1469598103934665603ull;
@@ -60,119 +50,9 @@ std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
   return buf;
 }
 
-struct PlannedView {
-  config::ViewConfig config;
-  render::RenderSettings settings;
-  std::string presetName;
-};
-
-// Everything is validated before the volume is read or a GL context exists.
-std::vector<PlannedView> plan(const config::StudyConfig& study, const RenderOptions& o) {
-  std::vector<PlannedView> out;
-  for (config::ViewConfig v : study.render.views) {
-    if (o.mode) v.mode = *o.mode;
-    if (o.view) v.view = *o.view;
-    if (o.preset) v.preset = *o.preset;
-    if (o.sampling) v.sampling = *o.sampling;
-    if (o.size) v.width = v.height = *o.size;
-    if (o.azimuth) v.azimuth = *o.azimuth;
-    if (o.elevation) v.elevation = *o.elevation;
-    if (o.roll) v.roll = *o.roll;
-    if (o.zoom) v.zoom = *o.zoom;
-    if (o.window) v.window = *o.window;
-    if (o.level) v.level = *o.level;
-    if (o.iso) v.iso = *o.iso;
-    if (o.noAnnotate) v.annotate = false;
-    if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue = true;
-    if (o.cueBrightness) v.cueBrightness = *o.cueBrightness;
-    if (o.cueAmount) v.cueAmount = *o.cueAmount;
-    if (o.cueContrast) v.cueContrast = *o.cueContrast;
-    if (o.perspective) v.perspective = true;
-    PlannedView p;
-    auto& s = p.settings;
-    const auto mode = render::parseRenderMode(v.mode);
-    if (!mode) throw InputError(study.file, "view '" + v.name + "': unknown mode '" + v.mode +
-                                                "' (composite, isosurface, mip, minip, average, mpr, shells-mip, "
-                                                "shells-sum, shells-lit)");
-    const auto sv = render::parseStandardView(v.view);
-    if (!sv) throw InputError(study.file, "view '" + v.name + "': unknown view '" + v.view +
-                                              "' (anterior, posterior, left, right, superior, inferior, "
-                                              "axial, coronal, sagittal)");
-    if (v.sampling != "linear" && v.sampling != "nearest")
-      throw InputError(study.file, "view '" + v.name + "': sampling must be linear or nearest");
-    if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
-      throw InputError(study.file, "view '" + v.name + "': size must be 1..8192");
-    if (v.window && !(*v.window > 0)) throw InputError(study.file, "view '" + v.name + "': window must be positive");
-    if (!v.preset.empty()) {
-      try {
-        s.transfer = render::transferPreset(v.preset);
-      } catch (const Error& e) {
-        throw InputError(study.file, "view '" + v.name + "': " + e.what());
-      }
-    }
-    s.mode = *mode;
-    s.size = {v.width, v.height};
-    s.camera.view = *sv;
-    s.camera.azimuthDeg = v.azimuth;
-    s.camera.elevationDeg = v.elevation;
-    s.camera.rollDeg = v.roll;
-    s.camera.zoom = v.zoom;
-    s.camera.perspective = v.perspective;
-    s.window = v.window.value_or(0.0);
-    s.level = v.level.value_or(0.0);
-    s.isoValue = v.iso;
-    s.stepMm = v.stepMm;
-    s.shading = v.shading;
-    s.linear = v.sampling == "linear";
-    s.jitter = v.jitter;
-    s.seed = v.seed;
-    s.background = {v.background[0], v.background[1], v.background[2]};
-    s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
-    s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
-    s.glyphs = v.glyphs;
-    s.glyphSizeControl = v.glyphMethod == "sized";
-    s.glyphConvexity = v.glyphConvexity == "convex" ? 0 : v.glyphConvexity == "concave" ? 1 : 2;
-    s.glyphDiameterMm = v.glyphDiameterMm;
-    s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
-    if (v.glyphs && !study.functional)
-      throw InputError(study.file, "view '" + v.name + "': glyphs need a functional volume in the study");
-    if (v.glyphs && (s.mode != render::RenderMode::Composite && s.mode != render::RenderMode::Isosurface))
-      throw InputError(study.file, "view '" + v.name + "': glyphs work in composite and isosurface modes");
-    if (v.functionalWindow) {
-      s.functionalLow = (*v.functionalWindow)[0];
-      s.functionalHigh = (*v.functionalWindow)[1];
-    }
-    s.lightOffset = {v.light[0], v.light[1]};
-    s.shellCount = v.shells;
-    if (!v.shellsDisabled.empty()) {
-      s.shellEnabled.assign(static_cast<std::size_t>(v.shells), true);
-      for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
-    }
-    s.depthCue = v.depthCue;
-    s.cueBrightness = v.cueBrightness;
-    s.cueAmount = v.cueAmount;
-    s.cueContrast = v.cueContrast;
-    s.gradientOpacityLow = v.gradientOpacity[0];
-    s.gradientOpacityHigh = v.gradientOpacity[1];
-    s.planeOffsetMm = v.planeOffsetMm;
-    s.slabMm = v.slabMm;
-    s.overlay = v.overlay;
-    s.fusion = v.fusion;
-    s.functionalClasses = v.functionalClasses;
-    if (v.fusion && !study.functional)
-      throw InputError(study.file, "view '" + v.name + "': fusion needs a functional volume in the study");
-    s.overlayOpacity = static_cast<float>(v.overlayOpacity);
-    s.overlayThreshold = static_cast<float>(v.overlayThreshold);
-    p.presetName = v.preset;
-    p.config = v;
-    out.push_back(std::move(p));
-  }
-  return out;
-}
-
 void runRender(const RenderOptions& o) {
   const config::StudyConfig study = config::loadStudyConfig(o.study);
-  std::vector<PlannedView> views = plan(study, o);
+  std::vector<PlannedView> views = planViews(study, o.overrides);
   const Volume anatomy = readSource(study.anatomical);
   std::optional<Volume> functional;
   if (study.functional) functional = readSource(*study.functional);
@@ -193,10 +73,7 @@ void runRender(const RenderOptions& o) {
   };
   std::vector<Output> outputs;
   for (auto& v : views) {
-    if (v.presetName.empty()) {
-      v.presetName = defaultPreset(anatomy);
-      v.settings.transfer = render::transferPreset(v.presetName);
-    }
+    applyDefaultPreset(v, anatomy);
     render::Frame frame = renderer.render(v.settings);
     const double window = v.settings.window > 0 ? v.settings.window : hi - lo;
     const double level = v.settings.window > 0 ? v.settings.level : 0.5 * (hi + lo);
@@ -391,7 +268,7 @@ void addRenderCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("glyphmap", "Export the volumetric normal glyph map (NIfTI or MetaImage)");
     cmd->add_option("-o,--output", g->output, "Output file (.nii, .nii.gz, .mha, .mhd)")->required();
     cmd->add_option("--size", g->settings.size, "Voxels per side")->check(CLI::Range(8, 512));
-    cmd->add_option("--count", g->settings.count, "Number of glyphs")->check(CLI::Range(1, 4096));
+    cmd->add_option("--count", g->settings.count, "Number of glyphs")->check(CLI::Range(1, 255));
     cmd->add_option("--diameter", g->settings.diameter, "Glyph diameter in map voxels");
     cmd->add_option("--seed", g->settings.seed, "Random seed of the positions");
     cmd->add_option("--voxel-mm", g->voxelMm, "Voxel size written to the file")->check(CLI::PositiveNumber);
@@ -409,27 +286,27 @@ void addRenderCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("-o,--output", o->outDir, "Output folder")->required();
-  cmd->add_option("--mode", o->mode,
+  cmd->add_option("--mode", o->overrides.mode,
                   "composite | isosurface | mip | minip | average | mpr | shells-mip | shells-sum | shells-lit");
-  cmd->add_option("--view", o->view,
+  cmd->add_option("--view", o->overrides.view,
                   "anterior | posterior | left | right | superior | inferior (MPR: axial | coronal | sagittal)");
-  cmd->add_option("--preset", o->preset, "Transfer function: ct-bone, ct-skin, ct-muscle-bone, mr-default, pet-hot-metal");
-  cmd->add_option("--size", o->size, "Image width and height in pixels")->check(CLI::Range(1, 8192));
-  cmd->add_option("--azimuth", o->azimuth, "Degrees about the view's up axis");
-  cmd->add_option("--elevation", o->elevation, "Degrees about the view's right axis");
-  cmd->add_option("--roll", o->roll, "Degrees about the line of sight");
-  cmd->add_option("--zoom", o->zoom, "Magnification (1 fits the volume)")->check(CLI::PositiveNumber);
-  cmd->add_option("--window", o->window, "Window width for projections")->check(CLI::PositiveNumber);
-  cmd->add_option("--level", o->level, "Window centre for projections");
-  cmd->add_option("--iso", o->iso, "Isosurface value");
-  cmd->add_option("--sampling", o->sampling, "linear | nearest");
-  cmd->add_option("--cue-brightness", o->cueBrightness, "MIP depth cue: brightness beta0 (Heidrich 1995)");
-  cmd->add_option("--cue-amount", o->cueAmount, "MIP depth cue: amount a (0 = none)");
-  cmd->add_option("--cue-contrast", o->cueContrast, "MIP depth cue: contrast b (1 = plain MIP)");
-  cmd->add_flag("--perspective", o->perspective, "Perspective instead of orthographic projection");
-  cmd->add_flag("--no-annotate", o->noAnnotate, "No orientation labels, scale bar or caption");
+  cmd->add_option("--preset", o->overrides.preset, "Transfer function: ct-bone, ct-skin, ct-muscle-bone, mr-default, pet-hot-metal");
+  cmd->add_option("--size", o->overrides.size, "Image width and height in pixels")->check(CLI::Range(1, 8192));
+  cmd->add_option("--azimuth", o->overrides.azimuth, "Degrees about the view's up axis");
+  cmd->add_option("--elevation", o->overrides.elevation, "Degrees about the view's right axis");
+  cmd->add_option("--roll", o->overrides.roll, "Degrees about the line of sight");
+  cmd->add_option("--zoom", o->overrides.zoom, "Magnification (1 fits the volume)")->check(CLI::PositiveNumber);
+  cmd->add_option("--window", o->overrides.window, "Window width for projections")->check(CLI::PositiveNumber);
+  cmd->add_option("--level", o->overrides.level, "Window centre for projections");
+  cmd->add_option("--iso", o->overrides.iso, "Isosurface value");
+  cmd->add_option("--sampling", o->overrides.sampling, "linear | nearest");
+  cmd->add_option("--cue-brightness", o->overrides.cueBrightness, "MIP depth cue: brightness beta0 (Heidrich 1995)");
+  cmd->add_option("--cue-amount", o->overrides.cueAmount, "MIP depth cue: amount a (0 = none)");
+  cmd->add_option("--cue-contrast", o->overrides.cueContrast, "MIP depth cue: contrast b (1 = plain MIP)");
+  cmd->add_flag("--perspective", o->overrides.perspective, "Perspective instead of orthographic projection");
+  cmd->add_flag("--no-annotate", o->overrides.noAnnotate, "No orientation labels, scale bar or caption");
   cmd->callback([o] {
-    if (o->window.has_value() != o->level.has_value())
+    if (o->overrides.window.has_value() != o->overrides.level.has_value())
       throw InputError(o->study, "--window and --level go together");
     runRender(*o);
   });

@@ -3,11 +3,13 @@
 // with associated (opacity-weighted) colours, early ray termination at 0.99, optional
 // Phong shading from the precomputed gradient.
 #include "raycast/common.glsl"
+#include "common/functional.glsl"
 #include "common/glyphs.glsl"
 
-uniform sampler2D uTransfer;   // RGBA over (value, |gradient| / uGradientMax); alpha per step
-uniform vec2 uTransferRange;   // values at the first and last columns
-uniform float uGradientMax;    // |gradient| at the last row (unit/mm)
+uniform sampler2D uTransfer;   // RGBA over (value, |gradient| * uGradientScale); alpha per step
+uniform vec2 uTransferRange;   // (scale, offset): value * scale + offset is the table's column, 0..1
+                               // (a multiply-add per sample, not a division)
+uniform float uGradientScale;  // 1 / the |gradient| (unit/mm) at the last row
 uniform bool uShading;
 
 struct RayState {
@@ -23,14 +25,14 @@ void setupHook(inout RayState s, Ray ray) {
 bool skipHook(RayState s, vec3 tex) { return !blockVisible(tex); }
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
-  float u = clamp((value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x), 0.0, 1.0);
+  float u = clamp(value * uTransferRange.x + uTransferRange.y, 0.0, 1.0);
   vec4 g = vec4(0.0);
   vec4 c;
   // Variants are compile-time (#define from C++): as uniform branches the unused features
   // cost this loop half its speed on llvmpipe.
 #if defined(MVW_TF2D)
   g = sampleGradient(tex);
-  c = textureLod(uTransfer, vec2(u, clamp(g.a / uGradientMax, 0.0, 1.0)), 0.0);
+  c = textureLod(uTransfer, vec2(u, clamp(length(g.xyz) * uGradientScale, 0.0, 1.0)), 0.0);
 #else
   c = textureLod(uTransfer, vec2(u, 0.5), 0.0);
 #endif
@@ -44,11 +46,13 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 #if !defined(MVW_TF2D)
     g = sampleGradient(tex);
 #endif
-    if (g.a > 1e-6) {
-      vec3 n = -g.xyz / g.a;
+    float magnitude2 = dot(g.xyz, g.xyz);
+    if (magnitude2 > 1e-12) {
+      vec3 n = -g.xyz * inversesqrt(magnitude2);
 #if defined(MVW_GLYPHS)
-      // A sample that adds less than one grey level to the pixel cannot show a glyph.
-      if ((1.0 - s.color.a) * alpha > 1.0 / 255.0) n = glyphNormal(ray.origin + t * ray.dir, n);
+      // A sample that adds less than one grey level to the pixel cannot show a glyph. The
+      // attribute comes with the gradient (its alpha): no second volume is read per sample.
+      if ((1.0 - s.color.a) * alpha > 1.0 / 255.0) n = glyphNormal(ray.origin + t * ray.dir, n, g.a);
 #endif
       rgb = phong(rgb, n, ray.dir);
     }

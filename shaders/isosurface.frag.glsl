@@ -1,6 +1,7 @@
 // Isosurface ray casting: the first step that crosses uIsoValue is refined by bisection
 // (8 halvings: 1/256 of a step), then shaded with Phong from the gradient at the hit.
 #include "raycast/common.glsl"
+#include "common/functional.glsl"
 #include "common/glyphs.glsl"
 
 uniform float uIsoValue;
@@ -42,13 +43,14 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
   }
   vec3 hit = ray.origin + s.hitT * ray.dir;
   vec4 g = sampleGradient(toTexture(hit));
-  vec3 n = g.a > 1e-6 ? -g.xyz / g.a : -ray.dir;
+  float magnitude = length(g.xyz);
+  vec3 n = magnitude > 1e-6 ? -g.xyz / magnitude : -ray.dir;
   // Where the ray enters the (cropped) box already inside the surface, the visible surface
   // is the cut face itself: shade it flat, facing the viewer, not with the gradient of
   // whatever tissue was cut (noise, for a CT).
   if (s.hitT <= gRayEntry) n = -ray.dir;
 #if defined(MVW_GLYPHS)
-  n = glyphNormal(hit, n);
+  n = glyphNormal(hit, n, g.a);
 #endif
   vec3 colour = uHasFunctional ? fuseColour(uIsoColor.rgb, hit) : uIsoColor.rgb;  // colour fusion
   fragColor = vec4(phong(colour, n, ray.dir), 1.0);

@@ -16,7 +16,8 @@ struct VolumeInfo {
 
 uniform VolumeInfo uVolume;
 uniform sampler3D uIntensity;  // R32F, physical values (HU, SUV, ...)
-uniform sampler3D uGradient;   // RGBA16F: world-space gradient (unit/mm) and its magnitude
+uniform sampler3D uGradient;   // RGBA16F: world-space gradient (unit/mm) in RGB; in A the functional
+                               // attribute mapped to 0..1 on this grid (glyph beta), 0 without one
 uniform usampler3D uBlocks;    // R8UI per 8^3 voxel block: 1 if the transfer function can show it
 uniform sampler3D uBlockRange; // RG32F per block: min and max value (one-voxel apron included)
 uniform float uBlockVoxels;    // voxels per block side

@@ -1,6 +1,7 @@
 // The volumetric normal map (Seipel 2007, section 3.1), checked texel by texel.
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include <glm/geometric.hpp>
 
@@ -56,6 +57,57 @@ TEST(GlyphMap, SixteenSeparateSpheresOfTheRequestedDiameter) {
   for (int n : inside) EXPECT_NEAR(n, volume, 0.02 * volume);
 }
 
+// The renderer's compact form: the cell holding a point names the one glyph that can contain
+// it, and the texels are what that glyph's centre gives (shaders/common/glyphs.glsl).
+TEST(GlyphMap, CellsNameTheOneGlyphThatReachesThem) {
+  for (const GlyphMapSettings& s : {GlyphMapSettings{128, 16, 32.0, 7}, GlyphMapSettings{63, 9, 13.0, 2}}) {
+    const GlyphMap map = makeGlyphMap(s);
+    ASSERT_EQ(map.cellSize, s.size % 2 == 0 ? 2 : 1);
+    const int n = s.size / map.cellSize;
+    ASSERT_EQ(map.cells.size(), static_cast<std::size_t>(n) * n * n);
+    for (std::size_t a = 0; a < map.centres.size(); ++a)
+      for (std::size_t b = a + 1; b < map.centres.size(); ++b)
+        EXPECT_GT(glm::length(periodic(map.centres[a] - map.centres[b], s.size)),
+                  s.diameter + std::sqrt(3.0) * map.cellSize);
+    auto cellGlyph = [&](const glm::dvec3& p) {
+      glm::ivec3 c(glm::floor(p / double(map.cellSize)));
+      c = ((c % n) + n) % n;
+      return int(map.cells[(static_cast<std::size_t>(c.z) * n + c.y) * n + c.x]);
+    };
+    // Every texel centre: inside a glyph exactly when its cell's glyph contains it, with the
+    // texel's normal and A.
+    for (int k = 0; k < s.size; ++k)
+      for (int j = 0; j < s.size; ++j)
+        for (int i = 0; i < s.size; ++i) {
+          const glm::dvec3 p = glm::dvec3(i, j, k) + 0.5;
+          const glm::vec4& t = map.at(i, j, k);
+          const int g = cellGlyph(p);
+          const glm::dvec3 d = g ? periodic(p - map.centres[g - 1], s.size) : glm::dvec3(1e9);
+          const bool inside = g && glm::length(d) <= map.radius;
+          ASSERT_EQ(inside, t.a >= 0.0f) << i << "," << j << "," << k;
+          if (!inside) continue;
+          ASSERT_NEAR(glm::length(d) / map.radius, t.a, 1e-5);
+          if (glm::length(d) > 1e-6) {
+            ASSERT_GT(glm::dot(glm::normalize(d), glm::dvec3(t)), 0.99999);
+          }
+        }
+    // Points between texels too: a point within a radius of some glyph's centre is always in
+    // a cell that names that glyph.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0.0, s.size);
+    int inside = 0;
+    for (int trial = 0; trial < 200000; ++trial) {
+      const glm::dvec3 p(u(rng), u(rng), u(rng));
+      for (std::size_t c = 0; c < map.centres.size(); ++c)
+        if (glm::length(periodic(p - map.centres[c], s.size)) <= map.radius) {
+          ++inside;
+          ASSERT_EQ(cellGlyph(p), int(c) + 1);
+        }
+    }
+    EXPECT_GT(inside, 1000);
+  }
+}
+
 TEST(GlyphMap, RepeatsAlongEveryAxisAndFollowsTheSeed) {
   const GlyphMap map = makeGlyphMap({64, 6, 16.0, 3});
   for (int i = 0; i < 64; i += 7) {
@@ -71,6 +123,7 @@ TEST(GlyphMap, ImpossibleRequestsAreErrors) {
   EXPECT_THROW(makeGlyphMap({32, 200, 15.0, 1}), Error);  // cannot fit without overlap
   EXPECT_THROW(makeGlyphMap({64, 4, 40.0, 1}), Error);    // wider than half the map
   EXPECT_THROW(makeGlyphMap({4, 1, 2.0, 1}), Error);
+  EXPECT_THROW(makeGlyphMap({512, 256, 4.0, 1}), Error);  // one byte per cell names the glyph
 }
 
 }  // namespace

@@ -151,7 +151,7 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
     if (v.glyphConvexity != "convex" && v.glyphConvexity != "concave" && v.glyphConvexity != "both")
       throw InputError(file, "'" + gw + "convexity' must be convex, concave or both");
     v.glyphDiameterMm = numberField(file, g, gw, "diameter_mm", 6.0, 0.1, 1000.0);
-    v.glyphCount = static_cast<int>(numberField(file, g, gw, "count", 16, 1, 4096));
+    v.glyphCount = static_cast<int>(numberField(file, g, gw, "count", 16, 1, 255));
     v.glyphSeed = static_cast<unsigned>(numberField(file, g, gw, "seed", 1, 0, 4294967295.0));
     v.glyphMapSize = static_cast<int>(numberField(file, g, gw, "map_size", 128, 8, 512));
     v.glyphMapDiameter = numberField(file, g, gw, "map_diameter", 32, 2, 256);

@@ -34,10 +34,12 @@ class GlName {
 inline void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 inline void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 inline void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
+inline void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
 
 using Texture = GlName<deleteTexture>;
 using Framebuffer = GlName<deleteFramebuffer>;
 using VertexArray = GlName<deleteVertexArray>;
+using Buffer = GlName<deleteBuffer>;
 
 inline Texture makeTexture() {
   GLuint id = 0;
@@ -53,6 +55,11 @@ inline VertexArray makeVertexArray() {
   GLuint id = 0;
   glGenVertexArrays(1, &id);
   return VertexArray(id);
+}
+inline Buffer makeBuffer() {
+  GLuint id = 0;
+  glGenBuffers(1, &id);
+  return Buffer(id);
 }
 
 }  // namespace mvw::render::detail

@@ -28,7 +28,7 @@ const glm::vec4& GlyphMap::at(int i, int j, int k) const {
 
 GlyphMap makeGlyphMap(const GlyphMapSettings& s) {
   if (s.size < 8 || s.size > 512) throw Error("glyph map size must be 8..512 voxels");
-  if (s.count < 1 || s.count > 4096) throw Error("glyph count must be 1..4096");
+  if (s.count < 1 || s.count > 255) throw Error("glyph count must be 1..255");
   if (!(s.diameter >= 2.0) || s.diameter > s.size / 2.0)
     throw Error("glyph diameter must be 2 .. half the map size (" + std::to_string(s.size / 2) + ") voxels");
   GlyphMap map;
@@ -37,9 +37,12 @@ GlyphMap makeGlyphMap(const GlyphMapSettings& s) {
   const double n = s.size;
   std::mt19937 rng(s.seed);
   std::uniform_real_distribution<double> position(0.0, n);
-  // Rejection sampling: a glyph may not come closer than one diameter to another (a voxel of
-  // clearance, so neighbours never touch), measured on the periodic lattice.
-  const double minDistance = s.diameter + 1.0;
+  // Cells of 2 voxels where the size allows (a 64^3 grid for the default map), else 1.
+  map.cellSize = s.size % 2 == 0 ? 2 : 1;
+  const double halfDiagonal = 0.5 * std::sqrt(3.0) * map.cellSize;
+  // Rejection sampling: a glyph may not come closer than one diameter plus one cell diagonal
+  // to another, measured on the periodic lattice, so no cell is reached by two glyphs.
+  const double minDistance = s.diameter + 2.0 * halfDiagonal + 1e-6;
   for (int attempts = 0; static_cast<int>(map.centres.size()) < s.count; ++attempts) {
     if (attempts > 200000)
       throw Error("cannot place " + std::to_string(s.count) + " glyphs of " + std::to_string(s.diameter) +
@@ -67,6 +70,18 @@ GlyphMap makeGlyphMap(const GlyphMapSettings& s) {
               glm::vec4(glm::vec3(normal), static_cast<float>(r / map.radius));
         }
   }
+  // A glyph reaches into a cell only if the cell's centre q lies within radius + half a
+  // diagonal of its centre; then, by the clearance, it is q's nearest glyph by a margin.
+  const int cells = s.size / map.cellSize;
+  map.cells.assign(static_cast<std::size_t>(cells) * cells * cells, 0);
+  for (int k = 0; k < cells; ++k)
+    for (int j = 0; j < cells; ++j)
+      for (int i = 0; i < cells; ++i) {
+        const glm::dvec3 q = (glm::dvec3(i, j, k) + 0.5) * double(map.cellSize);
+        for (std::size_t g = 0; g < map.centres.size(); ++g)
+          if (glm::length(periodicDelta(q, map.centres[g], n)) <= map.radius + halfDiagonal)
+            map.cells[(static_cast<std::size_t>(k) * cells + j) * cells + i] = static_cast<std::uint8_t>(g + 1);
+      }
   return map;
 }
 

@@ -10,16 +10,6 @@
 
 namespace mvw::render::detail {
 
-namespace {
-void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-using Buffer = GlName<deleteBuffer>;
-Buffer makeBuffer() {
-  GLuint id = 0;
-  glGenBuffers(1, &id);
-  return Buffer(id);
-}
-}  // namespace
-
 struct ShellRenderer::Gpu {
   double emission = 0.0;
   VertexArray vao;

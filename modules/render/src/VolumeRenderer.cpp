@@ -45,6 +45,8 @@ std::vector<float> valuesOf(const Volume& v) {
 
 // Central differences on the voxel grid with physical spacing (one-sided at the border),
 // turned into world (LPS) directions with the direction matrix: the seed's gradient volume.
+// The fourth component carries the functional attribute for glyph shading (see
+// VolumeRenderer::Impl::updateBeta); shaders take the magnitude from the vector.
 std::vector<float> gradientOf(const std::vector<float>& v, glm::ivec3 d, const glm::dvec3& spacing,
                               const glm::dmat3& direction) {
   std::vector<float> g(v.size() * 4);
@@ -53,19 +55,34 @@ std::vector<float> gradientOf(const std::vector<float>& v, glm::ivec3 d, const g
     for (int k = k0; k < k1; ++k)
       for (int j = 0; j < d.y; ++j)
         for (int i = 0; i < d.x; ++i) {
-          const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, d.x - 1);
-          const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, d.y - 1);
-          const int kk0 = std::max(k - 1, 0), kk1 = std::min(k + 1, d.z - 1);
-          const glm::dvec3 local(
-              i1 > i0 ? (at(i1, j, k) - at(i0, j, k)) / ((i1 - i0) * spacing.x) : 0.0,
-              j1 > j0 ? (at(i, j1, k) - at(i, j0, k)) / ((j1 - j0) * spacing.y) : 0.0,
-              kk1 > kk0 ? (at(i, j, kk1) - at(i, j, kk0)) / ((kk1 - kk0) * spacing.z) : 0.0);
+          // Central differences along each axis, averaged over the 3 x 3 neighbours across it
+          // with weights 1 2 1 (Sobel): 8-bit data then shade without contour terraces.
+          glm::dvec3 local(0.0);
+          const glm::ivec3 c(i, j, k);
+          for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3, e = (a + 2) % 3;
+            glm::ivec3 lo = c, hi = c;
+            lo[a] = std::max(c[a] - 1, 0);
+            hi[a] = std::min(c[a] + 1, d[a] - 1);
+            if (hi[a] == lo[a]) continue;
+            double sum = 0.0, weight = 0.0;
+            for (int db = -1; db <= 1; ++db)
+              for (int de = -1; de <= 1; ++de) {
+                glm::ivec3 p = lo, q = hi;
+                p[b] = q[b] = std::clamp(c[b] + db, 0, d[b] - 1);
+                p[e] = q[e] = std::clamp(c[e] + de, 0, d[e] - 1);
+                const double w = (db == 0 ? 2.0 : 1.0) * (de == 0 ? 2.0 : 1.0);
+                sum += w * (at(q.x, q.y, q.z) - at(p.x, p.y, p.z));
+                weight += w;
+              }
+            local[a] = sum / weight / ((hi[a] - lo[a]) * spacing[a]);
+          }
           const glm::dvec3 w = direction * local;
           float* out = &g[((static_cast<std::size_t>(k) * d.y + j) * d.x + i) * 4];
           out[0] = static_cast<float>(w.x);
           out[1] = static_cast<float>(w.y);
           out[2] = static_cast<float>(w.z);
-          out[3] = static_cast<float>(glm::length(w));
+          out[3] = 0.0f;  // the functional attribute (glyph beta), written on the GPU when needed
         }
   };
   const int half = d.z / 2;
@@ -127,8 +144,21 @@ struct VolumeRenderer::Impl {
   glm::ivec3 blockCount;
   std::vector<glm::vec2> blockMinMax;
   detail::Texture intensity, gradient, blocks, blockRange, transfer;
-  detail::Texture functional, colormap, glyphMap;
-  GlyphMapSettings glyphMapSettings{0, 0, 0.0, 0};  // of the uploaded map
+  detail::Texture functional, colormap;
+  std::uint64_t functionalGeneration = 0;  // counts setFunctional calls
+  // The glyph map as the shaders read it: cell grid + centres (uploaded for glyphMapSettings).
+  detail::Texture glyphCells;
+  detail::Buffer glyphCentres;
+  GlyphMapSettings glyphMapSettings{0, 0, 0.0, 0};
+  double glyphRadius = 0.0;
+  // What the gradient texture's alpha holds: the functional attribute through this mapping.
+  struct BetaKey {
+    std::uint64_t generation;
+    float low, high;
+    int classes;
+    bool operator==(const BetaKey&) const = default;
+  };
+  std::optional<BetaKey> betaKey;
   glm::dmat4 functionalTextureFromAnatomicalWorld{1.0};
   std::pair<double, double> functionalRange{0.0, 1.0};
   detail::VertexArray vao;
@@ -137,6 +167,17 @@ struct VolumeRenderer::Impl {
   std::unique_ptr<detail::ShellRenderer> shells;
 
   explicit Impl(GlContext& c) : context(c) {}
+
+  ShaderProgram& cachedProgram(const std::string& key, const std::string& vertex, const std::string& fragment,
+                               const std::vector<std::string>& defines = {}) {
+    auto it = programs.find(key);
+    if (it == programs.end()) it = programs.emplace(key, ShaderProgram(vertex, fragment, defines)).first;
+    return it->second;
+  }
+
+  void uploadGlyphMap(const GlyphMapSettings& g);
+  void updateBeta(const BetaKey& key);
+  void setFunctionalUniforms(ShaderProgram& p, float low, float high, int classes) const;
 
   // The program for a mode and its compile-time variants (features off cost nothing).
   ShaderProgram& program(RenderMode mode, const RenderSettings& s, bool fusion) {
@@ -166,11 +207,75 @@ struct VolumeRenderer::Impl {
     }
     std::string key = toString(mode);
     for (const auto& d : defines) key += "+" + d;
-    auto it = programs.find(key);
-    if (it == programs.end()) it = programs.emplace(key, ShaderProgram("fullscreen.vert.glsl", file, defines)).first;
-    return it->second;
+    return cachedProgram(key, "fullscreen.vert.glsl", file, defines);
   }
 };
+
+void VolumeRenderer::Impl::uploadGlyphMap(const GlyphMapSettings& g) {
+  if (glyphCells.id() && g.size == glyphMapSettings.size && g.count == glyphMapSettings.count &&
+      g.diameter == glyphMapSettings.diameter && g.seed == glyphMapSettings.seed)
+    return;
+  const GlyphMap map = makeGlyphMap(g);
+  const int n = map.size / map.cellSize;
+  glyphCells = detail::makeTexture();
+  glBindTexture(GL_TEXTURE_3D, glyphCells.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, n, n, n, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, map.cells.data());
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_REPEAT);  // the map is periodic
+  setSampling(glyphCells.id(), GL_TEXTURE_3D, false);
+  std::vector<glm::vec4> centres(255, glm::vec4(0.0f));  // std140: one vec4 per centre
+  for (std::size_t i = 0; i < map.centres.size(); ++i) centres[i] = glm::vec4(glm::vec3(map.centres[i]), 0.0f);
+  glyphCentres = detail::makeBuffer();
+  glBindBuffer(GL_UNIFORM_BUFFER, glyphCentres.id());
+  glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(centres.size() * sizeof(glm::vec4)), centres.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  checkGl("uploading the glyph map");
+  glyphMapSettings = g;
+  glyphRadius = map.radius;
+}
+
+void VolumeRenderer::Impl::setFunctionalUniforms(ShaderProgram& p, float low, float high, int classes) const {
+  const glm::mat4 functionalFromWorld(functionalTextureFromAnatomicalWorld);
+  glUniformMatrix4fv(p.uniform("uFunctionalFromWorld"), 1, GL_FALSE, glm::value_ptr(functionalFromWorld));
+  glUniform2f(p.uniform("uFunctionalRange"), low, high);
+  glUniform1i(p.uniform("uFunctionalClasses"), std::max(0, classes));
+}
+
+// The functional attribute through the view's mapping, resampled onto the anatomical grid
+// and written into the gradient texture's alpha one slice at a time (colour mask: alpha
+// only), so the ray loop reads beta with the gradient instead of sampling a second volume.
+void VolumeRenderer::Impl::updateBeta(const BetaKey& key) {
+  if (betaKey == key) return;
+  ShaderProgram& p = cachedProgram("beta", "fullscreen.vert.glsl", "beta.frag.glsl");
+  p.use();
+  setFunctionalUniforms(p, key.low, key.high, key.classes);
+  const glm::mat4 worldFromIndexF(worldFromIndex);
+  glUniformMatrix4fv(p.uniform("uWorldFromIndex"), 1, GL_FALSE, glm::value_ptr(worldFromIndexF));
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_3D, functional.id());
+  glUniform1i(p.uniform("uFunctional"), 0);
+  detail::Framebuffer fbo = detail::makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  const GLenum buffer = GL_COLOR_ATTACHMENT0;
+  glDrawBuffers(1, &buffer);
+  glViewport(0, 0, dims.x, dims.y);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  glBindVertexArray(vao.id());
+  for (int k = 0; k < dims.z; ++k) {
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, gradient.id(), 0, k);
+    if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw Error("the GL cannot render into the gradient volume (RGBA16F) for glyph shading");
+    glUniform1f(p.uniform("uSlice"), float(k));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkGl("resampling the functional volume for glyph shading");
+  betaKey = key;
+}
 
 VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume) : impl_(std::make_unique<Impl>(context)) {
   Impl& m = *impl_;
@@ -248,6 +353,7 @@ void VolumeRenderer::setFunctional(const Volume& functional, const glm::dmat4& a
   // Label maps keep their classes: nearest; other attributes are interpolated.
   m.functional = upload3D(d, GL_R32F, GL_RED, values.data(), !isInteger(functional.scalarType()),
                           "uploading the functional volume");
+  ++m.functionalGeneration;
   glm::dmat4 textureFromIndex(1.0);
   for (int a = 0; a < 3; ++a) {
     textureFromIndex[a][a] = 1.0 / d[a];
@@ -360,6 +466,18 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   setSampling(m.intensity.id(), GL_TEXTURE_3D, s.linear);
 
+  // Glyph shading: the map's cells and centres, and the attribute in the gradient's alpha.
+  if (s.glyphs && m.functional.id() == 0)
+    throw Error("glyph rendering needs a functional volume (the study has none)");
+  if (s.glyphs && !(s.glyphDiameterMm > 0)) throw Error("glyph diameter must be positive");
+  const bool userWindow = s.functionalHigh > s.functionalLow;
+  const float functionalLow = float(userWindow ? s.functionalLow : m.functionalRange.first);
+  const float functionalHigh = float(userWindow ? s.functionalHigh : m.functionalRange.second);
+  if (s.glyphs) {
+    m.uploadGlyphMap(s.glyphMap);
+    m.updateBeta({m.functionalGeneration, functionalLow, functionalHigh, s.functionalClasses});
+  }
+
   // Targets: RGBA8 colour and R32F ray depth.
   detail::Texture colorTex = detail::makeTexture(), depthTex = detail::makeTexture();
   glBindTexture(GL_TEXTURE_2D, colorTex.id());
@@ -407,9 +525,9 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
                                           s.lightOffset.y * frame.camera.up));
   glUniform3f(p.uniform("uLightDir"), lightDir.x, lightDir.y, lightDir.z);
   glUniform1i(p.uniform("uHeadlight"), s.lightOffset == glm::dvec2(0.0) ? 1 : 0);
-  glUniform2f(p.uniform("uTransferRange"), float(lo), float(hi));
+  glUniform2f(p.uniform("uTransferRange"), float(1.0 / (hi - lo)), float(-lo / (hi - lo)));
   glUniform1i(p.uniform("uShading"), s.shading ? 1 : 0);
-  glUniform1f(p.uniform("uGradientMax"), float(gradientMax));
+  glUniform1f(p.uniform("uGradientScale"), float(1.0 / gradientMax));
   const double window = s.window > 0 ? s.window : hi - lo;
   const double level = s.window > 0 ? s.level : 0.5 * (hi + lo);
   glUniform2f(p.uniform("uWindowLevel"), float(window), float(level));
@@ -420,48 +538,27 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
   const glm::vec3 planeCentre(centre + frame.camera.forward * s.planeOffsetMm);
   glUniform3f(p.uniform("uPlaneCentre"), planeCentre.x, planeCentre.y, planeCentre.z);
   glUniform1f(p.uniform("uSlab"), float(std::max(0.0, s.slabMm)));
-  if (s.glyphs && m.functional.id() == 0)
-    throw Error("glyph rendering needs a functional volume (the study has none)");
-  if (s.glyphs && !(s.glyphDiameterMm > 0)) throw Error("glyph diameter must be positive");
   if (s.glyphs) {
-    const GlyphMapSettings& g = s.glyphMap;
-    if (!m.glyphMap.id() || g.size != m.glyphMapSettings.size || g.count != m.glyphMapSettings.count ||
-        g.diameter != m.glyphMapSettings.diameter || g.seed != m.glyphMapSettings.seed) {
-      const GlyphMap map = makeGlyphMap(g);
-      // Packed to RGBA8 (see shaders/common/glyphs.glsl): normal (n + 1) / 2, A = 0 outside,
-      // else 1 + 254 r/R.
-      std::vector<std::uint8_t> packed(map.texels.size() * 4);
-      for (std::size_t i = 0; i < map.texels.size(); ++i) {
-        const glm::vec4& t = map.texels[i];
-        for (int c = 0; c < 3; ++c)
-          packed[i * 4 + c] = static_cast<std::uint8_t>(std::lround(std::clamp((t[c] + 1.0f) * 127.5f, 0.0f, 255.0f)));
-        packed[i * 4 + 3] = t.a < 0.0f ? 0 : static_cast<std::uint8_t>(1 + std::lround(std::clamp(t.a, 0.0f, 1.0f) * 254.0f));
-      }
-      m.glyphMap = detail::makeTexture();
-      glBindTexture(GL_TEXTURE_3D, m.glyphMap.id());
-      glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, map.size, map.size, map.size, 0, GL_RGBA, GL_UNSIGNED_BYTE, packed.data());
-      checkGl("uploading the glyph map");
-      for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-        glTexParameteri(GL_TEXTURE_3D, wrap, GL_REPEAT);  // the map is periodic
-      setSampling(m.glyphMap.id(), GL_TEXTURE_3D, false);
-      m.glyphMapSettings = g;
+    const GLuint block = glGetUniformBlockIndex(p.id(), "GlyphCentres");
+    if (block != GL_INVALID_INDEX) {
+      glUniformBlockBinding(p.id(), block, 0);
+      glBindBufferBase(GL_UNIFORM_BUFFER, 0, m.glyphCentres.id());
     }
+    const double voxelsPerMm = s.glyphMap.diameter / s.glyphDiameterMm;
+    glUniform1f(p.uniform("uGlyphVoxelsPerMm"), float(voxelsPerMm));
+    glUniform1f(p.uniform("uGlyphMapSize"), float(s.glyphMap.size));
+    glUniform1f(p.uniform("uGlyphInvMapSize"), float(1.0 / s.glyphMap.size));
+    glUniform1f(p.uniform("uGlyphRadius"), float(m.glyphRadius));
   }
-  glUniform1i(p.uniform("uFunctionalClasses"), std::max(0, s.functionalClasses));
-  glUniform1f(p.uniform("uGlyphPeriod"), float(s.glyphDiameterMm * s.glyphMap.size / s.glyphMap.diameter));
+  m.setFunctionalUniforms(p, functionalLow, functionalHigh, s.functionalClasses);
   glUniform1i(p.uniform("uHasFunctional"), overlay ? 1 : 0);
-  const glm::mat4 functionalFromWorld(m.functionalTextureFromAnatomicalWorld);
-  glUniformMatrix4fv(p.uniform("uFunctionalFromWorld"), 1, GL_FALSE, glm::value_ptr(functionalFromWorld));
-  const bool userWindow = s.functionalHigh > s.functionalLow;
-  glUniform2f(p.uniform("uFunctionalRange"), float(userWindow ? s.functionalLow : m.functionalRange.first),
-              float(userWindow ? s.functionalHigh : m.functionalRange.second));
   glUniform1f(p.uniform("uOverlayOpacity"), s.overlayOpacity);
   glUniform1f(p.uniform("uOverlayThreshold"), s.overlayThreshold);
   const struct { const char* name; GLenum target; GLuint id; } units[] = {
       {"uIntensity", GL_TEXTURE_3D, m.intensity.id()}, {"uGradient", GL_TEXTURE_3D, m.gradient.id()},
       {"uBlocks", GL_TEXTURE_3D, m.blocks.id()},       {"uTransfer", GL_TEXTURE_2D, m.transfer.id()},
       {"uBlockRange", GL_TEXTURE_3D, m.blockRange.id()}, {"uFunctional", GL_TEXTURE_3D, m.functional.id()},
-      {"uColormap", GL_TEXTURE_1D, m.colormap.id()},   {"uGlyphMap", GL_TEXTURE_3D, m.glyphMap.id()}};
+      {"uColormap", GL_TEXTURE_1D, m.colormap.id()},   {"uGlyphCells", GL_TEXTURE_3D, m.glyphCells.id()}};
   for (int u = 0; u < 8; ++u) {
     glActiveTexture(GL_TEXTURE0 + u);
     glBindTexture(units[u].target, units[u].id);
