@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../FunctionalPlacement.h"
+#include "../ViewPlan.h"
 #include "GlfwContext.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/PngWriter.h"
@@ -158,21 +159,22 @@ void Viewer::setupRendering() {
   mprWindow_ = ct ? 400.0 : hi - lo;
   mprLevel_ = ct ? 40.0 : 0.5 * (lo + hi);
   crosshair_ = renderer_->centre();
-  // The study's first view, when it has one, sets the 3D view.
-  if (!opt_.study.render.views.empty()) {
-    const config::ViewConfig& v = opt_.study.render.views.front();
-    if (auto m = render::parseRenderMode(v.mode); m && *m != RenderMode::Mpr) view3d_.mode = *m;
-    if (auto sv = render::parseStandardView(v.view)) view3d_.camera.view = *sv;
-    view3d_.camera.azimuthDeg = v.azimuth;
-    view3d_.camera.elevationDeg = v.elevation;
-    view3d_.camera.zoom = v.zoom;
-    if (!v.preset.empty()) {
-      presetName_ = v.preset;
-      view3d_.transfer = render::transferPreset(v.preset);
-    }
-    if (v.window) view3d_.window = *v.window, view3d_.level = *v.level;
-    view3d_.isoValue = v.iso;
+  // The study's first view the 3D pane can show sets it up, exactly as `mvw render` would
+  // render it (glyphs, attribute window, crop, light, ...); an MPR view sets the MPR panes'
+  // window and the overlay.
+  std::vector<PlannedView> planned = planViews(opt_.study);
+  for (PlannedView& v : planned) {
+    if (std::find(std::begin(k3dModes), std::end(k3dModes), v.settings.mode) == std::end(k3dModes)) continue;
+    applyDefaultPreset(v, opt_.anatomical);
+    view3d_ = v.settings;
+    presetName_ = v.presetName;
+    break;
   }
+  for (const PlannedView& v : planned)
+    if (v.settings.mode == RenderMode::Mpr) {
+      if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
+      break;
+    }
 }
 
 config::ViewConfig Viewer::viewConfigOf(int pane) const {
@@ -187,7 +189,26 @@ config::ViewConfig Viewer::viewConfigOf(int pane) const {
     v.preset = presetName_;
     if (view3d_.window > 0) v.window = view3d_.window, v.level = view3d_.level;
     v.iso = view3d_.isoValue;
+    v.roll = view3d_.camera.rollDeg;
+    v.perspective = view3d_.camera.perspective;
+    v.stepMm = view3d_.stepMm;
+    v.shading = view3d_.shading;
+    v.sampling = view3d_.linear ? "linear" : "nearest";
+    v.jitter = view3d_.jitter;
+    v.seed = view3d_.seed;
+    v.background = {view3d_.background.r, view3d_.background.g, view3d_.background.b};
+    v.cropMin = {view3d_.cropMin.x, view3d_.cropMin.y, view3d_.cropMin.z};
+    v.cropMax = {view3d_.cropMax.x, view3d_.cropMax.y, view3d_.cropMax.z};
+    v.light = {view3d_.lightOffset.x, view3d_.lightOffset.y};
+    v.gradientOpacity = {view3d_.gradientOpacityLow, view3d_.gradientOpacityHigh};
     v.glyphs = view3d_.glyphs;
+    v.glyphMethod = view3d_.glyphSizeControl ? "sized" : "simple";
+    v.glyphConvexity = view3d_.glyphConvexity == 0 ? "convex" : view3d_.glyphConvexity == 1 ? "concave" : "both";
+    v.glyphDiameterMm = view3d_.glyphDiameterMm;
+    v.glyphCount = view3d_.glyphMap.count;
+    v.glyphSeed = view3d_.glyphMap.seed;
+    v.glyphMapSize = view3d_.glyphMap.size;
+    v.glyphMapDiameter = view3d_.glyphMap.diameter;
     v.fusion = view3d_.fusion;
     v.depthCue = view3d_.depthCue;
     v.cueBrightness = view3d_.cueBrightness;
@@ -201,9 +222,12 @@ config::ViewConfig Viewer::viewConfigOf(int pane) const {
     v.level = mprLevel_;
     const render::Camera& cam = panes_[static_cast<std::size_t>(pane)].camera;
     v.planeOffsetMm = glm::dot(crosshair_ - renderer_->centre(), cam.forward);
-    v.overlayOpacity = view3d_.overlayOpacity;
-    v.overlayThreshold = view3d_.overlayThreshold;
   }
+  if (view3d_.functionalHigh > view3d_.functionalLow)
+    v.functionalWindow = std::array<double, 2>{view3d_.functionalLow, view3d_.functionalHigh};
+  v.functionalClasses = view3d_.functionalClasses;
+  v.overlayOpacity = view3d_.overlayOpacity;
+  v.overlayThreshold = view3d_.overlayThreshold;
   v.width = panes_[static_cast<std::size_t>(pane)].size.x;
   v.height = panes_[static_cast<std::size_t>(pane)].size.y;
   return v;
@@ -227,6 +251,9 @@ void Viewer::renderDirtyPanes(bool interacting) {
       s.level = mprLevel_;
       s.overlayOpacity = view3d_.overlayOpacity;
       s.overlayThreshold = view3d_.overlayThreshold;
+      s.functionalLow = view3d_.functionalLow;
+      s.functionalHigh = view3d_.functionalHigh;
+      s.functionalClasses = view3d_.functionalClasses;
       const glm::dvec3 forward = render::makeCamera(s.camera, renderer_->centre(), renderer_->radius(), s.size).forward;
       s.planeOffsetMm = glm::dot(crosshair_ - renderer_->centre(), forward);
     }
@@ -344,34 +371,16 @@ void Viewer::screenshot(const fs::path& file) {
 }
 
 void Viewer::saveConfig(const fs::path& file) const {
-  nlohmann::json j;
-  j["name"] = opt_.study.name.empty() ? "saved from mvw view" : opt_.study.name;
-  j["anatomical"] = {{"path", fs::absolute(opt_.anatomical.metadata().sourcePath).string()}};
-  if (!opt_.study.anatomical.series.empty()) j["anatomical"]["series"] = opt_.study.anatomical.series;
-  if (opt_.functional) j["functional"] = {{"path", fs::absolute(opt_.functional->metadata().sourcePath).string()}};
-  nlohmann::json views = nlohmann::json::array();
-  for (int p = 0; p < kPaneCount; ++p) {
-    const config::ViewConfig v = viewConfigOf(p);
-    nlohmann::json jv = {{"name", v.name}, {"mode", v.mode}, {"view", v.view}, {"width", v.width}, {"height", v.height}};
-    if (p == k3d) {
-      jv["azimuth"] = v.azimuth;
-      jv["elevation"] = v.elevation;
-      jv["zoom"] = v.zoom;
-      jv["preset"] = v.preset;
-      jv["iso"] = v.iso;
-      if (v.depthCue) jv["depth_cue"] = {{"brightness", v.cueBrightness}, {"amount", v.cueAmount}, {"contrast", v.cueContrast}};
-      if (v.glyphs) jv["glyphs"] = nlohmann::json::object();
-      if (v.fusion) jv["fusion"] = true;
-    } else {
-      jv["plane_offset_mm"] = v.planeOffsetMm;
-    }
-    if (v.window) jv["window"] = *v.window, jv["level"] = *v.level;
-    views.push_back(jv);
+  config::StudyConfig study = opt_.study;
+  if (study.name.empty()) study.name = "saved from mvw view";
+  study.anatomical.path = opt_.anatomical.metadata().sourcePath;
+  if (opt_.functional) {
+    if (!study.functional) study.functional.emplace();
+    study.functional->path = opt_.functional->metadata().sourcePath;
   }
-  j["render"] = {{"views", views}};
-  const fs::path tmp = file.string() + ".tmp";
-  std::ofstream(tmp) << j.dump(2) << "\n";
-  fs::rename(tmp, file);
+  study.render.views.clear();
+  for (int p = 0; p < kPaneCount; ++p) study.render.views.push_back(viewConfigOf(p));
+  config::writeStudyConfig(study, file);
 }
 
 // Script lines (for tests under Xvfb): key K [ctrl] | drag PANE dx dy [left|right|middle] |
@@ -537,12 +546,29 @@ void Viewer::drawPanel() {
     if (ImGui::SliderFloat("overlay opacity", &view3d_.overlayOpacity, 0, 1) |
         ImGui::SliderFloat("threshold", &view3d_.overlayThreshold, 0, 1))
       markAllDirty();
+    // The attribute's mapping to 0..1 (colour map, glyph beta): a window, or label classes.
+    const auto [flo, fhi] = renderer_->functionalRange();
+    const bool userWindow = view3d_.functionalHigh > view3d_.functionalLow;
+    float fw[2] = {float(userWindow ? view3d_.functionalLow : flo), float(userWindow ? view3d_.functionalHigh : fhi)};
+    if (ImGui::DragFloatRange2("attribute", &fw[0], &fw[1], float(fhi - flo) / 200.0f, float(flo), float(fhi))) {
+      view3d_.functionalLow = fw[0];
+      view3d_.functionalHigh = std::max(double(fw[1]), double(fw[0]) + 1e-6 * (fhi - flo));
+      markAllDirty();
+    }
+    int classes = view3d_.functionalClasses;
+    if (ImGui::InputInt("classes", &classes)) {
+      view3d_.functionalClasses = std::clamp(classes, 0, 64);
+      markAllDirty();
+    }
     bool glyphs = view3d_.glyphs, fusion = view3d_.fusion;
     if (ImGui::Checkbox("glyphs (G)", &glyphs)) view3d_.glyphs = glyphs, panes_[k3d].dirty = true;
     ImGui::SameLine();
     if (ImGui::Checkbox("colour fusion (F)", &fusion)) view3d_.fusion = fusion, panes_[k3d].dirty = true;
     float gd = float(view3d_.glyphDiameterMm);
     if (ImGui::SliderFloat("glyph size mm", &gd, 1, 40)) view3d_.glyphDiameterMm = gd, panes_[k3d].dirty = true;
+    int method = view3d_.glyphSizeControl ? 0 : 1;
+    const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};
+    if (ImGui::Combo("glyph method", &method, methods, 2)) view3d_.glyphSizeControl = method == 0, panes_[k3d].dirty = true;
     const char* convexity[] = {"convex", "concave", "both"};
     if (ImGui::Combo("bumps", &view3d_.glyphConvexity, convexity, 3)) panes_[k3d].dirty = true;
     ImGui::TextWrapped("registration: %s", registration_ == "none" ? "none (world coordinates)" : registration_.c_str());

@@ -1,4 +1,7 @@
 #include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -56,6 +59,73 @@ TEST(StudyConfig, RefusesTyposMissingKeysAndBadValues) {
   EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"},
       "functional": {"path": "pet.nii", "kind": "xray"}})")).find("functional.kind"), std::string::npos);
   EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": )")).find("not valid JSON"), std::string::npos);
+}
+
+
+// writeStudyConfig is loadStudyConfig's inverse: every field survives the round trip (the
+// viewer saves its state this way, and `mvw render` must reproduce it).
+TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
+  const fs::path dir = test::scratchDir();
+  const auto p = writeConfig(dir, R"({"name": "round trip", "anatomical": {"path": "anat.nii", "series": "7"},
+      "functional": {"path": "pet.nii", "kind": "labels"},
+      "registration": {"method": "rigid", "rotation_search_deg": 30},
+      "render": {"views": [
+        {"name": "a", "mode": "composite", "view": "superior", "azimuth": 12.5, "elevation": -3, "roll": 4,
+         "zoom": 1.7, "perspective": true, "width": 300, "height": 200, "preset": "ct-skin",
+         "gradient_opacity": [5, 40], "glyphs": {"method": "simple", "convexity": "both", "diameter_mm": 9,
+         "count": 20, "seed": 3, "map_size": 96, "map_diameter": 20}, "functional_window": [0.3, 1.5],
+         "functional_classes": 4, "crop_min": [0, 0.1, 0], "crop_max": [1, 1, 0.55], "light": [-0.8, 0.8],
+         "shading": false, "sampling": "nearest", "step_mm": 0.3, "jitter": false, "seed": 9,
+         "background": [0.1, 0.2, 0.3], "annotate": false, "fusion": true, "overlay_opacity": 0.7,
+         "overlay_threshold": 0.1},
+        {"name": "b", "mode": "mip", "window": 1000, "level": 500,
+         "depth_cue": {"brightness": 0.1, "amount": 0.66, "contrast": 0.33}},
+        {"name": "c", "mode": "shells-lit", "shells": 16, "shells_disabled": [1, 2]},
+        {"name": "d", "mode": "mpr", "view": "coronal", "plane_offset_mm": 20, "slab_mm": 5, "overlay": false}]}})");
+  const StudyConfig c = loadStudyConfig(p);
+  const fs::path written = dir / "written.json";
+  writeStudyConfig(c, written);
+  const StudyConfig d = loadStudyConfig(written);
+  const fs::path again = dir / "again.json";
+  writeStudyConfig(d, again);
+  auto text = [](const fs::path& f) {
+    std::ifstream in(f);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(text(written), text(again));
+  EXPECT_EQ(d.anatomical.path, dir / "anat.nii");
+  EXPECT_EQ(d.anatomical.series, "7");
+  EXPECT_EQ(d.functionalKind, FunctionalKind::Labels);
+  EXPECT_EQ(d.registration.method, "rigid");
+  EXPECT_EQ(d.registration.rotationSearchDeg, 30.0);
+  ASSERT_EQ(d.render.views.size(), 4u);
+  const ViewConfig& a = d.render.views[0];
+  EXPECT_TRUE(a.glyphs);
+  EXPECT_EQ(a.glyphMethod, "simple");
+  EXPECT_EQ(a.glyphConvexity, "both");
+  EXPECT_EQ(a.glyphDiameterMm, 9.0);
+  EXPECT_EQ(a.glyphCount, 20);
+  EXPECT_EQ(a.glyphMapSize, 96);
+  ASSERT_TRUE(a.functionalWindow.has_value());
+  EXPECT_EQ((*a.functionalWindow)[1], 1.5);
+  EXPECT_EQ(a.functionalClasses, 4);
+  EXPECT_EQ(a.cropMax[2], 0.55);
+  EXPECT_EQ(a.light[0], -0.8);
+  EXPECT_FALSE(a.shading);
+  EXPECT_EQ(a.sampling, "nearest");
+  EXPECT_EQ(a.background[2], 0.3);
+  EXPECT_TRUE(a.perspective);
+  EXPECT_EQ(a.gradientOpacity[1], 40.0);
+  EXPECT_TRUE(a.fusion);
+  EXPECT_EQ(a.overlayOpacity, 0.7);
+  const ViewConfig& b = d.render.views[1];
+  EXPECT_TRUE(b.depthCue);
+  EXPECT_EQ(b.cueAmount, 0.66);
+  ASSERT_TRUE(b.window.has_value());
+  EXPECT_EQ(*b.level, 500.0);
+  EXPECT_EQ(d.render.views[2].shellsDisabled, (std::vector<int>{1, 2}));
+  EXPECT_EQ(d.render.views[3].slabMm, 5.0);
+  EXPECT_FALSE(d.render.views[3].overlay);
 }
 
 }  // namespace

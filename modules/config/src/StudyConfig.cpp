@@ -270,6 +270,83 @@ StudyConfig loadStudyConfig(const fs::path& file) {
   return config;
 }
 
+namespace {
+
+json viewJson(const ViewConfig& v) {
+  json j = {{"name", v.name},
+            {"mode", v.mode},
+            {"view", v.view},
+            {"azimuth", v.azimuth},
+            {"elevation", v.elevation},
+            {"roll", v.roll},
+            {"zoom", v.zoom},
+            {"perspective", v.perspective},
+            {"width", v.width},
+            {"height", v.height},
+            {"iso", v.iso},
+            {"shading", v.shading},
+            {"sampling", v.sampling},
+            {"step_mm", v.stepMm},
+            {"jitter", v.jitter},
+            {"seed", v.seed},
+            {"background", v.background},
+            {"crop_min", v.cropMin},
+            {"crop_max", v.cropMax},
+            {"annotate", v.annotate},
+            {"light", v.light},
+            {"plane_offset_mm", v.planeOffsetMm},
+            {"slab_mm", v.slabMm},
+            {"overlay", v.overlay},
+            {"fusion", v.fusion},
+            {"overlay_opacity", v.overlayOpacity},
+            {"overlay_threshold", v.overlayThreshold},
+            {"functional_classes", v.functionalClasses},
+            {"shells", v.shells},
+            {"shells_disabled", v.shellsDisabled}};
+  if (!v.preset.empty()) j["preset"] = v.preset;
+  if (v.window) j["window"] = *v.window, j["level"] = *v.level;
+  if (v.gradientOpacity[1] > 0.0) j["gradient_opacity"] = v.gradientOpacity;
+  if (v.functionalWindow) j["functional_window"] = *v.functionalWindow;
+  if (v.glyphs)
+    j["glyphs"] = {{"method", v.glyphMethod},         {"convexity", v.glyphConvexity}, {"diameter_mm", v.glyphDiameterMm},
+                   {"count", v.glyphCount},           {"seed", v.glyphSeed},           {"map_size", v.glyphMapSize},
+                   {"map_diameter", v.glyphMapDiameter}};
+  if (v.depthCue) j["depth_cue"] = {{"brightness", v.cueBrightness}, {"amount", v.cueAmount}, {"contrast", v.cueContrast}};
+  return j;
+}
+
+json sourceJson(const VolumeSource& s) {
+  json j = {{"path", fs::absolute(s.path).lexically_normal().string()}};
+  if (!s.series.empty()) j["series"] = s.series;
+  return j;
+}
+
+}  // namespace
+
+void writeStudyConfig(const StudyConfig& config, const fs::path& file) {
+  json j;
+  j["name"] = config.name;
+  j["anatomical"] = sourceJson(config.anatomical);
+  if (config.functional) {
+    j["functional"] = sourceJson(*config.functional);
+    j["functional"]["kind"] = toString(config.functionalKind);
+    json r = {{"method", config.registration.method}, {"rotation_search_deg", config.registration.rotationSearchDeg}};
+    if (!config.registration.transform.empty())
+      r["transform"] = fs::absolute(config.registration.transform).lexically_normal().string();
+    j["registration"] = r;
+  }
+  json views = json::array();
+  for (const ViewConfig& v : config.render.views) views.push_back(viewJson(v));
+  j["render"] = {{"views", views}};
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+    if (!out) throw Error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, file);
+}
+
 std::string toString(FunctionalKind kind) {
   for (const auto& [name, k] : kKinds)
     if (k == kind) return name;

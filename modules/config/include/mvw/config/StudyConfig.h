@@ -103,4 +103,8 @@ struct StudyConfig {
 StudyConfig loadStudyConfig(const std::filesystem::path& file);
 std::string toString(FunctionalKind kind);
 
+// The inverse of loadStudyConfig: every field written out, paths absolute, the file replaced
+// atomically (temp + rename). loadStudyConfig of the result gives the same config.
+void writeStudyConfig(const StudyConfig& config, const std::filesystem::path& file);
+
 }  // namespace mvw::config
