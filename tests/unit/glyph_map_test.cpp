@@ -105,6 +105,11 @@ TEST(GlyphMap, CellsNameTheOneGlyphThatReachesThem) {
         }
     }
     EXPECT_GT(inside, 1000);
+    // The renderer's call, without texels: the same glyphs and cells.
+    const GlyphMap compact = makeGlyphMap(s, false);
+    EXPECT_TRUE(compact.texels.empty());
+    EXPECT_EQ(compact.centres, map.centres);
+    EXPECT_EQ(compact.cells, map.cells);
   }
 }
 

@@ -19,6 +19,25 @@ glm::dvec3 periodicDelta(const glm::dvec3& a, const glm::dvec3& b, double n) {
   return d;
 }
 
+// Calls f(index, offset) for every site of a periodic lattice (sites at (v + 0.5) * step, count
+// per side, period count * step) whose offset from `centre` is at most `reach`; index is the
+// site's wrapped linear index, x fastest.
+template <class F>
+void forEachSiteNear(const glm::dvec3& centre, double reach, double step, int count, F f) {
+  const double period = step * count;
+  const glm::ivec3 base(glm::floor(centre / step));
+  const int r = static_cast<int>(std::ceil(reach / step)) + 1;
+  auto wrap = [&](int x) { return ((x % count) + count) % count; };
+  for (int dk = -r; dk <= r; ++dk)
+    for (int dj = -r; dj <= r; ++dj)
+      for (int di = -r; di <= r; ++di) {
+        const glm::ivec3 v = base + glm::ivec3(di, dj, dk);
+        const glm::dvec3 d = periodicDelta((glm::dvec3(v) + 0.5) * step, centre, period);
+        if (glm::length(d) > reach) continue;
+        f((static_cast<std::size_t>(wrap(v.z)) * count + wrap(v.y)) * count + wrap(v.x), d);
+      }
+}
+
 }  // namespace
 
 const glm::vec4& GlyphMap::at(int i, int j, int k) const {
@@ -26,7 +45,7 @@ const glm::vec4& GlyphMap::at(int i, int j, int k) const {
   return texels[(static_cast<std::size_t>(wrap(k)) * size + wrap(j)) * size + wrap(i)];
 }
 
-GlyphMap makeGlyphMap(const GlyphMapSettings& s) {
+GlyphMap makeGlyphMap(const GlyphMapSettings& s, bool texels) {
   if (s.size < 8 || s.size > 512) throw Error("glyph map size must be 8..512 voxels");
   if (s.count < 1 || s.count > 255) throw Error("glyph count must be 1..255");
   if (!(s.diameter >= 2.0) || s.diameter > s.size / 2.0)
@@ -52,36 +71,22 @@ GlyphMap makeGlyphMap(const GlyphMapSettings& s) {
     for (const auto& other : map.centres) free &= glm::length(periodicDelta(c, other, n)) >= minDistance;
     if (free) map.centres.push_back(c);
   }
-  map.texels.assign(static_cast<std::size_t>(s.size) * s.size * s.size, glm::vec4(0, 0, 0, -1));
-  const int reach = static_cast<int>(std::ceil(map.radius)) + 1;
-  for (const auto& c : map.centres) {
-    const glm::ivec3 base(std::floor(c.x), std::floor(c.y), std::floor(c.z));
-    for (int dk = -reach; dk <= reach; ++dk)
-      for (int dj = -reach; dj <= reach; ++dj)
-        for (int di = -reach; di <= reach; ++di) {
-          const glm::ivec3 v = base + glm::ivec3(di, dj, dk);
-          // Texel centres sit at integer + 0.5 in map coordinates.
-          const glm::dvec3 d = periodicDelta(glm::dvec3(v) + 0.5, c, n);
-          const double r = glm::length(d);
-          if (r > map.radius) continue;
-          const glm::dvec3 normal = r > 1e-9 ? d / r : glm::dvec3(0, 0, 1);
-          auto wrap = [&](int x) { return ((x % s.size) + s.size) % s.size; };
-          map.texels[(static_cast<std::size_t>(wrap(v.z)) * s.size + wrap(v.y)) * s.size + wrap(v.x)] =
-              glm::vec4(glm::vec3(normal), static_cast<float>(r / map.radius));
-        }
-  }
-  // A glyph reaches into a cell only if the cell's centre q lies within radius + half a
-  // diagonal of its centre; then, by the clearance, it is q's nearest glyph by a margin.
+  // A glyph reaches into a cell only if the cell's centre lies within radius + half a diagonal
+  // of its centre; then, by the clearance, no other glyph reaches that cell.
   const int cells = s.size / map.cellSize;
   map.cells.assign(static_cast<std::size_t>(cells) * cells * cells, 0);
-  for (int k = 0; k < cells; ++k)
-    for (int j = 0; j < cells; ++j)
-      for (int i = 0; i < cells; ++i) {
-        const glm::dvec3 q = (glm::dvec3(i, j, k) + 0.5) * double(map.cellSize);
-        for (std::size_t g = 0; g < map.centres.size(); ++g)
-          if (glm::length(periodicDelta(q, map.centres[g], n)) <= map.radius + halfDiagonal)
-            map.cells[(static_cast<std::size_t>(k) * cells + j) * cells + i] = static_cast<std::uint8_t>(g + 1);
-      }
+  for (std::size_t g = 0; g < map.centres.size(); ++g)
+    forEachSiteNear(map.centres[g], map.radius + halfDiagonal, map.cellSize, cells,
+                    [&](std::size_t i, const glm::dvec3&) { map.cells[i] = static_cast<std::uint8_t>(g + 1); });
+  if (!texels) return map;
+  // Texel centres sit at integer + 0.5 in map coordinates.
+  map.texels.assign(static_cast<std::size_t>(s.size) * s.size * s.size, glm::vec4(0, 0, 0, -1));
+  for (const auto& c : map.centres)
+    forEachSiteNear(c, map.radius, 1.0, s.size, [&](std::size_t i, const glm::dvec3& d) {
+      const double r = glm::length(d);
+      const glm::dvec3 normal = r > 1e-9 ? d / r : glm::dvec3(0, 0, 1);
+      map.texels[i] = glm::vec4(glm::vec3(normal), static_cast<float>(r / map.radius));
+    });
   return map;
 }
 

@@ -215,7 +215,7 @@ void VolumeRenderer::Impl::uploadGlyphMap(const GlyphMapSettings& g) {
   if (glyphCells.id() && g.size == glyphMapSettings.size && g.count == glyphMapSettings.count &&
       g.diameter == glyphMapSettings.diameter && g.seed == glyphMapSettings.seed)
     return;
-  const GlyphMap map = makeGlyphMap(g);
+  const GlyphMap map = makeGlyphMap(g, /*texels=*/false);
   const int n = map.size / map.cellSize;
   glyphCells = detail::makeTexture();
   glBindTexture(GL_TEXTURE_3D, glyphCells.id());
@@ -259,6 +259,11 @@ void VolumeRenderer::Impl::updateBeta(const BetaKey& key) {
   glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   const GLenum buffer = GL_COLOR_ATTACHMENT0;
   glDrawBuffers(1, &buffer);
+  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, gradient.id(), 0, 0);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw Error("the GL cannot render into the gradient volume (RGBA16F) for glyph shading");
+  }
   glViewport(0, 0, dims.x, dims.y);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
@@ -266,8 +271,6 @@ void VolumeRenderer::Impl::updateBeta(const BetaKey& key) {
   glBindVertexArray(vao.id());
   for (int k = 0; k < dims.z; ++k) {
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, gradient.id(), 0, k);
-    if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error("the GL cannot render into the gradient volume (RGBA16F) for glyph shading");
     glUniform1f(p.uniform("uSlice"), float(k));
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }

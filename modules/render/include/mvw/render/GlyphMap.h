@@ -32,7 +32,7 @@ struct GlyphMap {
   int size = 0;
   double radius = 0.0;                // voxels
   std::vector<glm::dvec3> centres;    // voxel coordinates, 0..size
-  std::vector<glm::vec4> texels;      // size^3, x fastest
+  std::vector<glm::vec4> texels;      // size^3, x fastest (empty if not asked for)
   int cellSize = 1;                   // voxels per cell side (divides size)
   std::vector<std::uint8_t> cells;    // (size / cellSize)^3, x fastest: 1 + glyph index, 0 none
 
@@ -40,6 +40,7 @@ struct GlyphMap {
 };
 
 // Throws mvw::Error when the glyphs cannot be placed without overlap (too many or too big).
-GlyphMap makeGlyphMap(const GlyphMapSettings& settings);
+// texels = false leaves `texels` empty: the renderer needs only the centres and cells.
+GlyphMap makeGlyphMap(const GlyphMapSettings& settings, bool texels = true);
 
 }  // namespace mvw::render
