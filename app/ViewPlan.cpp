@@ -1,5 +1,7 @@
 #include "ViewPlan.h"
 
+#include <array>
+
 #include "mvw/core/Error.h"
 
 namespace mvw::app {
@@ -121,6 +123,57 @@ void applyDefaultPreset(PlannedView& view, const Volume& anatomy) {
   if (!view.presetName.empty()) return;
   view.presetName = defaultPreset(anatomy);
   view.settings.transfer = render::transferPreset(view.presetName);
+}
+
+config::ViewConfig describeView(const render::RenderSettings& s, const std::string& name, const std::string& preset) {
+  config::ViewConfig v;
+  v.name = name;
+  v.mode = render::toString(s.mode);
+  v.view = render::toString(s.camera.view);
+  v.azimuth = s.camera.azimuthDeg;
+  v.elevation = s.camera.elevationDeg;
+  v.roll = s.camera.rollDeg;
+  v.zoom = s.camera.zoom;
+  v.perspective = s.camera.perspective;
+  v.width = s.size.x;
+  v.height = s.size.y;
+  v.preset = preset;
+  if (s.window > 0) v.window = s.window, v.level = s.level;
+  v.iso = s.isoValue;
+  v.stepMm = s.stepMm;
+  v.shading = s.shading;
+  v.sampling = s.linear ? "linear" : "nearest";
+  v.jitter = s.jitter;
+  v.seed = s.seed;
+  v.background = {s.background.r, s.background.g, s.background.b};
+  v.cropMin = {s.cropMin.x, s.cropMin.y, s.cropMin.z};
+  v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
+  v.glyphs = s.glyphs;
+  v.glyphMethod = s.glyphSizeControl ? "sized" : "simple";
+  v.glyphConvexity = s.glyphConvexity == 0 ? "convex" : s.glyphConvexity == 1 ? "concave" : "both";
+  v.glyphDiameterMm = s.glyphDiameterMm;
+  v.glyphMapSize = s.glyphMap.size;
+  v.glyphCount = s.glyphMap.count;
+  v.glyphMapDiameter = s.glyphMap.diameter;
+  v.glyphSeed = s.glyphMap.seed;
+  if (s.functionalHigh > s.functionalLow) v.functionalWindow = std::array<double, 2>{s.functionalLow, s.functionalHigh};
+  v.light = {s.lightOffset.x, s.lightOffset.y};
+  v.shells = s.shellCount;
+  for (std::size_t k = 0; k < s.shellEnabled.size(); ++k)
+    if (!s.shellEnabled[k]) v.shellsDisabled.push_back(static_cast<int>(k) + 1);
+  v.depthCue = s.depthCue;
+  v.cueBrightness = s.cueBrightness;
+  v.cueAmount = s.cueAmount;
+  v.cueContrast = s.cueContrast;
+  v.gradientOpacity = {s.gradientOpacityLow, s.gradientOpacityHigh};
+  v.planeOffsetMm = s.planeOffsetMm;
+  v.slabMm = s.slabMm;
+  v.overlay = s.overlay;
+  v.fusion = s.fusion;
+  v.functionalClasses = s.functionalClasses;
+  v.overlayOpacity = s.overlayOpacity;
+  v.overlayThreshold = s.overlayThreshold;
+  return v;
 }
 
 }  // namespace mvw::app

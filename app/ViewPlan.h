@@ -33,4 +33,9 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
 // Views without a preset get the one that suits the anatomy's modality.
 void applyDefaultPreset(PlannedView& view, const Volume& anatomy);
 
+// The inverse of planViews for one view: the config that plans back to `settings` (the
+// viewer saves its panes this way). preset: its name, "" for the modality's default.
+config::ViewConfig describeView(const render::RenderSettings& settings, const std::string& name,
+                                const std::string& preset);
+
 }  // namespace mvw::app

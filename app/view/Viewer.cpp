@@ -71,6 +71,7 @@ class Viewer {
   bool stepScript();
   void screenshot(const fs::path& file);
   void saveConfig(const fs::path& file) const;
+  render::RenderSettings settingsOf(int pane) const;  // as rendered at the pane's size
   config::ViewConfig viewConfigOf(int pane) const;
   double sampleAt(const Volume& v, const glm::dvec3& world, bool* inside) const;
   void markAllDirty() {
@@ -177,59 +178,32 @@ void Viewer::setupRendering() {
     }
 }
 
-config::ViewConfig Viewer::viewConfigOf(int pane) const {
-  config::ViewConfig v;
+render::RenderSettings Viewer::settingsOf(int pane) const {
+  const PaneImage& image = panes_[static_cast<std::size_t>(pane)];
+  render::RenderSettings s;
   if (pane == k3d) {
-    v.name = "view-3d";
-    v.mode = render::toString(view3d_.mode);
-    v.view = render::toString(view3d_.camera.view);
-    v.azimuth = view3d_.camera.azimuthDeg;
-    v.elevation = view3d_.camera.elevationDeg;
-    v.zoom = view3d_.camera.zoom;
-    v.preset = presetName_;
-    if (view3d_.window > 0) v.window = view3d_.window, v.level = view3d_.level;
-    v.iso = view3d_.isoValue;
-    v.roll = view3d_.camera.rollDeg;
-    v.perspective = view3d_.camera.perspective;
-    v.stepMm = view3d_.stepMm;
-    v.shading = view3d_.shading;
-    v.sampling = view3d_.linear ? "linear" : "nearest";
-    v.jitter = view3d_.jitter;
-    v.seed = view3d_.seed;
-    v.background = {view3d_.background.r, view3d_.background.g, view3d_.background.b};
-    v.cropMin = {view3d_.cropMin.x, view3d_.cropMin.y, view3d_.cropMin.z};
-    v.cropMax = {view3d_.cropMax.x, view3d_.cropMax.y, view3d_.cropMax.z};
-    v.light = {view3d_.lightOffset.x, view3d_.lightOffset.y};
-    v.gradientOpacity = {view3d_.gradientOpacityLow, view3d_.gradientOpacityHigh};
-    v.glyphs = view3d_.glyphs;
-    v.glyphMethod = view3d_.glyphSizeControl ? "sized" : "simple";
-    v.glyphConvexity = view3d_.glyphConvexity == 0 ? "convex" : view3d_.glyphConvexity == 1 ? "concave" : "both";
-    v.glyphDiameterMm = view3d_.glyphDiameterMm;
-    v.glyphCount = view3d_.glyphMap.count;
-    v.glyphSeed = view3d_.glyphMap.seed;
-    v.glyphMapSize = view3d_.glyphMap.size;
-    v.glyphMapDiameter = view3d_.glyphMap.diameter;
-    v.fusion = view3d_.fusion;
-    v.depthCue = view3d_.depthCue;
-    v.cueBrightness = view3d_.cueBrightness;
-    v.cueAmount = view3d_.cueAmount;
-    v.cueContrast = view3d_.cueContrast;
+    s = view3d_;
   } else {
-    v.name = std::string("view-") + kPaneNames[pane];
-    v.mode = "mpr";
-    v.view = kPaneNames[pane];
-    v.window = mprWindow_;
-    v.level = mprLevel_;
-    const render::Camera& cam = panes_[static_cast<std::size_t>(pane)].camera;
-    v.planeOffsetMm = glm::dot(crosshair_ - renderer_->centre(), cam.forward);
+    s.mode = RenderMode::Mpr;
+    s.camera.view = kMprViews[pane - 1];
+    s.window = mprWindow_;
+    s.level = mprLevel_;
+    s.overlayOpacity = view3d_.overlayOpacity;
+    s.overlayThreshold = view3d_.overlayThreshold;
+    s.functionalLow = view3d_.functionalLow;
+    s.functionalHigh = view3d_.functionalHigh;
+    s.functionalClasses = view3d_.functionalClasses;
+    const glm::dvec3 forward = render::makeCamera(s.camera, renderer_->centre(), renderer_->radius(), image.size).forward;
+    s.planeOffsetMm = glm::dot(crosshair_ - renderer_->centre(), forward);
   }
-  if (view3d_.functionalHigh > view3d_.functionalLow)
-    v.functionalWindow = std::array<double, 2>{view3d_.functionalLow, view3d_.functionalHigh};
-  v.functionalClasses = view3d_.functionalClasses;
-  v.overlayOpacity = view3d_.overlayOpacity;
-  v.overlayThreshold = view3d_.overlayThreshold;
-  v.width = panes_[static_cast<std::size_t>(pane)].size.x;
-  v.height = panes_[static_cast<std::size_t>(pane)].size.y;
+  s.size = image.size;
+  return s;
+}
+
+config::ViewConfig Viewer::viewConfigOf(int pane) const {
+  config::ViewConfig v =
+      describeView(settingsOf(pane), std::string("view-") + kPaneNames[pane], pane == k3d ? presetName_ : "");
+  if (pane != k3d) v.view = kPaneNames[pane];  // axial, coronal, sagittal: the planes' own names
   return v;
 }
 
@@ -237,25 +211,10 @@ void Viewer::renderDirtyPanes(bool interacting) {
   for (int p = 0; p < kPaneCount; ++p) {
     PaneImage& pane = panes_[static_cast<std::size_t>(p)];
     if (!pane.dirty || pane.size.x < 8 || pane.size.y < 8) continue;
-    render::RenderSettings s;
-    if (p == k3d) {
-      s = view3d_;
-      s.size = interacting ? glm::max(pane.size / 2, glm::ivec2(8)) : pane.size;  // coarse while dragging
-      if (interacting) s.stepMm = 2.0 * std::min({opt_.anatomical.spacing().x, opt_.anatomical.spacing().y,
-                                                  opt_.anatomical.spacing().z});
-    } else {
-      s.mode = RenderMode::Mpr;
-      s.size = pane.size;
-      s.camera.view = kMprViews[p - 1];
-      s.window = mprWindow_;
-      s.level = mprLevel_;
-      s.overlayOpacity = view3d_.overlayOpacity;
-      s.overlayThreshold = view3d_.overlayThreshold;
-      s.functionalLow = view3d_.functionalLow;
-      s.functionalHigh = view3d_.functionalHigh;
-      s.functionalClasses = view3d_.functionalClasses;
-      const glm::dvec3 forward = render::makeCamera(s.camera, renderer_->centre(), renderer_->radius(), s.size).forward;
-      s.planeOffsetMm = glm::dot(crosshair_ - renderer_->centre(), forward);
+    render::RenderSettings s = settingsOf(p);
+    if (p == k3d && interacting) {  // coarse while dragging
+      s.size = glm::max(pane.size / 2, glm::ivec2(8));
+      s.stepMm = 2.0 * std::min({opt_.anatomical.spacing().x, opt_.anatomical.spacing().y, opt_.anatomical.spacing().z});
     }
     render::Frame f = renderer_->render(s);
     const auto [lo, hi] = renderer_->valueRange();
