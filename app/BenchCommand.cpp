@@ -2,7 +2,6 @@
 
 #include "BenchFeatures.h"
 #include "BenchRegister.h"
-#include "StudyVolumes.h"
 
 #include <chrono>
 #include <cmath>
@@ -18,21 +17,12 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/StudyLoader.h"
+#include "mvw/validate/ImageMetrics.h"
 
 namespace mvw::app {
 
 namespace {
-
-double psnr(const Image& a, const Image& b) {
-  double mse = 0.0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const double d = double(a.rgba[i]) - double(b.rgba[i]);
-    mse += d * d;
-  }
-  mse /= double(a.rgba.size()) * 3.0 / 4.0;
-  return mse <= 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
-}
 
 struct BenchOptions {
   std::string study;
@@ -53,7 +43,7 @@ void runBench(const BenchOptions& o) {
     modes.push_back(*m);
   }
   const auto study = config::loadStudyConfig(o.study);
-  const Volume volume = readSource(study.anatomical);
+  const Volume volume = mvw::study::readSource(study.anatomical);
   auto context = render::createHeadlessContext({16, 16});
   const auto t0 = std::chrono::steady_clock::now();
   render::VolumeRenderer renderer(*context, volume);
@@ -85,7 +75,7 @@ void runBench(const BenchOptions& o) {
     s.stepMm = step / 4.0;
     const Image reference = renderer.render(s).image;
     std::printf("  %-11s %8.1f ms/frame  %6.2f fps  step %.3f mm  PSNR %.1f dB vs 4x oversampled\n",
-                render::toString(mode).c_str(), ms, 1000.0 / ms, step, psnr(image, reference));
+                render::toString(mode).c_str(), ms, 1000.0 / ms, step, validate::psnr(image, reference));
   }
 }
 

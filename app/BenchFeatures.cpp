@@ -1,8 +1,5 @@
 #include "BenchFeatures.h"
 
-#include "FunctionalPlacement.h"
-#include "StudyVolumes.h"
-#include "ViewPlan.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -13,6 +10,9 @@
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/FunctionalPlacement.h"
+#include "mvw/study/StudyLoader.h"
+#include "mvw/study/ViewPlan.h"
 
 namespace mvw::app {
 
@@ -42,21 +42,21 @@ double median(std::vector<double> v) {
 
 void runFeatureBench(const FeatureBenchOptions& o) {
   const config::StudyConfig study = config::loadStudyConfig(o.study);
-  ViewOverrides overrides;
+  mvw::study::ViewOverrides overrides;
   overrides.size = o.size;
-  std::vector<PlannedView> views = planViews(study, overrides);
-  const Volume anatomy = readSource(study.anatomical);
+  std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, overrides);
+  const Volume anatomy = mvw::study::readSource(study.anatomical);
   std::optional<Volume> functional;
-  if (study.functional) functional = readSource(*study.functional);
+  if (study.functional) functional = mvw::study::readSource(*study.functional);
   auto context = render::createHeadlessContext({16, 16});
   render::VolumeRenderer renderer(*context, anatomy);
-  if (functional) renderer.setFunctional(*functional, placeFunctional(study, anatomy, *functional).anatomicalFromFunctional);
+  if (functional) renderer.setFunctional(*functional, mvw::study::placeFunctional(study, anatomy, *functional).anatomicalFromFunctional);
   std::printf("mvw bench features: %s, %s, %d azimuth steps per view, with/without interleaved\n",
               study.file.filename().c_str(), context->renderer().c_str(), o.frames);
   std::printf("  %-30s %-11s %-15s %10s %10s %8s\n", "view", "mode", "feature", "without", "with", "ratio");
-  for (PlannedView& v : views) {
+  for (mvw::study::PlannedView& v : views) {
     if (!hasFeature(v.settings)) continue;
-    applyDefaultPreset(v, anatomy);
+    mvw::study::applyDefaultPreset(v, anatomy);
     render::RenderSettings with = v.settings;
     render::RenderSettings without = with;
     without.glyphs = without.fusion = without.depthCue = false;

@@ -8,10 +8,10 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "StudyVolumes.h"
 #include "VolumeReport.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/io/VolumeReader.h"
+#include "mvw/study/StudyLoader.h"
 
 namespace mvw::app {
 
@@ -41,10 +41,10 @@ void runInfo(const InfoOptions& opt) {
   for (const auto& p : opt.paths) {
     if (isStudyConfig(p)) {
       const auto study = config::loadStudyConfig(p);
-      items.push_back({"anatomical", readSource(study.anatomical, read)});
+      items.push_back({"anatomical", mvw::study::readSource(study.anatomical, read)});
       if (study.functional)
         items.push_back({"functional (" + config::toString(study.functionalKind) + ")",
-                         readSource(*study.functional, read)});
+                         mvw::study::readSource(*study.functional, read)});
     } else {
       for (auto& v : io::readAllVolumes(p, read)) items.push_back({"", std::move(v)});
     }

@@ -1,9 +1,5 @@
 #include "RenderCommand.h"
 
-#include "FunctionalPlacement.h"
-#include "StudyVolumes.h"
-#include "ViewPlan.h"
-
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -21,6 +17,9 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/VesselPhantom.h"
+#include "mvw/core/Version.h"
+#include "mvw/core/WindowLevel.h"
+#include "mvw/io/AtomicFile.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/io/VolumeReader.h"
@@ -29,6 +28,10 @@
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/resampling/PetPhantom.h"
 #include "mvw/resampling/Transform.h"
+#include "mvw/study/Caption.h"
+#include "mvw/study/FunctionalPlacement.h"
+#include "mvw/study/StudyLoader.h"
+#include "mvw/study/ViewPlan.h"
 
 namespace mvw::app {
 
@@ -39,7 +42,7 @@ namespace fs = std::filesystem;
 struct RenderOptions {
   std::string study;
   std::string outDir;
-  ViewOverrides overrides;
+  mvw::study::ViewOverrides overrides;
 };
 
 std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
@@ -52,17 +55,17 @@ std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
 
 void runRender(const RenderOptions& o) {
   const config::StudyConfig study = config::loadStudyConfig(o.study);
-  std::vector<PlannedView> views = planViews(study, o.overrides);
-  const Volume anatomy = readSource(study.anatomical);
-  std::optional<Volume> functional;
-  if (study.functional) functional = readSource(*study.functional);
+  std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, o.overrides);
+  const Study volumes = mvw::study::loadStudy(study);
+  const Volume& anatomy = volumes.anatomical;
+  const std::optional<Volume>& functional = volumes.functional;
 
   auto context = render::createHeadlessContext({16, 16});
   render::VolumeRenderer renderer(*context, anatomy);
   // The study's "registration" places the functional volume (none: by world coordinates).
-  std::optional<FunctionalPlacement> placement;
+  std::optional<mvw::study::FunctionalPlacement> placement;
   if (functional) {
-    placement = placeFunctional(study, anatomy, *functional);
+    placement = mvw::study::placeFunctional(study, anatomy, *functional);
     renderer.setFunctional(*functional, placement->anatomicalFromFunctional);
   }
   const auto [lo, hi] = renderer.valueRange();
@@ -73,28 +76,13 @@ void runRender(const RenderOptions& o) {
   };
   std::vector<Output> outputs;
   for (auto& v : views) {
-    applyDefaultPreset(v, anatomy);
+    mvw::study::applyDefaultPreset(v, anatomy);
     render::Frame frame = renderer.render(v.settings);
-    const double window = v.settings.window > 0 ? v.settings.window : hi - lo;
-    const double level = v.settings.window > 0 ? v.settings.level : 0.5 * (hi + lo);
-    std::string caption = v.config.mode;
-    if (v.settings.mode == render::RenderMode::Mpr) caption += " " + v.config.view;
-    if (v.settings.mode == render::RenderMode::Mpr && v.settings.slabMm > 0)
-      caption += "  slab " + std::to_string(static_cast<int>(v.settings.slabMm)) + " mm";
-    if (v.settings.mode == render::RenderMode::Composite) caption += "  " + v.presetName;
-    else if (v.settings.mode == render::RenderMode::Isosurface) caption += "  iso " + std::to_string(static_cast<int>(v.settings.isoValue));
-    else caption += "  W " + std::to_string(static_cast<int>(window)) + " L " + std::to_string(static_cast<int>(level));
-    if (v.settings.glyphs) caption += "  glyphs " + v.config.glyphMethod + " " + v.config.glyphConvexity;
-    if (v.settings.fusion) caption += "  + colour fusion";
+    const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
+    const std::string caption = mvw::study::viewCaption(v, shown);
     const bool shellMode = v.settings.mode == render::RenderMode::ShellMip ||
-                           v.settings.mode == render::RenderMode::ShellSum || v.settings.mode == render::RenderMode::ShellLit;
-    if (shellMode) caption += "  " + std::to_string(v.settings.shellCount) + " shells";
-    if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue) {
-      char cue[96];
-      std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", v.settings.cueBrightness,
-                    v.settings.cueAmount, v.settings.cueContrast);
-      caption += cue;
-    }
+                           v.settings.mode == render::RenderMode::ShellSum ||
+                           v.settings.mode == render::RenderMode::ShellLit;
     const bool overlayShown =
         functional && (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion);
     if (v.config.annotate) {
@@ -119,8 +107,8 @@ void runRender(const RenderOptions& o) {
     r["transfer_preset"] = v.presetName;
     if (v.settings.gradientOpacityHigh > 0)
       r["gradient_opacity"] = {v.settings.gradientOpacityLow, v.settings.gradientOpacityHigh};
-    r["window"] = window;
-    r["level"] = level;
+    r["window"] = shown.window;
+    r["level"] = shown.level;
     r["iso"] = v.settings.isoValue;
     if (v.settings.glyphs)
       r["glyphs"] = {{"method", v.config.glyphMethod}, {"convexity", v.config.glyphConvexity},
@@ -171,16 +159,13 @@ void runRender(const RenderOptions& o) {
   report["value_range"] = {lo, hi};
   report["gl_renderer"] = context->renderer();
   report["gl_version"] = context->version();
-  report["mvw_version"] = "0.1.0";
+  report["mvw_version"] = kVersion;
   report["views"] = nlohmann::json::array();
   for (const auto& out : outputs) {
     io::writePng(out.image, fs::path(o.outDir) / out.file);
     report["views"].push_back(out.record);
   }
-  const fs::path json = fs::path(o.outDir) / "render.json";
-  const fs::path tmp = fs::path(o.outDir) / ".render.json.tmp";
-  std::ofstream(tmp) << report.dump(2) << "\n";
-  fs::rename(tmp, json);
+  io::writeTextAtomically(fs::path(o.outDir) / "render.json", report.dump(2) + "\n");
   std::cout << "wrote " << outputs.size() << " view(s) and render.json to " << o.outDir << "\n";
 }
 

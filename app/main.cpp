@@ -12,11 +12,12 @@
 #include "RenderCommand.h"
 #include "ValidateCommand.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mvw - multimodal volume workstation: anatomy + functional volumes, registered and rendered"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "mvw 0.1.0");
+  app.set_version_flag("--version", std::string("mvw ") + mvw::kVersion);
   mvw::app::addInfoCommand(app);
   mvw::app::addRegisterCommand(app);
   mvw::app::addRenderCommand(app);

@@ -5,9 +5,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "../StudyVolumes.h"
 #include "Viewer.h"
 #include "mvw/core/Error.h"
+#include "mvw/study/StudyLoader.h"
 
 namespace mvw::app {
 
@@ -27,8 +27,8 @@ void runView(const ViewOptions& o) {
     v.study.anatomical.path = o.anatomical;
     if (!o.functional.empty()) v.study.functional = config::VolumeSource{o.functional, ""};
   }
-  v.anatomical = readSource(v.study.anatomical);
-  if (v.study.functional) v.functional = readSource(*v.study.functional);
+  v.anatomical = mvw::study::readSource(v.study.anatomical);
+  if (v.study.functional) v.functional = mvw::study::readSource(*v.study.functional);
   v.script = o.script;
   v.width = o.width;
   v.height = o.height;

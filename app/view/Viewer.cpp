@@ -19,14 +19,14 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <nlohmann/json.hpp>
 
-#include "../FunctionalPlacement.h"
-#include "../ViewPlan.h"
 #include "GlfwContext.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/resampling/RigidRegistration.h"
+#include "mvw/study/FunctionalPlacement.h"
+#include "mvw/study/ViewPlan.h"
 
 namespace mvw::app {
 
@@ -145,7 +145,7 @@ std::vector<std::string> presetNames() { return render::transferPresetNames(); }
 void Viewer::setupRendering() {
   renderer_ = std::make_unique<render::VolumeRenderer>(*context_, opt_.anatomical);
   if (opt_.functional) {
-    const FunctionalPlacement placement = placeFunctional(opt_.study, opt_.anatomical, *opt_.functional);
+    const mvw::study::FunctionalPlacement placement = mvw::study::placeFunctional(opt_.study, opt_.anatomical, *opt_.functional);
     renderer_->setFunctional(*opt_.functional, placement.anatomicalFromFunctional);
     registration_ = opt_.study.registration.method;
     if (placement.report.contains("mutual_information"))
@@ -163,15 +163,15 @@ void Viewer::setupRendering() {
   // The study's first view the 3D pane can show sets it up, exactly as `mvw render` would
   // render it (glyphs, attribute window, crop, light, ...); an MPR view sets the MPR panes'
   // window and the overlay.
-  std::vector<PlannedView> planned = planViews(opt_.study);
-  for (PlannedView& v : planned) {
+  std::vector<mvw::study::PlannedView> planned = mvw::study::planViews(opt_.study);
+  for (mvw::study::PlannedView& v : planned) {
     if (std::find(std::begin(k3dModes), std::end(k3dModes), v.settings.mode) == std::end(k3dModes)) continue;
-    applyDefaultPreset(v, opt_.anatomical);
+    mvw::study::applyDefaultPreset(v, opt_.anatomical);
     view3d_ = v.settings;
     presetName_ = v.presetName;
     break;
   }
-  for (const PlannedView& v : planned)
+  for (const mvw::study::PlannedView& v : planned)
     if (v.settings.mode == RenderMode::Mpr) {
       if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
       break;
@@ -202,7 +202,7 @@ render::RenderSettings Viewer::settingsOf(int pane) const {
 
 config::ViewConfig Viewer::viewConfigOf(int pane) const {
   config::ViewConfig v =
-      describeView(settingsOf(pane), std::string("view-") + kPaneNames[pane], pane == k3d ? presetName_ : "");
+      mvw::study::describeView(settingsOf(pane), std::string("view-") + kPaneNames[pane], pane == k3d ? presetName_ : "");
   if (pane != k3d) v.view = kPaneNames[pane];  // axial, coronal, sagittal: the planes' own names
   return v;
 }

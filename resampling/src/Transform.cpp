@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "mvw/core/Error.h"
+#include "mvw/io/AtomicFile.h"
 
 namespace mvw::resampling {
 
@@ -162,22 +163,9 @@ void Transform::writeItk(const std::filesystem::path& path) const {
   text << "\nFixedParameters: " << centre_.x + 0.0 << ' ' << centre_.y + 0.0 << ' '
        << centre_.z + 0.0 << "\n";
 
-  auto tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text.str();
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);
-      throw Error(path.string() + ": cannot write the transform file");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
+  try {
+    io::writeTextAtomically(path, text.str());
+  } catch (const Error&) {
     throw Error(path.string() + ": cannot write the transform file");
   }
 }

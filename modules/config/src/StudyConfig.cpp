@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvw/core/Error.h"
+#include "mvw/io/AtomicFile.h"
 
 namespace mvw::config {
 
@@ -91,7 +92,10 @@ std::array<double, 3> tripleField(const fs::path& file, const json& o, const std
   return out;
 }
 
-ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& where, int index) {
+}  // namespace
+
+ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::string& where,
+                           int index) {
   if (!j.is_object()) throw InputError(file, "'" + where + "' must be an object");
   rejectUnknownKeys(file, j, where + ".",
                     {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
@@ -199,8 +203,6 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   return v;
 }
 
-}  // namespace
-
 StudyConfig loadStudyConfig(const fs::path& file) {
   std::ifstream in(file);
   if (!in) throw InputError(file, "cannot open the study config");
@@ -254,7 +256,7 @@ StudyConfig loadStudyConfig(const fs::path& file) {
     if (r.contains("views")) {
       if (!r["views"].is_array()) throw InputError(file, "'render.views' must be an array");
       for (std::size_t i = 0; i < r["views"].size(); ++i)
-        config.render.views.push_back(viewConfig(file, r["views"][i], "render.views[" + std::to_string(i) + "]",
+        config.render.views.push_back(parseViewConfig(r["views"][i], file, "render.views[" + std::to_string(i) + "]",
                                                  static_cast<int>(i)));
     }
   }
@@ -270,9 +272,7 @@ StudyConfig loadStudyConfig(const fs::path& file) {
   return config;
 }
 
-namespace {
-
-json viewJson(const ViewConfig& v) {
+json viewConfigJson(const ViewConfig& v) {
   json j = {{"name", v.name},
             {"mode", v.mode},
             {"view", v.view},
@@ -315,6 +315,8 @@ json viewJson(const ViewConfig& v) {
   return j;
 }
 
+namespace {
+
 json sourceJson(const VolumeSource& s) {
   json j = {{"path", fs::absolute(s.path).lexically_normal().string()}};
   if (!s.series.empty()) j["series"] = s.series;
@@ -336,15 +338,9 @@ void writeStudyConfig(const StudyConfig& config, const fs::path& file) {
     j["registration"] = r;
   }
   json views = json::array();
-  for (const ViewConfig& v : config.render.views) views.push_back(viewJson(v));
+  for (const ViewConfig& v : config.render.views) views.push_back(viewConfigJson(v));
   j["render"] = {{"views", views}};
-  const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-    if (!out) throw Error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, file);
+  io::writeTextAtomically(file, j.dump(2) + "\n");
 }
 
 std::string toString(FunctionalKind kind) {

@@ -48,19 +48,4 @@ std::size_t checkedVolumeBytes(const std::filesystem::path& file, glm::ivec3 dim
   return static_cast<std::size_t>(bytes);
 }
 
-void writeAtomically(const std::filesystem::path& path,
-                     const std::function<void(const std::filesystem::path&)>& write) {
-  // The temporary keeps the real extension(s) so extension-driven writers (.nii.gz) still work.
-  std::filesystem::path tmp = path.parent_path() /
-                              (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
-  try {
-    write(tmp);
-    std::filesystem::rename(tmp, path);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw;
-  }
-}
-
 }  // namespace mvw::io::detail

@@ -20,8 +20,4 @@ std::size_t checkedVolumeBytes(const std::filesystem::path& file, glm::ivec3 dim
                                long long components, std::size_t bytesPerValue,
                                std::size_t maxBytes);
 
-// Writes through `write(tmpPath)` then renames onto `path`; removes the temporary on failure.
-void writeAtomically(const std::filesystem::path& path,
-                     const std::function<void(const std::filesystem::path&)>& write);
-
 }  // namespace mvw::io::detail

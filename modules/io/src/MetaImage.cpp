@@ -13,6 +13,7 @@
 #include <zlib.h>
 
 #include "FileChecks.h"
+#include "mvw/io/AtomicFile.h"
 #include "Formats.h"
 #include "mvw/core/Error.h"
 

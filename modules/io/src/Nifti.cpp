@@ -17,6 +17,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "FileChecks.h"
+#include "mvw/io/AtomicFile.h"
 #include "Formats.h"
 #include "VtkBridge.h"
 #include "VtkMessages.h"

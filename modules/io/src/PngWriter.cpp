@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "FileChecks.h"
+#include "mvw/io/AtomicFile.h"
 #include "mvw/core/Error.h"
 
 namespace mvw::io {
@@ -14,7 +15,7 @@ void writePng(const Image& image, const std::filesystem::path& path) {
   const cv::Mat rgba(image.height, image.width, CV_8UC4, const_cast<std::uint8_t*>(image.rgba.data()));
   cv::Mat bgra;
   cv::cvtColor(rgba, bgra, cv::COLOR_RGBA2BGRA);
-  detail::writeAtomically(path, [&](const std::filesystem::path& tmp) {
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
     // The temporary keeps the .png ending: imwrite chooses the codec by extension.
     if (!cv::imwrite(tmp.string(), bgra)) throw Error(path.string() + ": PNG write failed");
   });

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 namespace mvw::config {
 
 struct VolumeSource {
@@ -101,6 +103,14 @@ struct StudyConfig {
 };
 
 StudyConfig loadStudyConfig(const std::filesystem::path& file);
+
+// One view object ("render": {"views": [...]} entry), validated as loadStudyConfig does;
+// errors name `file` and `where` (e.g. "render.views[2]"); a view without a name is
+// "view<index>".
+ViewConfig parseViewConfig(const nlohmann::json& view, const std::filesystem::path& file,
+                           const std::string& where, int index);
+// The inverse of parseViewConfig: every field written out.
+nlohmann::json viewConfigJson(const ViewConfig& view);
 std::string toString(FunctionalKind kind);
 
 // The inverse of loadStudyConfig: every field written out, paths absolute, the file replaced

@@ -9,7 +9,7 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Volume.h"
 
-namespace mvw::app {
+namespace mvw::study {
 
 struct FunctionalPlacement {
   glm::dmat4 anatomicalFromFunctional{1.0};
@@ -19,4 +19,4 @@ struct FunctionalPlacement {
 FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volume& anatomical,
                                     const Volume& functional);
 
-}  // namespace mvw::app
+}  // namespace mvw::study

@@ -9,7 +9,7 @@
 #include "mvw/core/Volume.h"
 #include "mvw/render/VolumeRenderer.h"
 
-namespace mvw::app {
+namespace mvw::study {
 
 // Command-line values that replace each view's own.
 struct ViewOverrides {
@@ -38,4 +38,4 @@ void applyDefaultPreset(PlannedView& view, const Volume& anatomy);
 config::ViewConfig describeView(const render::RenderSettings& settings, const std::string& name,
                                 const std::string& preset);
 
-}  // namespace mvw::app
+}  // namespace mvw::study

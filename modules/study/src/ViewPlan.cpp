@@ -1,20 +1,11 @@
-#include "ViewPlan.h"
+#include "mvw/study/ViewPlan.h"
 
 #include <array>
 
 #include "mvw/core/Error.h"
+#include "mvw/study/ModalityDefaults.h"
 
-namespace mvw::app {
-
-namespace {
-
-std::string defaultPreset(const Volume& v) {
-  if (v.metadata().modality == "CT" || v.metadata().unit == "HU") return "ct-bone";
-  if (v.metadata().modality == "PT" || v.metadata().modality == "NM") return "pet-hot-metal";
-  return "mr-default";
-}
-
-}  // namespace
+namespace mvw::study {
 
 std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& o) {
   std::vector<PlannedView> out;
@@ -176,4 +167,4 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   return v;
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::study

@@ -1,9 +1,9 @@
-#include "FunctionalPlacement.h"
+#include "mvw/study/FunctionalPlacement.h"
 
 #include "mvw/resampling/RigidRegistration.h"
 #include "mvw/resampling/Transform.h"
 
-namespace mvw::app {
+namespace mvw::study {
 
 FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volume& anatomical,
                                     const Volume& functional) {
@@ -33,4 +33,4 @@ FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volu
   return out;
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::study

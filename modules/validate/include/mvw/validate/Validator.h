@@ -1,0 +1,22 @@
+#pragma once
+// `mvw validate`: every case of a suite rendered headless through `mvw render` (one child
+// process per render, N at a time), compared with its reference under the case's tolerances,
+// its analytic checks run, and the report written. See app/ValidateCommand.h for the format.
+#include <filesystem>
+
+namespace mvw::validate {
+
+struct ValidateOptions {
+  std::filesystem::path suite;
+  std::filesystem::path outDir;
+  bool update = false;  // rewrite the references with the new renders
+  int jobs = 1;
+  double timeoutS = 600.0;
+  std::filesystem::path executable;  // the `mvw` binary that renders (default: this process's)
+};
+
+// True when every case passes. Throws InputError (naming the suite or a study) for a bad
+// suite, before anything renders.
+bool runValidate(const ValidateOptions& options);
+
+}  // namespace mvw::validate

@@ -1,0 +1,380 @@
+#include "mvw/validate/Validator.h"
+
+#include <unistd.h>
+
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "Format.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+#include "mvw/io/AtomicFile.h"
+#include "mvw/study/StudyLoader.h"
+#include "mvw/validate/ImageMetrics.h"
+#include "mvw/validate/MipCheck.h"
+#include "mvw/validate/ProcessPool.h"
+#include "mvw/validate/Report.h"
+#include "mvw/validate/Suite.h"
+
+namespace mvw::validate {
+
+namespace {
+
+namespace fs = std::filesystem;
+using detail::fmt;
+using nlohmann::json;
+
+// One `mvw render` of a case: its image (check < 0) or one of its analytic checks.
+struct Job {
+  std::size_t caseIndex = 0;
+  int check = -1;
+  fs::path study, out, log;
+  ProcessResult result;
+};
+
+// The private folder the job studies and renders live in; removed on every way out.
+struct WorkDir {
+  fs::path dir;
+  WorkDir() : dir(fs::temp_directory_path() / ("mvw-validate-" + std::to_string(::getpid()))) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~WorkDir() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+std::string readText(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::string lastLine(const std::string& text) {
+  std::string t = text;
+  while (!t.empty() && (t.back() == '\n' || t.back() == '\r')) t.pop_back();
+  const auto nl = t.rfind('\n');
+  return nl == std::string::npos ? t : t.substr(nl + 1);
+}
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char b[32];
+  std::strftime(b, sizeof b, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return b;
+}
+
+std::string hostName() {
+  char b[256] = {};
+  if (::gethostname(b, sizeof b - 1) != 0) return "?";
+  return b;
+}
+
+void progressBar(std::size_t done, std::size_t total, bool tty) {
+  if (!tty) return;
+  const int width = 30;
+  const int filled = total ? static_cast<int>(width * done / total) : width;
+  std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << done
+            << "/" << total << " cases" << std::flush;
+}
+
+// Everything the suite asks for, checked and turned into render jobs before anything renders.
+class Plan {
+ public:
+  Plan(const Suite& suite, const fs::path& work) : suite_(suite), work_(work) {
+    plans_.resize(suite.cases.size());
+    for (std::size_t ci = 0; ci < suite.cases.size(); ++ci) addCase(ci);
+  }
+
+  std::vector<Job> jobs;
+  const config::StudyConfig& study(const fs::path& file) const { return studies_.at(file); }
+  const Volume& anatomy(const fs::path& studyFile) const {
+    return volumes_.at(study(studyFile).anatomical.path);
+  }
+  const MipPlan& mipPlan(std::size_t ci, int check) const {
+    return plans_[ci][static_cast<std::size_t>(check)];
+  }
+
+ private:
+  [[noreturn]] void bad(const std::string& problem) const {
+    throw InputError(suite_.file, problem);
+  }
+
+  const config::StudyConfig& loadStudy(const fs::path& file, const std::string& where) {
+    if (!studies_.count(file)) {
+      try {
+        studies_.emplace(file, config::loadStudyConfig(file));
+      } catch (const InputError& e) {
+        bad(where + ": study config " + e.what());
+      }
+    }
+    return studies_.at(file);
+  }
+
+  // The study with `view` as its only view, named "render", written for `mvw render`.
+  void addJob(std::size_t ci, int check, const config::StudyConfig& study, const json& view,
+              const std::string& where) {
+    const CaseSpec& c = suite_.cases[ci];
+    Job j;
+    j.caseIndex = ci;
+    j.check = check;
+    const fs::path dir =
+        work_ / (c.name + (check < 0 ? std::string() : "-check" + std::to_string(check)));
+    fs::create_directories(dir);
+    config::StudyConfig s = study;
+    try {
+      config::ViewConfig v = config::parseViewConfig(view, study.file, "view", 0);
+      v.name = "render";
+      s.render.views = {v};
+    } catch (const InputError& e) {
+      bad(where + ": view " +
+          (check < 0 ? c.viewLabel : "of check " + std::to_string(check + 1)) + ": " +
+          e.problem());
+    }
+    j.study = dir / "study.json";
+    j.out = dir / "out";
+    j.log = dir / "render.log";
+    config::writeStudyConfig(s, j.study);
+    jobs.push_back(j);
+  }
+
+  // A view of the study by name, as its JSON (so the case renders exactly what the study says).
+  json namedView(const config::StudyConfig& study, const std::string& wanted,
+                 const fs::path& studyFile, const std::string& where) const {
+    std::string known;
+    for (const config::ViewConfig& v : study.render.views) {
+      known += (known.empty() ? "" : ", ") + v.name;
+      if (v.name == wanted) return config::viewConfigJson(v);
+    }
+    bad(where + ": the study " + studyFile.string() + " has no view named \"" + wanted +
+        "\" (it has: " + (known.empty() ? "none" : known) + ")");
+  }
+
+  void addCase(std::size_t ci) {
+    const CaseSpec& c = suite_.cases[ci];
+    const std::string where = "case '" + c.name + "'";
+    const config::StudyConfig& study = loadStudy(c.study, where);
+    if (c.reference)
+      addJob(ci, -1, study,
+             c.view.is_string() ? namedView(study, c.view.get<std::string>(), c.study, where)
+                                : c.view,
+             where);
+    for (std::size_t k = 0; k < c.checks.size(); ++k) {
+      const fs::path& anatomical = study.anatomical.path;
+      if (!volumes_.count(anatomical))
+        volumes_.emplace(anatomical, study::readSource(study.anatomical));
+      plans_[ci].push_back(planMip(volumes_.at(anatomical), c.checks[k], suite_.file,
+                                   where + " check " + std::to_string(k + 1)));
+      addJob(ci, static_cast<int>(k), study, plans_[ci].back().view, where);
+    }
+  }
+
+  const Suite& suite_;
+  fs::path work_;
+  std::map<fs::path, config::StudyConfig> studies_;
+  std::map<fs::path, Volume> volumes_;
+  std::vector<std::vector<MipPlan>> plans_;
+};
+
+// The judgement of one case once all its renders have ended; copies what the report shows.
+class CaseJudge {
+ public:
+  CaseJudge(const ValidateOptions& o, const Suite& suite, const Plan& plan, json& environment)
+      : o_(o), suite_(suite), plan_(plan), environment_(environment) {}
+
+  CaseResult judge(std::size_t ci, const fs::path& dir) {
+    CaseResult r;
+    fs::create_directories(dir);
+    for (const Job& j : plan_.jobs) {
+      if (j.caseIndex != ci) continue;
+      r.seconds += j.result.seconds;
+      const std::string tag = j.check < 0 ? "" : "check" + std::to_string(j.check + 1) + "-";
+      io::copyFileAtomically(j.log, dir / (tag + "render.log"));
+      const fs::path png = j.out / "render.png";
+      if (j.result.status != 0 || !fs::exists(png)) {
+        renderFailed(r, j);
+        continue;
+      }
+      noteEnvironment(j.out / "render.json");
+      const cv::Mat rendered = cv::imread(png.string(), cv::IMREAD_COLOR);
+      if (rendered.empty()) {
+        r.pass = false;
+        r.problems.push_back("the render " + png.string() + " cannot be read");
+        continue;
+      }
+      if (j.check >= 0)
+        judgeCheck(r, ci, j, rendered, dir, tag);
+      else
+        judgeImage(r, suite_.cases[ci], rendered, png, dir);
+    }
+    return r;
+  }
+
+ private:
+  void renderFailed(CaseResult& r, const Job& j) const {
+    r.pass = false;
+    const std::string why = j.result.status == kTimedOut
+                                ? "timed out after " + fmt(o_.timeoutS, 0) + " s"
+                                : "mvw render exited with " + std::to_string(j.result.status);
+    r.problems.push_back(
+        (j.check < 0 ? "render: " : "check " + std::to_string(j.check + 1) + " render: ") + why +
+        ": " + lastLine(readText(j.log)));
+    if (j.check >= 0) r.checks.push_back(CheckResult{false, "not rendered", 0, 0, 0, 0});
+  }
+
+  void noteEnvironment(const fs::path& renderJson) {
+    if (!environment_["gl_renderer"].is_null()) return;
+    try {
+      const json rj = json::parse(std::ifstream(renderJson));
+      environment_["gl_renderer"] = rj.value("gl_renderer", "");
+      environment_["gl_version"] = rj.value("gl_version", "");
+      environment_["mvw_version"] = rj.value("mvw_version", "");
+    } catch (const json::exception&) {
+    }
+  }
+
+  void judgeCheck(CaseResult& r, std::size_t ci, const Job& j, const cv::Mat& rendered,
+                  const fs::path& dir, const std::string& tag) const {
+    const CaseSpec& c = suite_.cases[ci];
+    const CheckSpec& spec = c.checks[static_cast<std::size_t>(j.check)];
+    cv::Mat expected, heat;
+    CheckResult cr = evaluateMip(plan_.anatomy(c.study), spec, plan_.mipPlan(ci, j.check),
+                                 rendered, expected, heat);
+    writeMatPng(expected, dir / (tag + "expected.png"));
+    io::copyFileAtomically(j.out / "render.png", dir / (tag + "render.png"));
+    writeMatPng(heat, dir / (tag + "diff.png"));
+    if (!cr.pass) {
+      r.pass = false;
+      r.problems.push_back("check " + std::to_string(j.check + 1) + ": " + cr.message);
+    }
+    r.checks.push_back(cr);
+  }
+
+  void judgeImage(CaseResult& r, const CaseSpec& c, const cv::Mat& rendered, const fs::path& png,
+                  const fs::path& dir) const {
+    io::copyFileAtomically(png, dir / "render.png");
+    r.hasRender = true;
+    const fs::path& ref = *c.reference;
+    const bool refExists = fs::exists(ref);
+    cv::Mat reference;
+    if (refExists) reference = cv::imread(ref.string(), cv::IMREAD_COLOR);
+    if (refExists && !reference.empty() && reference.size() == rendered.size()) {
+      r.metrics = compareImages(rendered, reference, c.tolerance.maxDelta);
+      writeMatPng(r.metrics->heat, dir / "diff.png");
+      r.hasDiff = true;
+    }
+    if (o_.update) {
+      fs::create_directories(ref.parent_path());
+      io::copyFileAtomically(png, ref);
+      r.updated = true;
+      io::copyFileAtomically(png, dir / "reference.png");
+      r.hasReference = true;
+      return;
+    }
+    if (!refExists) {
+      r.pass = false;
+      r.problems.push_back("reference " + ref.string() + " is missing (--update writes it)");
+      return;
+    }
+    if (reference.empty()) {
+      r.pass = false;
+      r.problems.push_back("reference " + ref.string() + " is not a readable image");
+      return;
+    }
+    io::copyFileAtomically(ref, dir / "reference.png");
+    r.hasReference = true;
+    if (reference.size() != rendered.size()) {
+      r.pass = false;
+      r.problems.push_back("size " + std::to_string(rendered.cols) + " x " +
+                           std::to_string(rendered.rows) + " differs from the reference's " +
+                           std::to_string(reference.cols) + " x " +
+                           std::to_string(reference.rows));
+      return;
+    }
+    judgeTolerance(r, *r.metrics, c.tolerance);
+  }
+
+  static void judgeTolerance(CaseResult& r, const Metrics& m, const Tolerance& t) {
+    if (m.overFraction > t.maxDeltaFraction)
+      r.problems.push_back(fmt(100 * m.overFraction, 3) + "% of pixels differ by more than " +
+                           fmt(t.maxDelta, 0) + " (allowed " + fmt(100 * t.maxDeltaFraction, 3) +
+                           "%)");
+    if (m.meanDelta > t.meanDelta)
+      r.problems.push_back("mean delta " + fmt(m.meanDelta, 3) + " > " + fmt(t.meanDelta, 3));
+    if (m.psnr < t.psnr)
+      r.problems.push_back("PSNR " + fmt(m.psnr, 2) + " dB < " + fmt(t.psnr, 2) + " dB");
+    if (m.ssim < t.ssim) r.problems.push_back("SSIM " + fmt(m.ssim, 4) + " < " + fmt(t.ssim, 4));
+    if (!r.problems.empty()) r.pass = false;
+  }
+
+  const ValidateOptions& o_;
+  const Suite& suite_;
+  const Plan& plan_;
+  json& environment_;
+};
+
+}  // namespace
+
+bool runValidate(const ValidateOptions& o) {
+  const Suite suite = loadSuite(o.suite);
+  const WorkDir work;
+  Plan plan(suite, work.dir);
+
+  const fs::path exe =
+      o.executable.empty() ? fs::read_symlink("/proc/self/exe") : fs::path(o.executable);
+  const fs::path report = o.outDir;
+  {
+    std::error_code ec;
+    fs::create_directories(report / "cases", ec);
+    if (ec) throw InputError(report, "cannot create the report folder: " + ec.message());
+  }
+  std::vector<ProcessJob> processes;
+  for (const Job& j : plan.jobs)
+    processes.push_back(
+        {{exe.string(), "render", j.study.string(), "-o", j.out.string()}, j.log});
+  std::vector<int> pending(suite.cases.size(), 0);
+  for (const Job& j : plan.jobs) ++pending[j.caseIndex];
+
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  json environment = {{"mvw_version", nullptr}, {"gl_renderer", nullptr}, {"gl_version", nullptr}};
+  std::vector<CaseResult> results(suite.cases.size());
+  CaseJudge judge(o, suite, plan, environment);
+  std::size_t casesDone = 0;
+  progressBar(0, suite.cases.size(), tty);
+  runProcesses(processes, o.jobs, o.timeoutS, [&](std::size_t job, const ProcessResult& result) {
+    plan.jobs[job].result = result;
+    const std::size_t ci = plan.jobs[job].caseIndex;
+    if (--pending[ci] != 0) return;
+    results[ci] = judge.judge(ci, report / "cases" / suite.cases[ci].name);
+    ++casesDone;
+    if (tty) std::cerr << "\r\033[K";
+    std::cout << caseLine(suite.cases[ci], results[ci]) << std::endl;
+    progressBar(casesDone, suite.cases.size(), tty);
+  });
+  if (tty) std::cerr << "\n";
+
+  environment["host"] = hostName();
+  environment["date_utc"] = utcNow();
+  environment["jobs"] = o.jobs;
+  writeReport(suite, results, environment, o.update, report);
+  int passed = 0;
+  for (const auto& r : results) passed += r.pass ? 1 : 0;
+  const bool allPass = passed == static_cast<int>(results.size());
+  std::cout << (allPass ? "passed: " : "FAILED: ") << passed << " of " << results.size()
+            << " cases pass" << (o.update ? " (references updated)" : "") << "; report "
+            << (report / "index.html").string() << std::endl;
+  return allPass;
+}
+
+}  // namespace mvw::validate
