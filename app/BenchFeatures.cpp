@@ -76,7 +76,7 @@ void runFeatureBench(const FeatureBenchOptions& o) {
       ratios.push_back(w / wo);
     }
     std::printf("  %-30s %-11s %-15s %7.1f ms %7.1f ms %7.3fx  (median of per-frame ratios %.3f)\n",
-                v.config.name.c_str(), v.config.mode.c_str(), featureName(v.settings).c_str(), msWithout / o.frames,
+                v.config.name.c_str(), toString(v.config.mode).c_str(), featureName(v.settings).c_str(), msWithout / o.frames,
                 msWith / o.frames, msWith / msWithout, median(ratios));
   }
 }

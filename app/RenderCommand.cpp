@@ -96,8 +96,8 @@ void runRender(const RenderOptions& o) {
     }
     nlohmann::json r;
     r["file"] = v.config.name + ".png";
-    r["mode"] = v.config.mode;
-    r["view"] = v.config.view;
+    r["mode"] = toString(v.config.mode);
+    r["view"] = config::toString(v.config.view);
     r["azimuth_deg"] = v.config.azimuth;
     r["elevation_deg"] = v.config.elevation;
     r["roll_deg"] = v.config.roll;
@@ -111,7 +111,8 @@ void runRender(const RenderOptions& o) {
     r["level"] = shown.level;
     r["iso"] = v.settings.isoValue;
     if (v.settings.glyphs)
-      r["glyphs"] = {{"method", v.config.glyphMethod}, {"convexity", v.config.glyphConvexity},
+      r["glyphs"] = {{"method", config::toString(v.config.glyphMethod)},
+                     {"convexity", config::toString(v.config.glyphConvexity)},
                      {"diameter_mm", v.config.glyphDiameterMm}, {"count", v.config.glyphCount},
                      {"seed", v.config.glyphSeed}, {"map_size", v.config.glyphMapSize},
                      {"map_diameter", v.config.glyphMapDiameter}};
@@ -126,7 +127,7 @@ void runRender(const RenderOptions& o) {
       r["depth_cue"] = {{"brightness", v.settings.cueBrightness}, {"amount", v.settings.cueAmount},
                         {"contrast", v.settings.cueContrast}};
     r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : 0.5 * std::min({anatomy.spacing().x, anatomy.spacing().y, anatomy.spacing().z});
-    r["sampling"] = v.config.sampling;
+    r["sampling"] = config::toString(v.config.sampling);
     r["shading"] = v.settings.shading;
     r["jitter"] = v.settings.jitter;
     r["seed"] = v.settings.seed;
@@ -144,7 +145,8 @@ void runRender(const RenderOptions& o) {
     r["ms_per_frame"] = frame.milliseconds;
     r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);
     outputs.push_back({v.config.name + ".png", std::move(frame.image), r});
-    std::cerr << "rendered " << v.config.name << " (" << v.config.mode << ", " << v.config.view << ") in "
+    std::cerr << "rendered " << v.config.name << " (" << toString(v.config.mode) << ", "
+              << config::toString(v.config.view) << ") in "
               << static_cast<int>(frame.milliseconds) << " ms\n";
   }
   // All frames exist before anything is written: a failure leaves no partial output.

@@ -147,7 +147,7 @@ void Viewer::setupRendering() {
   if (opt_.functional) {
     const mvw::study::FunctionalPlacement placement = mvw::study::placeFunctional(opt_.study, opt_.anatomical, *opt_.functional);
     renderer_->setFunctional(*opt_.functional, placement.anatomicalFromFunctional);
-    registration_ = opt_.study.registration.method;
+    registration_ = config::toString(opt_.study.registration.method);
     if (placement.report.contains("mutual_information"))
       registration_ += ", MI " + std::to_string(placement.report["mutual_information"].get<double>());
   }
@@ -203,7 +203,7 @@ render::RenderSettings Viewer::settingsOf(int pane) const {
 config::ViewConfig Viewer::viewConfigOf(int pane) const {
   config::ViewConfig v =
       mvw::study::describeView(settingsOf(pane), std::string("view-") + kPaneNames[pane], pane == k3d ? presetName_ : "");
-  if (pane != k3d) v.view = kPaneNames[pane];  // axial, coronal, sagittal: the planes' own names
+  if (pane != k3d) v.view = *config::parseViewName(kPaneNames[pane]);  // axial, coronal, sagittal: the planes' own names
   return v;
 }
 
@@ -529,7 +529,9 @@ void Viewer::drawPanel() {
     const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};
     if (ImGui::Combo("glyph method", &method, methods, 2)) view3d_.glyphSizeControl = method == 0, panes_[k3d].dirty = true;
     const char* convexity[] = {"convex", "concave", "both"};
-    if (ImGui::Combo("bumps", &view3d_.glyphConvexity, convexity, 3)) panes_[k3d].dirty = true;
+    int convex = static_cast<int>(view3d_.glyphConvexity);
+    if (ImGui::Combo("bumps", &convex, convexity, 3))
+      view3d_.glyphConvexity = static_cast<GlyphConvexity>(convex), panes_[k3d].dirty = true;
     ImGui::TextWrapped("registration: %s", registration_ == "none" ? "none (world coordinates)" : registration_.c_str());
     if (registering_) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - registrationStart_).count();

@@ -96,13 +96,13 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(d.anatomical.path, dir / "anat.nii");
   EXPECT_EQ(d.anatomical.series, "7");
   EXPECT_EQ(d.functionalKind, FunctionalKind::Labels);
-  EXPECT_EQ(d.registration.method, "rigid");
+  EXPECT_EQ(d.registration.method, RegistrationMethod::Rigid);
   EXPECT_EQ(d.registration.rotationSearchDeg, 30.0);
   ASSERT_EQ(d.render.views.size(), 4u);
   const ViewConfig& a = d.render.views[0];
   EXPECT_TRUE(a.glyphs);
-  EXPECT_EQ(a.glyphMethod, "simple");
-  EXPECT_EQ(a.glyphConvexity, "both");
+  EXPECT_EQ(a.glyphMethod, GlyphMethod::Simple);
+  EXPECT_EQ(a.glyphConvexity, GlyphConvexity::Both);
   EXPECT_EQ(a.glyphDiameterMm, 9.0);
   EXPECT_EQ(a.glyphCount, 20);
   EXPECT_EQ(a.glyphMapSize, 96);
@@ -112,7 +112,7 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(a.cropMax[2], 0.55);
   EXPECT_EQ(a.light[0], -0.8);
   EXPECT_FALSE(a.shading);
-  EXPECT_EQ(a.sampling, "nearest");
+  EXPECT_EQ(a.sampling, Sampling::Nearest);
   EXPECT_EQ(a.background[2], 0.3);
   EXPECT_TRUE(a.perspective);
   EXPECT_EQ(a.gradientOpacity[1], 40.0);

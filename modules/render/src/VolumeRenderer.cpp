@@ -20,16 +20,6 @@ namespace {
 
 constexpr int kBlock = 8;
 
-const std::map<RenderMode, std::string> kModeNames = {{RenderMode::Composite, "composite"},
-                                                      {RenderMode::Isosurface, "isosurface"},
-                                                      {RenderMode::Mip, "mip"},
-                                                      {RenderMode::MinIp, "minip"},
-                                                      {RenderMode::Average, "average"},
-                                                      {RenderMode::Mpr, "mpr"},
-                                                      {RenderMode::ShellMip, "shells-mip"},
-                                                      {RenderMode::ShellSum, "shells-sum"},
-                                                      {RenderMode::ShellLit, "shells-lit"}};
-
 // Values of component 0 as float, in the volume's physical unit.
 std::vector<float> valuesOf(const Volume& v) {
   std::vector<float> out(v.voxelCount());
@@ -127,14 +117,6 @@ void checkGl(const char* what) {
 
 }  // namespace
 
-std::optional<RenderMode> parseRenderMode(const std::string& name) {
-  for (const auto& [mode, n] : kModeNames)
-    if (n == name) return mode;
-  return std::nullopt;
-}
-
-std::string toString(RenderMode mode) { return kModeNames.at(mode); }
-
 struct VolumeRenderer::Impl {
   GlContext& context;
   glm::ivec3 dims;
@@ -191,8 +173,8 @@ struct VolumeRenderer::Impl {
     if ((mode == RenderMode::Composite || mode == RenderMode::Isosurface) && s.glyphs) {
       defines.push_back("MVW_GLYPHS 1");
       if (!s.glyphSizeControl) defines.push_back("MVW_GLYPH_SIMPLE 1");
-      if (s.glyphConvexity == 1) defines.push_back("MVW_GLYPH_CONCAVE 1");
-      if (s.glyphConvexity == 2) defines.push_back("MVW_GLYPH_BOTH 1");
+      if (s.glyphConvexity == GlyphConvexity::Dimples) defines.push_back("MVW_GLYPH_CONCAVE 1");
+      if (s.glyphConvexity == GlyphConvexity::Both) defines.push_back("MVW_GLYPH_BOTH 1");
     }
     switch (mode) {
       case RenderMode::Composite: file = "composite.frag.glsl"; break;

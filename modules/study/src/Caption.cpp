@@ -15,8 +15,8 @@ bool isShellMode(render::RenderMode m) {
 
 std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   const render::RenderSettings& s = v.settings;
-  std::string caption = v.config.mode;
-  if (s.mode == render::RenderMode::Mpr) caption += " " + v.config.view;
+  std::string caption = toString(v.config.mode);
+  if (s.mode == render::RenderMode::Mpr) caption += " " + config::toString(v.config.view);
   if (s.mode == render::RenderMode::Mpr && s.slabMm > 0)
     caption += "  slab " + std::to_string(static_cast<int>(s.slabMm)) + " mm";
   if (s.mode == render::RenderMode::Composite)
@@ -26,7 +26,8 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   else
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));
-  if (s.glyphs) caption += "  glyphs " + v.config.glyphMethod + " " + v.config.glyphConvexity;
+  if (s.glyphs) caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
+                           config::toString(v.config.glyphConvexity);
   if (s.fusion) caption += "  + colour fusion";
   const bool shells = isShellMode(s.mode);
   if (shells) caption += "  " + std::to_string(s.shellCount) + " shells";

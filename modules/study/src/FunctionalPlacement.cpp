@@ -9,14 +9,15 @@ FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volu
                                     const Volume& functional) {
   FunctionalPlacement out;
   const config::RegistrationConfig& r = study.registration;
-  out.report["method"] = r.method;
-  if (r.method == "file") {
+  out.report["method"] = config::toString(r.method);
+  if (r.method == config::RegistrationMethod::File) {
     const resampling::Transform t = resampling::Transform::readItk(r.transform);
     out.anatomicalFromFunctional = t.fixedFromMoving();
     out.report["transform_file"] = r.transform.string();
-  } else if (r.method == "rigid" || r.method == "affine") {
+  } else if (r.method == config::RegistrationMethod::Rigid ||
+             r.method == config::RegistrationMethod::Affine) {
     resampling::RegistrationOptions options;
-    options.affine = r.method == "affine";
+    options.affine = r.method == config::RegistrationMethod::Affine;
     options.rotationSearchRangeDeg = r.rotationSearchDeg;
     const resampling::RegistrationResult result = resampling::registerRigid(anatomical, functional, options);
     out.anatomicalFromFunctional = result.transform.fixedFromMoving();

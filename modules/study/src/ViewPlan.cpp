@@ -7,13 +7,72 @@
 
 namespace mvw::study {
 
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+render::StandardView standardView(config::ViewName view) {
+  using config::ViewName;
+  using render::StandardView;
+  switch (view) {
+    case ViewName::Anterior: return StandardView::Anterior;
+    case ViewName::Posterior: return StandardView::Posterior;
+    case ViewName::Left: return StandardView::Left;
+    case ViewName::Right: return StandardView::Right;
+    case ViewName::Superior: return StandardView::Superior;
+    case ViewName::Inferior: return StandardView::Inferior;
+    // The MPR planes as radiology displays them: axial seen from the feet, coronal from the
+    // front, sagittal from the patient's left.
+    case ViewName::Axial: return StandardView::Inferior;
+    case ViewName::Coronal: return StandardView::Anterior;
+    case ViewName::Sagittal: return StandardView::Left;
+  }
+  return StandardView::Anterior;
+}
+
+config::ViewName viewName(render::StandardView view) {
+  using config::ViewName;
+  using render::StandardView;
+  switch (view) {
+    case StandardView::Anterior: return ViewName::Anterior;
+    case StandardView::Posterior: return ViewName::Posterior;
+    case StandardView::Left: return ViewName::Left;
+    case StandardView::Right: return ViewName::Right;
+    case StandardView::Superior: return ViewName::Superior;
+    case StandardView::Inferior: return ViewName::Inferior;
+  }
+  return ViewName::Anterior;
+}
+
 std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& o) {
   std::vector<PlannedView> out;
   for (config::ViewConfig v : study.render.views) {
-    if (o.mode) v.mode = *o.mode;
-    if (o.view) v.view = *o.view;
+    if (o.mode) {
+      const auto mode = parseRenderMode(*o.mode);
+      if (!mode)
+        throw InputError(study.file, "--mode '" + *o.mode + "' is not a mode (" +
+                                         joined(renderModeNames()) + ")");
+      v.mode = *mode;
+    }
+    if (o.view) {
+      const auto view = config::parseViewName(*o.view);
+      if (!view)
+        throw InputError(study.file,
+                         "--view '" + *o.view + "' is not a view (" + config::viewNameList() + ")");
+      v.view = *view;
+    }
     if (o.preset) v.preset = *o.preset;
-    if (o.sampling) v.sampling = *o.sampling;
+    if (o.sampling) {
+      const auto sampling = config::parseSampling(*o.sampling);
+      if (!sampling) throw InputError(study.file, "--sampling must be linear or nearest");
+      v.sampling = *sampling;
+    }
     if (o.size) v.width = v.height = *o.size;
     if (o.azimuth) v.azimuth = *o.azimuth;
     if (o.elevation) v.elevation = *o.elevation;
@@ -30,16 +89,6 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     if (o.perspective) v.perspective = true;
     PlannedView p;
     auto& s = p.settings;
-    const auto mode = render::parseRenderMode(v.mode);
-    if (!mode) throw InputError(study.file, "view '" + v.name + "': unknown mode '" + v.mode +
-                                                "' (composite, isosurface, mip, minip, average, mpr, shells-mip, "
-                                                "shells-sum, shells-lit)");
-    const auto sv = render::parseStandardView(v.view);
-    if (!sv) throw InputError(study.file, "view '" + v.name + "': unknown view '" + v.view +
-                                              "' (anterior, posterior, left, right, superior, inferior, "
-                                              "axial, coronal, sagittal)");
-    if (v.sampling != "linear" && v.sampling != "nearest")
-      throw InputError(study.file, "view '" + v.name + "': sampling must be linear or nearest");
     if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
       throw InputError(study.file, "view '" + v.name + "': size must be 1..8192");
     if (v.window && !(*v.window > 0)) throw InputError(study.file, "view '" + v.name + "': window must be positive");
@@ -50,9 +99,9 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
         throw InputError(study.file, "view '" + v.name + "': " + e.what());
       }
     }
-    s.mode = *mode;
+    s.mode = v.mode;
     s.size = {v.width, v.height};
-    s.camera.view = *sv;
+    s.camera.view = standardView(v.view);
     s.camera.azimuthDeg = v.azimuth;
     s.camera.elevationDeg = v.elevation;
     s.camera.rollDeg = v.roll;
@@ -63,15 +112,15 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.isoValue = v.iso;
     s.stepMm = v.stepMm;
     s.shading = v.shading;
-    s.linear = v.sampling == "linear";
+    s.linear = v.sampling == config::Sampling::Linear;
     s.jitter = v.jitter;
     s.seed = v.seed;
     s.background = {v.background[0], v.background[1], v.background[2]};
     s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
     s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
     s.glyphs = v.glyphs;
-    s.glyphSizeControl = v.glyphMethod == "sized";
-    s.glyphConvexity = v.glyphConvexity == "convex" ? 0 : v.glyphConvexity == "concave" ? 1 : 2;
+    s.glyphSizeControl = v.glyphMethod == config::GlyphMethod::Sized;
+    s.glyphConvexity = v.glyphConvexity;
     s.glyphDiameterMm = v.glyphDiameterMm;
     s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
     if (v.glyphs && !study.functional)
@@ -119,8 +168,8 @@ void applyDefaultPreset(PlannedView& view, const Volume& anatomy) {
 config::ViewConfig describeView(const render::RenderSettings& s, const std::string& name, const std::string& preset) {
   config::ViewConfig v;
   v.name = name;
-  v.mode = render::toString(s.mode);
-  v.view = render::toString(s.camera.view);
+  v.mode = s.mode;
+  v.view = viewName(s.camera.view);
   v.azimuth = s.camera.azimuthDeg;
   v.elevation = s.camera.elevationDeg;
   v.roll = s.camera.rollDeg;
@@ -133,15 +182,15 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.iso = s.isoValue;
   v.stepMm = s.stepMm;
   v.shading = s.shading;
-  v.sampling = s.linear ? "linear" : "nearest";
+  v.sampling = s.linear ? config::Sampling::Linear : config::Sampling::Nearest;
   v.jitter = s.jitter;
   v.seed = s.seed;
   v.background = {s.background.r, s.background.g, s.background.b};
   v.cropMin = {s.cropMin.x, s.cropMin.y, s.cropMin.z};
   v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
   v.glyphs = s.glyphs;
-  v.glyphMethod = s.glyphSizeControl ? "sized" : "simple";
-  v.glyphConvexity = s.glyphConvexity == 0 ? "convex" : s.glyphConvexity == 1 ? "concave" : "both";
+  v.glyphMethod = s.glyphSizeControl ? config::GlyphMethod::Sized : config::GlyphMethod::Simple;
+  v.glyphConvexity = s.glyphConvexity;
   v.glyphDiameterMm = s.glyphDiameterMm;
   v.glyphMapSize = s.glyphMap.size;
   v.glyphCount = s.glyphMap.count;

@@ -18,6 +18,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "mvw/core/RenderMode.h"
+
 namespace mvw::config {
 
 struct VolumeSource {
@@ -27,26 +29,33 @@ struct VolumeSource {
 
 enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };
 
-// One rendered view ("render": {"views": [...]}). Names of modes, standard views and presets
-// are checked by the app against the renderer's lists before any GL work.
+// The standard views as radiologists name them, and the MPR planes (axial = seen from the
+// feet, coronal = from the front, sagittal = from the patient's left).
+enum class ViewName {
+  Anterior, Posterior, Left, Right, Superior, Inferior, Axial, Coronal, Sagittal
+};
+enum class Sampling { Linear, Nearest };
+// Volumetric normal glyphs: size control by eqs. (2)-(3) of Seipel 2007, or eq. (1) blending.
+enum class GlyphMethod { Sized, Simple };
+
+// One rendered view ("render": {"views": [...]}). Every default below is the one default of
+// its key: the parser starts from a default-constructed ViewConfig.
 struct ViewConfig {
-  std::string name;                  // output file stem; default "view<N>"
-  std::string mode = "composite";    // composite | isosurface | mip | minip | average | mpr |
-                                     // shells-mip | shells-sum | shells-lit
-  std::string view = "anterior";     // anterior | posterior | left | right | superior | inferior
-                                     // (| axial | coronal | sagittal)
+  std::string name;  // output file stem; default "view<N>"
+  RenderMode mode = RenderMode::Composite;
+  ViewName view = ViewName::Anterior;
   double azimuth = 0.0, elevation = 0.0, roll = 0.0;  // degrees
   double zoom = 1.0;
   bool perspective = false;
   int width = 512, height = 512;
-  std::string preset;                // transfer function preset; "" = by modality
+  std::string preset;  // transfer function preset; "" = by modality
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
   // "convexity": "convex" | "concave" | "both", "diameter_mm", "count", "seed", "map_size",
   // "map_diameter"}; the functional attribute is mapped to beta 0..1 by functional_window.
   bool glyphs = false;
-  std::string glyphMethod = "sized";
-  std::string glyphConvexity = "convex";
+  GlyphMethod glyphMethod = GlyphMethod::Sized;
+  GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
   double glyphDiameterMm = 6.0;
   int glyphCount = 16, glyphMapSize = 128;
   double glyphMapDiameter = 32.0;
@@ -62,20 +71,20 @@ struct ViewConfig {
   int shells = 8;
   std::vector<int> shellsDisabled;
   bool shading = true;
-  std::string sampling = "linear";   // linear | nearest
-  double stepMm = 0.0;               // 0 = half the smallest voxel spacing
+  Sampling sampling = Sampling::Linear;
+  double stepMm = 0.0;  // 0 = half the smallest voxel spacing
   bool jitter = true;
   unsigned seed = 1;
   std::array<double, 3> background{0.0, 0.0, 0.0};
   std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};  // fractions of the box
   bool annotate = true;
-  std::array<double, 2> light{0.0, 0.0};  // light direction offset in screen terms; 0, 0: headlight
-  double planeOffsetMm = 0.0;        // mpr: plane moved along the line of sight
-  double slabMm = 0.0;               // mpr: thick-slab MIP thickness, 0 = single plane
-  bool overlay = true;               // mpr: show the functional volume when there is one
-  bool fusion = false;               // composite / isosurface: blend the functional colour in
+  std::array<double, 2> light{0.0, 0.0};  // light offset in screen terms; 0, 0: headlight
+  double planeOffsetMm = 0.0;             // mpr: plane moved along the line of sight
+  double slabMm = 0.0;                    // mpr: thick-slab MIP thickness, 0 = single plane
+  bool overlay = true;                    // mpr: show the functional volume when there is one
+  bool fusion = false;                    // composite / isosurface: blend the functional colour in
   double overlayOpacity = 0.5;
-  double overlayThreshold = 0.25;    // fraction of the functional value range
+  double overlayThreshold = 0.25;  // fraction of the functional value range
 };
 
 struct RenderConfig {
@@ -86,8 +95,10 @@ struct RenderConfig {
 //   none: by world coordinates (both in LPS mm); rigid / affine: mutual-information
 //   registration when the study is opened; file: an ITK transform file (e.g. transform.tfm
 //   from `mvw register`). rotation_search_deg > 0 adds a coarse rotation search.
+enum class RegistrationMethod { None, Rigid, Affine, File };
+
 struct RegistrationConfig {
-  std::string method = "none";
+  RegistrationMethod method = RegistrationMethod::None;
   std::filesystem::path transform;
   double rotationSearchDeg = 0.0;
 };
@@ -111,7 +122,17 @@ ViewConfig parseViewConfig(const nlohmann::json& view, const std::filesystem::pa
                            const std::string& where, int index);
 // The inverse of parseViewConfig: every field written out.
 nlohmann::json viewConfigJson(const ViewConfig& view);
+// The config's names of its enumerations, and their parsers (nullopt for an unknown name).
 std::string toString(FunctionalKind kind);
+std::string toString(ViewName view);
+std::string toString(Sampling sampling);
+std::string toString(GlyphMethod method);
+std::string toString(GlyphConvexity convexity);
+std::string toString(RegistrationMethod method);
+std::optional<ViewName> parseViewName(const std::string& name);
+std::optional<Sampling> parseSampling(const std::string& name);
+// "view names: a, b, c" lists for messages.
+std::string viewNameList();
 
 // The inverse of loadStudyConfig: every field written out, paths absolute, the file replaced
 // atomically (temp + rename). loadStudyConfig of the result gives the same config.

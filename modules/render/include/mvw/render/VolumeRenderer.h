@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include "mvw/core/Image.h"
+#include "mvw/core/RenderMode.h"
 #include "mvw/core/Volume.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/GlContext.h"
@@ -21,12 +22,11 @@
 
 namespace mvw::render {
 
-// ShellMip, ShellSum, ShellLit: the paper's own discrete algorithm (Heidrich et al. 1995):
-// isosurface shells at n emission thresholds drawn as triangles, the GL depth test doing the
-// maximum (eq. 4), approximate summation (section 2.4), or lit shells.
-enum class RenderMode { Composite, Isosurface, Mip, MinIp, Average, Mpr, ShellMip, ShellSum, ShellLit };
-std::optional<RenderMode> parseRenderMode(const std::string& name);
-std::string toString(RenderMode mode);
+// The modes and glyph kinds are the study config's vocabulary too (mvw/core/RenderMode.h).
+using mvw::GlyphConvexity;
+using mvw::parseRenderMode;
+using mvw::RenderMode;
+using mvw::toString;
 
 struct RenderSettings {
   RenderMode mode = RenderMode::Composite;
@@ -68,7 +68,7 @@ struct RenderSettings {
   // from a periodic normal map. Needs a functional volume.
   bool glyphs = false;
   bool glyphSizeControl = true;  // eqs. (2)-(3); false: simple blending, eq. (1)
-  int glyphConvexity = 0;        // 0 convex bumps, 1 concave dimples, 2 both (below/above mid-range)
+  GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
   double glyphDiameterMm = 12.0;
   GlyphMapSettings glyphMap;     // size, count, diameter in map voxels, seed
   // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.

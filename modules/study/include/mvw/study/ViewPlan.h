@@ -27,6 +27,11 @@ struct PlannedView {
   std::string presetName;  // empty until the anatomy is known: see applyDefaultPreset
 };
 
+// The config's view names and the renderer's standard views (axial, coronal and sagittal are
+// inferior, anterior and left; the way back gives the six standard names).
+render::StandardView standardView(config::ViewName view);
+config::ViewName viewName(render::StandardView view);
+
 // Throws InputError naming the study file for any view the renderer cannot honour.
 std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& overrides = {});
 

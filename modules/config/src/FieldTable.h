@@ -1,0 +1,212 @@
+#pragma once
+// One table per config object: its keys, how each is read (type and range checks, messages
+// naming the file and the key's full path), how it is written, and, through the object's own
+// default member initialisers, its defaults. Unknown keys are rejected from the same table, so
+// a key cannot be parsed without being written or written without being known.
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::config::detail {
+
+using nlohmann::json;
+
+// Where a value sits, for messages: the config file and the key's path ("render.views[0].zoom").
+struct Where {
+  const std::filesystem::path& file;
+  std::string key;
+  [[noreturn]] void bad(const std::string& problem) const {
+    throw InputError(file, "'" + key + "' " + problem);
+  }
+};
+
+template <class E>
+using EnumNames = std::vector<std::pair<E, const char*>>;
+
+template <class E>
+std::string namesOf(const EnumNames<E>& names) {
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(names[i].second);
+  return list;
+}
+
+template <class E>
+std::optional<E> parseName(const EnumNames<E>& names, const std::string& name) {
+  for (const auto& [e, n] : names)
+    if (name == n) return e;
+  return std::nullopt;
+}
+
+template <class E>
+std::string nameOf(const EnumNames<E>& names, E e) {
+  for (const auto& [v, n] : names)
+    if (v == e) return n;
+  return "?";
+}
+
+inline double readNumber(const json& v, const Where& w, double lo, double hi) {
+  if (!v.is_number()) w.bad("must be a number");
+  const double d = v.get<double>();
+  if (!(d >= lo && d <= hi))
+    w.bad("= " + std::to_string(d) + " is outside " + std::to_string(lo) + " .. " +
+          std::to_string(hi));
+  return d;
+}
+
+inline std::string readString(const json& v, const Where& w) {
+  if (!v.is_string()) w.bad("must be a string");
+  return v.get<std::string>();
+}
+
+template <class T>
+class FieldTable {
+ public:
+  using Reader = std::function<void(const json& value, T& out, const Where& where)>;
+  using Writer = std::function<void(const T& in, json& object, const char* key)>;
+
+  FieldTable& add(const char* key, Reader read, Writer write) {
+    fields_.push_back({key, std::move(read), std::move(write)});
+    return *this;
+  }
+
+  template <class M>
+  FieldTable& number(const char* key, M T::*member, double lo, double hi) {
+    return add(
+        key,
+        [member, lo, hi](const json& v, T& out, const Where& w) {
+          out.*member = static_cast<M>(readNumber(v, w, lo, hi));
+        },
+        [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
+  }
+
+  FieldTable& optionalNumber(const char* key, std::optional<double> T::*member, double lo,
+                             double hi) {
+    return add(
+        key,
+        [member, lo, hi](const json& v, T& out, const Where& w) {
+          out.*member = readNumber(v, w, lo, hi);
+        },
+        [member](const T& in, json& j, const char* k) {
+          if (in.*member) j[k] = *(in.*member);
+        });
+  }
+
+  FieldTable& boolean(const char* key, bool T::*member) {
+    return add(
+        key,
+        [member](const json& v, T& out, const Where& w) {
+          if (!v.is_boolean()) w.bad("must be true or false");
+          out.*member = v.get<bool>();
+        },
+        [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
+  }
+
+  FieldTable& string(const char* key, std::string T::*member) {
+    return add(
+        key, [member](const json& v, T& out, const Where& w) { out.*member = readString(v, w); },
+        [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
+  }
+
+  template <class E>
+  FieldTable& enumeration(const char* key, E T::*member, EnumNames<E> names) {
+    return add(
+        key,
+        [member, names](const json& v, T& out, const Where& w) {
+          const auto e = parseName(names, readString(v, w));
+          if (!e) w.bad("must be " + namesOf(names));
+          out.*member = *e;
+        },
+        [member, names](const T& in, json& j, const char* k) { j[k] = nameOf(names, in.*member); });
+  }
+
+  template <std::size_t N>
+  FieldTable& numbers(const char* key, std::array<double, N> T::*member, double lo, double hi) {
+    return add(
+        key,
+        [member, lo, hi](const json& v, T& out, const Where& w) {
+          const std::string what = "must be an array of " + std::to_string(N) + " numbers";
+          if (!v.is_array() || v.size() != N) w.bad(what);
+          std::array<double, N> a{};
+          for (std::size_t i = 0; i < N; ++i) {
+            if (!v[i].is_number()) w.bad(what);
+            a[i] = v[i].get<double>();
+            if (!(a[i] >= lo && a[i] <= hi))
+              w.bad("values must lie in " + std::to_string(lo) + " .. " + std::to_string(hi));
+          }
+          out.*member = a;
+        },
+        [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
+  }
+
+  // A nested object whose presence switches a feature on ("glyphs": {...}); its keys are read
+  // into the same struct by `table`, and it is written only while the feature is on.
+  FieldTable& section(const char* key, bool T::*enabled, const FieldTable<T>& table) {
+    return add(
+        key,
+        [enabled, table](const json& v, T& out, const Where& w) {
+          out.*enabled = true;
+          table.read(v, out, Where{w.file, w.key + "."});
+        },
+        [enabled, table](const T& in, json& j, const char* k) {
+          if (in.*enabled) j[k] = table.write(in);
+        });
+  }
+
+  // `object`'s keys into `out` (keys not in the object keep out's values: the defaults).
+  // where.key is the prefix of every key ("render.views[0]." or "" at the top).
+  void read(const json& object, T& out, const Where& where) const {
+    if (!object.is_object()) {
+      std::string name = where.key;
+      if (!name.empty() && name.back() == '.') name.pop_back();
+      throw InputError(where.file, "'" + name + "' must be an object");
+    }
+    for (const auto& [key, value] : object.items()) {
+      (void)value;
+      if (find(key) == nullptr)
+        throw InputError(where.file, "unknown key '" + where.key + key + "' (known here: " +
+                                         knownKeys() + ")");
+    }
+    for (const Field& f : fields_)
+      if (object.contains(f.key)) f.read(object[f.key], out, Where{where.file, where.key + f.key});
+  }
+
+  json write(const T& in) const {
+    json j = json::object();
+    for (const Field& f : fields_) f.write(in, j, f.key);
+    return j;
+  }
+
+  std::string knownKeys() const {
+    std::vector<std::string> keys;
+    for (const Field& f : fields_) keys.push_back(f.key);
+    std::sort(keys.begin(), keys.end());
+    std::string list;
+    for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
+    return list;
+  }
+
+ private:
+  struct Field {
+    const char* key;
+    Reader read;
+    Writer write;
+  };
+  const Field* find(const std::string& key) const {
+    for (const Field& f : fields_)
+      if (key == f.key) return &f;
+    return nullptr;
+  }
+  std::vector<Field> fields_;
+};
+
+}  // namespace mvw::config::detail
