@@ -173,8 +173,8 @@ class FieldTable {
     for (const auto& [key, value] : object.items()) {
       (void)value;
       if (find(key) == nullptr)
-        throw InputError(where.file, "unknown key '" + where.key + key + "' (known here: " +
-                                         knownKeys() + ")");
+        throw InputError(where.file,
+                         "unknown key '" + where.key + key + "' (known here: " + knownKeys() + ")");
     }
     for (const Field& f : fields_)
       if (object.contains(f.key)) f.read(object[f.key], out, Where{where.file, where.key + f.key});

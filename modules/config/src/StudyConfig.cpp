@@ -22,9 +22,9 @@ using nlohmann::json;
 // The names of the enumerations
 
 const EnumNames<FunctionalKind> kKinds = {
-    {FunctionalKind::Pet, "pet"},       {FunctionalKind::Spect, "spect"},
-    {FunctionalKind::Fmri, "fmri"},     {FunctionalKind::Perfusion, "perfusion"},
-    {FunctionalKind::Dose, "dose"},     {FunctionalKind::Labels, "labels"},
+    {FunctionalKind::Pet, "pet"},    {FunctionalKind::Spect, "spect"},
+    {FunctionalKind::Fmri, "fmri"},  {FunctionalKind::Perfusion, "perfusion"},
+    {FunctionalKind::Dose, "dose"},  {FunctionalKind::Labels, "labels"},
     {FunctionalKind::Other, "other"}};
 
 const EnumNames<ViewName> kViewNames = {
@@ -141,15 +141,15 @@ const FieldTable<ViewConfig>& viewTable() {
               if (!fw.is_array() || fw.size() != 2 || !fw[0].is_number() || !fw[1].is_number() ||
                   !(fw[0].get<double>() < fw[1].get<double>()))
                 w.bad("must be [low, high] with low < high");
-              out.functionalWindow = std::array<double, 2>{fw[0].get<double>(), fw[1].get<double>()};
+              out.functionalWindow =
+                  std::array<double, 2>{fw[0].get<double>(), fw[1].get<double>()};
             },
             [](const V& in, json& j, const char* k) {
               if (in.functionalWindow) j[k] = *in.functionalWindow;
             })
         .section("depth_cue", &V::depthCue, depthCueTable())
         .add("gradient_opacity",
-             orderedPair<V>(&V::gradientOpacity, 0.0,
-                            "[low, high] with 0 <= low < high (unit/mm)"),
+             orderedPair<V>(&V::gradientOpacity, 0.0, "[low, high] with 0 <= low < high (unit/mm)"),
              [](const V& in, json& j, const char* k) {
                if (in.gradientOpacity[1] > 0.0) j[k] = in.gradientOpacity;
              })
@@ -195,8 +195,8 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
       throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
   for (int k : v.shellsDisabled)
     if (k > v.shells)
-      throw InputError(file, "'" + w + "shells_disabled' holds shell numbers 1.." +
-                                 std::to_string(v.shells));
+      throw InputError(
+          file, "'" + w + "shells_disabled' holds shell numbers 1.." + std::to_string(v.shells));
   return v;
 }
 
@@ -258,9 +258,8 @@ const FieldTable<RegistrationConfig>& registrationTable() {
             [](const json& v, R& out, const Where& w) {
               const std::string p = detail::readString(v, w);
               if (p.empty()) return;
-              out.transform =
-                  (fs::path(p).is_absolute() ? fs::path(p) : w.file.parent_path() / p)
-                      .lexically_normal();
+              out.transform = (fs::path(p).is_absolute() ? fs::path(p) : w.file.parent_path() / p)
+                                  .lexically_normal();
             },
             [](const R& in, json& j, const char* k) {
               if (!in.transform.empty())
@@ -276,7 +275,8 @@ std::vector<ViewConfig> readViews(const json& r, const fs::path& file) {
   if (!r.is_object()) throw InputError(file, "'render' must be an object");
   for (const auto& [key, value] : r.items()) {
     (void)value;
-    if (key != "views") throw InputError(file, "unknown key 'render." + key + "' (known here: views)");
+    if (key != "views")
+      throw InputError(file, "unknown key 'render." + key + "' (known here: views)");
   }
   std::vector<ViewConfig> views;
   if (!r.contains("views")) return views;

@@ -37,7 +37,8 @@ void copyFileAtomically(const fs::path& from, const fs::path& to) {
   writeAtomically(to, [&](const fs::path& tmp) {
     std::error_code ec;
     fs::copy_file(from, tmp, fs::copy_options::overwrite_existing, ec);
-    if (ec) throw Error("cannot copy " + from.string() + " to " + to.string() + ": " + ec.message());
+    if (ec)
+      throw Error("cannot copy " + from.string() + " to " + to.string() + ": " + ec.message());
   });
 }
 

@@ -26,8 +26,9 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   else
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));
-  if (s.glyphs) caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
-                           config::toString(v.config.glyphConvexity);
+  if (s.glyphs)
+    caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
+               config::toString(v.config.glyphConvexity);
   if (s.fusion) caption += "  + colour fusion";
   const bool shells = isShellMode(s.mode);
   if (shells) caption += "  " + std::to_string(s.shellCount) + " shells";

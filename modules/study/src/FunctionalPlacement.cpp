@@ -19,7 +19,8 @@ FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volu
     resampling::RegistrationOptions options;
     options.affine = r.method == config::RegistrationMethod::Affine;
     options.rotationSearchRangeDeg = r.rotationSearchDeg;
-    const resampling::RegistrationResult result = resampling::registerRigid(anatomical, functional, options);
+    const resampling::RegistrationResult result =
+        resampling::registerRigid(anatomical, functional, options);
     out.anatomicalFromFunctional = result.transform.fixedFromMoving();
     out.report["converged"] = result.converged;
     out.report["iterations"] = result.iterations;

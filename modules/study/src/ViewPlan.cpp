@@ -21,17 +21,26 @@ render::StandardView standardView(config::ViewName view) {
   using config::ViewName;
   using render::StandardView;
   switch (view) {
-    case ViewName::Anterior: return StandardView::Anterior;
-    case ViewName::Posterior: return StandardView::Posterior;
-    case ViewName::Left: return StandardView::Left;
-    case ViewName::Right: return StandardView::Right;
-    case ViewName::Superior: return StandardView::Superior;
-    case ViewName::Inferior: return StandardView::Inferior;
+    case ViewName::Anterior:
+      return StandardView::Anterior;
+    case ViewName::Posterior:
+      return StandardView::Posterior;
+    case ViewName::Left:
+      return StandardView::Left;
+    case ViewName::Right:
+      return StandardView::Right;
+    case ViewName::Superior:
+      return StandardView::Superior;
+    case ViewName::Inferior:
+      return StandardView::Inferior;
     // The MPR planes as radiology displays them: axial seen from the feet, coronal from the
     // front, sagittal from the patient's left.
-    case ViewName::Axial: return StandardView::Inferior;
-    case ViewName::Coronal: return StandardView::Anterior;
-    case ViewName::Sagittal: return StandardView::Left;
+    case ViewName::Axial:
+      return StandardView::Inferior;
+    case ViewName::Coronal:
+      return StandardView::Anterior;
+    case ViewName::Sagittal:
+      return StandardView::Left;
   }
   return StandardView::Anterior;
 }
@@ -40,12 +49,18 @@ config::ViewName viewName(render::StandardView view) {
   using config::ViewName;
   using render::StandardView;
   switch (view) {
-    case StandardView::Anterior: return ViewName::Anterior;
-    case StandardView::Posterior: return ViewName::Posterior;
-    case StandardView::Left: return ViewName::Left;
-    case StandardView::Right: return ViewName::Right;
-    case StandardView::Superior: return ViewName::Superior;
-    case StandardView::Inferior: return ViewName::Inferior;
+    case StandardView::Anterior:
+      return ViewName::Anterior;
+    case StandardView::Posterior:
+      return ViewName::Posterior;
+    case StandardView::Left:
+      return ViewName::Left;
+    case StandardView::Right:
+      return ViewName::Right;
+    case StandardView::Superior:
+      return ViewName::Superior;
+    case StandardView::Inferior:
+      return ViewName::Inferior;
   }
   return ViewName::Anterior;
 }
@@ -91,7 +106,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     auto& s = p.settings;
     if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
       throw InputError(study.file, "view '" + v.name + "': size must be 1..8192");
-    if (v.window && !(*v.window > 0)) throw InputError(study.file, "view '" + v.name + "': window must be positive");
+    if (v.window && !(*v.window > 0))
+      throw InputError(study.file, "view '" + v.name + "': window must be positive");
     if (!v.preset.empty()) {
       try {
         s.transfer = render::transferPreset(v.preset);
@@ -124,9 +140,12 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.glyphDiameterMm = v.glyphDiameterMm;
     s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
     if (v.glyphs && !study.functional)
-      throw InputError(study.file, "view '" + v.name + "': glyphs need a functional volume in the study");
-    if (v.glyphs && (s.mode != render::RenderMode::Composite && s.mode != render::RenderMode::Isosurface))
-      throw InputError(study.file, "view '" + v.name + "': glyphs work in composite and isosurface modes");
+      throw InputError(study.file,
+                       "view '" + v.name + "': glyphs need a functional volume in the study");
+    if (v.glyphs &&
+        (s.mode != render::RenderMode::Composite && s.mode != render::RenderMode::Isosurface))
+      throw InputError(study.file,
+                       "view '" + v.name + "': glyphs work in composite and isosurface modes");
     if (v.functionalWindow) {
       s.functionalLow = (*v.functionalWindow)[0];
       s.functionalHigh = (*v.functionalWindow)[1];
@@ -149,7 +168,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.fusion = v.fusion;
     s.functionalClasses = v.functionalClasses;
     if (v.fusion && !study.functional)
-      throw InputError(study.file, "view '" + v.name + "': fusion needs a functional volume in the study");
+      throw InputError(study.file,
+                       "view '" + v.name + "': fusion needs a functional volume in the study");
     s.overlayOpacity = static_cast<float>(v.overlayOpacity);
     s.overlayThreshold = static_cast<float>(v.overlayThreshold);
     p.presetName = v.preset;
@@ -165,7 +185,8 @@ void applyDefaultPreset(PlannedView& view, const Volume& anatomy) {
   view.settings.transfer = render::transferPreset(view.presetName);
 }
 
-config::ViewConfig describeView(const render::RenderSettings& s, const std::string& name, const std::string& preset) {
+config::ViewConfig describeView(const render::RenderSettings& s, const std::string& name,
+                                const std::string& preset) {
   config::ViewConfig v;
   v.name = name;
   v.mode = s.mode;
@@ -196,7 +217,8 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.glyphCount = s.glyphMap.count;
   v.glyphMapDiameter = s.glyphMap.diameter;
   v.glyphSeed = s.glyphMap.seed;
-  if (s.functionalHigh > s.functionalLow) v.functionalWindow = std::array<double, 2>{s.functionalLow, s.functionalHigh};
+  if (s.functionalHigh > s.functionalLow)
+    v.functionalWindow = std::array<double, 2>{s.functionalLow, s.functionalHigh};
   v.light = {s.lightOffset.x, s.lightOffset.y};
   v.shells = s.shellCount;
   for (std::size_t k = 0; k < s.shellEnabled.size(); ++k)

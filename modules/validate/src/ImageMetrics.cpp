@@ -14,8 +14,7 @@ namespace mvw::validate {
 namespace fs = std::filesystem;
 
 double psnrFromMse(double mse) {
-  return mse > 0 ? 10.0 * std::log10(255.0 * 255.0 / mse)
-                 : std::numeric_limits<double>::infinity();
+  return mse > 0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : std::numeric_limits<double>::infinity();
 }
 
 double psnr(const Image& a, const Image& b) {

@@ -8,8 +8,8 @@
 
 #include <glm/glm.hpp>
 
-#include "mvw/core/Error.h"
 #include "Format.h"
+#include "mvw/core/Error.h"
 #include "mvw/validate/ImageMetrics.h"
 
 namespace mvw::validate {
@@ -28,8 +28,8 @@ MipPlan planMip(const Volume& v, const CheckSpec& c, const fs::path& suite,
     if (std::abs(col[k]) > std::abs(col[w])) w = k;
   if (std::abs(col[w]) < 0.9999)
     throw InputError(suite, where + ": the volume's index axis " + "ijk"[c.axis] +
-                   " is oblique to the LPS axes; "
-                   "mip_equals_max_projection needs an axis-aligned one");
+                                " is oblique to the LPS axes; "
+                                "mip_equals_max_projection needs an axis-aligned one");
   render::CameraSettings cs;
   cs.view = w == 0   ? render::StandardView::Left
             : w == 1 ? render::StandardView::Anterior
@@ -57,7 +57,7 @@ MipPlan planMip(const Volume& v, const CheckSpec& c, const fs::path& suite,
             static_cast<int>(std::max(1L, std::lround(d[p.b] * sp[p.b] / pixelMm)))};
   if (p.size.x > 8192 || p.size.y > 8192)
     throw InputError(suite, where + ": the volume needs a " + std::to_string(p.size.x) + " x " +
-                   std::to_string(p.size.y) + " image (more than 8192 pixels a side)");
+                                std::to_string(p.size.y) + " image (more than 8192 pixels a side)");
   const double aspect = static_cast<double>(p.size.x) / p.size.y;
   cs.zoom = radius / std::min(1.0, aspect) / (0.5 * p.size.y * pixelMm);
   p.camera = render::makeCamera(cs, centre, radius, p.size);

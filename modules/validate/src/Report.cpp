@@ -42,7 +42,9 @@ std::string html(const std::string& s) {
 
 json numberOrInf(double v) { return std::isfinite(v) ? json(v) : json("inf"); }
 
-const char* verdict(const CaseResult& r) { return r.updated ? "updated" : r.pass ? "pass" : "FAIL"; }
+const char* verdict(const CaseResult& r) {
+  return r.updated ? "updated" : r.pass ? "pass" : "FAIL";
+}
 
 }  // namespace
 
@@ -60,8 +62,8 @@ std::string caseLine(const CaseSpec& c, const CaseResult& r) {
 
 namespace {
 
-json reportJson(const Suite& suite, const std::vector<CaseResult>& results,
-                const json& environment, bool updated) {
+json reportJson(const Suite& suite, const std::vector<CaseResult>& results, const json& environment,
+                bool updated) {
   int passed = 0;
   for (const auto& r : results) passed += r.pass ? 1 : 0;
   json rj;
@@ -137,9 +139,8 @@ void metricsTable(std::ostream& h, const Metrics& m, const Tolerance& t) {
     << "<tr><td>max per-pixel delta</td><td>" << fmt(m.maxDelta, 0) << "</td><td>"
     << fmt(t.maxDelta, 0) << " on at most " << fmt(100 * t.maxDeltaFraction, 3)
     << "% of pixels</td></tr>"
-    << "<tr><td>pixels over " << fmt(t.maxDelta, 0) << "</td><td>"
-    << fmt(100 * m.overFraction, 3) << "%</td><td>&le; " << fmt(100 * t.maxDeltaFraction, 3)
-    << "%</td></tr>"
+    << "<tr><td>pixels over " << fmt(t.maxDelta, 0) << "</td><td>" << fmt(100 * m.overFraction, 3)
+    << "%</td><td>&le; " << fmt(100 * t.maxDeltaFraction, 3) << "%</td></tr>"
     << "<tr><td>mean delta</td><td>" << fmt(m.meanDelta, 3) << "</td><td>&le; "
     << fmt(t.meanDelta, 3) << "</td></tr>"
     << "<tr><td>PSNR</td><td>" << fmt(m.psnr, 2) << " dB</td><td>&ge; " << fmt(t.psnr, 2)
@@ -155,8 +156,8 @@ void figure(std::ostream& h, const std::string& src, const std::string& caption)
 
 void caseSection(std::ostream& h, const CaseSpec& c, const CaseResult& r) {
   const std::string dir = "cases/" + c.name + "/";
-  h << "<div class=\"case\" id=\"" << html(c.name) << "\"><h3>" << html(c.name)
-    << " <span class=\"" << (r.pass ? "pass" : "fail") << "\">" << verdict(r) << "</span></h3>\n";
+  h << "<div class=\"case\" id=\"" << html(c.name) << "\"><h3>" << html(c.name) << " <span class=\""
+    << (r.pass ? "pass" : "fail") << "\">" << verdict(r) << "</span></h3>\n";
   h << "<p>study " << html(c.study.string()) << ", view " << html(c.viewLabel);
   if (c.reference) h << ", reference " << html(c.reference->string());
   h << " (" << fmt(r.seconds, 1) << " s)</p>\n";

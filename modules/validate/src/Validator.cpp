@@ -138,9 +138,8 @@ class Plan {
       v.name = "render";
       s.render.views = {v};
     } catch (const InputError& e) {
-      bad(where + ": view " +
-          (check < 0 ? c.viewLabel : "of check " + std::to_string(check + 1)) + ": " +
-          e.problem());
+      bad(where + ": view " + (check < 0 ? c.viewLabel : "of check " + std::to_string(check + 1)) +
+          ": " + e.problem());
     }
     j.study = dir / "study.json";
     j.out = dir / "out";
@@ -166,10 +165,10 @@ class Plan {
     const std::string where = "case '" + c.name + "'";
     const config::StudyConfig& study = loadStudy(c.study, where);
     if (c.reference)
-      addJob(ci, -1, study,
-             c.view.is_string() ? namedView(study, c.view.get<std::string>(), c.study, where)
-                                : c.view,
-             where);
+      addJob(
+          ci, -1, study,
+          c.view.is_string() ? namedView(study, c.view.get<std::string>(), c.study, where) : c.view,
+          where);
     for (std::size_t k = 0; k < c.checks.size(); ++k) {
       const fs::path& anatomical = study.anatomical.path;
       if (!volumes_.count(anatomical))
@@ -249,8 +248,8 @@ class CaseJudge {
     const CaseSpec& c = suite_.cases[ci];
     const CheckSpec& spec = c.checks[static_cast<std::size_t>(j.check)];
     cv::Mat expected, heat;
-    CheckResult cr = evaluateMip(plan_.anatomy(c.study), spec, plan_.mipPlan(ci, j.check),
-                                 rendered, expected, heat);
+    CheckResult cr = evaluateMip(plan_.anatomy(c.study), spec, plan_.mipPlan(ci, j.check), rendered,
+                                 expected, heat);
     writeMatPng(expected, dir / (tag + "expected.png"));
     io::copyFileAtomically(j.out / "render.png", dir / (tag + "render.png"));
     writeMatPng(heat, dir / (tag + "diff.png"));
@@ -298,8 +297,7 @@ class CaseJudge {
       r.pass = false;
       r.problems.push_back("size " + std::to_string(rendered.cols) + " x " +
                            std::to_string(rendered.rows) + " differs from the reference's " +
-                           std::to_string(reference.cols) + " x " +
-                           std::to_string(reference.rows));
+                           std::to_string(reference.cols) + " x " + std::to_string(reference.rows));
       return;
     }
     judgeTolerance(r, *r.metrics, c.tolerance);
@@ -341,8 +339,7 @@ bool runValidate(const ValidateOptions& o) {
   }
   std::vector<ProcessJob> processes;
   for (const Job& j : plan.jobs)
-    processes.push_back(
-        {{exe.string(), "render", j.study.string(), "-o", j.out.string()}, j.log});
+    processes.push_back({{exe.string(), "render", j.study.string(), "-o", j.out.string()}, j.log});
   std::vector<int> pending(suite.cases.size(), 0);
   for (const Job& j : plan.jobs) ++pending[j.caseIndex];
 

@@ -32,7 +32,15 @@ enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };
 // The standard views as radiologists name them, and the MPR planes (axial = seen from the
 // feet, coronal = from the front, sagittal = from the patient's left).
 enum class ViewName {
-  Anterior, Posterior, Left, Right, Superior, Inferior, Axial, Coronal, Sagittal
+  Anterior,
+  Posterior,
+  Left,
+  Right,
+  Superior,
+  Inferior,
+  Axial,
+  Coronal,
+  Sagittal
 };
 enum class Sampling { Linear, Nearest };
 // Volumetric normal glyphs: size control by eqs. (2)-(3) of Seipel 2007, or eq. (1) blending.
@@ -48,7 +56,7 @@ struct ViewConfig {
   double zoom = 1.0;
   bool perspective = false;
   int width = 512, height = 512;
-  std::string preset;  // transfer function preset; "" = by modality
+  std::string preset;                               // transfer function preset; "" = by modality
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
   // "convexity": "convex" | "concave" | "both", "diameter_mm", "count", "seed", "map_size",

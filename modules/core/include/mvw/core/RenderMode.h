@@ -9,7 +9,17 @@
 
 namespace mvw {
 
-enum class RenderMode { Composite, Isosurface, Mip, MinIp, Average, Mpr, ShellMip, ShellSum, ShellLit };
+enum class RenderMode {
+  Composite,
+  Isosurface,
+  Mip,
+  MinIp,
+  Average,
+  Mpr,
+  ShellMip,
+  ShellSum,
+  ShellLit
+};
 
 // The names the config and the command line use: composite, isosurface, mip, minip, average,
 // mpr, shells-mip, shells-sum, shells-lit.

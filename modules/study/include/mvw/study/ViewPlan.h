@@ -33,7 +33,8 @@ render::StandardView standardView(config::ViewName view);
 config::ViewName viewName(render::StandardView view);
 
 // Throws InputError naming the study file for any view the renderer cannot honour.
-std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& overrides = {});
+std::vector<PlannedView> planViews(const config::StudyConfig& study,
+                                   const ViewOverrides& overrides = {});
 
 // Views without a preset get the one that suits the anatomy's modality.
 void applyDefaultPreset(PlannedView& view, const Volume& anatomy);

@@ -28,7 +28,7 @@ struct Metrics {
   double meanDelta = 0;     // mean absolute channel delta
   double psnr = 0;          // dB
   double ssim = 0;
-  cv::Mat heat;             // heatMap of the per-pixel largest channel delta
+  cv::Mat heat;  // heatMap of the per-pixel largest channel delta
 };
 
 // `actual` and `reference`: 8-bit images of one size and channel count.

@@ -1,0 +1,184 @@
+// The view config's field table: every key is read, written and read back; unknown keys and
+// bad values are refused with the key's full path. (The table drives all three, so a key the
+// writer dropped would fail FullySetViewSurvivesTheRoundTrip on its own field.)
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+
+namespace mvw::config {
+namespace {
+
+using nlohmann::json;
+
+// Every field away from its default.
+ViewConfig fullySet() {
+  ViewConfig v;
+  v.name = "all";
+  v.mode = RenderMode::Isosurface;
+  v.view = ViewName::Sagittal;
+  v.azimuth = 12.5;
+  v.elevation = -3;
+  v.roll = 4;
+  v.zoom = 1.7;
+  v.perspective = true;
+  v.width = 300;
+  v.height = 200;
+  v.preset = "ct-skin";
+  v.gradientOpacity = {5, 40};
+  v.glyphs = true;
+  v.glyphMethod = GlyphMethod::Simple;
+  v.glyphConvexity = GlyphConvexity::Both;
+  v.glyphDiameterMm = 9;
+  v.glyphCount = 20;
+  v.glyphMapSize = 96;
+  v.glyphMapDiameter = 20;
+  v.glyphSeed = 3;
+  v.functionalWindow = std::array<double, 2>{0.3, 1.5};
+  v.functionalClasses = 4;
+  v.window = 900;
+  v.level = 100;
+  v.iso = 250;
+  v.depthCue = true;
+  v.cueBrightness = 0.1;
+  v.cueAmount = 0.66;
+  v.cueContrast = 0.33;
+  v.shells = 16;
+  v.shellsDisabled = {1, 2};
+  v.shading = false;
+  v.sampling = Sampling::Nearest;
+  v.stepMm = 0.3;
+  v.jitter = false;
+  v.seed = 9;
+  v.background = {0.1, 0.2, 0.3};
+  v.cropMin = {0, 0.1, 0.2};
+  v.cropMax = {1, 0.9, 0.55};
+  v.annotate = false;
+  v.light = {-0.8, 0.8};
+  v.planeOffsetMm = 20;
+  v.slabMm = 5;
+  v.overlay = false;
+  v.fusion = true;
+  v.overlayOpacity = 0.7;
+  v.overlayThreshold = 0.1;
+  return v;
+}
+
+TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
+  const ViewConfig a = fullySet();
+  const ViewConfig b = parseViewConfig(viewConfigJson(a), "study.json", "view", 0);
+  EXPECT_EQ(b.name, a.name);
+  EXPECT_EQ(b.mode, a.mode);
+  EXPECT_EQ(b.view, a.view);
+  EXPECT_EQ(b.azimuth, a.azimuth);
+  EXPECT_EQ(b.elevation, a.elevation);
+  EXPECT_EQ(b.roll, a.roll);
+  EXPECT_EQ(b.zoom, a.zoom);
+  EXPECT_EQ(b.perspective, a.perspective);
+  EXPECT_EQ(b.width, a.width);
+  EXPECT_EQ(b.height, a.height);
+  EXPECT_EQ(b.preset, a.preset);
+  EXPECT_EQ(b.gradientOpacity, a.gradientOpacity);
+  EXPECT_EQ(b.glyphs, a.glyphs);
+  EXPECT_EQ(b.glyphMethod, a.glyphMethod);
+  EXPECT_EQ(b.glyphConvexity, a.glyphConvexity);
+  EXPECT_EQ(b.glyphDiameterMm, a.glyphDiameterMm);
+  EXPECT_EQ(b.glyphCount, a.glyphCount);
+  EXPECT_EQ(b.glyphMapSize, a.glyphMapSize);
+  EXPECT_EQ(b.glyphMapDiameter, a.glyphMapDiameter);
+  EXPECT_EQ(b.glyphSeed, a.glyphSeed);
+  EXPECT_EQ(b.functionalWindow, a.functionalWindow);
+  EXPECT_EQ(b.functionalClasses, a.functionalClasses);
+  EXPECT_EQ(b.window, a.window);
+  EXPECT_EQ(b.level, a.level);
+  EXPECT_EQ(b.iso, a.iso);
+  EXPECT_EQ(b.depthCue, a.depthCue);
+  EXPECT_EQ(b.cueBrightness, a.cueBrightness);
+  EXPECT_EQ(b.cueAmount, a.cueAmount);
+  EXPECT_EQ(b.cueContrast, a.cueContrast);
+  EXPECT_EQ(b.shells, a.shells);
+  EXPECT_EQ(b.shellsDisabled, a.shellsDisabled);
+  EXPECT_EQ(b.shading, a.shading);
+  EXPECT_EQ(b.sampling, a.sampling);
+  EXPECT_EQ(b.stepMm, a.stepMm);
+  EXPECT_EQ(b.jitter, a.jitter);
+  EXPECT_EQ(b.seed, a.seed);
+  EXPECT_EQ(b.background, a.background);
+  EXPECT_EQ(b.cropMin, a.cropMin);
+  EXPECT_EQ(b.cropMax, a.cropMax);
+  EXPECT_EQ(b.annotate, a.annotate);
+  EXPECT_EQ(b.light, a.light);
+  EXPECT_EQ(b.planeOffsetMm, a.planeOffsetMm);
+  EXPECT_EQ(b.slabMm, a.slabMm);
+  EXPECT_EQ(b.overlay, a.overlay);
+  EXPECT_EQ(b.fusion, a.fusion);
+  EXPECT_EQ(b.overlayOpacity, a.overlayOpacity);
+  EXPECT_EQ(b.overlayThreshold, a.overlayThreshold);
+}
+
+// The defaults live in the struct alone: an empty view object parses to a default ViewConfig,
+// and what the writer writes for it parses back to the same.
+TEST(ConfigFields, AnEmptyViewHasTheStructsDefaults) {
+  const ViewConfig d = parseViewConfig(json::object(), "study.json", "view", 3);
+  const ViewConfig defaults;
+  EXPECT_EQ(d.name, "view3");
+  EXPECT_EQ(d.mode, defaults.mode);
+  EXPECT_EQ(d.glyphDiameterMm, defaults.glyphDiameterMm);
+  EXPECT_EQ(d.zoom, defaults.zoom);
+  EXPECT_FALSE(d.window.has_value());
+  EXPECT_FALSE(d.glyphs);
+  EXPECT_EQ(viewConfigJson(parseViewConfig(viewConfigJson(d), "s.json", "view", 0)),
+            viewConfigJson(d));
+  EXPECT_FALSE(viewConfigJson(d).contains("glyphs"));  // a section is written only when on
+}
+
+std::string problemOf(const json& view) {
+  try {
+    parseViewConfig(view, "study.json", "render.views[0]", 0);
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "study.json");
+    return e.problem();
+  }
+  ADD_FAILURE() << "no InputError for " << view.dump();
+  return {};
+}
+
+TEST(ConfigFields, BadKeysAndValuesNameTheKey) {
+  EXPECT_NE(problemOf({{"zoomm", 2}}).find("unknown key 'render.views[0].zoomm'"),
+            std::string::npos);
+  EXPECT_NE(problemOf({{"glyphs", {{"sise", 1}}}}).find("render.views[0].glyphs.sise"),
+            std::string::npos);
+  EXPECT_NE(problemOf({{"mode", "xray"}}).find("'render.views[0].mode' must be composite"),
+            std::string::npos);
+  EXPECT_NE(problemOf({{"view", "top"}}).find("sagittal"), std::string::npos);
+  EXPECT_NE(problemOf({{"sampling", "cubic"}}).find("must be linear or nearest"),
+            std::string::npos);
+  EXPECT_NE(problemOf({{"zoom", 0}}).find("'render.views[0].zoom' = "), std::string::npos);
+  EXPECT_NE(problemOf({{"width", "wide"}}).find("must be a number"), std::string::npos);
+  EXPECT_NE(problemOf({{"window", 100}}).find("go together"), std::string::npos);
+  EXPECT_NE(problemOf({{"crop_min", {0, 0, 0.5}}, {"crop_max", {1, 1, 0.5}}}).find("below"),
+            std::string::npos);
+  EXPECT_NE(problemOf({{"shells", 4}, {"shells_disabled", {5}}}).find("1..4"), std::string::npos);
+  EXPECT_NE(problemOf({{"functional_window", {2, 1}}}).find("low < high"), std::string::npos);
+  EXPECT_NE(problemOf({{"glyphs", {{"convexity", "flat"}}}}).find("convex, concave or both"),
+            std::string::npos);
+  EXPECT_NE(problemOf({{"name", "a/b"}}).find("plain file name"), std::string::npos);
+  EXPECT_NE(problemOf(json::array()).find("must be an object"), std::string::npos);
+}
+
+TEST(ConfigFields, EnumNamesRoundTrip) {
+  for (const char* n : {"anterior", "posterior", "left", "right", "superior", "inferior", "axial",
+                        "coronal", "sagittal"}) {
+    const auto v = parseViewName(n);
+    ASSERT_TRUE(v.has_value()) << n;
+    EXPECT_EQ(toString(*v), n);
+  }
+  EXPECT_FALSE(parseViewName("top").has_value());
+  EXPECT_EQ(toString(GlyphConvexity::Dimples), "concave");
+  EXPECT_EQ(toString(RegistrationMethod::Affine), "affine");
+  EXPECT_EQ(parseSampling("nearest"), Sampling::Nearest);
+}
+
+}  // namespace
+}  // namespace mvw::config
