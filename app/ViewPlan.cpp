@@ -80,7 +80,9 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
     s.glyphs = v.glyphs;
     s.glyphSizeControl = v.glyphMethod == "sized";
-    s.glyphConvexity = v.glyphConvexity == "convex" ? 0 : v.glyphConvexity == "concave" ? 1 : 2;
+    s.glyphConvexity = v.glyphConvexity == "convex"    ? render::GlyphConvexity::Bumps
+                       : v.glyphConvexity == "concave" ? render::GlyphConvexity::Dimples
+                                                       : render::GlyphConvexity::Both;
     s.glyphDiameterMm = v.glyphDiameterMm;
     s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
     if (v.glyphs && !study.functional)
@@ -150,7 +152,9 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
   v.glyphs = s.glyphs;
   v.glyphMethod = s.glyphSizeControl ? "sized" : "simple";
-  v.glyphConvexity = s.glyphConvexity == 0 ? "convex" : s.glyphConvexity == 1 ? "concave" : "both";
+  v.glyphConvexity = s.glyphConvexity == render::GlyphConvexity::Bumps     ? "convex"
+                     : s.glyphConvexity == render::GlyphConvexity::Dimples ? "concave"
+                                                                           : "both";
   v.glyphDiameterMm = s.glyphDiameterMm;
   v.glyphMapSize = s.glyphMap.size;
   v.glyphCount = s.glyphMap.count;

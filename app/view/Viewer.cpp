@@ -529,7 +529,11 @@ void Viewer::drawPanel() {
     const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};
     if (ImGui::Combo("glyph method", &method, methods, 2)) view3d_.glyphSizeControl = method == 0, panes_[k3d].dirty = true;
     const char* convexity[] = {"convex", "concave", "both"};
-    if (ImGui::Combo("bumps", &view3d_.glyphConvexity, convexity, 3)) panes_[k3d].dirty = true;
+    int convexityIndex = static_cast<int>(view3d_.glyphConvexity);  // the enum's order
+    if (ImGui::Combo("bumps", &convexityIndex, convexity, 3)) {
+      view3d_.glyphConvexity = static_cast<render::GlyphConvexity>(convexityIndex);
+      panes_[k3d].dirty = true;
+    }
     ImGui::TextWrapped("registration: %s", registration_ == "none" ? "none (world coordinates)" : registration_.c_str());
     if (registering_) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - registrationStart_).count();

@@ -423,7 +423,7 @@ TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
   // Dimples change the same places as bumps, with other shading.
   renderer.setFunctional(GlyphScene::attribute(1.0f), glm::dmat4(1.0));
   const Frame bumps = renderer.render(s);
-  s.glyphConvexity = 1;
+  s.glyphConvexity = GlyphConvexity::Dimples;
   const Frame dimples = renderer.render(s);
   EXPECT_GT(changedPixels(bumps.image, dimples.image), previous / 2);
 }
@@ -478,9 +478,9 @@ TEST(Glyphs, ConvexAndConcaveFlipTheLitSide) {
       }
     return std::pair<double, double>{left / std::max(nl, 1), right / std::max(nr, 1)};
   };
-  s.glyphConvexity = 0;
+  s.glyphConvexity = GlyphConvexity::Bumps;
   const auto [bumpLeft, bumpRight] = sides(renderer.render(s).image);
-  s.glyphConvexity = 1;
+  s.glyphConvexity = GlyphConvexity::Dimples;
   const auto [dimpleLeft, dimpleRight] = sides(renderer.render(s).image);
   std::cout << "bump left/right " << bumpLeft << "/" << bumpRight << ", dimple " << dimpleLeft << "/"
             << dimpleRight << "\n";

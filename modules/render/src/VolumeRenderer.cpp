@@ -191,8 +191,8 @@ struct VolumeRenderer::Impl {
     if ((mode == RenderMode::Composite || mode == RenderMode::Isosurface) && s.glyphs) {
       defines.push_back("MVW_GLYPHS 1");
       if (!s.glyphSizeControl) defines.push_back("MVW_GLYPH_SIMPLE 1");
-      if (s.glyphConvexity == 1) defines.push_back("MVW_GLYPH_CONCAVE 1");
-      if (s.glyphConvexity == 2) defines.push_back("MVW_GLYPH_BOTH 1");
+      if (s.glyphConvexity == GlyphConvexity::Dimples) defines.push_back("MVW_GLYPH_CONCAVE 1");
+      if (s.glyphConvexity == GlyphConvexity::Both) defines.push_back("MVW_GLYPH_BOTH 1");
     }
     switch (mode) {
       case RenderMode::Composite: file = "composite.frag.glsl"; break;
