@@ -15,6 +15,7 @@
 #include "mvw/core/Image.h"
 #include "mvw/core/Volume.h"
 #include "mvw/render/Camera.h"
+#include "mvw/render/Framing.h"
 #include "mvw/render/GlContext.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/TransferFunction.h"
@@ -116,7 +117,9 @@ class VolumeRenderer {
 
   Frame render(const RenderSettings& settings);
   std::pair<double, double> valueRange() const;
-  // The sphere the camera frames: the centre of the voxel box and half its diagonal (mm).
+  // The sphere the camera frames: framingSphere(volume), the centre of the voxel box and half
+  // its diagonal (mm).
+  FramingSphere framing() const;
   glm::dvec3 centre() const;
   double radius() const;
 
