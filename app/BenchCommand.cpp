@@ -16,6 +16,7 @@
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/render/Framing.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/study/StudyLoader.h"
 #include "mvw/validate/ImageMetrics.h"
@@ -70,8 +71,7 @@ void runBench(const BenchOptions& o) {
     // Quality: the first frame against a 4x oversampled reference (a quarter of the step).
     s.camera.azimuthDeg = 0.0;
     const Image image = renderer.render(s).image;
-    const double minSpacing = std::min({volume.spacing().x, volume.spacing().y, volume.spacing().z});
-    const double step = s.stepMm > 0 ? s.stepMm : 0.5 * minSpacing;
+    const double step = s.stepMm > 0 ? s.stepMm : render::defaultStepMm(volume);
     s.stepMm = step / 4.0;
     const Image reference = renderer.render(s).image;
     std::printf("  %-11s %8.1f ms/frame  %6.2f fps  step %.3f mm  PSNR %.1f dB vs 4x oversampled\n",

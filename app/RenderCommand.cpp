@@ -24,6 +24,7 @@
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/render/Annotations.h"
+#include "mvw/render/Framing.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/resampling/PetPhantom.h"
@@ -126,7 +127,7 @@ void runRender(const RenderOptions& o) {
     if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue)
       r["depth_cue"] = {{"brightness", v.settings.cueBrightness}, {"amount", v.settings.cueAmount},
                         {"contrast", v.settings.cueContrast}};
-    r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : 0.5 * std::min({anatomy.spacing().x, anatomy.spacing().y, anatomy.spacing().z});
+    r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : render::defaultStepMm(anatomy);
     r["sampling"] = config::toString(v.config.sampling);
     r["shading"] = v.settings.shading;
     r["jitter"] = v.settings.jitter;

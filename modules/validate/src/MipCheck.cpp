@@ -10,6 +10,7 @@
 
 #include "Format.h"
 #include "mvw/core/Error.h"
+#include "mvw/render/Framing.h"
 #include "mvw/validate/ImageMetrics.h"
 
 namespace mvw::validate {
@@ -36,11 +37,10 @@ MipPlan planMip(const Volume& v, const CheckSpec& c, const fs::path& suite,
                      : render::StandardView::Superior;
   const glm::ivec3 d = v.dimensions();
   const glm::dvec3 sp = v.spacing();
-  // The renderer's framing: the bounding sphere of the voxel box around its centre.
-  const glm::dvec3 corner0 = glm::dvec3(v.worldFromIndex() * glm::dvec4(-0.5, -0.5, -0.5, 1.0));
-  const glm::dvec3 corner1 = glm::dvec3(v.worldFromIndex() * glm::dvec4(glm::dvec3(d) - 0.5, 1.0));
-  const glm::dvec3 centre = 0.5 * (corner0 + corner1);
-  const double radius = 0.5 * glm::length(glm::dvec3(d) * sp);
+  // The renderer's own framing, so the rays fall on the voxel columns.
+  const render::FramingSphere framing = render::framingSphere(v);
+  const glm::dvec3 centre = framing.centre;
+  const double radius = framing.radius;
   const render::Camera probe = render::makeCamera(cs, centre, radius, {1, 1});
   auto along = [&](const glm::dvec3& s) {
     for (int k = 0; k < 3; ++k)

@@ -16,6 +16,7 @@
 #include "mvw/core/RenderMode.h"
 #include "mvw/core/Volume.h"
 #include "mvw/render/Camera.h"
+#include "mvw/render/Framing.h"
 #include "mvw/render/GlContext.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/TransferFunction.h"
@@ -36,8 +37,8 @@ struct RenderSettings {
   // 2D transfer function: opacity scaled by smoothstep(g0, g1, |gradient|) (unit/mm), which
   // keeps boundaries and hides homogeneous regions (Levoy). g1 <= 0: 1D only.
   double gradientOpacityLow = 0.0, gradientOpacityHigh = 0.0;
-  double window = 0.0;   // projections: window width; <= 0 means the full value range
-  double level = 0.0;    // window centre
+  double window = 0.0;  // projections: window width; <= 0 means the full value range
+  double level = 0.0;   // window centre
   double isoValue = 300.0;
   // MIP with depth cueing (Heidrich et al. 1995, eq. 3 and section 2.3): brightness beta0,
   // depth cue amount a, contrast b. Off, or a = 0, b = 1, beta0 = 0: plain MIP.
@@ -46,9 +47,9 @@ struct RenderSettings {
   // Shell modes: n shells at emissions i/n of the window; shells can be disabled one by one.
   int shellCount = 8;
   std::vector<bool> shellEnabled;  // empty: all
-  double stepMm = 0.0;   // <= 0: half the smallest voxel spacing
+  double stepMm = 0.0;             // <= 0: half the smallest voxel spacing
   bool shading = true;
-  bool linear = true;    // trilinear (true) or nearest-neighbour sampling
+  bool linear = true;  // trilinear (true) or nearest-neighbour sampling
   bool jitter = true;
   std::uint32_t seed = 1;
   glm::vec3 background{0.0f};
@@ -70,7 +71,7 @@ struct RenderSettings {
   bool glyphSizeControl = true;  // eqs. (2)-(3); false: simple blending, eq. (1)
   GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
   double glyphDiameterMm = 12.0;
-  GlyphMapSettings glyphMap;     // size, count, diameter in map voxels, seed
+  GlyphMapSettings glyphMap;  // size, count, diameter in map voxels, seed
   // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
   double functionalLow = 0.0, functionalHigh = 0.0;
   // Nominal attribute (labels): K > 0 maps label L > 0 to glyph size (L mod K + 1) / K.
@@ -85,7 +86,7 @@ struct RenderSettings {
 };
 
 struct Frame {
-  Image image;          // with depth: the ray distance (mm) of the reported sample, -1 for none
+  Image image;  // with depth: the ray distance (mm) of the reported sample, -1 for none
   double milliseconds = 0.0;
   Camera camera;
 };
@@ -101,7 +102,9 @@ class VolumeRenderer {
 
   Frame render(const RenderSettings& settings);
   std::pair<double, double> valueRange() const;
-  // The sphere the camera frames: the centre of the voxel box and half its diagonal (mm).
+  // The sphere the camera frames: framingSphere(volume), the centre of the voxel box and half
+  // its diagonal (mm).
+  FramingSphere framing() const;
   glm::dvec3 centre() const;
   double radius() const;
 

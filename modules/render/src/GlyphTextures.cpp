@@ -1,0 +1,91 @@
+#include "GlyphTextures.h"
+
+#include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "TextureUpload.h"
+#include "mvw/core/Error.h"
+
+namespace mvw::render::detail {
+
+void GlyphTextures::uploadMap(const GlyphMapSettings& g) {
+  if (cells_.id() && g.size == settings_.size && g.count == settings_.count &&
+      g.diameter == settings_.diameter && g.seed == settings_.seed)
+    return;
+  const GlyphMap map = makeGlyphMap(g, /*texels=*/false);
+  const int n = map.size / map.cellSize;
+  cells_ = makeTexture();
+  glBindTexture(GL_TEXTURE_3D, cells_.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, n, n, n, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+               map.cells.data());
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_REPEAT);  // the map is periodic
+  setSampling(cells_.id(), GL_TEXTURE_3D, false);
+  std::vector<glm::vec4> centres(255, glm::vec4(0.0f));  // std140: one vec4 per centre
+  for (std::size_t i = 0; i < map.centres.size(); ++i)
+    centres[i] = glm::vec4(glm::vec3(map.centres[i]), 0.0f);
+  centres_ = makeBuffer();
+  glBindBuffer(GL_UNIFORM_BUFFER, centres_.id());
+  glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(centres.size() * sizeof(glm::vec4)), centres.data(),
+               GL_STATIC_DRAW);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  checkGl("uploading the glyph map");
+  settings_ = g;
+  radius_ = map.radius;
+}
+
+// Beta sits in the gradient's alpha so that the ray loop reads it with the gradient instead of
+// sampling a second volume per step.
+void GlyphTextures::updateBeta(const VolumeTextures& volume, const FunctionalTextures& functional,
+                               glm::vec2 window, int classes, const ShaderProgram& p, GLuint vao) {
+  const BetaKey key{functional.generation(), window.x, window.y, classes};
+  if (betaKey_ == key) return;
+  p.use();
+  functional.setUniforms(p, window, classes);
+  const glm::mat4 worldFromIndex(volume.worldFromIndex());
+  glUniformMatrix4fv(p.uniform("uWorldFromIndex"), 1, GL_FALSE, glm::value_ptr(worldFromIndex));
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_3D, functional.texture());
+  glUniform1i(p.uniform("uFunctional"), 0);
+  Framebuffer fbo = makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  const GLenum buffer = GL_COLOR_ATTACHMENT0;
+  glDrawBuffers(1, &buffer);
+  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, volume.gradient(), 0, 0);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw Error("the GL cannot render into the gradient volume (RGBA16F) for glyph shading");
+  }
+  const glm::ivec3 dims = volume.dims();
+  glViewport(0, 0, dims.x, dims.y);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);  // alpha only: keep the gradient
+  glBindVertexArray(vao);
+  for (int k = 0; k < dims.z; ++k) {
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, volume.gradient(), 0, k);
+    glUniform1f(p.uniform("uSlice"), float(k));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkGl("resampling the functional volume for glyph shading");
+  betaKey_ = key;
+}
+
+void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm) const {
+  const GLuint block = glGetUniformBlockIndex(p.id(), "GlyphCentres");
+  if (block != GL_INVALID_INDEX) {
+    glUniformBlockBinding(p.id(), block, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, centres_.id());
+  }
+  const double voxelsPerMm = settings_.diameter / diameterMm;
+  glUniform1f(p.uniform("uGlyphVoxelsPerMm"), float(voxelsPerMm));
+  glUniform1f(p.uniform("uGlyphMapSize"), float(settings_.size));
+  glUniform1f(p.uniform("uGlyphInvMapSize"), float(1.0 / settings_.size));
+  glUniform1f(p.uniform("uGlyphRadius"), float(radius_));
+}
+
+}  // namespace mvw::render::detail

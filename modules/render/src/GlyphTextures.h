@@ -1,0 +1,49 @@
+#pragma once
+// What glyph shading (Seipel 2007) reads besides the anatomy (internal to mvw_render): the
+// glyph map's cell grid and centres, and the functional attribute (beta) resampled into the
+// gradient texture's alpha, each derived again only when its inputs change.
+#include <cstdint>
+#include <optional>
+
+#include <glm/vec2.hpp>
+
+#include "FunctionalTextures.h"
+#include "GlObjects.h"
+#include "VolumeTextures.h"
+#include "mvw/render/GlyphMap.h"
+#include "mvw/render/ShaderProgram.h"
+
+namespace mvw::render::detail {
+
+class GlyphTextures {
+ public:
+  // The map for `settings`, unless it is the one already uploaded.
+  void uploadMap(const GlyphMapSettings& settings);
+
+  // The functional attribute through `window` and `classes`, written into the alpha of the
+  // volume's gradient texture with `betaProgram` (beta.frag.glsl) one slice at a time, unless
+  // the gradient already holds it. Leaves the default framebuffer bound.
+  void updateBeta(const VolumeTextures& volume, const FunctionalTextures& functional,
+                  glm::vec2 window, int classes, const ShaderProgram& betaProgram, GLuint vao);
+
+  // The glyph centres' uniform block and the map's scale, for glyphs of diameterMm.
+  void setUniforms(const ShaderProgram& program, double diameterMm) const;
+
+  GLuint cells() const { return cells_.id(); }
+
+ private:
+  Texture cells_;
+  Buffer centres_;
+  GlyphMapSettings settings_{0, 0, 0.0, 0};
+  double radius_ = 0.0;  // map voxels
+  // What the gradient texture's alpha holds: the functional attribute through this mapping.
+  struct BetaKey {
+    std::uint64_t generation;
+    float low, high;
+    int classes;
+    bool operator==(const BetaKey&) const = default;
+  };
+  std::optional<BetaKey> betaKey_;
+};
+
+}  // namespace mvw::render::detail

@@ -1,0 +1,59 @@
+#include "RaycastPrograms.h"
+
+namespace mvw::render::detail {
+
+const ShaderProgram& RaycastPrograms::forMode(RenderMode mode, const RenderSettings& s,
+                                              bool fusion) {
+  std::string file = "projection.frag.glsl";
+  std::vector<std::string> defines;
+  if (mode == RenderMode::Mip && s.depthCue) defines.push_back("MVW_DEPTH_CUE 1");
+  if (mode == RenderMode::Composite) {
+    if (s.gradientOpacityHigh > 0.0) defines.push_back("MVW_TF2D 1");
+    if (fusion) defines.push_back("MVW_FUSION 1");
+  }
+  if ((mode == RenderMode::Composite || mode == RenderMode::Isosurface) && s.glyphs) {
+    defines.push_back("MVW_GLYPHS 1");
+    if (!s.glyphSizeControl) defines.push_back("MVW_GLYPH_SIMPLE 1");
+    if (s.glyphConvexity == GlyphConvexity::Dimples) defines.push_back("MVW_GLYPH_CONCAVE 1");
+    if (s.glyphConvexity == GlyphConvexity::Both) defines.push_back("MVW_GLYPH_BOTH 1");
+  }
+  switch (mode) {
+    case RenderMode::Composite:
+      file = "composite.frag.glsl";
+      break;
+    case RenderMode::Isosurface:
+      file = "isosurface.frag.glsl";
+      break;
+    case RenderMode::Mip:
+      defines.push_back("MVW_MIP 1");
+      break;
+    case RenderMode::MinIp:
+      defines = {"MVW_MINIP 1"};
+      break;
+    case RenderMode::Average:
+      defines = {"MVW_AVERAGE 1"};
+      break;
+    case RenderMode::Mpr:
+      file = "mpr.frag.glsl";
+      break;
+    case RenderMode::ShellMip:
+    case RenderMode::ShellSum:
+    case RenderMode::ShellLit:
+      break;  // drawn by detail::ShellRenderer
+  }
+  std::string key = toString(mode);
+  for (const auto& d : defines) key += "+" + d;
+  return cached(key, file, defines);
+}
+
+const ShaderProgram& RaycastPrograms::beta() { return cached("beta", "beta.frag.glsl", {}); }
+
+const ShaderProgram& RaycastPrograms::cached(const std::string& key, const std::string& fragment,
+                                             const std::vector<std::string>& defines) {
+  auto it = programs_.find(key);
+  if (it == programs_.end())
+    it = programs_.emplace(key, ShaderProgram("fullscreen.vert.glsl", fragment, defines)).first;
+  return it->second;
+}
+
+}  // namespace mvw::render::detail

@@ -1,0 +1,27 @@
+#pragma once
+// The ray caster's GL programs (internal to mvw_render), compiled on first use and kept: one
+// per mode and compile-time variant, so a feature that is off costs nothing in the ray loop.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mvw/render/ShaderProgram.h"
+#include "mvw/render/VolumeRenderer.h"
+
+namespace mvw::render::detail {
+
+class RaycastPrograms {
+ public:
+  // The program for a ray-cast mode (not the shell modes) with the variants `settings` and
+  // `fusion` (the functional colour blended in) ask for.
+  const ShaderProgram& forMode(RenderMode mode, const RenderSettings& settings, bool fusion);
+  // beta.frag.glsl: the functional attribute into the gradient's alpha.
+  const ShaderProgram& beta();
+
+ private:
+  const ShaderProgram& cached(const std::string& key, const std::string& fragment,
+                              const std::vector<std::string>& defines);
+  std::map<std::string, ShaderProgram> programs_;
+};
+
+}  // namespace mvw::render::detail

@@ -1,0 +1,62 @@
+#include "TextureUpload.h"
+
+#include <cstdio>
+#include <string>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::render::detail {
+
+std::vector<float> valuesOf(const Volume& volume) {
+  std::vector<float> out(volume.voxelCount());
+  const int nc = volume.components();
+  dispatchScalar(volume.scalarType(), [&](auto t) {
+    using T = decltype(t);
+    const T* p = reinterpret_cast<const T*>(volume.data());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(p[i * nc]);
+    return 0;
+  });
+  return out;
+}
+
+void checkGl(const char* what) {
+  const GLenum e = glGetError();
+  if (e == GL_OUT_OF_MEMORY)
+    throw Error(std::string(what) + ": the GL implementation is out of memory for this volume");
+  if (e != GL_NO_ERROR) {
+    char code[16];
+    std::snprintf(code, sizeof code, "%x", e);
+    throw Error(std::string(what) + ": GL error 0x" + code);
+  }
+}
+
+void setSampling(GLuint texture, GLenum target, bool linear) {
+  glBindTexture(target, texture);
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
+}
+
+Texture upload3D(glm::ivec3 dims, GLint internalFormat, GLenum format, const float* data,
+                 bool linear, const char* what) {
+  Texture texture = makeTexture();
+  glBindTexture(GL_TEXTURE_3D, texture.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, dims.x, dims.y, dims.z, 0, format, GL_FLOAT, data);
+  checkGl(what);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  setSampling(texture.id(), GL_TEXTURE_3D, linear);
+  return texture;
+}
+
+glm::dmat4 textureFromIndex(glm::ivec3 dims) {
+  glm::dmat4 m(1.0);
+  for (int a = 0; a < 3; ++a) {
+    m[a][a] = 1.0 / dims[a];
+    m[3][a] = 0.5 / dims[a];
+  }
+  return m;
+}
+
+}  // namespace mvw::render::detail

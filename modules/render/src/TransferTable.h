@@ -1,0 +1,38 @@
+#pragma once
+// The transfer function as the ray caster reads it (internal to mvw_render): a 2D table over
+// the value range (x) and, for a 2D function, the gradient magnitude (y), its opacities
+// corrected for the frame's step once here rather than per sample.
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "GlObjects.h"
+#include "mvw/render/TransferFunction.h"
+
+namespace mvw::render::detail {
+
+class TransferTable {
+ public:
+  static constexpr int kEntries = 1024;
+
+  TransferTable();  // the context must be current
+
+  // Samples `transfer` over lo..hi and uploads the table for a ray step of stepMm (opacities
+  // are per referenceStepMm). gradientHigh > 0: opacity also scaled by
+  // smoothstep(gradientLow, gradientHigh, |gradient|), over 64 rows up to 2 gradientHigh.
+  void update(const TransferFunction& transfer, double lo, double hi, double stepMm,
+              double referenceStepMm, double gradientLow, double gradientHigh);
+
+  // The sampled function before step correction (what block visibility asks about).
+  const std::vector<glm::vec4>& lut() const { return lut_; }
+  // 1 / the gradient magnitude of the table's last row: maps |gradient| to the table's y.
+  double gradientScale() const { return gradientScale_; }
+  GLuint texture() const { return texture_.id(); }
+
+ private:
+  Texture texture_;
+  std::vector<glm::vec4> lut_;
+  double gradientScale_ = 1.0;
+};
+
+}  // namespace mvw::render::detail

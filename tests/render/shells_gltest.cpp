@@ -1,0 +1,83 @@
+// The discrete maximum projection with isosurface shells (Heidrich et al. 1995): it converges to
+// the ray cast as shells are added; disabled shells are not drawn; lit shells show the outermost.
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include <gtest/gtest.h>
+
+#include "RenderTestUtil.h"
+#include "mvw/core/VesselPhantom.h"
+#include "mvw/render/VolumeRenderer.h"
+
+namespace mvw::render {
+namespace {
+
+using test::makeVolume;
+
+TEST(Shells, DiscreteMaximumConvergesToTheRayCastAsShellsAreAdded) {
+  VesselTreeSettings vs;
+  vs.dimensions = {80, 80, 80};
+  vs.noiseSigma = 0.0;
+  vs.seed = 5;
+  const VesselTree tree = makeVesselTree(vs);
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, tree.volume);
+  RenderSettings s;
+  s.size = {96, 96};
+  s.window = 1000;
+  s.level = 500;
+  s.jitter = false;
+  s.stepMm = 0.25;
+  s.depthCue = true;
+  s.cueAmount = 0.66;
+  s.cueContrast = 0.33;
+  s.camera.azimuthDeg = 30;
+  s.mode = RenderMode::Mip;
+  const Frame reference = renderer.render(s);
+  s.mode = RenderMode::ShellMip;
+  double previous = 1e9;
+  for (int n : {4, 8, 16, 32}) {
+    s.shellCount = n;
+    const Frame f = renderer.render(s);
+    double err = 0.0;
+    for (std::size_t i = 0; i < f.image.rgba.size(); i += 4)
+      err += std::abs(double(f.image.rgba[i]) - double(reference.image.rgba[i]));
+    err /= f.image.rgba.size() / 4;
+    std::cout << n << " shells: mean |error| " << err << " / 255 against the ray cast\n";
+    EXPECT_LT(err, previous) << n << " shells";
+    previous = err;
+  }
+  EXPECT_LT(previous, 3.0);  // 32 shells: within a few grey levels on average
+}
+
+TEST(Shells, DisabledShellsAreNotDrawnAndLitShellsShowTheOutermost) {
+  const Volume v =
+      makeVolume({41, 41, 41}, makeWorldFromIndex({-20, -20, -20}, {1, 1, 1}, glm::dmat3(1.0)),
+                 [](glm::dvec3 p) {
+                   return static_cast<float>(std::max(0.0, 1000.0 - 50.0 * glm::length(p)));
+                 });
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, v);
+  RenderSettings s;
+  s.mode = RenderMode::ShellMip;
+  s.size = {41, 41};
+  s.window = 1000;
+  s.level = 500;
+  s.shellCount = 4;  // spheres at 250, 500, 750, 1000 -> radii 15, 10, 5, 0 mm
+  const Frame all = renderer.render(s);
+  EXPECT_NEAR(all.image.pixel(20, 20)[0], 0.75 * 255,
+              1.0);  // without depth cue: the brightest shell drawn (1000 is a point)
+  s.shellEnabled = {true, true, false, false};
+  const Frame two = renderer.render(s);
+  EXPECT_NEAR(two.image.pixel(20, 20)[0], 0.5 * 255, 1.0);
+  s.mode = RenderMode::ShellLit;
+  s.shellEnabled.clear();
+  const Frame lit = renderer.render(s);
+  // The outermost shell (emission 0.25, radius 15 mm) hides the others: its rim is lit.
+  EXPECT_GT(lit.image.pixel(20, 20)[0], 0);
+  EXPECT_LE(lit.image.pixel(20, 20)[0], std::lround(0.25 * (0.25 + 0.7) * 255 + 0.25 * 255) + 1);
+}
+
+}  // namespace
+}  // namespace mvw::render
