@@ -20,9 +20,11 @@ GlfwContext::GlfwContext(glm::ivec2 size, const std::string& title) {
   // Mesa's GL libraries and DRI driver stay loaded after glfwTerminate (RTLD_NODELETE):
   // unloading swrast_dri.so at exit orphaned its global allocations, which LeakSanitizer then
   // reported from an unknown module. (A library missing here is simply not pinned.)
-  for (const char* lib : {"libGL.so.1", "libGLX_mesa.so.0", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so"})
+  for (const char* lib :
+       {"libGL.so.1", "libGLX_mesa.so.0", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so"})
     ::dlopen(lib, RTLD_LAZY | RTLD_NODELETE);
-  if (!glfwInit()) throw Error("cannot start GLFW (no display? run under Xvfb or set DISPLAY): " + glfwReason());
+  if (!glfwInit())
+    throw Error("cannot start GLFW (no display? run under Xvfb or set DISPLAY): " + glfwReason());
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -35,7 +37,9 @@ GlfwContext::GlfwContext(glm::ivec2 size, const std::string& title) {
   }
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(0);
-  loadFunctions([](const char* name, void*) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }, nullptr);
+  loadFunctions(
+      [](const char* name, void*) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); },
+      nullptr);
 }
 
 GlfwContext::~GlfwContext() {

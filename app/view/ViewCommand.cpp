@@ -42,14 +42,20 @@ void addViewCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "view",
       "Interactive viewer: 3D view + axial, coronal, sagittal MPR with a linked crosshair.\n"
-      "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom; MPR left click/drag moves the\n"
-      "crosshair, wheel scrolls slices, right-drag or Ctrl-drag window/level; double-click maximises a view.\n"
-      "Keys: 1 composite, 2 isosurface, 3 MIP, 4 MinIP, 5 average, D depth cue, G glyphs, F colour fusion,\n"
-      "P next preset, R reset, S screenshot, Ctrl+S save the state as a study config (mvw render reproduces it).");
+      "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom; MPR left "
+      "click/drag moves the\n"
+      "crosshair, wheel scrolls slices, right-drag or Ctrl-drag window/level; double-click "
+      "maximises a view.\n"
+      "Keys: 1 composite, 2 isosurface, 3 MIP, 4 MinIP, 5 average, D depth cue, G glyphs, F colour "
+      "fusion,\n"
+      "P next preset, R reset, S screenshot, Ctrl+S save the state as a study config (mvw render "
+      "reproduces it).");
   cmd->add_option("study", o->study, "Study config (.json)");
-  cmd->add_option("--anatomical", o->anatomical, "Anatomical volume (DICOM folder or file, NIfTI, MetaImage)");
+  cmd->add_option("--anatomical", o->anatomical,
+                  "Anatomical volume (DICOM folder or file, NIfTI, MetaImage)");
   cmd->add_option("--functional", o->functional, "Functional volume");
-  cmd->add_option("--script", o->script, "Scripted events, one per line (tests; see app/view/Viewer.cpp)");
+  cmd->add_option("--script", o->script,
+                  "Scripted events, one per line (tests; see app/view/ViewerScript.h)");
   cmd->add_option("--width", o->width, "Window width")->check(CLI::Range(640, 8192));
   cmd->add_option("--height", o->height, "Window height")->check(CLI::Range(480, 8192));
   cmd->callback([o] { runView(*o); });

@@ -11,10 +11,10 @@
 namespace mvw::app {
 
 struct ViewerOptions {
-  config::StudyConfig study;             // file may be empty (volumes given on the command line)
+  config::StudyConfig study;  // file may be empty (volumes given on the command line)
   Volume anatomical;
   std::optional<Volume> functional;
-  std::filesystem::path script;          // scripted events, for tests (see ViewCommand.cpp)
+  std::filesystem::path script;  // scripted events, for tests (see ViewerScript.h)
   int width = 1400, height = 900;
 };
 

@@ -1,0 +1,38 @@
+#pragma once
+// The viewer's Dear ImGui user interface: the control panel on the left, the four panes (or
+// the maximised one) with the linked crosshair, and the mouse and keys over them. Everything
+// it changes goes through ViewerState; it draws the panes' textures as the window loop
+// uploaded them.
+#include <array>
+
+#include <glm/vec3.hpp>
+
+#include "ViewerState.h"
+#include "mvw/render/DisplayTexture.h"
+
+struct ImVec2;
+
+namespace mvw::app {
+
+class ViewerPanel {
+ public:
+  using PaneTextures = std::array<render::DisplayTexture, kPaneCount>;
+  ViewerPanel(ViewerState& state, const PaneTextures& textures)
+      : state_(state), textures_(textures) {}
+
+  // Between ImGui::NewFrame and ImGui::Render; returns whether a pane is being dragged
+  // (the 3D pane then renders coarse).
+  bool draw();
+
+ private:
+  void drawPane(int pane, ImVec2 pos, ImVec2 size);
+  void drawControls();
+
+  ViewerState& state_;
+  const PaneTextures& textures_;
+  bool dragging_ = false;
+  bool hoverValid_ = false;
+  glm::dvec3 hoverWorld_{0.0};
+};
+
+}  // namespace mvw::app

@@ -1,0 +1,195 @@
+#include "ViewerScript.h"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::app {
+
+namespace {
+
+using Command = ViewerScript::Command;
+using Kind = Command::Kind;
+
+// The tokens of one line, consumed in order; every complaint names the file and the line.
+class LineReader {
+ public:
+  LineReader(const std::string& line, const std::filesystem::path& source, int number)
+      : source_(source), number_(number) {
+    std::istringstream in(line);
+    for (std::string t; in >> t;) tokens_.push_back(t);
+  }
+  bool empty() const { return tokens_.empty(); }
+  bool more() const { return next_ < tokens_.size(); }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw InputError(source_, "line " + std::to_string(number_) + ": " + problem);
+  }
+  std::string word(const char* what) {
+    if (!more()) fail(command() + ": missing " + what);
+    return tokens_[next_++];
+  }
+  double number(const char* what) {
+    const std::string t = word(what);
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v))
+      fail(command() + ": " + what + " '" + t + "' is not a number");
+    return v;
+  }
+  int pane() {
+    const std::string t = word("pane");
+    if (auto p = ViewerState::paneNamed(t)) return *p;
+    fail("unknown pane '" + t + "' (3d, axial, coronal, sagittal)");
+  }
+  void end() const {
+    if (more()) fail(command() + ": unexpected '" + tokens_[next_] + "'");
+  }
+  std::string command() const { return tokens_.front(); }
+
+ private:
+  const std::filesystem::path& source_;
+  int number_;
+  std::vector<std::string> tokens_;
+  std::size_t next_ = 0;
+};
+
+Command parseLine(const std::string& text, const std::filesystem::path& source, int number) {
+  LineReader in(text, source, number);
+  Command c;
+  c.line = number;
+  if (in.empty()) return c;
+  const std::string cmd = in.word("command");
+  if (cmd[0] == '#') return c;
+  if (cmd == "key") {
+    c.kind = Kind::Key;
+    const std::string k = in.word("key");
+    if (k.size() != 1) in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s)");
+    c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
+    if (in.more()) {
+      const std::string mod = in.word("modifier");
+      if (mod != "ctrl") in.fail("key: unknown modifier '" + mod + "' (ctrl)");
+      c.ctrl = true;
+    }
+  } else if (cmd == "drag") {
+    c.kind = Kind::Drag;
+    c.pane = in.pane();
+    c.x = in.number("dx");
+    c.y = in.number("dy");
+    if (in.more()) {
+      const std::string b = in.word("button");
+      if (b == "left")
+        c.button = MouseButton::Left;
+      else if (b == "right")
+        c.button = MouseButton::Right;
+      else if (b == "middle")
+        c.button = MouseButton::Middle;
+      else
+        in.fail("drag: unknown button '" + b + "' (left, right, middle)");
+    }
+  } else if (cmd == "click") {
+    c.kind = Kind::Click;
+    c.pane = in.pane();
+    c.x = in.number("x");
+    c.y = in.number("y");
+  } else if (cmd == "wheel") {
+    c.kind = Kind::Wheel;
+    c.pane = in.pane();
+    c.x = in.number("notches");
+  } else if (cmd == "wait") {
+    c.kind = Kind::Wait;
+    const double frames = in.number("frame count");
+    if (frames < 0 || frames != std::floor(frames) || frames > 1e6)
+      in.fail("wait: the frame count must be a whole number from 0 to 1000000");
+    c.frames = static_cast<int>(frames);
+  } else if (cmd == "screenshot" || cmd == "save-config") {
+    c.kind = cmd == "screenshot" ? Kind::Screenshot : Kind::SaveConfig;
+    c.file = in.word("file");
+  } else if (cmd == "dump") {
+    c.kind = Kind::Dump;
+    c.pane = in.pane();
+    c.file = in.word("file");
+  } else if (cmd == "register") {
+    c.kind = Kind::Register;
+  } else if (cmd == "wait-registration") {
+    c.kind = Kind::WaitRegistration;
+  } else if (cmd == "quit") {
+    c.kind = Kind::Quit;
+  } else {
+    in.fail("unknown command '" + cmd + "'");
+  }
+  in.end();
+  return c;
+}
+
+}  // namespace
+
+ViewerScript ViewerScript::parse(const std::string& text, const std::filesystem::path& source) {
+  ViewerScript script;
+  std::istringstream in(text);
+  int number = 0;
+  for (std::string line; std::getline(in, line);)
+    script.commands_.push_back(parseLine(line, source, ++number));
+  return script;
+}
+
+ViewerScript ViewerScript::load(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, "cannot read the script");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse(text.str(), file);
+}
+
+bool ViewerScript::step(ViewerState& state) {
+  if (wait_ > 0) {
+    --wait_;
+    return true;
+  }
+  if (next_ >= commands_.size()) return false;
+  const Command& c = commands_[next_++];
+  switch (c.kind) {
+    case Kind::Nothing:
+      break;
+    case Kind::Key:
+      state.key(c.key, c.ctrl);
+      break;
+    case Kind::Drag:
+      state.drag(c.pane, c.x, c.y, c.button, false);
+      break;
+    case Kind::Click:
+      state.click(c.pane, c.x, c.y);
+      break;
+    case Kind::Wheel:
+      state.wheel(c.pane, c.x);
+      break;
+    case Kind::Wait:
+      wait_ = c.frames;
+      break;
+    case Kind::Screenshot:
+      state.requestScreenshot(c.file);
+      break;
+    case Kind::SaveConfig:
+      state.saveConfig(c.file);
+      break;
+    case Kind::Dump:
+      state.dump(c.pane, c.file);
+      break;
+    case Kind::Register:
+      state.startRegistration();
+      break;
+    case Kind::WaitRegistration:
+      if (state.registering()) --next_;  // stay on this line until the worker is done
+      break;
+    case Kind::Quit:
+      state.requestQuit();
+      break;
+  }
+  return true;
+}
+
+}  // namespace mvw::app

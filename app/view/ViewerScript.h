@@ -1,0 +1,71 @@
+#pragma once
+// The viewer's --script (tests under Xvfb drive the window with it). One command per line:
+//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s)
+//   drag PANE dx dy [left|right|middle] a drag by fractions of the pane (default left)
+//   click PANE x y                      a click at fractions of the pane (y down)
+//   wheel PANE n                        n wheel notches
+//   wait FRAMES                         let FRAMES frames pass
+//   screenshot FILE                     the whole window as drawn, PNG
+//   save-config FILE                    the state as a study config (Ctrl+S)
+//   dump PANE FILE                      the pane's full-resolution render, without annotations
+//   register | wait-registration        re-run the registration in the background | wait for it
+//   quit
+// PANE: 3d, axial, coronal, sagittal. Blank lines and lines starting with # are skipped (each
+// still takes a frame, as every line does). The whole script is checked when it is read, so a
+// typo is reported before the window opens, naming the file and the line.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ViewerState.h"
+
+namespace mvw::app {
+
+class ViewerScript {
+ public:
+  struct Command {
+    enum class Kind {
+      Nothing,  // blank line or comment
+      Key,
+      Drag,
+      Click,
+      Wheel,
+      Wait,
+      Screenshot,
+      SaveConfig,
+      Dump,
+      Register,
+      WaitRegistration,
+      Quit
+    };
+    Kind kind = Kind::Nothing;
+    int line = 0;  // 1-based
+    char key = 0;  // upper case
+    bool ctrl = false;
+    int pane = k3d;
+    double x = 0.0, y = 0.0;  // drag: dx, dy; click: x, y; wheel: x = notches
+    MouseButton button = MouseButton::Left;
+    int frames = 0;
+    std::filesystem::path file;
+  };
+
+  ViewerScript() = default;
+  // Throws InputError naming `source` and the line for anything that is not a command above.
+  static ViewerScript parse(const std::string& text, const std::filesystem::path& source);
+  static ViewerScript load(const std::filesystem::path& file);  // parse() of the file's text
+
+  bool empty() const { return commands_.empty(); }
+  const std::vector<Command>& commands() const { return commands_; }
+  // Called once per fully drawn frame: runs the next line on the state (or waits); returns
+  // false once every line has run. Errors the state throws (a file that cannot be written)
+  // propagate.
+  bool step(ViewerState& state);
+
+ private:
+  std::vector<Command> commands_;
+  std::size_t next_ = 0;
+  int wait_ = 0;
+};
+
+}  // namespace mvw::app

@@ -1,0 +1,321 @@
+#include "ViewerState.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iterator>
+
+#include <nlohmann/json.hpp>
+
+#include "mvw/core/WindowLevel.h"
+#include "mvw/study/Caption.h"
+#include "mvw/study/ModalityDefaults.h"
+#include "mvw/study/ViewPlan.h"
+#include "mvw/core/Error.h"
+#include "mvw/io/PngWriter.h"
+#include "mvw/render/TransferFunction.h"
+
+namespace mvw::app {
+
+namespace {
+
+using render::RenderMode;
+using render::StandardView;
+
+const char* kPaneNames[kPaneCount] = {"3d", "axial", "coronal", "sagittal"};
+const StandardView kMprViews[3] = {StandardView::Inferior, StandardView::Anterior,
+                                   StandardView::Left};
+const RenderMode k3dModes[] = {RenderMode::Composite, RenderMode::Isosurface, RenderMode::Mip,
+                               RenderMode::MinIp, RenderMode::Average};
+
+bool is3dMode(RenderMode mode) {
+  return std::find(std::begin(k3dModes), std::end(k3dModes), mode) != std::end(k3dModes);
+}
+
+// Nearest voxel: the readout names a voxel's stored value, not an interpolation.
+double sampleAt(const Volume& v, const glm::dvec3& world, bool* inside) {
+  const glm::dvec3 ijk = glm::dvec3(glm::inverse(v.worldFromIndex()) * glm::dvec4(world, 1.0));
+  const glm::ivec3 n(std::lround(ijk.x), std::lround(ijk.y), std::lround(ijk.z));
+  *inside = glm::all(glm::greaterThanEqual(n, glm::ivec3(0))) &&
+            glm::all(glm::lessThan(n, v.dimensions()));
+  return *inside ? v.value(n.x, n.y, n.z) : 0.0;
+}
+
+double smallestSpacing(const Volume& v) {
+  const glm::dvec3 s = v.spacing();
+  return std::min({s.x, s.y, s.z});
+}
+
+}  // namespace
+
+ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomical,
+                         const Volume* functional, ViewerScene scene)
+    : study_(study),
+      anatomical_(anatomical),
+      functional_(functional),
+      scene_(std::move(scene)),
+      registration_(scene_.registration) {
+  const mvw::study::ModalityDefaults defaults =
+      mvw::study::modalityDefaults(anatomical_, scene_.valueRange);
+  presetName_ = defaults.preset;
+  view3d_.transfer = render::transferPreset(presetName_);
+  view3d_.camera.view = StandardView::Anterior;
+  view3d_.isoValue = defaults.isoValue;
+  mprWindow_ = defaults.mpr.window;
+  mprLevel_ = defaults.mpr.level;
+  crosshair_ = scene_.centre;
+  // The study's first view the 3D pane can show sets it up, exactly as `mvw render` would
+  // render it (glyphs, attribute window, crop, light, ...); an MPR view sets the MPR panes'
+  // window and the overlay.
+  std::vector<mvw::study::PlannedView> planned = mvw::study::planViews(study_);
+  for (mvw::study::PlannedView& v : planned) {
+    if (!is3dMode(v.settings.mode)) continue;
+    mvw::study::applyDefaultPreset(v, anatomical_);
+    view3d_ = v.settings;
+    presetName_ = v.presetName;
+    break;
+  }
+  for (const mvw::study::PlannedView& v : planned)
+    if (v.settings.mode == RenderMode::Mpr) {
+      if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
+      break;
+    }
+  job_ = [this](std::stop_token) {
+    // registerRigid cannot be interrupted: a stop request waits for it to end.
+    return resampling::registerRigid(anatomical_, *functional_);
+  };
+}
+
+const char* ViewerState::paneName(int pane) { return kPaneNames[pane]; }
+
+std::optional<int> ViewerState::paneNamed(const std::string& name) {
+  for (int p = 0; p < kPaneCount; ++p)
+    if (name == kPaneNames[p]) return p;
+  return std::nullopt;
+}
+
+std::string ViewerState::describePlacement(const std::string& method,
+                                           const nlohmann::json& report) {
+  std::string text = method;
+  if (report.contains("mutual_information"))
+    text += ", MI " + std::to_string(report["mutual_information"].get<double>());
+  return text;
+}
+
+std::span<const RenderMode> ViewerState::modes3d() { return k3dModes; }
+
+void ViewerState::markAllDirty() {
+  for (auto& p : panes_) p.dirty = true;
+}
+
+void ViewerState::markMprDirty() {
+  for (int p = kAxial; p < kPaneCount; ++p) markDirty(p);
+}
+
+bool ViewerState::anyDirty() const {
+  return std::any_of(panes_.begin(), panes_.end(), [](const PaneState& p) { return p.dirty; });
+}
+
+void ViewerState::drag(int pane, double dx, double dy, MouseButton button, bool ctrl) {
+  if (pane == k3d) {
+    if (button == MouseButton::Left) {
+      view3d_.camera.azimuthDeg += dx * 180.0;
+      view3d_.camera.elevationDeg =
+          std::clamp(view3d_.camera.elevationDeg + dy * 180.0, -89.0, 89.0);
+    } else if (button == MouseButton::Right) {
+      view3d_.camera.zoom = std::clamp(view3d_.camera.zoom * std::exp(-2.0 * dy), 0.1, 20.0);
+    } else {
+      // Pan by the pane's extent in mm: the dragged point stays under the mouse.
+      const double mm = 2.0 * scene_.radius / view3d_.camera.zoom;
+      view3d_.camera.panMm += glm::dvec2(-dx * mm, dy * mm);
+    }
+    markDirty(k3d);
+    return;
+  }
+  if (button == MouseButton::Right || ctrl) {  // window / level, as workstation viewers do
+    const auto [lo, hi] = scene_.valueRange;
+    mprWindow_ = std::max(1e-3, mprWindow_ * std::exp(dx * 2.0));
+    mprLevel_ -= dy * (hi - lo) * 0.5;
+    markMprDirty();
+  }
+}
+
+glm::dvec3 ViewerState::onPlane(int pane, double x, double y) const {
+  const render::Camera& cam = pane_(pane).camera;
+  const glm::dvec3 origin = render::rayThrough(cam, {x * 2.0 - 1.0, 1.0 - y * 2.0}).origin;
+  return origin + glm::dot(crosshair_ - origin, cam.forward) * cam.forward;
+}
+
+void ViewerState::click(int pane, double x, double y) {
+  if (pane == k3d) return;
+  crosshair_ = onPlane(pane, x, y);  // stays on this pane's plane
+  markMprDirty();
+}
+
+void ViewerState::wheel(int pane, double steps) {
+  if (pane == k3d) {
+    view3d_.camera.zoom = std::clamp(view3d_.camera.zoom * std::exp(0.1 * steps), 0.1, 20.0);
+    markDirty(k3d);
+    return;
+  }
+  // One notch: one slice of the finest spacing.
+  crosshair_ += pane_(pane).camera.forward * steps * smallestSpacing(anatomical_);
+  markMprDirty();
+}
+
+void ViewerState::key(char key, bool ctrl) {
+  if (key >= '1' && key <= '5') {
+    view3d_.mode = k3dModes[key - '1'];
+  } else if (key == 'D') {
+    view3d_.depthCue = !view3d_.depthCue;
+    view3d_.cueAmount = view3d_.depthCue ? 0.66 : 0.0;
+    view3d_.cueContrast = view3d_.depthCue ? 0.33 : 1.0;
+  } else if (key == 'G' && functional_) {
+    view3d_.glyphs = !view3d_.glyphs;
+  } else if (key == 'F' && functional_) {
+    view3d_.fusion = !view3d_.fusion;
+  } else if (key == 'P') {
+    const auto names = render::transferPresetNames();
+    auto it = std::find(names.begin(), names.end(), presetName_);
+    presetName_ = it == names.end() || it + 1 == names.end() ? names.front() : *(it + 1);
+    view3d_.transfer = render::transferPreset(presetName_);
+  } else if (key == 'R') {
+    view3d_.camera = render::CameraSettings{};
+    crosshair_ = scene_.centre;
+  } else if (key == 'S' && ctrl) {
+    saveConfig("mvw-view-state.json");
+  } else if (key == 'S') {
+    requestScreenshot("mvw-screenshot.png");
+  } else {
+    return;
+  }
+  markAllDirty();
+}
+
+void ViewerState::toggleMaximised(int pane) { maximised_ = maximised_ == pane ? -1 : pane; }
+
+void ViewerState::setMode(RenderMode mode) {
+  view3d_.mode = mode;
+  markAllDirty();
+}
+
+void ViewerState::setPreset(const std::string& name) {
+  presetName_ = name;
+  view3d_.transfer = render::transferPreset(name);
+  markAllDirty();
+}
+
+void ViewerState::setMprWindow(double window, double level) {
+  mprWindow_ = window;
+  mprLevel_ = level;
+  markAllDirty();
+}
+
+void ViewerState::setPaneSize(int pane, glm::ivec2 size) {
+  PaneState& p = pane_(pane);
+  if (size != p.size) p.size = size, p.dirty = true;
+}
+
+bool ViewerState::needsRender(int pane) const {
+  const PaneState& p = pane_(pane);
+  return p.dirty && p.size.x >= 8 && p.size.y >= 8;
+}
+
+render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) const {
+  const PaneState& image = pane_(pane);
+  render::RenderSettings s;
+  if (pane == k3d) {
+    s = view3d_;
+  } else {
+    s.mode = RenderMode::Mpr;
+    s.camera.view = kMprViews[pane - 1];
+    s.window = mprWindow_;
+    s.level = mprLevel_;
+    s.overlayOpacity = view3d_.overlayOpacity;
+    s.overlayThreshold = view3d_.overlayThreshold;
+    s.functionalLow = view3d_.functionalLow;
+    s.functionalHigh = view3d_.functionalHigh;
+    s.functionalClasses = view3d_.functionalClasses;
+    const glm::dvec3 forward =
+        render::makeCamera(s.camera, scene_.centre, scene_.radius, image.size).forward;
+    s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, forward);
+  }
+  s.size = image.size;
+  if (pane == k3d && interacting) {  // coarse while dragging
+    s.size = glm::max(image.size / 2, glm::ivec2(8));
+    s.stepMm = 2.0 * smallestSpacing(anatomical_);
+  }
+  return s;
+}
+
+std::string ViewerState::caption(int pane, const render::RenderSettings& s) const {
+  const auto [lo, hi] = scene_.valueRange;
+  mvw::study::PlannedView shown{viewConfigOf(pane), s, pane == k3d ? presetName_ : ""};
+  return mvw::study::viewCaption(shown, windowOrFullRange(s.window, s.level, lo, hi));
+}
+
+void ViewerState::rendered(int pane, const render::Camera& camera, Image raw, bool interacting) {
+  PaneState& p = pane_(pane);
+  p.camera = camera;
+  p.raw = std::move(raw);
+  p.rendered = true;
+  p.dirty = interacting && pane == k3d;  // refine when the drag ends
+}
+
+std::optional<std::filesystem::path> ViewerState::takeScreenshotRequest() {
+  return std::exchange(screenshot_, std::nullopt);
+}
+
+config::ViewConfig ViewerState::viewConfigOf(int pane) const {
+  config::ViewConfig v = mvw::study::describeView(renderSettings(pane), std::string("view-") + kPaneNames[pane],
+                                      pane == k3d ? presetName_ : "");
+  if (pane != k3d) v.view = *config::parseViewName(kPaneNames[pane]);  // axial, coronal, sagittal: the planes' own names
+  return v;
+}
+
+void ViewerState::saveConfig(const std::filesystem::path& file) const {
+  config::StudyConfig study = study_;
+  if (study.name.empty()) study.name = "saved from mvw view";
+  study.anatomical.path = anatomical_.metadata().sourcePath;
+  if (functional_) {
+    if (!study.functional) study.functional.emplace();
+    study.functional->path = functional_->metadata().sourcePath;
+  }
+  study.render.views.clear();
+  for (int p = 0; p < kPaneCount; ++p) study.render.views.push_back(viewConfigOf(p));
+  config::writeStudyConfig(study, file);
+}
+
+void ViewerState::dump(int pane, const std::filesystem::path& file) const {
+  io::writePng(pane_(pane).raw, file);
+}
+
+void ViewerState::startRegistration() {
+  if (!functional_) return;
+  worker_.start(job_);
+}
+
+std::optional<glm::dmat4> ViewerState::finishRegistration() {
+  std::optional<RegistrationWorker::Outcome> outcome = worker_.finish();
+  if (!outcome) return std::nullopt;
+  if (!outcome->result) {
+    status_ = "registration failed: " + outcome->error;
+    return std::nullopt;
+  }
+  const resampling::RegistrationResult& r = *outcome->result;
+  registration_ = "rigid (re-run), MI " +
+                  std::to_string(r.levels.empty() ? 0.0 : r.levels.back().metricEnd) +
+                  (r.converged ? ", converged" : ", NOT converged") + ", " +
+                  std::to_string(r.seconds).substr(0, 4) + " s";
+  markAllDirty();
+  return r.transform.fixedFromMoving();
+}
+
+ViewerProbe ViewerState::probe(const glm::dvec3& world) const {
+  ViewerProbe p;
+  p.anatomical = sampleAt(anatomical_, world, &p.anatomicalInside);
+  if (functional_) p.functional = sampleAt(*functional_, world, &p.functionalInside);
+  return p;
+}
+
+}  // namespace mvw::app

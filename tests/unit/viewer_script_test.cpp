@@ -1,0 +1,183 @@
+// The viewer's --script: every command the Xvfb test uses parses and acts on the state, and a
+// malformed script is bad input named by file and line before any window opens.
+#include "ViewerScript.h"
+
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "TestUtil.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+
+namespace mvw::app {
+namespace {
+
+using Kind = ViewerScript::Command::Kind;
+
+// The problem InputError reports for `text`, or "" when it parses.
+std::string problemOf(const std::string& text) {
+  try {
+    ViewerScript::parse(text, "test.script");
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), std::filesystem::path("test.script"));
+    return e.problem();
+  }
+  return "";
+}
+
+TEST(ViewerScript, ParsesEveryCommand) {
+  const ViewerScript s = ViewerScript::parse(
+      "wait 2\n"
+      "screenshot out/composite.png\n"
+      "key 3\n"
+      "key s ctrl\n"
+      "drag 3d 0.15 0.05\n"
+      "drag axial -0.5 1e-2 right\n"
+      "click axial 0.55 0.45\n"
+      "wheel coronal 4\n"
+      "\n"
+      "# a comment\n"
+      "dump 3d out/window-3d.png\n"
+      "save-config out/saved.json\n"
+      "register\n"
+      "wait-registration\n"
+      "quit\n",
+      "test.script");
+  const auto& c = s.commands();
+  ASSERT_EQ(c.size(), 15u);
+  EXPECT_EQ(c[0].kind, Kind::Wait);
+  EXPECT_EQ(c[0].frames, 2);
+  EXPECT_EQ(c[1].kind, Kind::Screenshot);
+  EXPECT_EQ(c[1].file, std::filesystem::path("out/composite.png"));
+  EXPECT_EQ(c[2].kind, Kind::Key);
+  EXPECT_EQ(c[2].key, '3');
+  EXPECT_FALSE(c[2].ctrl);
+  EXPECT_EQ(c[3].key, 'S');  // keys are as typed: upper case, like GLFW's key codes
+  EXPECT_TRUE(c[3].ctrl);
+  EXPECT_EQ(c[4].kind, Kind::Drag);
+  EXPECT_EQ(c[4].pane, k3d);
+  EXPECT_DOUBLE_EQ(c[4].x, 0.15);
+  EXPECT_DOUBLE_EQ(c[4].y, 0.05);
+  EXPECT_EQ(c[4].button, MouseButton::Left);
+  EXPECT_EQ(c[5].pane, kAxial);
+  EXPECT_DOUBLE_EQ(c[5].x, -0.5);
+  EXPECT_DOUBLE_EQ(c[5].y, 0.01);
+  EXPECT_EQ(c[5].button, MouseButton::Right);
+  EXPECT_EQ(c[6].kind, Kind::Click);
+  EXPECT_EQ(c[7].kind, Kind::Wheel);
+  EXPECT_EQ(c[7].pane, kCoronal);
+  EXPECT_DOUBLE_EQ(c[7].x, 4.0);
+  EXPECT_EQ(c[8].kind, Kind::Nothing);
+  EXPECT_EQ(c[9].kind, Kind::Nothing);
+  EXPECT_EQ(c[10].kind, Kind::Dump);
+  EXPECT_EQ(c[10].pane, k3d);
+  EXPECT_EQ(c[11].kind, Kind::SaveConfig);
+  EXPECT_EQ(c[12].kind, Kind::Register);
+  EXPECT_EQ(c[13].kind, Kind::WaitRegistration);
+  EXPECT_EQ(c[14].kind, Kind::Quit);
+  EXPECT_EQ(c[14].line, 15);
+}
+
+TEST(ViewerScript, BadLinesNameTheLineAndTheProblem) {
+  EXPECT_EQ(problemOf("wait 1\nzoom 3d 2\n"), "line 2: unknown command 'zoom'");
+  EXPECT_EQ(problemOf("click oblique 0.5 0.5"),
+            "line 1: unknown pane 'oblique' (3d, axial, coronal, sagittal)");
+  EXPECT_EQ(problemOf("drag 3d 0.1"), "line 1: drag: missing dy");
+  EXPECT_EQ(problemOf("drag 3d 0.1 x"), "line 1: drag: dy 'x' is not a number");
+  EXPECT_EQ(problemOf("drag 3d 0.1 0.2 sideways"),
+            "line 1: drag: unknown button 'sideways' (left, right, middle)");
+  EXPECT_EQ(problemOf("wheel axial 2 3"), "line 1: wheel: unexpected '3'");
+  EXPECT_EQ(problemOf("key"), "line 1: key: missing key");
+  EXPECT_EQ(problemOf("key ctrl"), "line 1: key: 'ctrl' is not one key (1-5, d, g, f, p, r, s)");
+  EXPECT_EQ(problemOf("key s shift"), "line 1: key: unknown modifier 'shift' (ctrl)");
+  EXPECT_EQ(problemOf("wait -1"),
+            "line 1: wait: the frame count must be a whole number from 0 to 1000000");
+  EXPECT_EQ(problemOf("wait 1.5"),
+            "line 1: wait: the frame count must be a whole number from 0 to 1000000");
+  EXPECT_EQ(problemOf("screenshot"), "line 1: screenshot: missing file");
+  EXPECT_EQ(problemOf("dump 3d"), "line 1: dump: missing file");
+  EXPECT_EQ(problemOf("quit now"), "line 1: quit: unexpected 'now'");
+  EXPECT_EQ(problemOf("click axial nan 0.5"), "line 1: click: x 'nan' is not a number");
+  EXPECT_EQ(problemOf("  # indented comment\n\t\nquit"), "");
+}
+
+TEST(ViewerScript, MissingFileIsBadInput) {
+  const auto file = test::scratchDir() / "no-such-script";
+  try {
+    ViewerScript::load(file);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), file);
+    EXPECT_EQ(e.problem(), "cannot read the script");
+  }
+}
+
+TEST(ViewerScript, LoadReadsTheFile) {
+  const auto file = test::scratchDir() / "script";
+  std::ofstream(file) << "key 3\nquit\n";
+  EXPECT_EQ(ViewerScript::load(file).commands().size(), 2u);
+  EXPECT_TRUE(ViewerScript::parse("", file).empty());
+}
+
+class ViewerScriptRun : public ::testing::Test {
+ protected:
+  ViewerScriptRun() {
+    ct.metadata().modality = "CT";
+    scene.valueRange = {-1000.0, 2000.0};
+  }
+  config::StudyConfig study;
+  Volume ct{{5, 5, 5}, 1, ScalarType::Int16, glm::dmat4(1.0)};
+  ViewerScene scene;
+};
+
+TEST_F(ViewerScriptRun, OneLinePerFrameAndWaitsCountFrames) {
+  ViewerState state(study, ct, nullptr, scene);
+  ViewerScript s = ViewerScript::parse("# start\nwait 2\nkey 3\nscreenshot a.png\nquit\n", "t");
+  EXPECT_TRUE(s.step(state));  // the comment
+  EXPECT_TRUE(s.step(state));  // wait 2
+  EXPECT_TRUE(s.step(state));
+  EXPECT_TRUE(s.step(state));
+  EXPECT_EQ(state.view3d().mode, render::RenderMode::Composite);
+  EXPECT_TRUE(s.step(state));  // key 3
+  EXPECT_EQ(state.view3d().mode, render::RenderMode::Mip);
+  EXPECT_TRUE(s.step(state));
+  EXPECT_EQ(state.takeScreenshotRequest(), std::filesystem::path("a.png"));
+  EXPECT_FALSE(state.quitRequested());
+  EXPECT_TRUE(s.step(state));
+  EXPECT_TRUE(state.quitRequested());
+  EXPECT_FALSE(s.step(state));  // the end
+}
+
+TEST_F(ViewerScriptRun, WaitRegistrationHoldsUntilTheWorkerEnds) {
+  Volume pet = ct;
+  ViewerState state(study, ct, &pet, scene);
+  std::atomic<bool> release{false};
+  state.setRegistrationJob([&release](std::stop_token stop) {
+    while (!release && !stop.stop_requested())
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return resampling::RegistrationResult{};
+  });
+  ViewerScript s = ViewerScript::parse("register\nwait-registration\nkey 2\n", "t");
+  s.step(state);
+  EXPECT_TRUE(state.registering());
+  for (int frame = 0; frame < 5; ++frame) {
+    s.step(state);
+    state.finishRegistration();
+  }
+  EXPECT_EQ(state.view3d().mode, render::RenderMode::Composite);  // still waiting
+  release = true;
+  while (state.registering()) {
+    state.finishRegistration();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  s.step(state);  // wait-registration passes
+  s.step(state);
+  EXPECT_EQ(state.view3d().mode, render::RenderMode::Isosurface);
+}
+
+}  // namespace
+}  // namespace mvw::app

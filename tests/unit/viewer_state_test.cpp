@@ -1,0 +1,386 @@
+// The viewer's state without a window or GL: what input does to the panes, the camera maths,
+// the saved state, and the background registration (which must never terminate the process).
+#include "ViewerState.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "TestUtil.h"
+#include "ViewerScript.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+
+namespace mvw::app {
+namespace {
+
+using render::RenderMode;
+
+// Intentional odd, anisotropic grid: a wrong axis or spacing shows in the wheel and click maths.
+Volume makeVolume(const std::string& modality, double lo, double hi) {
+  Volume v({9, 7, 5}, 1, ScalarType::Int16,
+           makeWorldFromIndex({-4.0, -3.0, -2.0}, {1.0, 1.0, 2.5}, glm::dmat3(1.0)));
+  v.setValue(0, 0, 0, 0, lo);
+  v.setValue(8, 6, 4, 0, hi);
+  v.metadata().modality = modality;
+  v.metadata().unit = modality == "CT" ? "HU" : "";
+  return v;
+}
+
+ViewerScene sceneOf(const Volume& v) {
+  ViewerScene s;
+  s.centre = v.worldFromIndexPoint(glm::dvec3(v.dimensions() - 1) * 0.5);
+  s.radius = 10.0;
+  s.valueRange = v.valueRange();
+  return s;
+}
+
+// Every pane sized and rendered once, with the cameras the renderer would report.
+void renderAll(ViewerState& state) {
+  for (int p = 0; p < kPaneCount; ++p) {
+    state.setPaneSize(p, {64, 48});
+    const render::RenderSettings s = state.renderSettings(p);
+    state.rendered(p,
+                   render::makeCamera(s.camera, state.scene().centre, state.scene().radius, s.size),
+                   Image(s.size.x, s.size.y), false);
+  }
+}
+
+class ViewerStateTest : public ::testing::Test {
+ protected:
+  config::StudyConfig study;
+  Volume ct = makeVolume("CT", -1000.0, 2000.0);
+  Volume pet = makeVolume("PT", 0.0, 10.0);
+};
+
+TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  EXPECT_EQ(state.presetName(), "ct-bone");
+  EXPECT_EQ(state.view3d().mode, RenderMode::Composite);
+  EXPECT_DOUBLE_EQ(state.view3d().isoValue, 300.0);
+  EXPECT_DOUBLE_EQ(state.mprWindow(), 400.0);
+  EXPECT_DOUBLE_EQ(state.mprLevel(), 40.0);
+  EXPECT_EQ(state.crosshair(), state.scene().centre);
+  EXPECT_EQ(state.maximised(), -1);
+
+  Volume mr = makeVolume("MR", 0.0, 500.0);
+  ViewerState mrState(study, mr, nullptr, sceneOf(mr));
+  EXPECT_EQ(mrState.presetName(), "mr-default");
+  EXPECT_DOUBLE_EQ(mrState.view3d().isoValue, 200.0);
+  EXPECT_DOUBLE_EQ(mrState.mprWindow(), 500.0);
+  EXPECT_DOUBLE_EQ(mrState.mprLevel(), 250.0);
+}
+
+TEST_F(ViewerStateTest, PanesRenderWhenSizedAndDirty) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  EXPECT_FALSE(state.needsRender(k3d));  // no size yet
+  state.setPaneSize(k3d, {7, 100});
+  EXPECT_FALSE(state.needsRender(k3d));  // too small to render
+  renderAll(state);
+  EXPECT_FALSE(state.anyDirty());
+  state.setPaneSize(kAxial, {64, 48});  // unchanged
+  EXPECT_FALSE(state.anyDirty());
+  state.setPaneSize(kAxial, {65, 48});
+  EXPECT_TRUE(state.needsRender(kAxial));
+  EXPECT_FALSE(state.needsRender(k3d));
+}
+
+TEST_F(ViewerStateTest, DraggingRendersTheThreeDPaneCoarseThenRefines) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  state.drag(k3d, 0.1, 0.0, MouseButton::Left, false);
+  const render::RenderSettings coarse = state.renderSettings(k3d, true);
+  EXPECT_EQ(coarse.size, glm::ivec2(32, 24));
+  EXPECT_DOUBLE_EQ(coarse.stepMm, 2.0);  // twice the smallest spacing
+  state.rendered(k3d, {}, Image(32, 24), true);
+  EXPECT_TRUE(state.needsRender(k3d));  // the full-resolution frame follows the drag
+  EXPECT_EQ(state.renderSettings(k3d).size, glm::ivec2(64, 48));
+}
+
+TEST_F(ViewerStateTest, ThreeDDragsRotateZoomAndPan) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  state.drag(k3d, 0.25, 0.1, MouseButton::Left, false);
+  EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, 45.0);
+  EXPECT_DOUBLE_EQ(state.view3d().camera.elevationDeg, 18.0);
+  EXPECT_TRUE(state.needsRender(k3d));
+  EXPECT_FALSE(state.needsRender(kAxial));
+  state.drag(k3d, 0.0, 1.0, MouseButton::Left, false);
+  EXPECT_DOUBLE_EQ(state.view3d().camera.elevationDeg, 89.0);  // never over the pole
+  state.drag(k3d, 0.0, -0.5, MouseButton::Right, false);
+  EXPECT_NEAR(state.view3d().camera.zoom, std::exp(1.0), 1e-12);
+  const double zoom = state.view3d().camera.zoom;
+  state.drag(k3d, 0.1, 0.2, MouseButton::Middle, false);
+  const double mm = 2.0 * 10.0 / zoom;
+  EXPECT_NEAR(state.view3d().camera.panMm.x, -0.1 * mm, 1e-12);
+  EXPECT_NEAR(state.view3d().camera.panMm.y, 0.2 * mm, 1e-12);
+  state.wheel(k3d, 1000.0);
+  EXPECT_DOUBLE_EQ(state.view3d().camera.zoom, 20.0);
+}
+
+TEST_F(ViewerStateTest, MprRightOrCtrlDragSetsWindowAndLevel) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  state.drag(kAxial, 0.1, 0.0, MouseButton::Left, false);  // a plain left drag is the crosshair's
+  EXPECT_FALSE(state.anyDirty());
+  state.drag(kCoronal, 0.5, 0.1, MouseButton::Right, false);
+  EXPECT_NEAR(state.mprWindow(), 400.0 * std::exp(1.0), 1e-9);
+  EXPECT_NEAR(state.mprLevel(), 40.0 - 0.1 * 3000.0 * 0.5, 1e-9);
+  EXPECT_FALSE(state.needsRender(k3d));
+  EXPECT_TRUE(state.needsRender(kAxial) && state.needsRender(kCoronal) &&
+              state.needsRender(kSagittal));
+  state.drag(kSagittal, -100.0, 0.0, MouseButton::Left, true);
+  EXPECT_DOUBLE_EQ(state.mprWindow(), 1e-3);  // never zero or negative
+  const render::RenderSettings s = state.renderSettings(kAxial);
+  EXPECT_EQ(s.mode, RenderMode::Mpr);
+  EXPECT_DOUBLE_EQ(s.window, state.mprWindow());
+  EXPECT_DOUBLE_EQ(s.level, state.mprLevel());
+}
+
+TEST_F(ViewerStateTest, WheelScrollsSlicesAndClicksMoveTheCrosshairInPlane) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  const glm::dvec3 centre = state.scene().centre;
+  const render::Camera axial = state.paneCamera(kAxial);
+  state.wheel(kAxial, 3);  // three slices of the finest spacing (1 mm)
+  EXPECT_NEAR(glm::length(state.crosshair() - (centre + 3.0 * axial.forward)), 0.0, 1e-12);
+  EXPECT_NEAR(state.renderSettings(kAxial).planeOffsetMm, 3.0, 1e-12);
+  EXPECT_FALSE(state.needsRender(k3d));
+  // A click right of the axial pane's centre: along the pane's right, still on its plane.
+  state.click(kAxial, 0.75, 0.5);
+  const glm::dvec3 moved = state.crosshair() - centre;
+  EXPECT_NEAR(glm::dot(moved, axial.forward), 3.0, 1e-9);
+  EXPECT_NEAR(glm::dot(moved, axial.up), 0.0, 1e-9);
+  EXPECT_NEAR(glm::dot(moved, axial.right), 0.5 * axial.halfHeightMm * axial.aspect, 1e-9);
+  EXPECT_EQ(state.onPlane(kAxial, 0.75, 0.5), state.crosshair());
+  const glm::dvec3 before = state.crosshair();
+  state.click(k3d, 0.1, 0.1);  // the 3D pane has no plane
+  EXPECT_EQ(state.crosshair(), before);
+  state.key('R', false);
+  EXPECT_EQ(state.crosshair(), centre);
+}
+
+TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  renderAll(state);
+  state.key('3', false);
+  EXPECT_EQ(state.view3d().mode, RenderMode::Mip);
+  EXPECT_TRUE(state.needsRender(k3d) && state.needsRender(kSagittal));
+  state.key('5', false);
+  EXPECT_EQ(state.view3d().mode, RenderMode::Average);
+  state.key('D', false);
+  EXPECT_TRUE(state.view3d().depthCue);
+  EXPECT_DOUBLE_EQ(state.view3d().cueAmount, 0.66);
+  EXPECT_DOUBLE_EQ(state.view3d().cueContrast, 0.33);
+  state.key('D', false);
+  EXPECT_FALSE(state.view3d().depthCue);
+  EXPECT_DOUBLE_EQ(state.view3d().cueAmount, 0.0);
+  EXPECT_DOUBLE_EQ(state.view3d().cueContrast, 1.0);
+  state.key('G', false);
+  state.key('F', false);
+  EXPECT_TRUE(state.view3d().glyphs);
+  EXPECT_TRUE(state.view3d().fusion);
+  const std::string preset = state.presetName();
+  state.key('P', false);
+  EXPECT_NE(state.presetName(), preset);
+  state.key('S', false);
+  EXPECT_EQ(state.takeScreenshotRequest(), std::filesystem::path("mvw-screenshot.png"));
+  EXPECT_EQ(state.takeScreenshotRequest(), std::nullopt);
+  renderAll(state);
+  state.key('X', false);  // unbound: nothing to redraw
+  EXPECT_FALSE(state.anyDirty());
+  state.drag(k3d, 0.5, 0.0, MouseButton::Left, false);
+  state.key('R', false);
+  EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, 0.0);
+}
+
+TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  state.key('G', false);
+  state.key('F', false);
+  EXPECT_FALSE(state.view3d().glyphs);
+  EXPECT_FALSE(state.view3d().fusion);
+  EXPECT_FALSE(state.anyDirty());
+  state.startRegistration();  // nothing to register
+  EXPECT_FALSE(state.registering());
+}
+
+TEST_F(ViewerStateTest, MprPanesShareTheFunctionalWindowOfTheThreeDPane) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  state.view3d().functionalLow = 2.0;
+  state.view3d().functionalHigh = 7.0;
+  state.view3d().functionalClasses = 5;
+  state.view3d().overlayOpacity = 0.75f;
+  const render::RenderSettings s = state.renderSettings(kCoronal);
+  EXPECT_DOUBLE_EQ(s.functionalLow, 2.0);
+  EXPECT_DOUBLE_EQ(s.functionalHigh, 7.0);
+  EXPECT_EQ(s.functionalClasses, 5);
+  EXPECT_FLOAT_EQ(s.overlayOpacity, 0.75f);
+  EXPECT_EQ(s.camera.view, render::StandardView::Anterior);
+  EXPECT_EQ(state.renderSettings(kAxial).camera.view, render::StandardView::Inferior);
+  EXPECT_EQ(state.renderSettings(kSagittal).camera.view, render::StandardView::Left);
+}
+
+TEST_F(ViewerStateTest, CaptionsNameTheModeAndWindow) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)), "composite  ct-bone");
+  // The same captions as `mvw render` burns in (study::viewCaption).
+  EXPECT_EQ(state.caption(kAxial, state.renderSettings(kAxial)), "mpr axial  W 400 L 40");
+  state.key('3', false);
+  EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)), "mip  W 3000 L 500");  // full range
+  state.key('2', false);
+  EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)), "isosurface  iso 300");
+}
+
+TEST_F(ViewerStateTest, MaximiseTogglesOnePane) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  state.toggleMaximised(kCoronal);
+  EXPECT_EQ(state.maximised(), kCoronal);
+  state.toggleMaximised(kCoronal);
+  EXPECT_EQ(state.maximised(), -1);
+}
+
+TEST_F(ViewerStateTest, SavedStateReopensAsTheSameViews) {
+  const auto dir = test::scratchDir();
+  ct.metadata().sourcePath = (dir / "ct.nii.gz").string();
+  std::ofstream(ct.metadata().sourcePath) << "";  // the loader checks the path exists
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  state.key('3', false);
+  state.key('D', false);
+  state.drag(k3d, 0.1, 0.05, MouseButton::Left, false);
+  state.drag(kAxial, 0.2, 0.1, MouseButton::Right, false);
+  state.saveConfig(dir / "saved.json");
+
+  const config::StudyConfig saved = config::loadStudyConfig(dir / "saved.json");
+  EXPECT_EQ(saved.name, "saved from mvw view");
+  EXPECT_EQ(saved.anatomical.path, ct.metadata().sourcePath);
+  ASSERT_EQ(saved.render.views.size(), 4u);
+  EXPECT_EQ(saved.render.views[0].name, "view-3d");
+  EXPECT_EQ(saved.render.views[1].name, "view-axial");
+  ViewerState reopened(saved, ct, nullptr, sceneOf(ct));
+  EXPECT_EQ(reopened.view3d().mode, RenderMode::Mip);
+  EXPECT_TRUE(reopened.view3d().depthCue);
+  EXPECT_NEAR(reopened.view3d().camera.azimuthDeg, 18.0, 1e-9);
+  EXPECT_NEAR(reopened.view3d().camera.elevationDeg, 9.0, 1e-9);
+  EXPECT_NEAR(reopened.mprWindow(), state.mprWindow(), 1e-6);
+  EXPECT_NEAR(reopened.mprLevel(), state.mprLevel(), 1e-6);
+}
+
+TEST_F(ViewerStateTest, DumpWritesThePaneAsRendered) {
+  const auto dir = test::scratchDir();
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  state.dump(kSagittal, dir / "sagittal.png");
+  EXPECT_TRUE(std::filesystem::exists(dir / "sagittal.png"));
+}
+
+TEST_F(ViewerStateTest, ProbeReadsTheNearestVoxel) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  const ViewerProbe corner = state.probe({-4.2, -3.0, -2.0});
+  EXPECT_TRUE(corner.anatomicalInside);
+  EXPECT_DOUBLE_EQ(corner.anatomical, -1000.0);
+  EXPECT_TRUE(corner.functionalInside);
+  EXPECT_DOUBLE_EQ(corner.functional, 0.0);
+  EXPECT_FALSE(state.probe({100.0, 0.0, 0.0}).anatomicalInside);
+}
+
+TEST(ViewerStateText, PanesAndPlacement) {
+  for (int p = 0; p < kPaneCount; ++p)
+    EXPECT_EQ(ViewerState::paneNamed(ViewerState::paneName(p)), p);
+  EXPECT_EQ(ViewerState::paneNamed("oblique"), std::nullopt);
+  EXPECT_EQ(ViewerState::describePlacement("none", nlohmann::json::object()), "none");
+  EXPECT_EQ(ViewerState::describePlacement("rigid", {{"mutual_information", 0.5}}),
+            "rigid, MI 0.500000");
+}
+
+// A job that runs until the worker's thread is asked to stop (as a destructor does).
+RegistrationWorker::Job untilStopped(std::atomic<bool>* started) {
+  return [started](std::stop_token stop) {
+    *started = true;
+    while (!stop.stop_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return resampling::RegistrationResult{};
+  };
+}
+
+void waitFor(const std::atomic<bool>& flag) {
+  while (!flag) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+// With a std::thread member, each of these called std::terminate (a joinable thread destroyed).
+TEST_F(ViewerStateTest, DestroyedWhileRegisteringWaitsForTheWorker) {
+  std::atomic<bool> started{false};
+  {
+    ViewerState state(study, ct, &pet, sceneOf(ct));
+    state.setRegistrationJob(untilStopped(&started));
+    state.startRegistration();
+    EXPECT_TRUE(state.registering());
+    waitFor(started);
+  }
+  SUCCEED();
+}
+
+TEST_F(ViewerStateTest, ScriptErrorWhileRegisteringUnwindsCleanly) {
+  const auto dir = test::scratchDir();
+  std::atomic<bool> started{false};
+  const ViewerScript script = ViewerScript::parse(
+      "register\nsave-config " + (dir / "missing" / "folder" / "state.json").string() + "\n",
+      dir / "script");
+  auto run = [&] {
+    ViewerState state(study, ct, &pet, sceneOf(ct));
+    state.setRegistrationJob(untilStopped(&started));
+    ViewerScript s = script;
+    EXPECT_TRUE(s.step(state));  // register
+    EXPECT_TRUE(state.registering());
+    waitFor(started);
+    s.step(state);  // save-config into a folder that does not exist: throws
+  };
+  EXPECT_THROW(run(), std::exception);
+}
+
+TEST_F(ViewerStateTest, FinishedRegistrationMovesTheFunctionalVolume) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  renderAll(state);
+  const glm::dmat4 moved = glm::translate(glm::dmat4(1.0), glm::dvec3(1.0, 2.0, 3.0));
+  state.setRegistrationJob([moved](std::stop_token) {
+    resampling::RegistrationResult r;
+    r.transform = resampling::Transform(moved);
+    r.converged = true;
+    r.seconds = 1.25;
+    return r;
+  });
+  state.startRegistration();
+  std::optional<glm::dmat4> placed;
+  while (state.registering() && !(placed = state.finishRegistration()))
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(placed);
+  EXPECT_EQ(*placed, moved);
+  EXPECT_FALSE(state.registering());
+  EXPECT_EQ(state.registration(), "rigid (re-run), MI 0.000000, converged, 1.25 s");
+  EXPECT_TRUE(state.needsRender(k3d) && state.needsRender(kAxial));
+}
+
+TEST_F(ViewerStateTest, FailedRegistrationSaysWhy) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  state.setRegistrationJob([](std::stop_token) -> resampling::RegistrationResult {
+    throw std::runtime_error("no overlap");
+  });
+  state.startRegistration();
+  while (state.registering()) {
+    EXPECT_EQ(state.finishRegistration(), std::nullopt);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_EQ(state.status(), "registration failed: no overlap");
+  EXPECT_EQ(state.registration(), "none");
+}
+
+}  // namespace
+}  // namespace mvw::app
