@@ -1,5 +1,7 @@
 #include "RenderTarget.h"
 
+#include "ReadPixels.h"
+
 #include <algorithm>
 #include <string>
 #include <utility>
@@ -41,23 +43,12 @@ void RenderTarget::bind(glm::ivec2 size) {
 
 Image RenderTarget::read() const {
   Image image(size_.x, size_.y);
-  image.depth.resize(static_cast<std::size_t>(size_.x) * size_.y);
-  std::vector<std::uint8_t> rgba(image.rgba.size());
-  std::vector<float> depth(image.depth.size());
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glReadPixels(0, 0, size_.x, size_.y, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  image.rgba = readRowsTopDown<std::uint8_t>(size_, GL_RGBA, GL_UNSIGNED_BYTE, 4);
   glReadBuffer(GL_COLOR_ATTACHMENT1);
-  glReadPixels(0, 0, size_.x, size_.y, GL_RED, GL_FLOAT, depth.data());
+  image.depth = readRowsTopDown<float>(size_, GL_RED, GL_FLOAT, 1);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   checkGl("rendering");
-  // GL rows start at the bottom; images at the top.
-  const std::size_t row = static_cast<std::size_t>(size_.x) * 4;
-  for (int y = 0; y < size_.y; ++y) {
-    std::copy_n(rgba.data() + (size_.y - 1 - y) * row, row, image.rgba.data() + y * row);
-    std::copy_n(depth.data() + static_cast<std::size_t>(size_.y - 1 - y) * size_.x, size_.x,
-                image.depth.data() + static_cast<std::size_t>(y) * size_.x);
-  }
   return image;
 }
 

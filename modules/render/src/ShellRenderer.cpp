@@ -1,5 +1,7 @@
 #include "ShellRenderer.h"
 
+#include "ReadPixels.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -124,17 +126,15 @@ Image ShellRenderer::draw(const ShellDraw& d) {
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(0);
 
-  std::vector<float> rgba(static_cast<std::size_t>(d.size.x) * d.size.y * 4);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, d.size.x, d.size.y, GL_RGBA, GL_FLOAT, rgba.data());
+  const std::vector<float> rgba = readRowsTopDown<float>(d.size, GL_RGBA, GL_FLOAT, 4);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   if (glGetError() == GL_OUT_OF_MEMORY) throw Error("the GL ran out of memory drawing the shells");
   Image img(d.size.x, d.size.y);
   img.depth.assign(static_cast<std::size_t>(d.size.x) * d.size.y, -1.0f);
   for (int y = 0; y < d.size.y; ++y)
     for (int x = 0; x < d.size.x; ++x) {
-      const float* src = &rgba[(static_cast<std::size_t>(d.size.y - 1 - y) * d.size.x + x) * 4];
+      const float* src = &rgba[(static_cast<std::size_t>(y) * d.size.x + x) * 4];
       std::uint8_t* dst = img.pixel(x, y);
       for (int c = 0; c < 3; ++c) dst[c] = static_cast<std::uint8_t>(std::lround(std::clamp(src[c], 0.0f, 1.0f) * 255.0f));
       dst[3] = 255;
