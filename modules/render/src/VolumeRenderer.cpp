@@ -18,6 +18,7 @@
 #include "TransferTable.h"
 #include "VolumeTextures.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/WindowLevel.h"
 #include "mvw/render/Framing.h"
 
 namespace mvw::render {
@@ -94,10 +95,9 @@ Image VolumeRenderer::Impl::drawShells(const RenderSettings& s, const Camera& ca
   d.centre = framing.centre;
   d.radius = framing.radius;
   const auto [lo, hi] = volume.range();
-  const double w = s.window > 0 ? s.window : hi - lo;
-  const double l = s.window > 0 ? s.level : 0.5 * (lo + hi);
-  d.windowLow = l - 0.5 * w;
-  d.windowWidth = w;
+  const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
+  d.windowLow = wl.level - 0.5 * wl.window;
+  d.windowWidth = wl.window;
   d.count = s.shellCount;
   d.enabled = s.shellEnabled;
   if (s.depthCue) {
@@ -195,9 +195,8 @@ void VolumeRenderer::Impl::setShadingUniforms(const ShaderProgram& p, const Rend
   glUniform1i(p.uniform("uHeadlight"), s.lightOffset == glm::dvec2(0.0) ? 1 : 0);
   glUniform1i(p.uniform("uShading"), s.shading ? 1 : 0);
   const auto [lo, hi] = volume.transferRange();
-  const double window = s.window > 0 ? s.window : hi - lo;
-  const double level = s.window > 0 ? s.level : 0.5 * (hi + lo);
-  glUniform2f(p.uniform("uWindowLevel"), float(window), float(level));
+  const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
+  glUniform2f(p.uniform("uWindowLevel"), float(wl.window), float(wl.level));
   glUniform1f(p.uniform("uIsoValue"), float(s.isoValue));
   glUniform3f(p.uniform("uCue"), float(s.cueBrightness), float(s.cueAmount), float(s.cueContrast));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
