@@ -48,7 +48,9 @@ TEST(Raycast, IsosurfaceBisectionFindsTheSphereWithinATenthOfAVoxel) {
   std::cout << "isosurface: worst distance error " << worstErr << " mm over " << checked
             << " rays\n";
   EXPECT_GT(checked, 1000);
-  EXPECT_LT(worstErr, 0.1);  // voxels are >= 1 mm: below a tenth of a voxel
+  // Measured: 0.039 mm (bisection to float precision on a trilinear field). 0.06 mm leaves a
+  // 50 % margin; a step or bisection fault moves the surface by a good part of a voxel.
+  EXPECT_LT(worstErr, 0.06);
 }
 
 }  // namespace

@@ -45,8 +45,10 @@ TEST(Raycast, MipAlongTheSliceAxisEqualsTheCtMaximumProjection) {
   mse /= d.x * d.y;
   const double psnr = 10.0 * std::log10(255.0 * 255.0 / std::max(mse, 1e-12));
   std::cout << "MIP vs max projection: PSNR " << psnr << " dB, worst pixel " << worst << "/255\n";
-  EXPECT_GE(psnr, 35.0);
-  EXPECT_LE(worst, 2);
+  // Measured on llvmpipe: 58.9 dB, worst 1/255 (rounding of the 8-bit output). A margin of 3 dB
+  // for other GL implementations; a wrong sample, window or axis costs tens of dB.
+  EXPECT_GE(psnr, 55.0);
+  EXPECT_LE(worst, 1);
 }
 
 }  // namespace

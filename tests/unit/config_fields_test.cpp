@@ -117,6 +117,28 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.overlayThreshold, a.overlayThreshold);
 }
 
+// From the table itself, so a key added later is covered without touching this test: the fully
+// set view writes every key, each (and each key of a section) away from its default, and what
+// is written reads back to the same JSON. A new key fails here until fullySet() sets it.
+TEST(ConfigFields, EveryKeyOfTheTableIsWrittenAwayFromItsDefaultAndReadBack) {
+  const json full = viewConfigJson(fullySet());
+  // The defaults, with the sections switched on so their keys are written too.
+  const json defaults = viewConfigJson(parseViewConfig(
+      {{"glyphs", json::object()}, {"depth_cue", json::object()}}, "study.json", "view", 0));
+  for (const std::string& key : viewConfigKeys()) {
+    ASSERT_TRUE(full.contains(key)) << key << " is not written";
+    if (full[key].is_object()) {
+      for (const auto& [sub, value] : full[key].items())
+        EXPECT_NE(value, defaults[key][sub]) << key << "." << sub << " left at its default";
+      EXPECT_EQ(full[key].size(), defaults[key].size()) << key;
+    } else {
+      EXPECT_NE(full[key], defaults.value(key, json())) << key << " left at its default";
+    }
+  }
+  EXPECT_EQ(full.size(), viewConfigKeys().size()) << "a key written that the table does not know";
+  EXPECT_EQ(viewConfigJson(parseViewConfig(full, "study.json", "view", 0)), full);
+}
+
 // The defaults live in the struct alone: an empty view object parses to a default ViewConfig,
 // and what the writer writes for it parses back to the same.
 TEST(ConfigFields, AnEmptyViewHasTheStructsDefaults) {

@@ -186,9 +186,14 @@ class FieldTable {
     return j;
   }
 
-  std::string knownKeys() const {
+  std::vector<std::string> keys() const {
     std::vector<std::string> keys;
     for (const Field& f : fields_) keys.push_back(f.key);
+    return keys;
+  }
+
+  std::string knownKeys() const {
+    std::vector<std::string> keys = this->keys();
     std::sort(keys.begin(), keys.end());
     std::string list;
     for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;

@@ -202,6 +202,8 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
 
 json viewConfigJson(const ViewConfig& v) { return viewTable().write(v); }
 
+std::vector<std::string> viewConfigKeys() { return viewTable().keys(); }
+
 namespace {
 
 // A volume source as the file has it: the path relative to the config's folder, and for the

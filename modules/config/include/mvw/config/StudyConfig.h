@@ -130,6 +130,8 @@ ViewConfig parseViewConfig(const nlohmann::json& view, const std::filesystem::pa
                            const std::string& where, int index);
 // The inverse of parseViewConfig: every field written out.
 nlohmann::json viewConfigJson(const ViewConfig& view);
+// The keys of a view object, from its field table ("glyphs" and "depth_cue" are objects).
+std::vector<std::string> viewConfigKeys();
 // The config's names of its enumerations, and their parsers (nullopt for an unknown name).
 std::string toString(FunctionalKind kind);
 std::string toString(ViewName view);
