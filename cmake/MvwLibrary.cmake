@@ -5,7 +5,8 @@
 # Call it once per library, after its target_include_directories(). It
 #  - names the exported target after the folder: mvw_study -> mvw::study (the same name as
 #    the in-tree alias, so consumers and the tree spell targets alike);
-#  - installs the archive into lib/ and the target's include/ tree (if any) into include/;
+#  - installs the archive into lib/ and the target's public include/ tree (if any) into
+#    include/;
 #  - keeps the in-tree include paths for the build only ($<BUILD_INTERFACE:...>) and points
 #    installed consumers at <prefix>/include;
 #  - adds the target to the one export set, mvwTargets, that the top-level CMakeLists writes.
@@ -26,9 +27,11 @@ function(mvw_install_library)
     set_property(GLOBAL APPEND PROPERTY MVW_EXPORTED_TARGETS mvw::${export_name})
 
     # Plain (absolute) include paths point into the source or build tree: build only. The
-    # target's own <folder>/include, if public, is installed and replaced by <prefix>/include.
+    # target's own <folder>/include, if public, is installed and replaced by <prefix>/include;
+    # so is <build folder>/include, where a generated public header (a version) would go.
     get_target_property(source_dir ${target} SOURCE_DIR)
-    set(public_include OFF)
+    get_target_property(binary_dir ${target} BINARY_DIR)
+    set(installed_includes "")
     foreach(property INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
       get_target_property(dirs ${target} ${property})
       if(NOT dirs)
@@ -40,15 +43,18 @@ function(mvw_install_library)
           list(APPEND wrapped "${dir}")
         else()
           list(APPEND wrapped "$<BUILD_INTERFACE:${dir}>")
-          if(dir STREQUAL "${source_dir}/include")
-            set(public_include ON)
+          if(dir STREQUAL "${source_dir}/include" OR dir STREQUAL "${binary_dir}/include")
+            list(APPEND installed_includes ${dir})
           endif()
         endif()
       endforeach()
       set_property(TARGET ${target} PROPERTY ${property} "${wrapped}")
     endforeach()
-    if(public_include)
-      install(DIRECTORY ${source_dir}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    list(REMOVE_DUPLICATES installed_includes)
+    foreach(dir IN LISTS installed_includes)
+      install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    endforeach()
+    if(installed_includes)
       target_include_directories(${target} INTERFACE
                                  $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
     endif()
