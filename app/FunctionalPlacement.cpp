@@ -18,7 +18,8 @@ FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volu
     resampling::RegistrationOptions options;
     options.affine = r.method == "affine";
     options.rotationSearchRangeDeg = r.rotationSearchDeg;
-    const resampling::RegistrationResult result = resampling::registerRigid(anatomical, functional, options);
+    const resampling::RegistrationResult result =
+        resampling::registerRigid(anatomical, functional, options);
     out.anatomicalFromFunctional = result.transform.fixedFromMoving();
     out.report["converged"] = result.converged;
     out.report["iterations"] = result.iterations;

@@ -16,9 +16,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const std::map<std::string, FunctionalKind> kKinds = {
-    {"pet", FunctionalKind::Pet},     {"spect", FunctionalKind::Spect},
-    {"fmri", FunctionalKind::Fmri},   {"perfusion", FunctionalKind::Perfusion},
-    {"dose", FunctionalKind::Dose},   {"labels", FunctionalKind::Labels},
+    {"pet", FunctionalKind::Pet},    {"spect", FunctionalKind::Spect},
+    {"fmri", FunctionalKind::Fmri},  {"perfusion", FunctionalKind::Perfusion},
+    {"dose", FunctionalKind::Dose},  {"labels", FunctionalKind::Labels},
     {"other", FunctionalKind::Other}};
 
 void rejectUnknownKeys(const fs::path& file, const json& object, const std::string& where,
@@ -54,39 +54,45 @@ VolumeSource volumeSource(const fs::path& file, const json& j, const std::string
   s.path = s.path.lexically_normal();
   std::error_code ec;
   if (!fs::exists(s.path, ec))
-    throw InputError(file, "'" + name + ".path' names " + s.path.string() + ", which does not exist");
+    throw InputError(file,
+                     "'" + name + ".path' names " + s.path.string() + ", which does not exist");
   s.series = stringField(file, j, name + ".", "series", false);
   return s;
 }
 
-double numberField(const fs::path& file, const json& o, const std::string& where, const std::string& key,
-                   double fallback, double lo, double hi) {
+double numberField(const fs::path& file, const json& o, const std::string& where,
+                   const std::string& key, double fallback, double lo, double hi) {
   if (!o.contains(key)) return fallback;
   if (!o[key].is_number()) throw InputError(file, "'" + where + key + "' must be a number");
   const double v = o[key].get<double>();
   if (!(v >= lo && v <= hi))
-    throw InputError(file, "'" + where + key + "' = " + std::to_string(v) + " is outside " + std::to_string(lo) +
-                               " .. " + std::to_string(hi));
+    throw InputError(file, "'" + where + key + "' = " + std::to_string(v) + " is outside " +
+                               std::to_string(lo) + " .. " + std::to_string(hi));
   return v;
 }
 
-bool boolField(const fs::path& file, const json& o, const std::string& where, const std::string& key, bool fallback) {
+bool boolField(const fs::path& file, const json& o, const std::string& where,
+               const std::string& key, bool fallback) {
   if (!o.contains(key)) return fallback;
   if (!o[key].is_boolean()) throw InputError(file, "'" + where + key + "' must be true or false");
   return o[key].get<bool>();
 }
 
 std::array<double, 3> tripleField(const fs::path& file, const json& o, const std::string& where,
-                                  const std::string& key, std::array<double, 3> fallback, double lo, double hi) {
+                                  const std::string& key, std::array<double, 3> fallback, double lo,
+                                  double hi) {
   if (!o.contains(key)) return fallback;
   const json& a = o[key];
-  if (!a.is_array() || a.size() != 3) throw InputError(file, "'" + where + key + "' must be an array of 3 numbers");
+  if (!a.is_array() || a.size() != 3)
+    throw InputError(file, "'" + where + key + "' must be an array of 3 numbers");
   std::array<double, 3> out{};
   for (int i = 0; i < 3; ++i) {
-    if (!a[i].is_number()) throw InputError(file, "'" + where + key + "' must be an array of 3 numbers");
+    if (!a[i].is_number())
+      throw InputError(file, "'" + where + key + "' must be an array of 3 numbers");
     out[i] = a[i].get<double>();
     if (!(out[i] >= lo && out[i] <= hi))
-      throw InputError(file, "'" + where + key + "' values must lie in " + std::to_string(lo) + " .. " + std::to_string(hi));
+      throw InputError(file, "'" + where + key + "' values must lie in " + std::to_string(lo) +
+                                 " .. " + std::to_string(hi));
   }
   return out;
 }
@@ -94,10 +100,43 @@ std::array<double, 3> tripleField(const fs::path& file, const json& o, const std
 ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& where, int index) {
   if (!j.is_object()) throw InputError(file, "'" + where + "' must be an object");
   rejectUnknownKeys(file, j, where + ".",
-                    {"name", "mode", "view", "azimuth", "elevation", "roll", "zoom", "perspective", "width", "height",
-                     "preset", "window", "level", "iso", "shading", "sampling", "step_mm", "jitter", "seed",
-                     "background", "crop_min", "crop_max", "annotate", "plane_offset_mm", "slab_mm", "overlay",
-                     "overlay_opacity", "overlay_threshold", "gradient_opacity", "depth_cue", "glyphs", "functional_window", "fusion", "functional_classes", "shells", "shells_disabled", "light"});
+                    {"name",
+                     "mode",
+                     "view",
+                     "azimuth",
+                     "elevation",
+                     "roll",
+                     "zoom",
+                     "perspective",
+                     "width",
+                     "height",
+                     "preset",
+                     "window",
+                     "level",
+                     "iso",
+                     "shading",
+                     "sampling",
+                     "step_mm",
+                     "jitter",
+                     "seed",
+                     "background",
+                     "crop_min",
+                     "crop_max",
+                     "annotate",
+                     "plane_offset_mm",
+                     "slab_mm",
+                     "overlay",
+                     "overlay_opacity",
+                     "overlay_threshold",
+                     "gradient_opacity",
+                     "depth_cue",
+                     "glyphs",
+                     "functional_window",
+                     "fusion",
+                     "functional_classes",
+                     "shells",
+                     "shells_disabled",
+                     "light"});
   const std::string w = where + ".";
   ViewConfig v;
   v.name = stringField(file, j, w, "name", false);
@@ -130,7 +169,8 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   v.cropMin = tripleField(file, j, w, "crop_min", v.cropMin, 0.0, 1.0);
   v.cropMax = tripleField(file, j, w, "crop_max", v.cropMax, 0.0, 1.0);
   for (int a = 0; a < 3; ++a)
-    if (v.cropMin[a] >= v.cropMax[a]) throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
+    if (v.cropMin[a] >= v.cropMax[a])
+      throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
   v.annotate = boolField(file, j, w, "annotate", true);
   if (j.contains("light")) {
     const json& l = j["light"];
@@ -142,7 +182,9 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
     const json& g = j["glyphs"];
     const std::string gw = w + "glyphs.";
     if (!g.is_object()) throw InputError(file, "'" + w + "glyphs' must be an object");
-    rejectUnknownKeys(file, g, gw, {"method", "convexity", "diameter_mm", "count", "seed", "map_size", "map_diameter"});
+    rejectUnknownKeys(
+        file, g, gw,
+        {"method", "convexity", "diameter_mm", "count", "seed", "map_size", "map_diameter"});
     v.glyphs = true;
     if (g.contains("method")) v.glyphMethod = stringField(file, g, gw, "method", true);
     if (v.glyphMethod != "sized" && v.glyphMethod != "simple")
@@ -176,7 +218,8 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
     const json& g = j["gradient_opacity"];
     if (!g.is_array() || g.size() != 2 || !g[0].is_number() || !g[1].is_number() ||
         !(g[0].get<double>() >= 0.0 && g[0].get<double>() < g[1].get<double>()))
-      throw InputError(file, "'" + w + "gradient_opacity' must be [low, high] with 0 <= low < high (unit/mm)");
+      throw InputError(
+          file, "'" + w + "gradient_opacity' must be [low, high] with 0 <= low < high (unit/mm)");
     v.gradientOpacity = {g[0].get<double>(), g[1].get<double>()};
   }
   v.planeOffsetMm = numberField(file, j, w, "plane_offset_mm", 0.0, -1e4, 1e4);
@@ -186,10 +229,12 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
   v.shells = static_cast<int>(numberField(file, j, w, "shells", 8, 1, 256));
   if (j.contains("shells_disabled")) {
     const json& d = j["shells_disabled"];
-    if (!d.is_array()) throw InputError(file, "'" + w + "shells_disabled' must be an array of shell numbers");
+    if (!d.is_array())
+      throw InputError(file, "'" + w + "shells_disabled' must be an array of shell numbers");
     for (const auto& e : d) {
       if (!e.is_number_integer() || e.get<int>() < 1 || e.get<int>() > v.shells)
-        throw InputError(file, "'" + w + "shells_disabled' holds shell numbers 1.." + std::to_string(v.shells));
+        throw InputError(
+            file, "'" + w + "shells_disabled' holds shell numbers 1.." + std::to_string(v.shells));
       v.shellsDisabled.push_back(e.get<int>());
     }
   }
@@ -233,19 +278,23 @@ StudyConfig loadStudyConfig(const fs::path& file) {
     if (!g.is_object()) throw InputError(file, "'registration' must be an object");
     rejectUnknownKeys(file, g, "registration.", {"method", "transform", "rotation_search_deg"});
     if (!config.functional) throw InputError(file, "'registration' needs a 'functional' volume");
-    if (g.contains("method")) config.registration.method = stringField(file, g, "registration.", "method", true);
+    if (g.contains("method"))
+      config.registration.method = stringField(file, g, "registration.", "method", true);
     const std::string& m = config.registration.method;
     if (m != "none" && m != "rigid" && m != "affine" && m != "file")
       throw InputError(file, "'registration.method' must be none, rigid, affine or file");
     const std::string t = stringField(file, g, "registration.", "transform", m == "file");
     if (!t.empty()) {
-      config.registration.transform = (fs::path(t).is_absolute() ? fs::path(t) : file.parent_path() / t).lexically_normal();
+      config.registration.transform =
+          (fs::path(t).is_absolute() ? fs::path(t) : file.parent_path() / t).lexically_normal();
       std::error_code ec;
       if (m == "file" && !fs::exists(config.registration.transform, ec))
-        throw InputError(file, "'registration.transform' names " + config.registration.transform.string() +
+        throw InputError(file, "'registration.transform' names " +
+                                   config.registration.transform.string() +
                                    ", which does not exist");
     }
-    config.registration.rotationSearchDeg = numberField(file, g, "registration.", "rotation_search_deg", 0.0, 0.0, 180.0);
+    config.registration.rotationSearchDeg =
+        numberField(file, g, "registration.", "rotation_search_deg", 0.0, 0.0, 180.0);
   }
   if (j.contains("render")) {
     const json& r = j["render"];
@@ -254,8 +303,8 @@ StudyConfig loadStudyConfig(const fs::path& file) {
     if (r.contains("views")) {
       if (!r["views"].is_array()) throw InputError(file, "'render.views' must be an array");
       for (std::size_t i = 0; i < r["views"].size(); ++i)
-        config.render.views.push_back(viewConfig(file, r["views"][i], "render.views[" + std::to_string(i) + "]",
-                                                 static_cast<int>(i)));
+        config.render.views.push_back(viewConfig(
+            file, r["views"][i], "render.views[" + std::to_string(i) + "]", static_cast<int>(i)));
     }
   }
   if (config.render.views.empty()) {
@@ -308,10 +357,16 @@ json viewJson(const ViewConfig& v) {
   if (v.gradientOpacity[1] > 0.0) j["gradient_opacity"] = v.gradientOpacity;
   if (v.functionalWindow) j["functional_window"] = *v.functionalWindow;
   if (v.glyphs)
-    j["glyphs"] = {{"method", v.glyphMethod},         {"convexity", v.glyphConvexity}, {"diameter_mm", v.glyphDiameterMm},
-                   {"count", v.glyphCount},           {"seed", v.glyphSeed},           {"map_size", v.glyphMapSize},
+    j["glyphs"] = {{"method", v.glyphMethod},
+                   {"convexity", v.glyphConvexity},
+                   {"diameter_mm", v.glyphDiameterMm},
+                   {"count", v.glyphCount},
+                   {"seed", v.glyphSeed},
+                   {"map_size", v.glyphMapSize},
                    {"map_diameter", v.glyphMapDiameter}};
-  if (v.depthCue) j["depth_cue"] = {{"brightness", v.cueBrightness}, {"amount", v.cueAmount}, {"contrast", v.cueContrast}};
+  if (v.depthCue)
+    j["depth_cue"] = {
+        {"brightness", v.cueBrightness}, {"amount", v.cueAmount}, {"contrast", v.cueContrast}};
   return j;
 }
 
@@ -330,7 +385,8 @@ void writeStudyConfig(const StudyConfig& config, const fs::path& file) {
   if (config.functional) {
     j["functional"] = sourceJson(*config.functional);
     j["functional"]["kind"] = toString(config.functionalKind);
-    json r = {{"method", config.registration.method}, {"rotation_search_deg", config.registration.rotationSearchDeg}};
+    json r = {{"method", config.registration.method},
+              {"rotation_search_deg", config.registration.rotationSearchDeg}};
     if (!config.registration.transform.empty())
       r["transform"] = fs::absolute(config.registration.transform).lexically_normal().string();
     j["registration"] = r;

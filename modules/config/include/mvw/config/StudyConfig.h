@@ -28,16 +28,16 @@ enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };
 // One rendered view ("render": {"views": [...]}). Names of modes, standard views and presets
 // are checked by the app against the renderer's lists before any GL work.
 struct ViewConfig {
-  std::string name;                  // output file stem; default "view<N>"
-  std::string mode = "composite";    // composite | isosurface | mip | minip | average | mpr |
-                                     // shells-mip | shells-sum | shells-lit
-  std::string view = "anterior";     // anterior | posterior | left | right | superior | inferior
-                                     // (| axial | coronal | sagittal)
+  std::string name;                // output file stem; default "view<N>"
+  std::string mode = "composite";  // composite | isosurface | mip | minip | average | mpr |
+                                   // shells-mip | shells-sum | shells-lit
+  std::string view = "anterior";   // anterior | posterior | left | right | superior | inferior
+                                   // (| axial | coronal | sagittal)
   double azimuth = 0.0, elevation = 0.0, roll = 0.0;  // degrees
   double zoom = 1.0;
   bool perspective = false;
   int width = 512, height = 512;
-  std::string preset;                // transfer function preset; "" = by modality
+  std::string preset;                               // transfer function preset; "" = by modality
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
   // "convexity": "convex" | "concave" | "both", "diameter_mm", "count", "seed", "map_size",
@@ -60,20 +60,20 @@ struct ViewConfig {
   int shells = 8;
   std::vector<int> shellsDisabled;
   bool shading = true;
-  std::string sampling = "linear";   // linear | nearest
-  double stepMm = 0.0;               // 0 = half the smallest voxel spacing
+  std::string sampling = "linear";  // linear | nearest
+  double stepMm = 0.0;              // 0 = half the smallest voxel spacing
   bool jitter = true;
   unsigned seed = 1;
   std::array<double, 3> background{0.0, 0.0, 0.0};
   std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};  // fractions of the box
   bool annotate = true;
   std::array<double, 2> light{0.0, 0.0};  // light direction offset in screen terms; 0, 0: headlight
-  double planeOffsetMm = 0.0;        // mpr: plane moved along the line of sight
-  double slabMm = 0.0;               // mpr: thick-slab MIP thickness, 0 = single plane
-  bool overlay = true;               // mpr: show the functional volume when there is one
-  bool fusion = false;               // composite / isosurface: blend the functional colour in
+  double planeOffsetMm = 0.0;             // mpr: plane moved along the line of sight
+  double slabMm = 0.0;                    // mpr: thick-slab MIP thickness, 0 = single plane
+  bool overlay = true;                    // mpr: show the functional volume when there is one
+  bool fusion = false;                    // composite / isosurface: blend the functional colour in
   double overlayOpacity = 0.5;
-  double overlayThreshold = 0.25;    // fraction of the functional value range
+  double overlayThreshold = 0.25;  // fraction of the functional value range
 };
 
 struct RenderConfig {

@@ -24,7 +24,17 @@ namespace mvw::render {
 // ShellMip, ShellSum, ShellLit: the paper's own discrete algorithm (Heidrich et al. 1995):
 // isosurface shells at n emission thresholds drawn as triangles, the GL depth test doing the
 // maximum (eq. 4), approximate summation (section 2.4), or lit shells.
-enum class RenderMode { Composite, Isosurface, Mip, MinIp, Average, Mpr, ShellMip, ShellSum, ShellLit };
+enum class RenderMode {
+  Composite,
+  Isosurface,
+  Mip,
+  MinIp,
+  Average,
+  Mpr,
+  ShellMip,
+  ShellSum,
+  ShellLit
+};
 std::optional<RenderMode> parseRenderMode(const std::string& name);
 std::string toString(RenderMode mode);
 
@@ -36,8 +46,8 @@ struct RenderSettings {
   // 2D transfer function: opacity scaled by smoothstep(g0, g1, |gradient|) (unit/mm), which
   // keeps boundaries and hides homogeneous regions (Levoy). g1 <= 0: 1D only.
   double gradientOpacityLow = 0.0, gradientOpacityHigh = 0.0;
-  double window = 0.0;   // projections: window width; <= 0 means the full value range
-  double level = 0.0;    // window centre
+  double window = 0.0;  // projections: window width; <= 0 means the full value range
+  double level = 0.0;   // window centre
   double isoValue = 300.0;
   // MIP with depth cueing (Heidrich et al. 1995, eq. 3 and section 2.3): brightness beta0,
   // depth cue amount a, contrast b. Off, or a = 0, b = 1, beta0 = 0: plain MIP.
@@ -46,9 +56,9 @@ struct RenderSettings {
   // Shell modes: n shells at emissions i/n of the window; shells can be disabled one by one.
   int shellCount = 8;
   std::vector<bool> shellEnabled;  // empty: all
-  double stepMm = 0.0;   // <= 0: half the smallest voxel spacing
+  double stepMm = 0.0;             // <= 0: half the smallest voxel spacing
   bool shading = true;
-  bool linear = true;    // trilinear (true) or nearest-neighbour sampling
+  bool linear = true;  // trilinear (true) or nearest-neighbour sampling
   bool jitter = true;
   std::uint32_t seed = 1;
   glm::vec3 background{0.0f};
@@ -68,9 +78,9 @@ struct RenderSettings {
   // from a periodic normal map. Needs a functional volume.
   bool glyphs = false;
   bool glyphSizeControl = true;  // eqs. (2)-(3); false: simple blending, eq. (1)
-  int glyphConvexity = 0;        // 0 convex bumps, 1 concave dimples, 2 both (below/above mid-range)
+  int glyphConvexity = 0;  // 0 convex bumps, 1 concave dimples, 2 both (below/above mid-range)
   double glyphDiameterMm = 12.0;
-  GlyphMapSettings glyphMap;     // size, count, diameter in map voxels, seed
+  GlyphMapSettings glyphMap;  // size, count, diameter in map voxels, seed
   // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
   double functionalLow = 0.0, functionalHigh = 0.0;
   // Nominal attribute (labels): K > 0 maps label L > 0 to glyph size (L mod K + 1) / K.
@@ -85,7 +95,7 @@ struct RenderSettings {
 };
 
 struct Frame {
-  Image image;          // with depth: the ray distance (mm) of the reported sample, -1 for none
+  Image image;  // with depth: the ray distance (mm) of the reported sample, -1 for none
   double milliseconds = 0.0;
   Camera camera;
 };
