@@ -71,14 +71,17 @@ void runInfo(const InfoOptions& opt) {
 void addInfoCommand(CLI::App& app) {
   auto opt = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Describe volumes: DICOM folders or files, NIfTI, MetaImage, or a study config (.json)");
+      "info",
+      "Describe volumes: DICOM folders or files, NIfTI, MetaImage, or a study config (.json)");
   cmd->add_option("paths", opt->paths, "Files, DICOM folders or study configs")->required();
-  cmd->add_option("--series", opt->series, "DICOM series to show: UID, number or part of the description");
+  cmd->add_option("--series", opt->series,
+                  "DICOM series to show: UID, number or part of the description");
   cmd->add_flag("--json", opt->json, "Print JSON instead of text");
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
-  cmd->add_option("--max-memory", opt->maxMemory,
-                  "Refuse a volume larger than this in memory, checked on the header before anything is "
-                  "allocated (e.g. 512M, 4G; default: a quarter of physical RAM)")
+  cmd->add_option(
+         "--max-memory", opt->maxMemory,
+         "Refuse a volume larger than this in memory, checked on the header before anything is "
+         "allocated (e.g. 512M, 4G; default: a quarter of physical RAM)")
       ->transform(CLI::AsSizeValue(false))
       ->check(CLI::PositiveNumber);
   cmd->callback([opt] { runInfo(*opt); });

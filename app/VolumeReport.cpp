@@ -57,8 +57,11 @@ nlohmann::json volumeJson(const Volume& volume) {
   }
   if (md.sliceSpacing) {
     const auto& ss = *md.sliceSpacing;
-    j["slice_spacing"] = {{"slices", ss.slices}, {"nominal_mm", ss.nominal}, {"min_mm", ss.minimum},
-                          {"max_mm", ss.maximum}, {"regular", ss.regular}};
+    j["slice_spacing"] = {{"slices", ss.slices},
+                          {"nominal_mm", ss.nominal},
+                          {"min_mm", ss.minimum},
+                          {"max_mm", ss.maximum},
+                          {"regular", ss.regular}};
   }
   j["notes"] = md.notes;
   return j;
@@ -81,7 +84,8 @@ void printVolume(std::ostream& out, const Volume& volume) {
   out << "  dimensions   " << d.x << " x " << d.y << " x " << d.z;
   if (volume.components() > 1) out << " x " << volume.components() << " components";
   out << "  (" << scalarName(volume.scalarType()) << ")\n";
-  out << "  spacing      " << fmt(s.x, 4) << " x " << fmt(s.y, 4) << " x " << fmt(s.z, 4) << " mm\n";
+  out << "  spacing      " << fmt(s.x, 4) << " x " << fmt(s.y, 4) << " x " << fmt(s.z, 4)
+      << " mm\n";
   out << "  origin       " << fmt(o.x) << ", " << fmt(o.y) << ", " << fmt(o.z) << " mm (LPS)\n";
   out << "  orientation  " << orientationCode(dir) << (isOblique(dir) ? " (oblique)" : "") << "\n";
   out << "  direction    ";
@@ -95,7 +99,8 @@ void printVolume(std::ostream& out, const Volume& volume) {
   if (md.sliceSpacing) {
     const auto& ss = *md.sliceSpacing;
     out << "  slices       " << ss.slices << ", spacing " << fmt(ss.nominal) << " mm, "
-        << (ss.regular ? "regular" : "IRREGULAR (" + fmt(ss.minimum) + " .. " + fmt(ss.maximum) + " mm)")
+        << (ss.regular ? "regular"
+                       : "IRREGULAR (" + fmt(ss.minimum) + " .. " + fmt(ss.maximum) + " mm)")
         << "\n";
   }
   for (const auto& note : md.notes) out << "  note         " << note << "\n";

@@ -44,9 +44,7 @@ TEST(GlContext, ThreeDimensionalTexturesWork) {
   glDeleteTextures(1, &tex);
 }
 
-TEST(GlContext, InvalidSizeIsAnError) {
-  EXPECT_THROW(createHeadlessContext({0, 10}), Error);
-}
+TEST(GlContext, InvalidSizeIsAnError) { EXPECT_THROW(createHeadlessContext({0, 10}), Error); }
 
 }  // namespace
 }  // namespace mvw::render
@@ -84,7 +82,8 @@ TEST(ShaderProgram, CompileErrorsNameTheShaderFileAndLine) {
     ShaderProgram broken("fullscreen.vert.glsl", "solid.frag.glsl", {"fragColor 1.0 +"});
     ADD_FAILURE() << "compiled a broken shader";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("shaders/solid.frag.glsl:5:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("shaders/solid.frag.glsl:5:"), std::string::npos)
+        << e.what();
   }
 }
 

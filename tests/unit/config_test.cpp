@@ -48,25 +48,32 @@ TEST(StudyConfig, ResolvesPathsRelativeToTheConfig) {
 TEST(StudyConfig, RefusesTyposMissingKeysAndBadValues) {
   const fs::path dir = test::scratchDir();
   EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"}, "fucntional": {}})"))
-                .find("unknown key 'fucntional'"), std::string::npos);
-  EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"pth": "anat.nii"}})")).find("anatomical.pth"),
+                .find("unknown key 'fucntional'"),
             std::string::npos);
-  EXPECT_NE(errorOf(writeConfig(dir, R"({"name": "x"})")).find("missing key 'anatomical'"), std::string::npos);
-  EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"path": "nope.nii"}})")).find("does not exist"),
+  EXPECT_NE(
+      errorOf(writeConfig(dir, R"({"anatomical": {"pth": "anat.nii"}})")).find("anatomical.pth"),
+      std::string::npos);
+  EXPECT_NE(errorOf(writeConfig(dir, R"({"name": "x"})")).find("missing key 'anatomical'"),
             std::string::npos);
+  EXPECT_NE(
+      errorOf(writeConfig(dir, R"({"anatomical": {"path": "nope.nii"}})")).find("does not exist"),
+      std::string::npos);
   EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"path": 3}})")).find("must be a string"),
             std::string::npos);
   EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"},
-      "functional": {"path": "pet.nii", "kind": "xray"}})")).find("functional.kind"), std::string::npos);
-  EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": )")).find("not valid JSON"), std::string::npos);
+      "functional": {"path": "pet.nii", "kind": "xray"}})"))
+                .find("functional.kind"),
+            std::string::npos);
+  EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": )")).find("not valid JSON"),
+            std::string::npos);
 }
-
 
 // writeStudyConfig is loadStudyConfig's inverse: every field survives the round trip (the
 // viewer saves its state this way, and `mvw render` must reproduce it).
 TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   const fs::path dir = test::scratchDir();
-  const auto p = writeConfig(dir, R"({"name": "round trip", "anatomical": {"path": "anat.nii", "series": "7"},
+  const auto p =
+      writeConfig(dir, R"({"name": "round trip", "anatomical": {"path": "anat.nii", "series": "7"},
       "functional": {"path": "pet.nii", "kind": "labels"},
       "registration": {"method": "rigid", "rotation_search_deg": 30},
       "render": {"views": [

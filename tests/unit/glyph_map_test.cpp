@@ -60,7 +60,8 @@ TEST(GlyphMap, SixteenSeparateSpheresOfTheRequestedDiameter) {
 // The renderer's compact form: the cell holding a point names the one glyph that can contain
 // it, and the texels are what that glyph's centre gives (shaders/common/glyphs.glsl).
 TEST(GlyphMap, CellsNameTheOneGlyphThatReachesThem) {
-  for (const GlyphMapSettings& s : {GlyphMapSettings{128, 16, 32.0, 7}, GlyphMapSettings{63, 9, 13.0, 2}}) {
+  for (const GlyphMapSettings& s :
+       {GlyphMapSettings{128, 16, 32.0, 7}, GlyphMapSettings{63, 9, 13.0, 2}}) {
     const GlyphMap map = makeGlyphMap(s);
     ASSERT_EQ(map.cellSize, s.size % 2 == 0 ? 2 : 1);
     const int n = s.size / map.cellSize;

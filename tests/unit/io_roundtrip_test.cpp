@@ -2,8 +2,8 @@
 // oblique direction matrix comes back with every voxel at the same world position.
 #include <cmath>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "TestUtil.h"
 #include "mvw/core/Error.h"
@@ -17,10 +17,12 @@ namespace {
 namespace fs = std::filesystem;
 
 Volume makePhantom(ScalarType type, bool leftHanded, int components = 1) {
-  glm::dmat3 dir = glm::dmat3(glm::rotate(glm::dmat4(1.0), 0.4, glm::normalize(glm::dvec3(1, -2, 0.5))));
+  glm::dmat3 dir =
+      glm::dmat3(glm::rotate(glm::dmat4(1.0), 0.4, glm::normalize(glm::dvec3(1, -2, 0.5))));
   if (leftHanded) dir[1] = -dir[1];
   // Intentional odd sizes: catch row/column mix-ups that square volumes hide.
-  Volume v({7, 5, 3}, components, type, makeWorldFromIndex({-12.5, 40.25, 3.0}, {0.8, 1.3, 2.7}, dir));
+  Volume v({7, 5, 3}, components, type,
+           makeWorldFromIndex({-12.5, 40.25, 3.0}, {0.8, 1.3, 2.7}, dir));
   for (int k = 0; k < 3; ++k)
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 7; ++i)
@@ -40,8 +42,10 @@ void expectSameWorldContent(const Volume& a, const Volume& b, double tolMm) {
         const glm::dvec3 w = a.worldFromIndexPoint({i, j, k});
         const glm::dvec3 ijk = glm::dvec3(bIndexFromWorld * glm::dvec4(w, 1.0));
         const glm::ivec3 n(std::lround(ijk.x), std::lround(ijk.y), std::lround(ijk.z));
-        ASSERT_LT(glm::length(b.worldFromIndexPoint(glm::dvec3(n)) - w), tolMm) << i << "," << j << "," << k;
-        for (int c = 0; c < a.components(); ++c) ASSERT_EQ(a.value(i, j, k, c), b.value(n.x, n.y, n.z, c));
+        ASSERT_LT(glm::length(b.worldFromIndexPoint(glm::dvec3(n)) - w), tolMm)
+            << i << "," << j << "," << k;
+        for (int c = 0; c < a.components(); ++c)
+          ASSERT_EQ(a.value(i, j, k, c), b.value(n.x, n.y, n.z, c));
       }
 }
 
@@ -60,7 +64,8 @@ TEST_P(RoundTrip, KeepsGeometryAndVoxels) {
   expectSameWorldContent(v, r, tol);
   if (!leftHanded) {
     for (int c = 0; c < 4; ++c)
-      for (int rr = 0; rr < 4; ++rr) EXPECT_NEAR(r.worldFromIndex()[c][rr], v.worldFromIndex()[c][rr], tol);
+      for (int rr = 0; rr < 4; ++rr)
+        EXPECT_NEAR(r.worldFromIndex()[c][rr], v.worldFromIndex()[c][rr], tol);
   }
 }
 

@@ -5,8 +5,8 @@
 #include <cstring>
 #include <fstream>
 
-#include <glm/gtc/matrix_inverse.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_inverse.hpp>
 
 #include "TestUtil.h"
 #include "mvw/core/Error.h"
@@ -28,7 +28,8 @@ TEST(SampleData, CraniumDicomSeriesEqualsItsNifti) {
   EXPECT_EQ(std::memcmp(dicom.data(), nifti.data(), dicom.byteSize()), 0) << "voxels differ";
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
-      EXPECT_NEAR(dicom.worldFromIndex()[c][r], nifti.worldFromIndex()[c][r], 1e-4) << c << "," << r;
+      EXPECT_NEAR(dicom.worldFromIndex()[c][r], nifti.worldFromIndex()[c][r], 1e-4)
+          << c << "," << r;
   EXPECT_EQ(orientationCode(dicom.direction()), "LPS");
   EXPECT_NEAR(dicom.spacing().x, 0.9570312, 1e-6);
   EXPECT_NEAR(dicom.spacing().z, 1.5, 1e-6);
@@ -60,11 +61,13 @@ TEST(SampleData, BigEndianNiftiMatchesItsHeaderVoxelByVoxel) {
   std::ifstream in(path, std::ios::binary);
   const std::string raw{std::istreambuf_iterator<char>(in), {}};
   ASSERT_EQ(bigEndian<int>(raw, 0), 348);
-  const int nx = bigEndian<short>(raw, 42), ny = bigEndian<short>(raw, 44), nz = bigEndian<short>(raw, 46);
+  const int nx = bigEndian<short>(raw, 42), ny = bigEndian<short>(raw, 44),
+            nz = bigEndian<short>(raw, 46);
   const auto voxOffset = static_cast<std::size_t>(bigEndian<float>(raw, 108));
   glm::dmat4 rasFromFileIndex(1.0);
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) rasFromFileIndex[c][r] = bigEndian<float>(raw, 280 + 16 * r + 4 * c);
+    for (int c = 0; c < 4; ++c)
+      rasFromFileIndex[c][r] = bigEndian<float>(raw, 280 + 16 * r + 4 * c);
 
   const Volume v = readVolume(path);
   ASSERT_EQ(v.dimensions(), glm::ivec3(nx, ny, nz));
@@ -98,7 +101,9 @@ TEST(SampleData, AtlasAndTemplateLoadInTheSameFrame) {
   EXPECT_NEAR(aal.spacing().x, 1.0, 1e-6);
   EXPECT_TRUE(isInteger(aal.scalarType()));
   // Both are MNI-space images: their centres lie within a few centimetres of each other.
-  auto centre = [](const Volume& v) { return v.worldFromIndexPoint(glm::dvec3(v.dimensions() - 1) * 0.5); };
+  auto centre = [](const Volume& v) {
+    return v.worldFromIndexPoint(glm::dvec3(v.dimensions() - 1) * 0.5);
+  };
   EXPECT_LT(glm::length(centre(t1) - centre(aal)), 30.0);
 }
 
@@ -153,8 +158,9 @@ TEST(SampleData, RtDoseFramesBecomeSlicesInGray) {
 TEST(SampleData, CompressedAndBigEndianDicomDecodeToTheSameImage) {
   // The same MR slice stored uncompressed, big-endian, RLE, JPEG-LS and JPEG 2000 lossless.
   const Volume ref = readVolume(test::sampleData("pydicom/test_files/MR_small.dcm"));
-  for (const char* name : {"MR_small_bigendian.dcm", "MR_small_RLE.dcm", "MR_small_jpeg_ls_lossless.dcm",
-                           "MR_small_jp2klossless.dcm", "MR_small_implicit.dcm"}) {
+  for (const char* name :
+       {"MR_small_bigendian.dcm", "MR_small_RLE.dcm", "MR_small_jpeg_ls_lossless.dcm",
+        "MR_small_jp2klossless.dcm", "MR_small_implicit.dcm"}) {
     const Volume v = readVolume(test::sampleData(std::string("pydicom/test_files/") + name));
     ASSERT_EQ(v.dimensions(), ref.dimensions()) << name;
     for (int j = 0; j < ref.dimensions().y; ++j)

@@ -22,14 +22,14 @@ TEST(ShaderSource, ResolvesIncludesOnceWithLineDirectives) {
 
 TEST(ShaderSource, MapsMesaAndNvidiaLocationsToFiles) {
   const std::vector<std::string> files = {"a.frag.glsl", "common/math.glsl"};
-  EXPECT_EQ(mapShaderLog("1:7(12): error: syntax error", files), "shaders/common/math.glsl:7:12: error: syntax error");
-  EXPECT_EQ(mapShaderLog("0(3) : error C0000: bad", files), "shaders/a.frag.glsl:3 : error C0000: bad");
+  EXPECT_EQ(mapShaderLog("1:7(12): error: syntax error", files),
+            "shaders/common/math.glsl:7:12: error: syntax error");
+  EXPECT_EQ(mapShaderLog("0(3) : error C0000: bad", files),
+            "shaders/a.frag.glsl:3 : error C0000: bad");
   EXPECT_EQ(mapShaderLog("9:1(1): unknown file", files), "9:1(1): unknown file");
 }
 
-TEST(ShaderSource, UnknownFileIsAnError) {
-  EXPECT_THROW(resolveShader("no-such.glsl"), Error);
-}
+TEST(ShaderSource, UnknownFileIsAnError) { EXPECT_THROW(resolveShader("no-such.glsl"), Error); }
 
 }  // namespace
 }  // namespace mvw::render

@@ -28,8 +28,10 @@ std::optional<double> parseDicomTime(const std::string& tm) {
   std::string digits;
   std::size_t i = 0;
   for (; i < tm.size() && tm[i] != '.'; ++i) {
-    if (std::isdigit(static_cast<unsigned char>(tm[i]))) digits += tm[i];
-    else if (tm[i] != ':' && tm[i] != ' ') return std::nullopt;
+    if (std::isdigit(static_cast<unsigned char>(tm[i])))
+      digits += tm[i];
+    else if (tm[i] != ':' && tm[i] != ' ')
+      return std::nullopt;
   }
   if (digits.size() < 2 || digits.size() > 6 || digits.size() % 2) return std::nullopt;
   digits.resize(6, '0');

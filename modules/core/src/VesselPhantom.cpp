@@ -23,8 +23,8 @@ double distanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dv
 }  // namespace
 
 VesselTree makeVesselTree(const VesselTreeSettings& s) {
-  if (glm::any(glm::lessThan(s.dimensions, glm::ivec3(8))) || s.generations < 1 || s.generations > 12 ||
-      !(s.spacingMm > 0) || !(s.rootRadiusMm > 0) || !(s.rootLengthMm > 0))
+  if (glm::any(glm::lessThan(s.dimensions, glm::ivec3(8))) || s.generations < 1 ||
+      s.generations > 12 || !(s.spacingMm > 0) || !(s.rootRadiusMm > 0) || !(s.rootLengthMm > 0))
     throw Error("invalid vessel phantom settings");
   const glm::dvec3 extent = glm::dvec3(s.dimensions - 1) * s.spacingMm;
   VesselTree tree;
@@ -39,7 +39,8 @@ VesselTree makeVesselTree(const VesselTreeSettings& s) {
     double length, radius;
     int generation;
   };
-  std::vector<Bud> buds = {{{0.0, 0.0, -0.45 * extent.z}, {0.0, 0.0, 1.0}, s.rootLengthMm, s.rootRadiusMm, 0}};
+  std::vector<Bud> buds = {
+      {{0.0, 0.0, -0.45 * extent.z}, {0.0, 0.0, 1.0}, s.rootLengthMm, s.rootRadiusMm, 0}};
   const glm::dvec3 lo = -0.45 * extent, hi = 0.45 * extent;
   while (!buds.empty()) {
     const Bud bud = buds.back();
@@ -55,7 +56,8 @@ VesselTree makeVesselTree(const VesselTreeSettings& s) {
     axis = glm::dvec3(glm::rotate(glm::dmat4(1.0), spin, bud.direction) * glm::dvec4(axis, 0.0));
     for (double side : {-1.0, 1.0}) {
       const double angle = side * glm::radians(25.0 + 20.0 * unit(rng));
-      const glm::dvec3 dir = glm::normalize(glm::dvec3(glm::rotate(glm::dmat4(1.0), angle, axis) * glm::dvec4(bud.direction, 0.0)));
+      const glm::dvec3 dir = glm::normalize(
+          glm::dvec3(glm::rotate(glm::dmat4(1.0), angle, axis) * glm::dvec4(bud.direction, 0.0)));
       buds.push_back({end, dir, bud.length * 0.78, bud.radius * 0.72, bud.generation + 1});
     }
   }
@@ -67,17 +69,21 @@ VesselTree makeVesselTree(const VesselTreeSettings& s) {
   const glm::ivec3 d = s.dimensions;
   for (const auto& seg : tree.segments) {
     const double reach = seg.radiusMm + s.spacingMm;
-    const glm::dvec3 a = glm::dvec3(indexFromWorld * glm::dvec4(glm::min(seg.from, seg.to) - reach, 1.0));
-    const glm::dvec3 b = glm::dvec3(indexFromWorld * glm::dvec4(glm::max(seg.from, seg.to) + reach, 1.0));
+    const glm::dvec3 a =
+        glm::dvec3(indexFromWorld * glm::dvec4(glm::min(seg.from, seg.to) - reach, 1.0));
+    const glm::dvec3 b =
+        glm::dvec3(indexFromWorld * glm::dvec4(glm::max(seg.from, seg.to) + reach, 1.0));
     const glm::ivec3 i0 = glm::max(glm::ivec3(glm::floor(a)), glm::ivec3(0));
     const glm::ivec3 i1 = glm::min(glm::ivec3(glm::ceil(b)), d - 1);
     for (int k = i0.z; k <= i1.z; ++k)
       for (int j = i0.y; j <= i1.y; ++j)
         for (int i = i0.x; i <= i1.x; ++i) {
-          const double dist = distanceToSegment(tree.volume.worldFromIndexPoint({i, j, k}), seg.from, seg.to);
+          const double dist =
+              distanceToSegment(tree.volume.worldFromIndexPoint({i, j, k}), seg.from, seg.to);
           const double inside = std::clamp((seg.radiusMm - dist) / s.spacingMm + 0.5, 0.0, 1.0);
           float& out = v[tree.volume.linearIndex(i, j, k)];
-          out = std::max(out, static_cast<float>(s.background + (s.vesselValue - s.background) * inside));
+          out = std::max(
+              out, static_cast<float>(s.background + (s.vesselValue - s.background) * inside));
         }
   }
   std::normal_distribution<double> noise(0.0, s.noiseSigma);

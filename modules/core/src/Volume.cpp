@@ -48,7 +48,8 @@ glm::dvec3 Volume::spacing() const {
 glm::dmat3 Volume::direction() const {
   const glm::dvec3 s = spacing();
   glm::dmat3 d;
-  for (int c = 0; c < 3; ++c) d[c] = s[c] > 0 ? glm::dvec3(worldFromIndex_[c]) / s[c] : glm::dvec3(0);
+  for (int c = 0; c < 3; ++c)
+    d[c] = s[c] > 0 ? glm::dvec3(worldFromIndex_[c]) / s[c] : glm::dvec3(0);
   return d;
 }
 

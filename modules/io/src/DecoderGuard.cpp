@@ -26,8 +26,9 @@ void onFatalSignal(int) {
 
 DecoderGuard::DecoderGuard(const std::filesystem::path& file) {
   if (gDepth++ > 0) return;
-  const std::string text = "\nmvw: error: " + file.string() +
-                           ": the DICOM decoder (vtk-dicom / GDCM) gave up on malformed data in this file\n";
+  const std::string text =
+      "\nmvw: error: " + file.string() +
+      ": the DICOM decoder (vtk-dicom / GDCM) gave up on malformed data in this file\n";
   gMessageLength = std::min(text.size(), sizeof gMessage);
   std::memcpy(gMessage, text.data(), gMessageLength);
   struct sigaction action {};

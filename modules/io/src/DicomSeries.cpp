@@ -61,13 +61,16 @@ std::string describe(const SeriesRef& s) {
 
 bool matches(const SeriesRef& s, const std::string& want) {
   if (want == s.uid) return true;
-  if (!want.empty() && std::all_of(want.begin(), want.end(), ::isdigit) && std::stoll(want) == s.number) return true;
+  if (!want.empty() && std::all_of(want.begin(), want.end(), ::isdigit) &&
+      std::stoll(want) == s.number)
+    return true;
   return !want.empty() && lower(s.description).find(lower(want)) != std::string::npos;
 }
 
 bool isUncompressed(const std::string& ts) {
   // Implicit VR LE, explicit VR LE, explicit VR BE; empty: no meta header (implicit VR LE).
-  return ts.empty() || ts == "1.2.840.10008.1.2" || ts == "1.2.840.10008.1.2.1" || ts == "1.2.840.10008.1.2.2";
+  return ts.empty() || ts == "1.2.840.10008.1.2" || ts == "1.2.840.10008.1.2.1" ||
+         ts == "1.2.840.10008.1.2.2";
 }
 
 // Refuses files whose header claims more pixel data than the file holds (uncompressed only:
@@ -86,17 +89,21 @@ void checkPixelDataSizes(vtkDICOMMetaData* meta, vtkStringArray* files) {
     if (bits != 1 && bits != 8 && bits != 16 && bits != 32 && bits != 64)
       throw InputError(file, "unsupported BitsAllocated " + std::to_string(bits));
     if (spp > 4) throw InputError(file, "unsupported SamplesPerPixel " + std::to_string(spp));
-    if (frames > (1 << 20)) throw InputError(file, "implausible NumberOfFrames " + std::to_string(frames));
+    if (frames > (1 << 20))
+      throw InputError(file, "implausible NumberOfFrames " + std::to_string(frames));
     const std::string ts = meta->Get(static_cast<int>(f), DC::TransferSyntaxUID).AsString();
     if (!isUncompressed(ts)) continue;
     // YBR_FULL_422 stores two samples per pixel on average, not three.
-    if (meta->Get(static_cast<int>(f), DC::PhotometricInterpretation).AsString() == "YBR_FULL_422") spp = 2;
+    if (meta->Get(static_cast<int>(f), DC::PhotometricInterpretation).AsString() == "YBR_FULL_422")
+      spp = 2;
     // Each factor is bounded above (rows, columns < 2^32, spp <= 4, frames <= 2^20, bits <= 64).
     const double need = std::ceil(static_cast<double>(rows) * cols * spp * frames * bits / 8.0);
     const std::uintmax_t have = regularFileSize(file);
     if (need > static_cast<double>(have))
-      throw InputError(file, "truncated: the header describes " + std::to_string(static_cast<unsigned long long>(need)) +
-                                 " bytes of pixel data but the file has only " + std::to_string(have) + " bytes");
+      throw InputError(file, "truncated: the header describes " +
+                                 std::to_string(static_cast<unsigned long long>(need)) +
+                                 " bytes of pixel data but the file has only " +
+                                 std::to_string(have) + " bytes");
   }
 }
 
@@ -115,7 +122,8 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
       VolumeMetadata keep = md;
       volume = volume.converted(ScalarType::Float32, scaling, 0.0);
       volume.metadata() = keep;
-      volume.metadata().notes.push_back("DoseGridScaling " + meta->Get(0, DC::DoseGridScaling).AsString() + " applied");
+      volume.metadata().notes.push_back("DoseGridScaling " +
+                                        meta->Get(0, DC::DoseGridScaling).AsString() + " applied");
     }
     return;
   }
@@ -140,9 +148,11 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   dose.halfLifeSeconds = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadionuclideHalfLife)).AsDouble();
   dose.patientWeightKg = meta->Get(0, DC::PatientWeight).AsDouble();
   dose.decayCorrection = meta->Get(0, DC::DecayCorrection).AsString();
-  std::string start = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartTime)).AsString();
+  std::string start =
+      meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartTime)).AsString();
   if (start.empty()) {
-    const std::string dt = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartDateTime)).AsString();
+    const std::string dt =
+        meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartDateTime)).AsString();
     if (dt.size() > 8) start = dt.substr(8);
   }
   std::string reference = meta->Get(0, DC::SeriesTime).AsString();
@@ -166,8 +176,8 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   volume = volume.converted(ScalarType::Float32, *factor, 0.0);
   volume.metadata() = keep;
   volume.metadata().unit = "SUVbw";
-  volume.metadata().notes.push_back("SUVbw = Bq/ml x " + std::to_string(*factor) +
-                                    " (weight " + std::to_string(dose.patientWeightKg) + " kg, dose " +
+  volume.metadata().notes.push_back("SUVbw = Bq/ml x " + std::to_string(*factor) + " (weight " +
+                                    std::to_string(dose.patientWeightKg) + " kg, dose " +
                                     std::to_string(dose.injectedDoseBq) + " Bq, decay correction " +
                                     dose.decayCorrection + ")");
 }
@@ -179,13 +189,15 @@ std::optional<SliceSpacing> sliceSpacing(vtkDICOMReader* reader, const glm::dvec
   if (!fileIndex || !frameIndex || fileIndex->GetNumberOfTuples() < 2) return std::nullopt;
   std::vector<double> positions;
   for (vtkIdType s = 0; s < fileIndex->GetNumberOfTuples(); ++s) {
-    const vtkDICOMValue& ipp = meta->Get(fileIndex->GetComponent(s, 0), frameIndex->GetComponent(s, 0),
-                                         DC::ImagePositionPatient);
+    const vtkDICOMValue& ipp = meta->Get(fileIndex->GetComponent(s, 0),
+                                         frameIndex->GetComponent(s, 0), DC::ImagePositionPatient);
     if (ipp.GetNumberOfValues() != 3) return std::nullopt;
-    positions.push_back(ipp.GetDouble(0) * normal.x + ipp.GetDouble(1) * normal.y + ipp.GetDouble(2) * normal.z);
+    positions.push_back(ipp.GetDouble(0) * normal.x + ipp.GetDouble(1) * normal.y +
+                        ipp.GetDouble(2) * normal.z);
   }
   std::vector<double> gaps;
-  for (std::size_t i = 1; i < positions.size(); ++i) gaps.push_back(std::abs(positions[i] - positions[i - 1]));
+  for (std::size_t i = 1; i < positions.size(); ++i)
+    gaps.push_back(std::abs(positions[i] - positions[i - 1]));
   SliceSpacing out;
   out.slices = static_cast<int>(positions.size());
   std::vector<double> sorted = gaps;
@@ -219,11 +231,13 @@ Volume stackFramesAsSlices(const Volume& in, int frames, int spp, vtkDICOMMetaDa
     const double step = offsets.GetDouble(1) - offsets.GetDouble(0);
     bool uniform = step != 0.0;
     for (int f = 2; f < frames; ++f)
-      uniform &= std::abs(offsets.GetDouble(f) - offsets.GetDouble(f - 1) - step) < 1e-3 * std::abs(step) + 1e-4;
+      uniform &= std::abs(offsets.GetDouble(f) - offsets.GetDouble(f - 1) - step) <
+                 1e-3 * std::abs(step) + 1e-4;
     m[2] = glm::dvec4(normal * step, 0.0);
     m[3] = w[3] + glm::dvec4(normal * offsets.GetDouble(0), 0.0);
-    out.metadata().notes.push_back(std::string("frames stacked along the slice normal by GridFrameOffsetVector") +
-                                   (uniform ? "" : " (NOT uniform: the volume uses the first step)"));
+    out.metadata().notes.push_back(
+        std::string("frames stacked along the slice normal by GridFrameOffsetVector") +
+        (uniform ? "" : " (NOT uniform: the volume uses the first step)"));
   } else {
     m[2] = glm::dvec4(normal, 0.0);
     out.metadata().notes.push_back("frames without positions stacked as slices 1 mm apart");
@@ -243,16 +257,19 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   reader->TimeAsVectorOn();                 // time frames become components, as for NIfTI
   reader->AutoRescaleOn();
   reader->UpdateInformation();
-  if (!messages.firstError().empty()) throw InputError(first, "cannot read the DICOM header: " + messages.firstError());
+  if (!messages.firstError().empty())
+    throw InputError(first, "cannot read the DICOM header: " + messages.firstError());
   checkPixelDataSizes(reader->GetMetaData(), files);
 
   vtkInformation* info = reader->GetOutputInformation(0);
   int extent[6];
   info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  const glm::ivec3 dims{extent[1] - extent[0] + 1, extent[3] - extent[2] + 1, extent[5] - extent[4] + 1};
+  const glm::ivec3 dims{extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
+                        extent[5] - extent[4] + 1};
   const int components = std::max(1, vtkImageData::GetNumberOfScalarComponents(info));
   const int typeSize = vtkDataArray::GetDataTypeSize(vtkImageData::GetScalarType(info));
-  checkedVolumeBytes(first, dims, components, static_cast<std::size_t>(std::max(typeSize, 1)), options.maxBytes);
+  checkedVolumeBytes(first, dims, components, static_cast<std::size_t>(std::max(typeSize, 1)),
+                     options.maxBytes);
 
   reader->Update();
   if (!messages.firstError().empty() || reader->GetErrorCode() != 0) {
@@ -294,11 +311,13 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
     md.notes.push_back("no ImageOrientationPatient: patient orientation unknown, axes assumed LPS");
   md.sliceSpacing = sliceSpacing(reader, glm::normalize(glm::dvec3(patientFromData[2])));
   if (md.sliceSpacing && !md.sliceSpacing->regular)
-    md.notes.push_back("irregular slice spacing: the volume uses one spacing of " + std::to_string(spacing[2]) + " mm");
+    md.notes.push_back("irregular slice spacing: the volume uses one spacing of " +
+                       std::to_string(spacing[2]) + " mm");
   if (reader->GetStackIDs() && reader->GetStackIDs()->GetNumberOfValues() > 1)
     md.notes.push_back("series holds several stacks; the first was read");
   if (reader->GetTimeDimension() > 1)
-    md.notes.push_back(std::to_string(reader->GetTimeDimension()) + " time points stored as components");
+    md.notes.push_back(std::to_string(reader->GetTimeDimension()) +
+                       " time points stored as components");
   fillUnitAndSuv(volume, meta, options);
   return volume;
 }
@@ -325,11 +344,14 @@ Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
   parser->Update();
   if (!messages.firstError().empty() || parser->GetErrorCode() != 0) {
     const std::string why = messages.firstError();
-    throw InputError(path, "not a readable DICOM file" + (why.empty() ? std::string() : ": " + why));
+    throw InputError(path,
+                     "not a readable DICOM file" + (why.empty() ? std::string() : ": " + why));
   }
   if (!parser->GetPixelDataFound()) {
     const std::string modality = meta->Get(DC::Modality).AsString();
-    throw InputError(path, "no pixel data: " + (modality.empty() ? std::string("this DICOM object") : "a " + modality + " object") +
+    throw InputError(path, "no pixel data: " +
+                               (modality.empty() ? std::string("this DICOM object")
+                                                 : "a " + modality + " object") +
                                " is not an image volume");
   }
   if (!meta->Has(DC::Rows) || !meta->Has(DC::Columns))
@@ -369,9 +391,10 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
   }
   if (series.empty()) {
     const std::string err = messages.firstError();
-    throw InputError(path, err.empty() ? "no DICOM image series in this folder (files without pixel "
-                                         "data, such as RT plans, structure sets and reports, are not volumes)"
-                                       : "no readable DICOM image series: " + err);
+    throw InputError(
+        path, err.empty() ? "no DICOM image series in this folder (files without pixel "
+                            "data, such as RT plans, structure sets and reports, are not volumes)"
+                          : "no readable DICOM image series: " + err);
   }
   std::vector<SeriesRef> chosen;
   if (!options.series.empty()) {
@@ -392,7 +415,8 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
                                " series here; choose one by UID, number or description:" + list);
   }
   std::vector<Volume> volumes;
-  for (const auto& s : chosen) volumes.push_back(readSeries(path, dir->GetFileNamesForSeries(s.index), s, options));
+  for (const auto& s : chosen)
+    volumes.push_back(readSeries(path, dir->GetFileNamesForSeries(s.index), s, options));
   return volumes;
 }
 

@@ -12,7 +12,8 @@ namespace mvw::io::detail {
 std::uintmax_t regularFileSize(const std::filesystem::path& path);
 
 // Size of the data file a header points to; a missing one is reported against the header.
-std::uintmax_t companionFileSize(const std::filesystem::path& header, const std::filesystem::path& data);
+std::uintmax_t companionFileSize(const std::filesystem::path& header,
+                                 const std::filesystem::path& data);
 
 // dims.x*dims.y*dims.z*components*bytesPerValue with overflow and limit checks: throws
 // InputError naming `file` when any factor is not positive or the product exceeds maxBytes.

@@ -24,9 +24,9 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::map<std::string, ScalarType> kElementTypes = {
-    {"MET_UCHAR", ScalarType::UInt8},  {"MET_CHAR", ScalarType::Int8},
+    {"MET_UCHAR", ScalarType::UInt8},   {"MET_CHAR", ScalarType::Int8},
     {"MET_USHORT", ScalarType::UInt16}, {"MET_SHORT", ScalarType::Int16},
-    {"MET_UINT", ScalarType::UInt32},  {"MET_INT", ScalarType::Int32},
+    {"MET_UINT", ScalarType::UInt32},   {"MET_INT", ScalarType::Int32},
     {"MET_FLOAT", ScalarType::Float32}, {"MET_DOUBLE", ScalarType::Float64}};
 
 std::string trim(const std::string& s) {
@@ -42,7 +42,8 @@ std::vector<double> numbers(const fs::path& path, const std::string& key, const 
   double x;
   while (in >> x) v.push_back(x);
   if (v.size() != count || !in.eof())
-    throw InputError(path, key + " must hold " + std::to_string(count) + " numbers, not '" + text + "'");
+    throw InputError(path,
+                     key + " must hold " + std::to_string(count) + " numbers, not '" + text + "'");
   for (double d : v)
     if (!std::isfinite(d)) throw InputError(path, key + " holds a value that is not finite");
   return v;
@@ -85,7 +86,8 @@ Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
     throw InputError(path, "ObjectType is '" + get("ObjectType") + "', not Image");
   const std::string ndimsText = get("NDims");
   const int ndims = ndimsText.empty() ? 0 : std::atoi(ndimsText.c_str());
-  if (ndims != 2 && ndims != 3) throw InputError(path, "NDims must be 2 or 3, not '" + ndimsText + "'");
+  if (ndims != 2 && ndims != 3)
+    throw InputError(path, "NDims must be 2 or 3, not '" + ndimsText + "'");
   const auto dimSize = numbers(path, "DimSize", get("DimSize"), ndims);
   glm::ivec3 dims(1);
   for (int a = 0; a < ndims; ++a) {
@@ -129,25 +131,32 @@ Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
     break;
   }
 
-  const std::size_t bytes = checkedVolumeBytes(path, dims, channels, scalarSize(type), options.maxBytes);
+  const std::size_t bytes =
+      checkedVolumeBytes(path, dims, channels, scalarSize(type), options.maxBytes);
   Volume volume(dims, channels, type, makeWorldFromIndex(origin, spacing, direction));
 
   const std::string dataFile = get("ElementDataFile");
   fs::path dataPath = path;
   std::uintmax_t offset = dataOffset;
-  if (dataFile == "LIST") throw InputError(path, "ElementDataFile = LIST (one file per slice) is not supported");
+  if (dataFile == "LIST")
+    throw InputError(path, "ElementDataFile = LIST (one file per slice) is not supported");
   if (dataFile != "LOCAL") {
     dataPath = path.parent_path() / dataFile;
     offset = 0;
   }
-  const std::uintmax_t dataFileSize = dataFile == "LOCAL" ? fileSize : companionFileSize(path, dataPath);
+  const std::uintmax_t dataFileSize =
+      dataFile == "LOCAL" ? fileSize : companionFileSize(path, dataPath);
   if (!get("HeaderSize").empty()) {
     const long long h = std::atoll(get("HeaderSize").c_str());
-    if (h == -1) offset = dataFileSize >= bytes ? dataFileSize - bytes : 0;
-    else if (h >= 0) offset += static_cast<std::uintmax_t>(h);
-    else throw InputError(path, "invalid HeaderSize");
+    if (h == -1)
+      offset = dataFileSize >= bytes ? dataFileSize - bytes : 0;
+    else if (h >= 0)
+      offset += static_cast<std::uintmax_t>(h);
+    else
+      throw InputError(path, "invalid HeaderSize");
   }
-  if (offset > dataFileSize) throw InputError(dataPath, "data offset lies past the end of the file");
+  if (offset > dataFileSize)
+    throw InputError(dataPath, "data offset lies past the end of the file");
   std::ifstream data(dataPath, std::ios::binary);
   data.seekg(static_cast<std::streamoff>(offset));
   if (isTrue(get("CompressedData"))) {
@@ -164,20 +173,25 @@ Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
     const std::size_t produced = bytes - z.avail_out;
     inflateEnd(&z);
     if (rc != Z_STREAM_END && !(rc == Z_BUF_ERROR && produced == bytes))
-      throw InputError(dataPath, produced < bytes ? "compressed image data is truncated or corrupt ("
-                                                  + std::to_string(produced) + " of " + std::to_string(bytes) + " bytes)"
-                                                  : "compressed image data is corrupt");
+      throw InputError(dataPath, produced < bytes
+                                     ? "compressed image data is truncated or corrupt (" +
+                                           std::to_string(produced) + " of " +
+                                           std::to_string(bytes) + " bytes)"
+                                     : "compressed image data is corrupt");
   } else {
     if (dataFileSize - offset < bytes)
       throw InputError(dataPath, "file is truncated: the header needs " + std::to_string(bytes) +
-                                     " bytes of image data, the file has " + std::to_string(dataFileSize - offset));
+                                     " bytes of image data, the file has " +
+                                     std::to_string(dataFileSize - offset));
     data.read(reinterpret_cast<char*>(volume.data()), static_cast<std::streamsize>(bytes));
     if (!data) throw InputError(dataPath, "read error");
   }
-  const std::string msb = !get("ElementByteOrderMSB").empty() ? get("ElementByteOrderMSB") : get("BinaryDataByteOrderMSB");
+  const std::string msb = !get("ElementByteOrderMSB").empty() ? get("ElementByteOrderMSB")
+                                                              : get("BinaryDataByteOrderMSB");
   if (isTrue(msb) && scalarSize(type) > 1) {
     const std::size_t w = scalarSize(type);
-    for (std::size_t i = 0; i < bytes; i += w) std::reverse(volume.data() + i, volume.data() + i + w);
+    for (std::size_t i = 0; i < bytes; i += w)
+      std::reverse(volume.data() + i, volume.data() + i + w);
   }
   auto& meta = volume.metadata();
   meta.format = "MetaImage";
@@ -216,7 +230,9 @@ void writeMetaImage(const Volume& volume, const fs::path& path) {
   auto writeBytes = [&](const fs::path& tmp, bool withHeader, bool withData) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (withHeader) out << h.str();
-    if (withData) out.write(reinterpret_cast<const char*>(volume.data()), static_cast<std::streamsize>(volume.byteSize()));
+    if (withData)
+      out.write(reinterpret_cast<const char*>(volume.data()),
+                static_cast<std::streamsize>(volume.byteSize()));
     out.close();
     if (!out) throw Error(tmp.string() + ": write failed");
   };

@@ -31,7 +31,8 @@ namespace {
 namespace fs = std::filesystem;
 
 bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // Reads a file that may be gzip-compressed (zlib reads plain files transparently).
@@ -110,41 +111,72 @@ T load(const unsigned char* p, bool swap) {
 bool datatypeLayout(int datatype, int* bytes, int* channels) {
   *channels = 1;
   switch (datatype) {
-    case 2: case 256: *bytes = 1; return true;                   // uint8, int8
-    case 4: case 512: *bytes = 2; return true;                   // int16, uint16
-    case 8: case 768: case 16: *bytes = 4; return true;          // int32, uint32, float32
-    case 64: *bytes = 8; return true;                            // float64
-    case 128: *bytes = 1; *channels = 3; return true;            // RGB24
-    case 2304: *bytes = 1; *channels = 4; return true;           // RGBA32
-    default: return false;
+    case 2:
+    case 256:
+      *bytes = 1;
+      return true;  // uint8, int8
+    case 4:
+    case 512:
+      *bytes = 2;
+      return true;  // int16, uint16
+    case 8:
+    case 768:
+    case 16:
+      *bytes = 4;
+      return true;  // int32, uint32, float32
+    case 64:
+      *bytes = 8;
+      return true;  // float64
+    case 128:
+      *bytes = 1;
+      *channels = 3;
+      return true;  // RGB24
+    case 2304:
+      *bytes = 1;
+      *channels = 4;
+      return true;  // RGBA32
+    default:
+      return false;
   }
 }
 
 NiftiHeaderFacts parseHeader(const fs::path& path, GzFile& file) {
   unsigned char h[540] = {};
   const std::size_t got = file.read(h, sizeof h);
-  if (got < 348) throw InputError(path, "file too short for a NIfTI header (" + std::to_string(got) + " bytes)");
+  if (got < 348)
+    throw InputError(path, "file too short for a NIfTI header (" + std::to_string(got) + " bytes)");
   NiftiHeaderFacts f;
   f.consumed = got;
   const int size = load<int>(h, false);
   const bool swap = !(size == 348 || size == 540);
   const int sizeofHdr = load<int>(h, swap);
   if (sizeofHdr == 348) {
-    if (std::memcmp(h + 344, "n+1\0", 4) == 0) f.version = 1;
-    else if (std::memcmp(h + 344, "ni1\0", 4) == 0) { f.version = 1; f.singleFile = false; }
-    else { f.version = 0; f.singleFile = false; }
+    if (std::memcmp(h + 344, "n+1\0", 4) == 0)
+      f.version = 1;
+    else if (std::memcmp(h + 344, "ni1\0", 4) == 0) {
+      f.version = 1;
+      f.singleFile = false;
+    } else {
+      f.version = 0;
+      f.singleFile = false;
+    }
     for (int i = 0; i < 8; ++i) f.dim[i] = load<short>(h + 40 + 2 * i, swap);
     f.datatype = load<short>(h + 70, swap);
     f.bitpix = load<short>(h + 72, swap);
     for (int i = 0; i < 4; ++i) f.pixdim[i] = load<float>(h + 76 + 4 * i, swap);
     const float off = load<float>(h + 108, swap);
-    if (!std::isfinite(off) || off < 0 || off > 1e9) throw InputError(path, "invalid vox_offset in the NIfTI header");
+    if (!std::isfinite(off) || off < 0 || off > 1e9)
+      throw InputError(path, "invalid vox_offset in the NIfTI header");
     f.voxOffset = static_cast<long long>(off);
   } else if (sizeofHdr == 540) {
     if (got < 540) throw InputError(path, "file too short for a NIfTI-2 header");
-    if (std::memcmp(h + 4, "n+2\0", 4) == 0) f.version = 2;
-    else if (std::memcmp(h + 4, "ni2\0", 4) == 0) { f.version = 2; f.singleFile = false; }
-    else throw InputError(path, "NIfTI-2 header without a valid magic string");
+    if (std::memcmp(h + 4, "n+2\0", 4) == 0)
+      f.version = 2;
+    else if (std::memcmp(h + 4, "ni2\0", 4) == 0) {
+      f.version = 2;
+      f.singleFile = false;
+    } else
+      throw InputError(path, "NIfTI-2 header without a valid magic string");
     f.datatype = load<short>(h + 12, swap);
     f.bitpix = load<short>(h + 14, swap);
     for (int i = 0; i < 8; ++i) f.dim[i] = load<long long>(h + 16 + 8 * i, swap);
@@ -153,17 +185,23 @@ NiftiHeaderFacts parseHeader(const fs::path& path, GzFile& file) {
   } else {
     throw InputError(path, "not a NIfTI file (header size field is " + std::to_string(size) + ")");
   }
-  if (f.dim[0] < 1 || f.dim[0] > 7) throw InputError(path, "invalid dim[0] = " + std::to_string(f.dim[0]) + " in the NIfTI header");
+  if (f.dim[0] < 1 || f.dim[0] > 7)
+    throw InputError(path, "invalid dim[0] = " + std::to_string(f.dim[0]) + " in the NIfTI header");
   for (int i = 1; i <= f.dim[0]; ++i)
-    if (f.dim[i] < 1) throw InputError(path, "invalid dim[" + std::to_string(i) + "] = " + std::to_string(f.dim[i]) + " in the NIfTI header");
+    if (f.dim[i] < 1)
+      throw InputError(path, "invalid dim[" + std::to_string(i) +
+                                 "] = " + std::to_string(f.dim[i]) + " in the NIfTI header");
   for (int i = static_cast<int>(f.dim[0]) + 1; i < 8; ++i) f.dim[i] = 1;
   for (int i = 1; i <= 3; ++i)
-    if (f.dim[i] > (1 << 24)) throw InputError(path, "implausible dimension " + std::to_string(f.dim[i]) + " in the NIfTI header");
+    if (f.dim[i] > (1 << 24))
+      throw InputError(
+          path, "implausible dimension " + std::to_string(f.dim[i]) + " in the NIfTI header");
   int bytes = 0, channels = 0;
   if (!datatypeLayout(f.datatype, &bytes, &channels))
     throw InputError(path, "unsupported NIfTI datatype " + std::to_string(f.datatype));
   if (f.bitpix != bytes * channels * 8)
-    throw InputError(path, "bitpix " + std::to_string(f.bitpix) + " does not match datatype " + std::to_string(f.datatype));
+    throw InputError(path, "bitpix " + std::to_string(f.bitpix) + " does not match datatype " +
+                               std::to_string(f.datatype));
   if (f.singleFile && f.voxOffset < sizeofHdr)
     throw InputError(path, "vox_offset " + std::to_string(f.voxOffset) + " lies inside the header");
   return f;
@@ -175,7 +213,8 @@ fs::path imagePathFor(const fs::path& path, const NiftiHeaderFacts& facts) {
   std::string s = path.string();
   const bool gz = endsWith(s, ".gz");
   if (gz) s.resize(s.size() - 3);
-  if (!endsWith(s, ".hdr")) throw InputError(path, "two-file NIfTI/Analyze header must end in .hdr");
+  if (!endsWith(s, ".hdr"))
+    throw InputError(path, "two-file NIfTI/Analyze header must end in .hdr");
   s.replace(s.size() - 4, 4, ".img");
   if (gz && fs::exists(s + ".gz")) return s + ".gz";
   return s;
@@ -212,8 +251,8 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
     for (int i = 4; i < 8; ++i) components *= facts.dim[i];
     const glm::ivec3 dims{static_cast<int>(facts.dim[1]), static_cast<int>(facts.dim[2]),
                           static_cast<int>(facts.dim[3])};
-    const std::size_t dataBytes =
-        checkedVolumeBytes(path, dims, components, static_cast<std::size_t>(bytes), options.maxBytes);
+    const std::size_t dataBytes = checkedVolumeBytes(
+        path, dims, components, static_cast<std::size_t>(bytes), options.maxBytes);
     // Count the (decompressed) bytes that are really there before VTK allocates anything.
     const fs::path image = imagePathFor(path, facts);
     const std::uintmax_t need = dataBytes + static_cast<std::uintmax_t>(facts.voxOffset);
@@ -226,9 +265,10 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
       have = img.skipCount(need);
     }
     if (have < need)
-      throw InputError(path, (facts.singleFile ? std::string("file") : "its image file " + image.string()) +
-                                 " is truncated: header and image data need " + std::to_string(need) +
-                                 " bytes, the file holds " + std::to_string(have));
+      throw InputError(
+          path, (facts.singleFile ? std::string("file") : "its image file " + image.string()) +
+                    " is truncated: header and image data need " + std::to_string(need) +
+                    " bytes, the file holds " + std::to_string(have));
   }
 
   VtkMessageScope messages;
@@ -247,13 +287,19 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   vtkNIFTIImageHeader* header = reader->GetNIFTIHeader();
   double unitScale = 1.0;  // NIfTI xyzt_units: 1 metre, 2 mm, 3 micron (0: unknown, mm assumed)
   switch (header->GetXYZTUnits() & 7) {
-    case 1: unitScale = 1000.0; break;
-    case 3: unitScale = 0.001; break;
-    default: break;
+    case 1:
+      unitScale = 1000.0;
+      break;
+    case 3:
+      unitScale = 0.001;
+      break;
+    default:
+      break;
   }
   for (int a = 0; a < 3; ++a) {
     if (!std::isfinite(spacing[a]) || spacing[a] <= 0)
-      throw InputError(path, "invalid voxel size pixdim[" + std::to_string(a + 1) + "] = " + std::to_string(spacing[a]));
+      throw InputError(path, "invalid voxel size pixdim[" + std::to_string(a + 1) +
+                                 "] = " + std::to_string(spacing[a]));
   }
   glm::dmat4 rasFromData(1.0);
   auto& notes = volume.metadata().notes;
@@ -263,8 +309,8 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
     // The qform takes its voxel size from pixdim (VTK would quietly put 1 for a zero).
     for (int a = 1; a <= 3; ++a)
       if (!(std::abs(header->GetPixDim(a)) > 0) || !std::isfinite(header->GetPixDim(a)))
-        throw InputError(path, "invalid voxel size pixdim[" + std::to_string(a) + "] = " +
-                                   std::to_string(header->GetPixDim(a)) + " with a qform");
+        throw InputError(path, "invalid voxel size pixdim[" + std::to_string(a) +
+                                   "] = " + std::to_string(header->GetPixDim(a)) + " with a qform");
     rasFromData = fromVtk(reader->GetQFormMatrix());
   } else {
     notes.push_back("no qform or sform in the header: axes assumed to point toward R, A, S");
@@ -277,10 +323,12 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   glm::dmat4 unit(unitScale);
   unit[3][3] = 1.0;
   volume.setWorldFromIndex(kLpsFromRas * unit * rasFromData * dataFromIndex);
-  if (reader->GetQFac() < 0) notes.push_back("qfac = -1: slice order reversed to a right-handed index frame");
+  if (reader->GetQFac() < 0)
+    notes.push_back("qfac = -1: slice order reversed to a right-handed index frame");
 
   const double slope = reader->GetRescaleSlope(), intercept = reader->GetRescaleIntercept();
-  if (slope != 0.0 && std::isfinite(slope) && std::isfinite(intercept) && (slope != 1.0 || intercept != 0.0)) {
+  if (slope != 0.0 && std::isfinite(slope) && std::isfinite(intercept) &&
+      (slope != 1.0 || intercept != 0.0)) {
     volume = volume.converted(ScalarType::Float32, slope, intercept);  // keeps the metadata
     volume.metadata().notes.push_back("scl_slope " + std::to_string(slope) + ", scl_inter " +
                                       std::to_string(intercept) + " applied (values as float32)");
@@ -302,7 +350,8 @@ void writeNifti(const Volume& input, const fs::path& path) {
   if (leftHanded) {
     const glm::ivec3 d = input.dimensions();
     flipped = Volume(d, input.components(), input.scalarType(), w);
-    const std::size_t slice = static_cast<std::size_t>(d.x) * d.y * input.components() * scalarSize(input.scalarType());
+    const std::size_t slice =
+        static_cast<std::size_t>(d.x) * d.y * input.components() * scalarSize(input.scalarType());
     for (int k = 0; k < d.z; ++k)
       std::memcpy(flipped.data() + slice * k, input.data() + slice * (d.z - 1 - k), slice);
     glm::dmat4 m = w;

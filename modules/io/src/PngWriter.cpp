@@ -11,8 +11,10 @@
 namespace mvw::io {
 
 void writePng(const Image& image, const std::filesystem::path& path) {
-  if (image.width <= 0 || image.height <= 0) throw Error(path.string() + ": refusing to write an empty image");
-  const cv::Mat rgba(image.height, image.width, CV_8UC4, const_cast<std::uint8_t*>(image.rgba.data()));
+  if (image.width <= 0 || image.height <= 0)
+    throw Error(path.string() + ": refusing to write an empty image");
+  const cv::Mat rgba(image.height, image.width, CV_8UC4,
+                     const_cast<std::uint8_t*>(image.rgba.data()));
   cv::Mat bgra;
   cv::cvtColor(rgba, bgra, cv::COLOR_RGBA2BGRA);
   writeAtomically(path, [&](const std::filesystem::path& tmp) {

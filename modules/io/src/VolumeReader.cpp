@@ -24,10 +24,12 @@ FileFormat detectFormat(const fs::path& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) return FileFormat::Dicom;
   std::string name = path.filename().string();
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   auto ends = [&](const char* s) {
     const std::string suffix(s);
-    return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return name.size() >= suffix.size() &&
+           name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   };
   if (ends(".nii") || ends(".nii.gz") || ends(".hdr") || ends(".hdr.gz")) return FileFormat::Nifti;
   if (ends(".mha") || ends(".mhd")) return FileFormat::MetaImage;
@@ -35,7 +37,8 @@ FileFormat detectFormat(const fs::path& path) {
   // Unknown extension: DICOM files carry "DICM" at byte 128 (most of them).
   std::ifstream in(path, std::ios::binary);
   char magic[132] = {};
-  if (in.read(magic, sizeof magic) && std::string(magic + 128, 4) == "DICM") return FileFormat::Dicom;
+  if (in.read(magic, sizeof magic) && std::string(magic + 128, 4) == "DICM")
+    return FileFormat::Dicom;
   return FileFormat::Unknown;
 }
 
@@ -47,7 +50,9 @@ auto refuseOutOfMemory(const fs::path& path, F&& read) {
   try {
     return read();
   } catch (const std::bad_alloc&) {
-    throw InputError(path, "not enough memory to read this file (a length field claims more than the machine holds)");
+    throw InputError(
+        path,
+        "not enough memory to read this file (a length field claims more than the machine holds)");
   }
 }
 
@@ -60,12 +65,24 @@ std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& give
   if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
   return refuseOutOfMemory(path, [&]() -> std::vector<Volume> {
     switch (detectFormat(path)) {
-      case FileFormat::Dicom: return detail::readDicom(path, options, true);
-      case FileFormat::Nifti: { std::vector<Volume> v; v.push_back(detail::readNifti(path, options)); return v; }
-      case FileFormat::MetaImage: { std::vector<Volume> v; v.push_back(detail::readMetaImage(path, options)); return v; }
-      case FileFormat::Unknown: break;
+      case FileFormat::Dicom:
+        return detail::readDicom(path, options, true);
+      case FileFormat::Nifti: {
+        std::vector<Volume> v;
+        v.push_back(detail::readNifti(path, options));
+        return v;
+      }
+      case FileFormat::MetaImage: {
+        std::vector<Volume> v;
+        v.push_back(detail::readMetaImage(path, options));
+        return v;
+      }
+      case FileFormat::Unknown:
+        break;
     }
-    throw InputError(path, "unknown file type (expected a DICOM file or folder, .nii, .nii.gz, .hdr, .mha or .mhd)");
+    throw InputError(
+        path,
+        "unknown file type (expected a DICOM file or folder, .nii, .nii.gz, .hdr, .mha or .mhd)");
   });
 }
 

@@ -17,29 +17,54 @@ namespace {
 
 bool scalarTypeFromVtk(int vtkType, ScalarType* out) {
   switch (vtkType) {
-    case VTK_UNSIGNED_CHAR: *out = ScalarType::UInt8; return true;
+    case VTK_UNSIGNED_CHAR:
+      *out = ScalarType::UInt8;
+      return true;
     case VTK_SIGNED_CHAR:
-    case VTK_CHAR: *out = ScalarType::Int8; return true;
-    case VTK_UNSIGNED_SHORT: *out = ScalarType::UInt16; return true;
-    case VTK_SHORT: *out = ScalarType::Int16; return true;
-    case VTK_UNSIGNED_INT: *out = ScalarType::UInt32; return true;
-    case VTK_INT: *out = ScalarType::Int32; return true;
-    case VTK_FLOAT: *out = ScalarType::Float32; return true;
-    case VTK_DOUBLE: *out = ScalarType::Float64; return true;
-    default: return false;
+    case VTK_CHAR:
+      *out = ScalarType::Int8;
+      return true;
+    case VTK_UNSIGNED_SHORT:
+      *out = ScalarType::UInt16;
+      return true;
+    case VTK_SHORT:
+      *out = ScalarType::Int16;
+      return true;
+    case VTK_UNSIGNED_INT:
+      *out = ScalarType::UInt32;
+      return true;
+    case VTK_INT:
+      *out = ScalarType::Int32;
+      return true;
+    case VTK_FLOAT:
+      *out = ScalarType::Float32;
+      return true;
+    case VTK_DOUBLE:
+      *out = ScalarType::Float64;
+      return true;
+    default:
+      return false;
   }
 }
 
 int vtkTypeFromScalar(ScalarType type) {
   switch (type) {
-    case ScalarType::UInt8: return VTK_UNSIGNED_CHAR;
-    case ScalarType::Int8: return VTK_SIGNED_CHAR;
-    case ScalarType::UInt16: return VTK_UNSIGNED_SHORT;
-    case ScalarType::Int16: return VTK_SHORT;
-    case ScalarType::UInt32: return VTK_UNSIGNED_INT;
-    case ScalarType::Int32: return VTK_INT;
-    case ScalarType::Float32: return VTK_FLOAT;
-    case ScalarType::Float64: return VTK_DOUBLE;
+    case ScalarType::UInt8:
+      return VTK_UNSIGNED_CHAR;
+    case ScalarType::Int8:
+      return VTK_SIGNED_CHAR;
+    case ScalarType::UInt16:
+      return VTK_UNSIGNED_SHORT;
+    case ScalarType::Int16:
+      return VTK_SHORT;
+    case ScalarType::UInt32:
+      return VTK_UNSIGNED_INT;
+    case ScalarType::Int32:
+      return VTK_INT;
+    case ScalarType::Float32:
+      return VTK_FLOAT;
+    case ScalarType::Float64:
+      return VTK_DOUBLE;
   }
   return VTK_DOUBLE;
 }
@@ -70,10 +95,12 @@ vtkSmartPointer<vtkImageData> imageViewOfVolume(const Volume& volume) {
   const glm::ivec3 d = volume.dimensions();
   image->SetDimensions(d.x, d.y, d.z);
   vtkSmartPointer<vtkDataArray> array;
-  array.TakeReference(vtkDataArray::CreateDataArray(detail::vtkTypeFromScalar(volume.scalarType())));
+  array.TakeReference(
+      vtkDataArray::CreateDataArray(detail::vtkTypeFromScalar(volume.scalarType())));
   array->SetNumberOfComponents(volume.components());
   // save = 1: VTK never frees or writes this memory; it belongs to the Volume.
-  array->SetVoidArray(const_cast<std::byte*>(volume.data()), static_cast<vtkIdType>(volume.valueCount()), 1);
+  array->SetVoidArray(const_cast<std::byte*>(volume.data()),
+                      static_cast<vtkIdType>(volume.valueCount()), 1);
   image->GetPointData()->SetScalars(array);
   return image;
 }

@@ -14,10 +14,12 @@ namespace mvw::render {
 std::string orientationLabel(const glm::dvec3& w) {
   static constexpr char kToward[3][2] = {{'L', 'R'}, {'P', 'A'}, {'S', 'I'}};
   std::array<int, 3> order = {0, 1, 2};
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(w[a]) > std::abs(w[b]); });
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return std::abs(w[a]) > std::abs(w[b]); });
   const double len = glm::length(w);
   std::string label(1, kToward[order[0]][w[order[0]] >= 0 ? 0 : 1]);
-  if (len > 0 && std::abs(w[order[1]]) / len > 0.38) label += kToward[order[1]][w[order[1]] >= 0 ? 0 : 1];
+  if (len > 0 && std::abs(w[order[1]]) / len > 0.38)
+    label += kToward[order[1]][w[order[1]] >= 0 ? 0 : 1];
   return label;
 }
 
@@ -78,7 +80,8 @@ void drawColourBar(Image& image, double lo, double hi, const std::string& unit) 
   const int x0 = image.width - barW - static_cast<int>(44 * scale), x1 = x0 + barW;
   const auto lut = sampleTransferFunction(transferPreset("pet-hot-metal"), 0.0, 1.0, 256, 0.0, 1.0);
   for (int y = top; y <= bottom; ++y) {
-    const glm::vec4 c = lut[static_cast<std::size_t>(255.0 * (bottom - y) / std::max(1, bottom - top))];
+    const glm::vec4 c =
+        lut[static_cast<std::size_t>(255.0 * (bottom - y) / std::max(1, bottom - top))];
     cv::line(m, {x0, y}, {x1, y}, cv::Scalar(255 * c.r, 255 * c.g, 255 * c.b, 255));
   }
   cv::rectangle(m, {x0 - 1, top - 1}, {x1 + 1, bottom + 1}, cv::Scalar(200, 200, 200, 255), 1);
@@ -87,14 +90,16 @@ void drawColourBar(Image& image, double lo, double hi, const std::string& unit) 
   auto label = [&](double v, int y) {
     char buf[48];
     std::snprintf(buf, sizeof buf, "%.4g", v);
-    cv::putText(m, buf, {x0 - 2, y}, cv::FONT_HERSHEY_SIMPLEX, textScale, cv::Scalar(0, 0, 0, 255), thick + 2, cv::LINE_AA);
-    cv::putText(m, buf, {x0 - 2, y}, cv::FONT_HERSHEY_SIMPLEX, textScale, cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
+    cv::putText(m, buf, {x0 - 2, y}, cv::FONT_HERSHEY_SIMPLEX, textScale, cv::Scalar(0, 0, 0, 255),
+                thick + 2, cv::LINE_AA);
+    cv::putText(m, buf, {x0 - 2, y}, cv::FONT_HERSHEY_SIMPLEX, textScale,
+                cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
   };
   label(hi, top - static_cast<int>(6 * scale));
   label(lo, bottom + static_cast<int>(16 * scale));
   if (!unit.empty()) {
-    cv::putText(m, unit, {x0 - 2, bottom + static_cast<int>(32 * scale)}, cv::FONT_HERSHEY_SIMPLEX, textScale,
-                cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
+    cv::putText(m, unit, {x0 - 2, bottom + static_cast<int>(32 * scale)}, cv::FONT_HERSHEY_SIMPLEX,
+                textScale, cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
   }
 }
 

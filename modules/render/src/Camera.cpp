@@ -15,12 +15,18 @@ struct Basis {
 Basis standardBasis(StandardView view) {
   // LPS: +x patient left, +y posterior, +z superior.
   switch (view) {
-    case StandardView::Anterior: return {{0, 1, 0}, {0, 0, 1}};
-    case StandardView::Posterior: return {{0, -1, 0}, {0, 0, 1}};
-    case StandardView::Left: return {{-1, 0, 0}, {0, 0, 1}};
-    case StandardView::Right: return {{1, 0, 0}, {0, 0, 1}};
-    case StandardView::Superior: return {{0, 0, -1}, {0, -1, 0}};
-    case StandardView::Inferior: return {{0, 0, 1}, {0, -1, 0}};
+    case StandardView::Anterior:
+      return {{0, 1, 0}, {0, 0, 1}};
+    case StandardView::Posterior:
+      return {{0, -1, 0}, {0, 0, 1}};
+    case StandardView::Left:
+      return {{-1, 0, 0}, {0, 0, 1}};
+    case StandardView::Right:
+      return {{1, 0, 0}, {0, 0, 1}};
+    case StandardView::Superior:
+      return {{0, 0, -1}, {0, -1, 0}};
+    case StandardView::Inferior:
+      return {{0, 0, 1}, {0, -1, 0}};
   }
   return {{0, 1, 0}, {0, 0, 1}};
 }
@@ -51,7 +57,8 @@ WorldRay rayThrough(const Camera& camera, const glm::dvec2& ndc) {
   return ray;
 }
 
-Camera makeCamera(const CameraSettings& s, const glm::dvec3& centre, double radius, glm::ivec2 imageSize) {
+Camera makeCamera(const CameraSettings& s, const glm::dvec3& centre, double radius,
+                  glm::ivec2 imageSize) {
   Basis b = standardBasis(s.view);
   glm::dvec3 right = glm::cross(b.forward, b.up);
   auto rotate = [](const glm::dvec3& v, const glm::dvec3& axis, double deg) {
@@ -92,10 +99,9 @@ Camera makeCamera(const CameraSettings& s, const glm::dvec3& centre, double radi
   }
   const glm::dmat4 viewFromWorld = glm::lookAt(c.eye, c.eye + c.forward, c.up);
   const glm::dmat4 clipFromView =
-      s.perspective
-          ? glm::perspective(2.0 * std::atan(c.tanHalfFov), c.aspect, nearPlane, farPlane)
-          : glm::ortho(-c.halfHeightMm * c.aspect, c.halfHeightMm * c.aspect, -c.halfHeightMm,
-                       c.halfHeightMm, nearPlane, farPlane);
+      s.perspective ? glm::perspective(2.0 * std::atan(c.tanHalfFov), c.aspect, nearPlane, farPlane)
+                    : glm::ortho(-c.halfHeightMm * c.aspect, c.halfHeightMm * c.aspect,
+                                 -c.halfHeightMm, c.halfHeightMm, nearPlane, farPlane);
   c.clipFromWorld = clipFromView * viewFromWorld;
   c.worldFromClip = glm::inverse(c.clipFromWorld);
   return c;

@@ -22,8 +22,9 @@ void GlContext::loadFunctions(void* (*getProcAddress)(const char*, void*), void*
   const int version = gladLoadGLUserPtr(loadThrough, &loader);
   if (version == 0) throw Error("cannot load the OpenGL functions of the new context");
   if (GLAD_VERSION_MAJOR(version) * 10 + GLAD_VERSION_MINOR(version) < 45)
-    throw Error("OpenGL 4.5 core is needed, the context offers " + std::to_string(GLAD_VERSION_MAJOR(version)) +
-                "." + std::to_string(GLAD_VERSION_MINOR(version)));
+    throw Error("OpenGL 4.5 core is needed, the context offers " +
+                std::to_string(GLAD_VERSION_MAJOR(version)) + "." +
+                std::to_string(GLAD_VERSION_MINOR(version)));
 }
 
 std::string GlContext::renderer() const {

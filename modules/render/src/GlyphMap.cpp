@@ -49,7 +49,8 @@ GlyphMap makeGlyphMap(const GlyphMapSettings& s, bool texels) {
   if (s.size < 8 || s.size > 512) throw Error("glyph map size must be 8..512 voxels");
   if (s.count < 1 || s.count > 255) throw Error("glyph count must be 1..255");
   if (!(s.diameter >= 2.0) || s.diameter > s.size / 2.0)
-    throw Error("glyph diameter must be 2 .. half the map size (" + std::to_string(s.size / 2) + ") voxels");
+    throw Error("glyph diameter must be 2 .. half the map size (" + std::to_string(s.size / 2) +
+                ") voxels");
   GlyphMap map;
   map.size = s.size;
   map.radius = s.diameter / 2.0;
@@ -64,11 +65,13 @@ GlyphMap makeGlyphMap(const GlyphMapSettings& s, bool texels) {
   const double minDistance = s.diameter + 2.0 * halfDiagonal + 1e-6;
   for (int attempts = 0; static_cast<int>(map.centres.size()) < s.count; ++attempts) {
     if (attempts > 200000)
-      throw Error("cannot place " + std::to_string(s.count) + " glyphs of " + std::to_string(s.diameter) +
-                  " voxels without overlap in a " + std::to_string(s.size) + "^3 map");
+      throw Error("cannot place " + std::to_string(s.count) + " glyphs of " +
+                  std::to_string(s.diameter) + " voxels without overlap in a " +
+                  std::to_string(s.size) + "^3 map");
     const glm::dvec3 c(position(rng), position(rng), position(rng));
     bool free = true;
-    for (const auto& other : map.centres) free &= glm::length(periodicDelta(c, other, n)) >= minDistance;
+    for (const auto& other : map.centres)
+      free &= glm::length(periodicDelta(c, other, n)) >= minDistance;
     if (free) map.centres.push_back(c);
   }
   // A glyph reaches into a cell only if the cell's centre lies within radius + half a diagonal
@@ -76,8 +79,9 @@ GlyphMap makeGlyphMap(const GlyphMapSettings& s, bool texels) {
   const int cells = s.size / map.cellSize;
   map.cells.assign(static_cast<std::size_t>(cells) * cells * cells, 0);
   for (std::size_t g = 0; g < map.centres.size(); ++g)
-    forEachSiteNear(map.centres[g], map.radius + halfDiagonal, map.cellSize, cells,
-                    [&](std::size_t i, const glm::dvec3&) { map.cells[i] = static_cast<std::uint8_t>(g + 1); });
+    forEachSiteNear(
+        map.centres[g], map.radius + halfDiagonal, map.cellSize, cells,
+        [&](std::size_t i, const glm::dvec3&) { map.cells[i] = static_cast<std::uint8_t>(g + 1); });
   if (!texels) return map;
   // Texel centres sit at integer + 0.5 in map coordinates.
   map.texels.assign(static_cast<std::size_t>(s.size) * s.size * s.size, glm::vec4(0, 0, 0, -1));

@@ -3,22 +3,22 @@
 #include <algorithm>
 #include <cstring>
 
-#include <glm/geometric.hpp>
-#include <glm/gtc/matrix_inverse.hpp>
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
-#include <vtkFlyingEdges3D.h>
 #include <vtkFloatArray.h>
+#include <vtkFlyingEdges3D.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
 
 namespace mvw::render::detail {
 
-ShellMesh extractShell(const std::vector<float>& values, glm::ivec3 dims, const glm::dmat4& worldFromIndex,
-                       double threshold) {
+ShellMesh extractShell(const std::vector<float>& values, glm::ivec3 dims,
+                       const glm::dmat4& worldFromIndex, double threshold) {
   // Padded by one voxel of "nothing" (far below any threshold) so that every shell closes at
   // the volume's box: outside the box the emission is zero, as the paper's background is.
   const glm::ivec3 pd = dims + 2;

@@ -16,7 +16,7 @@ struct ShellMesh {
 };
 
 // values: the volume (x fastest), dims, worldFromIndex.
-ShellMesh extractShell(const std::vector<float>& values, glm::ivec3 dims, const glm::dmat4& worldFromIndex,
-                       double threshold);
+ShellMesh extractShell(const std::vector<float>& values, glm::ivec3 dims,
+                       const glm::dmat4& worldFromIndex, double threshold);
 
 }  // namespace mvw::render::detail

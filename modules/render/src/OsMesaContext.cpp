@@ -31,14 +31,18 @@ using GetProcFn = void* (*)(const char*);
 
 class OsMesaContext final : public GlContext {
  public:
-  explicit OsMesaContext(glm::ivec2 size) : size_(size), pixels_(static_cast<std::size_t>(size.x) * size.y * 4) {
+  explicit OsMesaContext(glm::ivec2 size)
+      : size_(size), pixels_(static_cast<std::size_t>(size.x) * size.y * 4) {
     if (size.x <= 0 || size.y <= 0 || size.x > 16384 || size.y > 16384)
-      throw Error("headless GL context: invalid size " + std::to_string(size.x) + " x " + std::to_string(size.y));
+      throw Error("headless GL context: invalid size " + std::to_string(size.x) + " x " +
+                  std::to_string(size.y));
     for (const char* name : {"libOSMesa.so.8", "libOSMesa.so"}) {
       lib_ = ::dlopen(name, RTLD_NOW | RTLD_LOCAL);
       if (lib_) break;
     }
-    if (!lib_) throw Error("headless GL: cannot open libOSMesa.so.8 (install libosmesa6): " + std::string(::dlerror()));
+    if (!lib_)
+      throw Error("headless GL: cannot open libOSMesa.so.8 (install libosmesa6): " +
+                  std::string(::dlerror()));
     auto create = reinterpret_cast<CreateFn>(::dlsym(lib_, "OSMesaCreateContextAttribs"));
     makeCurrent_ = reinterpret_cast<MakeCurrentFn>(::dlsym(lib_, "OSMesaMakeCurrent"));
     destroy_ = reinterpret_cast<DestroyFn>(::dlsym(lib_, "OSMesaDestroyContext"));
@@ -46,14 +50,26 @@ class OsMesaContext final : public GlContext {
     if (!create || !makeCurrent_ || !destroy_ || !getProc_) {
       throw Error("headless GL: libOSMesa lacks OSMesaCreateContextAttribs (Mesa too old)");
     }
-    const int attribs[] = {kOsmesaFormat, kOsmesaRgba, kOsmesaDepthBits, 24, kOsmesaStencilBits, 8,
-                           kOsmesaProfile, kOsmesaCoreProfile, kOsmesaMajor, 4, kOsmesaMinor, 5, 0};
+    const int attribs[] = {kOsmesaFormat,
+                           kOsmesaRgba,
+                           kOsmesaDepthBits,
+                           24,
+                           kOsmesaStencilBits,
+                           8,
+                           kOsmesaProfile,
+                           kOsmesaCoreProfile,
+                           kOsmesaMajor,
+                           4,
+                           kOsmesaMinor,
+                           5,
+                           0};
     context_ = create(attribs, nullptr);
     if (!context_) {
       throw Error("headless GL: OSMesa could not create an OpenGL 4.5 core context");
     }
     makeCurrent();
-    loadFunctions([](const char* name, void* self) { return static_cast<OsMesaContext*>(self)->getProc_(name); },
+    loadFunctions([](const char* name,
+                     void* self) { return static_cast<OsMesaContext*>(self)->getProc_(name); },
                   this);
   }
 

@@ -27,7 +27,8 @@ void append(std::string_view path, ResolvedShader& out, std::set<std::string>& s
     }
     const std::string child = m[1];
     if (!detail::embeddedShaders().count(child))
-      throw Error("shaders/" + std::string(path) + ":" + std::to_string(n) + ": cannot find include \"" + child + "\"");
+      throw Error("shaders/" + std::string(path) + ":" + std::to_string(n) +
+                  ": cannot find include \"" + child + "\"");
     if (!seen.count(child)) append(child, out, seen);
     out.text += "#line " + std::to_string(n + 1) + " " + std::to_string(index) + "\n";
   }
@@ -38,7 +39,8 @@ void append(std::string_view path, ResolvedShader& out, std::set<std::string>& s
 std::string_view shaderFile(std::string_view path) {
   const auto& files = detail::embeddedShaders();
   auto it = files.find(path);
-  if (it == files.end()) throw Error("no shader file shaders/" + std::string(path) + " in this build");
+  if (it == files.end())
+    throw Error("no shader file shaders/" + std::string(path) + " in this build");
   return it->second;
 }
 

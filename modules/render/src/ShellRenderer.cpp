@@ -19,7 +19,8 @@ struct ShellRenderer::Gpu {
   GLsizei indexCount = 0;
 };
 
-ShellRenderer::ShellRenderer(std::vector<float> values, glm::ivec3 dims, const glm::dmat4& worldFromIndex)
+ShellRenderer::ShellRenderer(std::vector<float> values, glm::ivec3 dims,
+                             const glm::dmat4& worldFromIndex)
     : values_(std::move(values)), dims_(dims), worldFromIndex_(worldFromIndex) {}
 
 ShellRenderer::~ShellRenderer() = default;
@@ -35,7 +36,8 @@ void ShellRenderer::ensureShells(const ShellDraw& d) {
   shells_.clear();
   for (int i = 1; i <= d.count; ++i) {
     const double emission = static_cast<double>(i) / d.count;
-    const ShellMesh mesh = extractShell(values_, dims_, worldFromIndex_, d.windowLow + emission * d.windowWidth);
+    const ShellMesh mesh =
+        extractShell(values_, dims_, worldFromIndex_, d.windowLow + emission * d.windowWidth);
     auto gpu = std::make_unique<Gpu>();
     gpu->emission = emission;
     gpu->vao = makeVertexArray();
@@ -43,15 +45,17 @@ void ShellRenderer::ensureShells(const ShellDraw& d) {
     gpu->indices = makeBuffer();
     glBindVertexArray(gpu->vao.id());
     glBindBuffer(GL_ARRAY_BUFFER, gpu->vertices.id());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(float)), mesh.vertices.data(),
-                 GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(float)),
+                 mesh.vertices.data(), GL_STATIC_DRAW);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu->indices.id());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(unsigned)),
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(unsigned)),
                  mesh.indices.data(), GL_STATIC_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
     glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                          reinterpret_cast<void*>(3 * sizeof(float)));
     glBindVertexArray(0);
     gpu->indexCount = static_cast<GLsizei>(mesh.indices.size());
     shells_.push_back(std::move(gpu));
@@ -68,9 +72,12 @@ Image ShellRenderer::draw(const ShellDraw& d) {
   ensureShells(d);
   auto found = programs_.find(d.mode);
   if (found == programs_.end()) {
-    const char* define = d.mode == ShellMode::Maximum ? "MVW_SHELL_MAX 1"
-                         : d.mode == ShellMode::Summation ? "MVW_SHELL_SUM 1" : "MVW_SHELL_LIT 1";
-    found = programs_.emplace(d.mode, ShaderProgram("shells.vert.glsl", "shells.frag.glsl", {define})).first;
+    const char* define = d.mode == ShellMode::Maximum     ? "MVW_SHELL_MAX 1"
+                         : d.mode == ShellMode::Summation ? "MVW_SHELL_SUM 1"
+                                                          : "MVW_SHELL_LIT 1";
+    found =
+        programs_.emplace(d.mode, ShaderProgram("shells.vert.glsl", "shells.frag.glsl", {define}))
+            .first;
   }
   ShaderProgram& program = found->second;
 
@@ -81,7 +88,8 @@ Image ShellRenderer::draw(const ShellDraw& d) {
   glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, d.size.x, d.size.y, 0, GL_RED, GL_FLOAT, nullptr);
   Texture depthBuffer = makeTexture();
   glBindTexture(GL_TEXTURE_2D, depthBuffer.id());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, d.size.x, d.size.y, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, d.size.x, d.size.y, 0, GL_DEPTH_COMPONENT,
+               GL_FLOAT, nullptr);
   Framebuffer fbo = makeFramebuffer();
   glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.id(), 0);
@@ -89,7 +97,8 @@ Image ShellRenderer::draw(const ShellDraw& d) {
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depthBuffer.id(), 0);
   const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glDrawBuffers(2, buffers);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) throw Error("shell render target incomplete");
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("shell render target incomplete");
 
   glViewport(0, 0, d.size.x, d.size.y);
   const float clearColor[] = {0.0f, 0.0f, 0.0f, 1.0f};
@@ -104,10 +113,14 @@ Image ShellRenderer::draw(const ShellDraw& d) {
   program.use();
   const glm::mat4 clipFromWorld(d.camera.clipFromWorld);
   glUniformMatrix4fv(program.uniform("uClipFromWorld"), 1, GL_FALSE, glm::value_ptr(clipFromWorld));
-  glUniform3f(program.uniform("uForward"), float(d.camera.forward.x), float(d.camera.forward.y), float(d.camera.forward.z));
-  glUniform4f(program.uniform("uBoundingSphere"), float(d.centre.x), float(d.centre.y), float(d.centre.z), float(d.radius));
-  glUniform3f(program.uniform("uCue"), float(d.cueBrightness), float(d.cueAmount), float(d.cueContrast));
-  glUniform1f(program.uniform("uKeyMax"), float(std::max(1e-6, d.cueBrightness + std::max(0.0, d.cueAmount) + d.cueContrast)));
+  glUniform3f(program.uniform("uForward"), float(d.camera.forward.x), float(d.camera.forward.y),
+              float(d.camera.forward.z));
+  glUniform4f(program.uniform("uBoundingSphere"), float(d.centre.x), float(d.centre.y),
+              float(d.centre.z), float(d.radius));
+  glUniform3f(program.uniform("uCue"), float(d.cueBrightness), float(d.cueAmount),
+              float(d.cueContrast));
+  glUniform1f(program.uniform("uKeyMax"),
+              float(std::max(1e-6, d.cueBrightness + std::max(0.0, d.cueAmount) + d.cueContrast)));
   glUniform1f(program.uniform("uWeight"), float(1.0 / d.count));
   glUniform4f(program.uniform("uLight"), d.light.x, d.light.y, d.light.z, d.light.w);
   if (d.mode == ShellMode::Summation) {
@@ -136,7 +149,8 @@ Image ShellRenderer::draw(const ShellDraw& d) {
     for (int x = 0; x < d.size.x; ++x) {
       const float* src = &rgba[(static_cast<std::size_t>(y) * d.size.x + x) * 4];
       std::uint8_t* dst = img.pixel(x, y);
-      for (int c = 0; c < 3; ++c) dst[c] = static_cast<std::uint8_t>(std::lround(std::clamp(src[c], 0.0f, 1.0f) * 255.0f));
+      for (int c = 0; c < 3; ++c)
+        dst[c] = static_cast<std::uint8_t>(std::lround(std::clamp(src[c], 0.0f, 1.0f) * 255.0f));
       dst[3] = 255;
     }
   return img;

@@ -13,6 +13,8 @@ bool isInteger(ScalarType type);
 
 template <class T>
 constexpr ScalarType scalarTypeOf();
+// Tables, one line per type: clang-format would spread each over four.
+// clang-format off
 template <> constexpr ScalarType scalarTypeOf<std::uint8_t>() { return ScalarType::UInt8; }
 template <> constexpr ScalarType scalarTypeOf<std::int8_t>() { return ScalarType::Int8; }
 template <> constexpr ScalarType scalarTypeOf<std::uint16_t>() { return ScalarType::UInt16; }
@@ -21,11 +23,13 @@ template <> constexpr ScalarType scalarTypeOf<std::uint32_t>() { return ScalarTy
 template <> constexpr ScalarType scalarTypeOf<std::int32_t>() { return ScalarType::Int32; }
 template <> constexpr ScalarType scalarTypeOf<float>() { return ScalarType::Float32; }
 template <> constexpr ScalarType scalarTypeOf<double>() { return ScalarType::Float64; }
+// clang-format on
 
 // Calls f(T{}) with T the C++ type of `type`; the one place that switches over scalar types.
 template <class F>
 decltype(auto) dispatchScalar(ScalarType type, F&& f) {
   switch (type) {
+    // clang-format off
     case ScalarType::UInt8: return f(std::uint8_t{});
     case ScalarType::Int8: return f(std::int8_t{});
     case ScalarType::UInt16: return f(std::uint16_t{});
@@ -34,6 +38,7 @@ decltype(auto) dispatchScalar(ScalarType type, F&& f) {
     case ScalarType::Int32: return f(std::int32_t{});
     case ScalarType::Float32: return f(float{});
     case ScalarType::Float64: break;
+      // clang-format on
   }
   return f(double{});
 }

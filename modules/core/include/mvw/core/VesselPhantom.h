@@ -14,12 +14,12 @@ namespace mvw {
 struct VesselTreeSettings {
   glm::ivec3 dimensions{128, 128, 128};
   double spacingMm = 1.0;
-  int generations = 5;            // root = generation 0
-  double rootRadiusMm = 4.0;      // children: 0.72 x the parent
-  double rootLengthMm = 40.0;     // children: 0.78 x the parent
+  int generations = 5;         // root = generation 0
+  double rootRadiusMm = 4.0;   // children: 0.72 x the parent
+  double rootLengthMm = 40.0;  // children: 0.78 x the parent
   double vesselValue = 1000.0;
   double background = 100.0;
-  double noiseSigma = 25.0;       // Gaussian, seeded
+  double noiseSigma = 25.0;  // Gaussian, seeded
   std::uint32_t seed = 1;
 };
 

@@ -18,16 +18,16 @@ namespace mvw {
 // How regular the slice positions of a series are (DICOM); empty for formats with one spacing.
 struct SliceSpacing {
   int slices = 0;
-  double nominal = 0.0;   // median distance between neighbouring slices, mm
+  double nominal = 0.0;  // median distance between neighbouring slices, mm
   double minimum = 0.0;
   double maximum = 0.0;
-  bool regular = true;    // every gap within 1 % (and 0.01 mm) of the nominal
+  bool regular = true;  // every gap within 1 % (and 0.01 mm) of the nominal
 };
 
 struct VolumeMetadata {
-  std::string modality;           // DICOM modality code: CT, MR, PT, NM, ... ("" if unknown)
-  std::string unit;               // physical unit of the values: HU, Bq/ml, SUVbw, ... ("" if none)
-  std::string format;             // DICOM, NIfTI-1, NIfTI-2, MetaImage
+  std::string modality;  // DICOM modality code: CT, MR, PT, NM, ... ("" if unknown)
+  std::string unit;      // physical unit of the values: HU, Bq/ml, SUVbw, ... ("" if none)
+  std::string format;    // DICOM, NIfTI-1, NIfTI-2, MetaImage
   std::string sourcePath;
   std::string seriesInstanceUid;  // DICOM only
   std::string seriesDescription;

@@ -32,14 +32,14 @@ struct CameraSettings {
 };
 
 struct Camera {
-  glm::dvec3 eye{0.0};       // world position (perspective) or a point on the view plane
-  glm::dvec3 forward{0.0};   // unit line of sight
-  glm::dvec3 up{0.0};        // unit, screen up
-  glm::dvec3 right{0.0};     // unit, screen right
+  glm::dvec3 eye{0.0};      // world position (perspective) or a point on the view plane
+  glm::dvec3 forward{0.0};  // unit line of sight
+  glm::dvec3 up{0.0};       // unit, screen up
+  glm::dvec3 right{0.0};    // unit, screen right
   bool perspective = false;
-  double halfHeightMm = 0.0;  // orthographic: half the view height in mm
-  double tanHalfFov = 0.0;    // perspective
-  double aspect = 1.0;        // width / height
+  double halfHeightMm = 0.0;      // orthographic: half the view height in mm
+  double tanHalfFov = 0.0;        // perspective
+  double aspect = 1.0;            // width / height
   glm::dmat4 worldFromClip{1.0};  // inverse of projection * view
   glm::dmat4 clipFromWorld{1.0};
 };

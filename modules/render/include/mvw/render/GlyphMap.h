@@ -22,19 +22,19 @@
 namespace mvw::render {
 
 struct GlyphMapSettings {
-  int size = 128;           // voxels per side
-  int count = 16;           // at most 255 (one byte per cell names the glyph)
-  double diameter = 32.0;   // voxels
+  int size = 128;          // voxels per side
+  int count = 16;          // at most 255 (one byte per cell names the glyph)
+  double diameter = 32.0;  // voxels
   std::uint32_t seed = 1;
 };
 
 struct GlyphMap {
   int size = 0;
-  double radius = 0.0;                // voxels
-  std::vector<glm::dvec3> centres;    // voxel coordinates, 0..size
-  std::vector<glm::vec4> texels;      // size^3, x fastest (empty if not asked for)
-  int cellSize = 1;                   // voxels per cell side (divides size)
-  std::vector<std::uint8_t> cells;    // (size / cellSize)^3, x fastest: 1 + glyph index, 0 none
+  double radius = 0.0;              // voxels
+  std::vector<glm::dvec3> centres;  // voxel coordinates, 0..size
+  std::vector<glm::vec4> texels;    // size^3, x fastest (empty if not asked for)
+  int cellSize = 1;                 // voxels per cell side (divides size)
+  std::vector<std::uint8_t> cells;  // (size / cellSize)^3, x fastest: 1 + glyph index, 0 none
 
   const glm::vec4& at(int i, int j, int k) const;  // periodic
 };

@@ -27,7 +27,7 @@ TransferFunction transferPreset(const std::string& name);
 std::vector<std::string> transferPresetNames();
 
 // n RGBA entries evenly spaced over [lo, hi] (absolute values); constant outside the points.
-std::vector<glm::vec4> sampleTransferFunction(const TransferFunction& tf, double lo, double hi, int n,
-                                              double rangeLo, double rangeHi);
+std::vector<glm::vec4> sampleTransferFunction(const TransferFunction& tf, double lo, double hi,
+                                              int n, double rangeLo, double rangeHi);
 
 }  // namespace mvw::render
