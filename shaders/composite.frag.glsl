@@ -52,7 +52,8 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 #if defined(MVW_GLYPHS)
       // A sample that adds less than one grey level to the pixel cannot show a glyph. The
       // attribute comes with the gradient (its alpha): no second volume is read per sample.
-      if ((1.0 - s.color.a) * alpha > 1.0 / 255.0) n = glyphNormal(ray.origin + t * ray.dir, n, g.a);
+      if ((1.0 - s.color.a) * alpha > 1.0 / 255.0)
+        n = glyphNormalIn(ray.origin + t * ray.dir, n, -ray.dir, g.a);
 #endif
       rgb = phong(rgb, n, ray.dir);
     }

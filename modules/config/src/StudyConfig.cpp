@@ -142,7 +142,9 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
     const json& g = j["glyphs"];
     const std::string gw = w + "glyphs.";
     if (!g.is_object()) throw InputError(file, "'" + w + "glyphs' must be an object");
-    rejectUnknownKeys(file, g, gw, {"method", "convexity", "diameter_mm", "count", "seed", "map_size", "map_diameter"});
+    rejectUnknownKeys(file, g, gw,
+                      {"method", "convexity", "placement", "spacing_mm", "diameter_mm", "min_size",
+                       "count", "seed", "map_size", "map_diameter"});
     v.glyphs = true;
     if (g.contains("method")) v.glyphMethod = stringField(file, g, gw, "method", true);
     if (v.glyphMethod != "sized" && v.glyphMethod != "simple")
@@ -150,7 +152,14 @@ ViewConfig viewConfig(const fs::path& file, const json& j, const std::string& wh
     if (g.contains("convexity")) v.glyphConvexity = stringField(file, g, gw, "convexity", true);
     if (v.glyphConvexity != "convex" && v.glyphConvexity != "concave" && v.glyphConvexity != "both")
       throw InputError(file, "'" + gw + "convexity' must be convex, concave or both");
-    v.glyphDiameterMm = numberField(file, g, gw, "diameter_mm", 6.0, 0.1, 1000.0);
+    if (g.contains("placement")) v.glyphPlacement = stringField(file, g, gw, "placement", true);
+    if (v.glyphPlacement != "blue-noise" && v.glyphPlacement != "paper")
+      throw InputError(file, "'" + gw + "placement' must be blue-noise or paper");
+    v.glyphSpacingMm = numberField(file, g, gw, "spacing_mm", v.glyphSpacingMm, 0.5, 1000.0);
+    v.glyphMinSize = numberField(file, g, gw, "min_size", v.glyphMinSize, 0.0, 1.0);
+    // The blue-noise glyph fills most of its spacing; the paper's map its own 6 mm.
+    const double diameter = v.glyphPlacement == "paper" ? 6.0 : 0.85 * v.glyphSpacingMm;
+    v.glyphDiameterMm = numberField(file, g, gw, "diameter_mm", diameter, 0.1, 1000.0);
     v.glyphCount = static_cast<int>(numberField(file, g, gw, "count", 16, 1, 255));
     v.glyphSeed = static_cast<unsigned>(numberField(file, g, gw, "seed", 1, 0, 4294967295.0));
     v.glyphMapSize = static_cast<int>(numberField(file, g, gw, "map_size", 128, 8, 512));
@@ -310,7 +319,8 @@ json viewJson(const ViewConfig& v) {
   if (v.glyphs)
     j["glyphs"] = {{"method", v.glyphMethod},         {"convexity", v.glyphConvexity}, {"diameter_mm", v.glyphDiameterMm},
                    {"count", v.glyphCount},           {"seed", v.glyphSeed},           {"map_size", v.glyphMapSize},
-                   {"map_diameter", v.glyphMapDiameter}};
+                   {"map_diameter", v.glyphMapDiameter}, {"placement", v.glyphPlacement},
+                   {"spacing_mm", v.glyphSpacingMm},  {"min_size", v.glyphMinSize}};
   if (v.depthCue) j["depth_cue"] = {{"brightness", v.cueBrightness}, {"amount", v.cueAmount}, {"contrast", v.cueContrast}};
   return j;
 }

@@ -213,7 +213,8 @@ struct VolumeRenderer::Impl {
 
 void VolumeRenderer::Impl::uploadGlyphMap(const GlyphMapSettings& g) {
   if (glyphCells.id() && g.size == glyphMapSettings.size && g.count == glyphMapSettings.count &&
-      g.diameter == glyphMapSettings.diameter && g.seed == glyphMapSettings.seed)
+      g.diameter == glyphMapSettings.diameter && g.seed == glyphMapSettings.seed &&
+      g.placement == glyphMapSettings.placement)
     return;
   const GlyphMap map = makeGlyphMap(g, /*texels=*/false);
   const int n = map.size / map.cellSize;
@@ -548,10 +549,12 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
       glBindBufferBase(GL_UNIFORM_BUFFER, 0, m.glyphCentres.id());
     }
     const double voxelsPerMm = s.glyphMap.diameter / s.glyphDiameterMm;
-    glUniform1f(p.uniform("uGlyphVoxelsPerMm"), float(voxelsPerMm));
+    const glm::mat3 glyphFromWorld(voxelsPerMm * glyphMapRotation(s.glyphMap.placement));
+    glUniformMatrix3fv(p.uniform("uGlyphFromWorld"), 1, GL_FALSE, glm::value_ptr(glyphFromWorld));
     glUniform1f(p.uniform("uGlyphMapSize"), float(s.glyphMap.size));
     glUniform1f(p.uniform("uGlyphInvMapSize"), float(1.0 / s.glyphMap.size));
     glUniform1f(p.uniform("uGlyphRadius"), float(m.glyphRadius));
+    glUniform1f(p.uniform("uGlyphMinSize"), float(std::clamp(s.glyphMinSize, 0.0, 1.0)));
   }
   m.setFunctionalUniforms(p, functionalLow, functionalHigh, s.functionalClasses);
   glUniform1i(p.uniform("uHasFunctional"), overlay ? 1 : 0);

@@ -40,12 +40,18 @@ struct ViewConfig {
   std::string preset;                // transfer function preset; "" = by modality
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
-  // "convexity": "convex" | "concave" | "both", "diameter_mm", "count", "seed", "map_size",
+  // "convexity": "convex" | "concave" | "both", "placement": "blue-noise" | "paper",
+  // "spacing_mm" (blue-noise: glyph centre spacing), "diameter_mm" (default: blue-noise
+  // 0.85 spacing, paper 6 mm), "min_size" (apparent bump radius at the window's low end, in
+  // glyph radii), "seed", and for the paper's random map "count", "map_size",
   // "map_diameter"}; the functional attribute is mapped to beta 0..1 by functional_window.
   bool glyphs = false;
   std::string glyphMethod = "sized";
   std::string glyphConvexity = "convex";
-  double glyphDiameterMm = 6.0;
+  std::string glyphPlacement = "blue-noise";
+  double glyphSpacingMm = 5.0;
+  double glyphMinSize = 0.6;
+  double glyphDiameterMm = 0.85 * 5.0;
   int glyphCount = 16, glyphMapSize = 128;
   double glyphMapDiameter = 32.0;
   unsigned glyphSeed = 1;
