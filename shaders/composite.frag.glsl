@@ -52,7 +52,9 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 #if defined(MVW_GLYPHS)
       // A sample that adds less than one grey level to the pixel cannot show a glyph. The
       // attribute comes with the gradient (its alpha): no second volume is read per sample.
-      if ((1.0 - s.color.a) * alpha > 1.0 / 255.0)
+      // Below the window (g.a = 0) the glyph code is skipped outright: where a whole block of
+      // samples lies there, a software rasteriser need not run it at all.
+      if (g.a > 0.0 && (1.0 - s.color.a) * alpha > 1.0 / 255.0)
         n = glyphNormalIn(ray.origin + t * ray.dir, n, -ray.dir, g.a);
 #endif
       rgb = phong(rgb, n, ray.dir);

@@ -24,7 +24,9 @@ uniform float uGlyphMinSize;
 // Method and convexity are compile-time variants, like every feature switch in the ray loop:
 // MVW_GLYPH_SIMPLE: simple blending, eq. (1) (default: size and convexity control, eqs. 2-3);
 // MVW_GLYPH_CONCAVE: dimples; MVW_GLYPH_BOTH: dimples below the middle of the attribute's
-// range, bumps above (default: convex bumps).
+// range, bumps above (default: convex bumps); MVW_GLYPH_PAPER (the paper's placement): the
+// paper's own size rule and shading, so its figures can be reproduced (otherwise: the
+// extensions below, marked "beyond the paper").
 
 // nO: the unit outward surface normal of the anatomy at `world`; u: the functional attribute
 // there, mapped to 0..1 (the gradient texture's alpha: see raycast/common.glsl).
@@ -36,6 +38,9 @@ uniform float uGlyphMinSize;
 // every sample along a ray through a glyph tilts its normal the same way and the bump
 // accumulates instead of averaging out over depth. Where mapping is denied: nO, bit for bit.
 vec3 glyphNormalIn(vec3 world, vec3 nO, vec3 frame, float u) {
+#if defined(MVW_GLYPH_PAPER)
+  frame = nO;
+#endif
   // At or below the window's low end: the anatomy's own normal, bit for bit (for every method
   // and convexity: "both" would otherwise draw full dimples where there is no attribute).
   if (u <= 0.0) return nO;
@@ -62,10 +67,14 @@ vec3 glyphNormalIn(vec3 world, vec3 nO, vec3 frame, float u) {
   // object, cos(alpha) < 0) the paper denies mapping, so half of the glyphs a surface meets
   // never show. Mirrored about the surface's tangent plane that hemisphere is a bump of the
   // same footprint and convexity, so every glyph the surface cuts shows: twice the coverage.
+#if defined(MVW_GLYPH_PAPER)
+  if (cosAlpha <= 0.0) return nO;
+#else
   if (cosAlpha < 0.0) {
     nG -= 2.0 * cosAlpha * frame;
     cosAlpha = -cosAlpha;
   }
+#endif
   // eq. (2): d = r sin(alpha) with r = A = |d| / radius, the fragment's distance from the bump's
   // centre along the surface; mapping is denied where d exceeds the apparent bump radius,
   // compared squared. Beyond the paper (where the threshold is beta itself, so an attribute
@@ -73,9 +82,20 @@ vec3 glyphNormalIn(vec3 world, vec3 nO, vec3 frame, float u) {
   // uGlyphMinSize glyph radii at the low end to one glyph radius at the high end, linear in
   // |beta|, so the weakest finding is still a bump a reader sees and ordinal levels differ
   // in size.
-  float size = mix(uGlyphMinSize, 1.0, abs(beta));
   float cos2 = cosAlpha * cosAlpha;
   float t2 = d2 * (1.0 - cos2);  // (d * radius)^2: the squared distance along the surface
+#if defined(MVW_GLYPH_PAPER)
+  // The paper's rule: denied where d > |beta|, N_G itself as the bump's normal.
+  if (t2 > beta * beta * r2) return nO;
+#if defined(MVW_GLYPH_CONCAVE)
+  return normalize(2.0 * cosAlpha * frame - nG);
+#elif defined(MVW_GLYPH_BOTH)
+  return beta < 0.0 ? normalize(2.0 * cosAlpha * frame - nG) : nG;
+#else
+  return nG;
+#endif
+#else
+  float size = mix(uGlyphMinSize, 1.0, abs(beta));
   if (t2 > size * size * r2) return nO;
   // Beyond the paper: the bump's profile. The paper shades with N_G itself, so a glyph whose
   // centre lies deep under the surface tilts the normal only a little, and most bumps a
@@ -84,9 +104,9 @@ vec3 glyphNormalIn(vec3 world, vec3 nO, vec3 frame, float u) {
   // chord the surface cuts from the glyph), which is N_G exactly where the surface passes
   // through the centre (the case of the paper's Figure 1, right), and every bump shows its
   // full light-to-shadow contrast.
-  float rho2 = max(min(size * size * r2, r2 - cos2 * d2), 1e-6);
-  vec3 tangential = (d - dot(d, frame) * frame) * inversesqrt(rho2);
-  vec3 up = sqrt(max(1.0 - t2 / rho2, 0.0)) * frame;
+  float invRho = inversesqrt(max(min(size * size * r2, r2 - cos2 * d2), 1e-6));
+  vec3 tangential = (d - dot(d, frame) * frame) * invRho;
+  vec3 up = sqrt(max(1.0 - t2 * invRho * invRho, 0.0)) * frame;
   // A dimple is the bump mirrored about the surface normal.
 #if defined(MVW_GLYPH_CONCAVE)
   return up - tangential;
@@ -95,7 +115,8 @@ vec3 glyphNormalIn(vec3 world, vec3 nO, vec3 frame, float u) {
 #else
   return up + tangential;
 #endif
-#endif
+#endif  // MVW_GLYPH_PAPER
+#endif  // MVW_GLYPH_SIMPLE
 }
 
 vec3 glyphNormal(vec3 world, vec3 nO, float u) { return glyphNormalIn(world, nO, nO, u); }

@@ -193,6 +193,7 @@ struct VolumeRenderer::Impl {
       if (!s.glyphSizeControl) defines.push_back("MVW_GLYPH_SIMPLE 1");
       if (s.glyphConvexity == 1) defines.push_back("MVW_GLYPH_CONCAVE 1");
       if (s.glyphConvexity == 2) defines.push_back("MVW_GLYPH_BOTH 1");
+      if (s.glyphMap.placement == GlyphPlacement::Paper) defines.push_back("MVW_GLYPH_PAPER 1");
     }
     switch (mode) {
       case RenderMode::Composite: file = "composite.frag.glsl"; break;

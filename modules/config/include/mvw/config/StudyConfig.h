@@ -43,7 +43,7 @@ struct ViewConfig {
   // "convexity": "convex" | "concave" | "both", "placement": "blue-noise" | "paper",
   // "spacing_mm" (blue-noise: glyph centre spacing), "diameter_mm" (default: blue-noise
   // 0.85 spacing, paper 6 mm), "min_size" (apparent bump radius at the window's low end, in
-  // glyph radii), "seed", and for the paper's random map "count", "map_size",
+  // glyph radii; blue-noise only: "paper" is the paper's map and shading), "seed", and for the paper's random map "count", "map_size",
   // "map_diameter"}; the functional attribute is mapped to beta 0..1 by functional_window.
   bool glyphs = false;
   std::string glyphMethod = "sized";
