@@ -15,11 +15,18 @@ uniform bool uShading;
 struct RayState {
   vec4 color;   // associated colour, alpha
   float depth;  // distance where the opacity first passed 0.5
+#if defined(MVW_GLYPHS)
+  vec3 glyphOrigin, glyphDir;  // the ray in glyph map voxels (see glyphNormalMapped)
+#endif
 };
 
 void setupHook(inout RayState s, Ray ray) {
   s.color = vec4(0.0);
   s.depth = -1.0;
+#if defined(MVW_GLYPHS)
+  s.glyphOrigin = uGlyphFromWorld * ray.origin;
+  s.glyphDir = uGlyphFromWorld * ray.dir;
+#endif
 }
 
 bool skipHook(RayState s, vec3 tex) { return !blockVisible(tex); }
@@ -52,7 +59,10 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 #if defined(MVW_GLYPHS)
       // A sample that adds less than one grey level to the pixel cannot show a glyph. The
       // attribute comes with the gradient (its alpha): no second volume is read per sample.
-      if ((1.0 - s.color.a) * alpha > 1.0 / 255.0) n = glyphNormal(ray.origin + t * ray.dir, n, g.a);
+      // Below the window (g.a = 0) the glyph code is skipped outright: where a whole block of
+      // samples lies there, a software rasteriser need not run it at all.
+      if (g.a > 0.0 && (1.0 - s.color.a) * alpha > 1.0 / 255.0)
+        n = glyphNormalMapped(s.glyphOrigin + t * s.glyphDir, n, -ray.dir, g.a);
 #endif
       rgb = phong(rgb, n, ray.dir);
     }

@@ -11,27 +11,48 @@ uniform usampler3D uGlyphCells;   // R8UI, repeats: 1 + glyph index, 0 = no glyp
 layout(std140) uniform GlyphCentres {
   vec4 uGlyphCentres[255];        // map voxel coordinates
 };
-uniform float uGlyphVoxelsPerMm;  // map voxels per world mm (axis-aligned, periodic)
+// Map voxel coordinates from world mm: the map's scale and, for the blue-noise lattice, a fixed
+// oblique rotation (GlyphMap.h: glyphMapRotation) so that no axial, coronal or sagittal cut
+// runs along one of the lattice's layers.
+uniform mat3 uGlyphFromWorld;
 uniform float uGlyphMapSize;      // map voxels per period
 uniform float uGlyphInvMapSize;   // 1 / uGlyphMapSize (the loop multiplies, never divides)
 uniform float uGlyphRadius;       // map voxels
+// The smallest apparent bump radius (fraction of the glyph radius), the one an attribute just
+// above the window's low end gets (see glyphNormal).
+uniform float uGlyphMinSize;
 // Method and convexity are compile-time variants, like every feature switch in the ray loop:
 // MVW_GLYPH_SIMPLE: simple blending, eq. (1) (default: size and convexity control, eqs. 2-3);
 // MVW_GLYPH_CONCAVE: dimples; MVW_GLYPH_BOTH: dimples below the middle of the attribute's
-// range, bumps above (default: convex bumps).
+// range, bumps above (default: convex bumps); MVW_GLYPH_PAPER (the paper's placement): the
+// paper's own size rule and shading, so its figures can be reproduced (otherwise: the
+// extensions below, marked "beyond the paper").
 
 // nO: the unit outward surface normal of the anatomy at `world`; u: the functional attribute
 // there, mapped to 0..1 (the gradient texture's alpha: see raycast/common.glsl).
 // On a software rasteriser every line below runs for every sample (branches are masks, not
 // jumps), so the tests are written without square roots or divisions where possible.
-vec3 glyphNormal(vec3 world, vec3 nO, float u) {
+// frame: the normal the glyphs are measured against (eqs. 2-3); nO for a surface. Composite
+// DVR passes the direction to the observer: its noisy soft-tissue gradients (the Cranium's
+// brain) are no surface, and eq. (2)'s distance is the one "as seen from the observer", so
+// every sample along a ray through a glyph tilts its normal the same way and the bump
+// accumulates instead of averaging out over depth. Where mapping is denied: nO, bit for bit.
+// p: the sample in map voxels, uGlyphFromWorld * world. A ray loop passes
+// (uGlyphFromWorld * origin) + t * (uGlyphFromWorld * dir) from two products made once per ray:
+// the matrix product per sample cost composite DVR a tenth of its frame time on llvmpipe.
+vec3 glyphNormalMapped(vec3 p, vec3 nO, vec3 frame, float u) {
+#if defined(MVW_GLYPH_PAPER)
+  frame = nO;
+#endif
+  // At or below the window's low end: the anatomy's own normal, bit for bit (for every method
+  // and convexity: "both" would otherwise draw full dimples where there is no attribute).
+  if (u <= 0.0) return nO;
 #if defined(MVW_GLYPH_BOTH)
   float beta = 2.0 * u - 1.0;
 #else
   float beta = u;
 #endif
-  if (beta == 0.0) return nO;  // no attribute: the anatomy's own normal, bit for bit
-  vec3 p = world * uGlyphVoxelsPerMm;
+  if (beta == 0.0) return nO;
   uint cell = textureLod(uGlyphCells, p * uGlyphInvMapSize, 0.0).r;
   if (cell == 0u) return nO;   // outside every glyph
   vec3 d = p - uGlyphCentres[cell - 1u].xyz;
@@ -43,20 +64,65 @@ vec3 glyphNormal(vec3 world, vec3 nO, float u) {
 #if defined(MVW_GLYPH_SIMPLE)
   return normalize(nO + beta * nG);  // eq. (1): N = N_O + beta N_G
 #else
-  float cosAlpha = dot(nO, nG);                              // eq. (3): alpha = acos(N_O . N_G)
-  if (cosAlpha <= 0.0) return nO;  // the glyph's far hemisphere does not face this surface
-  // eq. (2): d = r sin(alpha) with r = A = |d| / radius; denied where d > |beta| (the apparent
-  // bump radius is |beta| glyph radii), compared squared.
-  if (d2 * (1.0 - cosAlpha * cosAlpha) > beta * beta * r2) return nO;
-  // A dimple is the bump mirrored about the surface normal.
+  float cosAlpha = dot(frame, nG);  // eq. (3): alpha = acos(N_O . N_G), N_O: the frame
+  // Beyond the paper: where the surface cuts a glyph's far hemisphere (centre outside the
+  // object, cos(alpha) < 0) the paper denies mapping, so half of the glyphs a surface meets
+  // never show. Mirrored about the surface's tangent plane that hemisphere is a bump of the
+  // same footprint and convexity, so every glyph the surface cuts shows: twice the coverage.
+#if defined(MVW_GLYPH_PAPER)
+  if (cosAlpha <= 0.0) return nO;
+#else
+  if (cosAlpha < 0.0) {
+    nG -= 2.0 * cosAlpha * frame;
+    cosAlpha = -cosAlpha;
+  }
+#endif
+  // eq. (2): d = r sin(alpha) with r = A = |d| / radius, the fragment's distance from the bump's
+  // centre along the surface; mapping is denied where d exceeds the apparent bump radius,
+  // compared squared. Beyond the paper (where the threshold is beta itself, so an attribute
+  // just above the window's low end makes a sub-pixel bump): the apparent radius runs from
+  // uGlyphMinSize glyph radii at the low end to one glyph radius at the high end, linear in
+  // |beta|, so the weakest finding is still a bump a reader sees and ordinal levels differ
+  // in size.
+  float cos2 = cosAlpha * cosAlpha;
+  float t2 = d2 * (1.0 - cos2);  // (d * radius)^2: the squared distance along the surface
+#if defined(MVW_GLYPH_PAPER)
+  // The paper's rule: denied where d > |beta|, N_G itself as the bump's normal.
+  if (t2 > beta * beta * r2) return nO;
 #if defined(MVW_GLYPH_CONCAVE)
-  return normalize(2.0 * cosAlpha * nO - nG);
+  return normalize(2.0 * cosAlpha * frame - nG);
 #elif defined(MVW_GLYPH_BOTH)
-  return beta < 0.0 ? normalize(2.0 * cosAlpha * nO - nG) : nG;
+  return beta < 0.0 ? normalize(2.0 * cosAlpha * frame - nG) : nG;
 #else
   return nG;
 #endif
+#else
+  float size = mix(uGlyphMinSize, 1.0, abs(beta));
+  if (t2 > size * size * r2) return nO;
+  // Beyond the paper: the bump's profile. The paper shades with N_G itself, so a glyph whose
+  // centre lies deep under the surface tilts the normal only a little, and most bumps a
+  // surface meets are faint specks. Here the bump is the hemisphere of the apparent radius
+  // standing on the surface over the glyph's centre (rho: the apparent radius, at most the
+  // chord the surface cuts from the glyph), which is N_G exactly where the surface passes
+  // through the centre (the case of the paper's Figure 1, right), and every bump shows its
+  // full light-to-shadow contrast.
+  float invRho = inversesqrt(max(min(size * size * r2, r2 - cos2 * d2), 1e-6));
+  vec3 tangential = (d - dot(d, frame) * frame) * invRho;
+  vec3 up = sqrt(max(1.0 - t2 * invRho * invRho, 0.0)) * frame;
+  // A dimple is the bump mirrored about the surface normal.
+#if defined(MVW_GLYPH_CONCAVE)
+  return up - tangential;
+#elif defined(MVW_GLYPH_BOTH)
+  return beta < 0.0 ? up - tangential : up + tangential;
+#else
+  return up + tangential;
 #endif
+#endif  // MVW_GLYPH_PAPER
+#endif  // MVW_GLYPH_SIMPLE
+}
+
+vec3 glyphNormal(vec3 world, vec3 nO, float u) {
+  return glyphNormalMapped(uGlyphFromWorld * world, nO, nO, u);
 }
 
 #endif

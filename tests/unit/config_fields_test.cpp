@@ -30,6 +30,9 @@ ViewConfig fullySet() {
   v.glyphs = true;
   v.glyphMethod = GlyphMethod::Simple;
   v.glyphConvexity = GlyphConvexity::Both;
+  v.glyphPlacement = GlyphPlacement::Paper;
+  v.glyphSpacingMm = 7;
+  v.glyphMinSize = 0.5;
   v.glyphDiameterMm = 9;
   v.glyphCount = 20;
   v.glyphMapSize = 96;
@@ -83,6 +86,9 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.glyphs, a.glyphs);
   EXPECT_EQ(b.glyphMethod, a.glyphMethod);
   EXPECT_EQ(b.glyphConvexity, a.glyphConvexity);
+  EXPECT_EQ(b.glyphPlacement, a.glyphPlacement);
+  EXPECT_EQ(b.glyphSpacingMm, a.glyphSpacingMm);
+  EXPECT_EQ(b.glyphMinSize, a.glyphMinSize);
   EXPECT_EQ(b.glyphDiameterMm, a.glyphDiameterMm);
   EXPECT_EQ(b.glyphCount, a.glyphCount);
   EXPECT_EQ(b.glyphMapSize, a.glyphMapSize);

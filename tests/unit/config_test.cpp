@@ -66,6 +66,28 @@ TEST(StudyConfig, RefusesTyposMissingKeysAndBadValues) {
             std::string::npos);
   EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": )")).find("not valid JSON"),
             std::string::npos);
+  // Glyph placement keys (issue 15).
+  std::ofstream(dir / "a.nii") << "x";
+  const std::string glyphView = R"({"anatomical": {"path": "a.nii"}, "render": {"views": [{"glyphs": )";
+  EXPECT_NE(errorOf(writeConfig(dir, glyphView + R"({"placement": "poisson"}}]}})")).find("glyphs.placement"),
+            std::string::npos);
+  EXPECT_NE(errorOf(writeConfig(dir, glyphView + R"({"min_size": 2}}]}})")).find("glyphs.min_size"),
+            std::string::npos);
+  EXPECT_NE(errorOf(writeConfig(dir, glyphView + R"({"spacing_mm": 0}}]}})")).find("glyphs.spacing_mm"),
+            std::string::npos);
+}
+
+// Defaults: blue-noise glyphs 0.85 of their spacing; the paper's map keeps its 6 mm.
+TEST(StudyConfig, GlyphDefaultsFollowThePlacement) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "a.nii") << "x";
+  const StudyConfig c = loadStudyConfig(writeConfig(dir, R"({"anatomical": {"path": "a.nii"},
+      "render": {"views": [{"glyphs": {}}, {"glyphs": {"spacing_mm": 8}}, {"glyphs": {"placement": "paper"}}]}})"));
+  ASSERT_EQ(c.render.views.size(), 3u);
+  EXPECT_EQ(c.render.views[0].glyphPlacement, GlyphPlacement::BlueNoise);
+  EXPECT_DOUBLE_EQ(c.render.views[0].glyphDiameterMm, 0.85 * c.render.views[0].glyphSpacingMm);
+  EXPECT_DOUBLE_EQ(c.render.views[1].glyphDiameterMm, 0.85 * 8.0);
+  EXPECT_EQ(c.render.views[2].glyphDiameterMm, 6.0);
 }
 
 // writeStudyConfig is loadStudyConfig's inverse: every field survives the round trip (the
@@ -80,7 +102,8 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
         {"name": "a", "mode": "composite", "view": "superior", "azimuth": 12.5, "elevation": -3, "roll": 4,
          "zoom": 1.7, "perspective": true, "width": 300, "height": 200, "preset": "ct-skin",
          "gradient_opacity": [5, 40], "glyphs": {"method": "simple", "convexity": "both", "diameter_mm": 9,
-         "count": 20, "seed": 3, "map_size": 96, "map_diameter": 20}, "functional_window": [0.3, 1.5],
+         "count": 20, "seed": 3, "map_size": 96, "map_diameter": 20, "placement": "paper",
+         "spacing_mm": 7, "min_size": 0.5}, "functional_window": [0.3, 1.5],
          "functional_classes": 4, "crop_min": [0, 0.1, 0], "crop_max": [1, 1, 0.55], "light": [-0.8, 0.8],
          "shading": false, "sampling": "nearest", "step_mm": 0.3, "jitter": false, "seed": 9,
          "background": [0.1, 0.2, 0.3], "annotate": false, "fusion": true, "overlay_opacity": 0.7,
@@ -113,6 +136,9 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(a.glyphDiameterMm, 9.0);
   EXPECT_EQ(a.glyphCount, 20);
   EXPECT_EQ(a.glyphMapSize, 96);
+  EXPECT_EQ(a.glyphPlacement, GlyphPlacement::Paper);
+  EXPECT_EQ(a.glyphSpacingMm, 7.0);
+  EXPECT_EQ(a.glyphMinSize, 0.5);
   ASSERT_TRUE(a.functionalWindow.has_value());
   EXPECT_EQ((*a.functionalWindow)[1], 1.5);
   EXPECT_EQ(a.functionalClasses, 4);

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include <glm/geometric.hpp>
 
@@ -130,6 +131,115 @@ TEST(GlyphMap, ImpossibleRequestsAreErrors) {
   EXPECT_THROW(makeGlyphMap({64, 4, 40.0, 1}), Error);    // wider than half the map
   EXPECT_THROW(makeGlyphMap({4, 1, 2.0, 1}), Error);
   EXPECT_THROW(makeGlyphMap({512, 256, 4.0, 1}), Error);  // one byte per cell names the glyph
+}
+
+// The blue-noise placement (jittered BCC lattice): periodic, glyphs never closer than a
+// diameter plus the cell clearance, every point of the map within the promised coverage radius
+// of a centre, the same map for the same seed.
+TEST(GlyphMap, BlueNoiseIsPeriodicSeparatedCoveringAndSeeded) {
+  for (double fraction : {0.5, 0.7, 0.84}) {
+    GlyphMapSettings s;
+    s.placement = GlyphPlacement::BlueNoise;
+    s.diameter = fraction * blueNoiseSpacing(s.size);
+    s.seed = 11;
+    const GlyphMap map = makeGlyphMap(s);
+    ASSERT_EQ(map.centres.size(), 250u);
+    const double n = s.size;
+    double nearest = 1e30;
+    for (std::size_t a = 0; a < map.centres.size(); ++a) {
+      for (int c = 0; c < 3; ++c) ASSERT_TRUE(map.centres[a][c] >= 0.0 && map.centres[a][c] < n);
+      for (std::size_t b = a + 1; b < map.centres.size(); ++b)
+        nearest = std::min(nearest, glm::length(periodic(map.centres[a] - map.centres[b], n)));
+    }
+    EXPECT_GT(nearest, s.diameter + glyphClearance(s.size)) << fraction;
+    // Jitter: not the bare lattice (whose nearest distance is the spacing exactly).
+    EXPECT_LT(nearest, blueNoiseSpacing(s.size) - 1e-3) << fraction;
+    // Coverage: random points and every texel centre lie within the coverage radius.
+    const double cover = blueNoiseCoverage(s.size, s.diameter);
+    EXPECT_LT(cover, 0.8 * blueNoiseSpacing(s.size));
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0.0, n);
+    double worst = 0.0;
+    for (int trial = 0; trial < 20000; ++trial) {
+      const glm::dvec3 p(u(rng), u(rng), u(rng));
+      double best = 1e30;
+      for (const auto& c : map.centres) best = std::min(best, glm::length(periodic(p - c, n)));
+      worst = std::max(worst, best);
+    }
+    EXPECT_LE(worst, cover) << fraction;
+    // Periodic: the texels repeat along every axis.
+    for (int i = 0; i < 128; i += 13) {
+      EXPECT_EQ(map.at(i, 5, 9), map.at(i + 128, 5, 9));
+      EXPECT_EQ(map.at(3, i, 9), map.at(3, i - 128, 9));
+      EXPECT_EQ(map.at(3, 5, i), map.at(3, 5, i + 256));
+    }
+    // Deterministic by seed.
+    EXPECT_EQ(makeGlyphMap(s, false).centres, map.centres);
+    GlyphMapSettings other = s;
+    other.seed = 12;
+    EXPECT_NE(makeGlyphMap(other, false).centres, map.centres);
+  }
+}
+
+// The renderer's compact cells hold for the blue-noise map too: a point inside a glyph is in a
+// cell naming it.
+TEST(GlyphMap, BlueNoiseCellsNameTheGlyphThatReachesThem) {
+  const GlyphMapSettings s = blueNoiseGlyphMap(4.0, 3.0, 2);
+  const GlyphMap map = makeGlyphMap(s, false);
+  const int n = s.size / map.cellSize;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0.0, s.size);
+  int inside = 0;
+  for (int trial = 0; trial < 100000; ++trial) {
+    const glm::dvec3 p(u(rng), u(rng), u(rng));
+    glm::ivec3 c(glm::floor(p / double(map.cellSize)));
+    c = ((c % n) + n) % n;
+    const int g = map.cells[(static_cast<std::size_t>(c.z) * n + c.y) * n + c.x];
+    for (std::size_t k = 0; k < map.centres.size(); ++k)
+      if (glm::length(periodic(p - map.centres[k], s.size)) <= map.radius) {
+        ++inside;
+        ASSERT_EQ(g, int(k) + 1);
+      }
+  }
+  // Glyphs of 0.75 spacing fill about 0.68 * 0.75^3 = 29 % of space.
+  EXPECT_GT(inside, 20000);
+  EXPECT_LT(inside, 36000);
+}
+
+// Spacing in mm sets the map's scale: the renderer's map voxels per mm are diameter / mm.
+TEST(GlyphMap, BlueNoiseSpacingInMillimetres) {
+  const GlyphMapSettings s = blueNoiseGlyphMap(5.0, 3.5, 1);
+  const double voxelsPerMm = s.diameter / 3.5;
+  EXPECT_NEAR(blueNoiseSpacing(s.size) / voxelsPerMm, 5.0, 1e-9);
+  EXPECT_NEAR(maxBlueNoiseDiameterMm(5.0),
+              5.0 * (1.0 - glyphClearance(s.size) / blueNoiseSpacing(s.size)), 1e-5);
+  EXPECT_NO_THROW(blueNoiseGlyphMap(5.0, maxBlueNoiseDiameterMm(5.0), 1));
+  EXPECT_NO_THROW(makeGlyphMap(blueNoiseGlyphMap(5.0, maxBlueNoiseDiameterMm(5.0), 1), false));
+}
+
+TEST(GlyphMap, BadBlueNoiseRequestsSayWhatFits) {
+  try {
+    blueNoiseGlyphMap(5.0, 5.0, 1);
+    FAIL() << "a glyph as wide as its spacing was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 4.37"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(blueNoiseGlyphMap(0.0, 1.0, 1), Error);
+  EXPECT_THROW(blueNoiseGlyphMap(4.0, -1.0, 1), Error);
+  // The paper's map says how many random glyphs it fitted.
+  try {
+    makeGlyphMap({128, 40, 32.0, 1});
+    FAIL() << "40 glyphs of 32 voxels were placed in 128^3";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("fitted"), std::string::npos) << e.what();
+  }
+}
+
+// The paper's own map stays reproducible: the same centres as before blue noise existed.
+TEST(GlyphMap, PaperPlacementIsTheDefault) {
+  EXPECT_EQ(GlyphMapSettings{}.placement, GlyphPlacement::Paper);
+  const GlyphMap map = makeGlyphMap({128, 16, 32.0, 1}, false);
+  ASSERT_EQ(map.centres.size(), 16u);
 }
 
 }  // namespace

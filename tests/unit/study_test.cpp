@@ -63,6 +63,8 @@ TEST(ViewPlan, DescribeViewIsTheInverseOfPlanViews) {
       {"glyphs",
        {{"method", "simple"},
         {"convexity", "both"},
+        {"placement", "paper"},
+        {"min_size", 0.5},
         {"diameter_mm", 9},
         {"count", 20},
         {"seed", 3},

@@ -44,6 +44,9 @@ const EnumNames<GlyphConvexity> kConvexities = {{GlyphConvexity::Bumps, "convex"
                                                 {GlyphConvexity::Dimples, "concave"},
                                                 {GlyphConvexity::Both, "both"}};
 
+const EnumNames<GlyphPlacement> kPlacements = {{GlyphPlacement::BlueNoise, "blue-noise"},
+                                                {GlyphPlacement::Paper, "paper"}};
+
 const EnumNames<RegistrationMethod> kRegistrations = {{RegistrationMethod::None, "none"},
                                                       {RegistrationMethod::Rigid, "rigid"},
                                                       {RegistrationMethod::Affine, "affine"},
@@ -78,6 +81,9 @@ const FieldTable<ViewConfig>& glyphTable() {
     FieldTable<ViewConfig> g;
     g.enumeration("method", &ViewConfig::glyphMethod, kGlyphMethods)
         .enumeration("convexity", &ViewConfig::glyphConvexity, kConvexities)
+        .enumeration("placement", &ViewConfig::glyphPlacement, kPlacements)
+        .number("spacing_mm", &ViewConfig::glyphSpacingMm, 0.5, 1000.0)
+        .number("min_size", &ViewConfig::glyphMinSize, 0.0, 1.0)
         .number("diameter_mm", &ViewConfig::glyphDiameterMm, 0.1, 1000.0)
         .number("count", &ViewConfig::glyphCount, 1, 255)
         .number("seed", &ViewConfig::glyphSeed, 0, kMaxSeed)
@@ -186,6 +192,11 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
   viewTable().read(j, v, Where{file, where + "."});
   const std::string w = where + ".";
   if (v.name.empty()) v.name = "view" + std::to_string(index);
+  // The glyph diameter's default follows the placement (and the spacing).
+  if (j.contains("glyphs") && j["glyphs"].is_object() && !j["glyphs"].contains("diameter_mm"))
+    v.glyphDiameterMm = v.glyphPlacement == GlyphPlacement::Paper
+                            ? kPaperGlyphDiameterMm
+                            : kBlueNoiseDiameterFraction * v.glyphSpacingMm;
   if (v.name.find_first_of("/\\") != std::string::npos || v.name == "." || v.name == "..")
     throw InputError(file, "'" + w + "name' must be a plain file name");
   if (v.window.has_value() != v.level.has_value())
@@ -389,6 +400,7 @@ std::string toString(ViewName view) { return detail::nameOf(kViewNames, view); }
 std::string toString(Sampling sampling) { return detail::nameOf(kSamplings, sampling); }
 std::string toString(GlyphMethod method) { return detail::nameOf(kGlyphMethods, method); }
 std::string toString(GlyphConvexity convexity) { return detail::nameOf(kConvexities, convexity); }
+std::string toString(GlyphPlacement placement) { return detail::nameOf(kPlacements, placement); }
 std::string toString(RegistrationMethod method) { return detail::nameOf(kRegistrations, method); }
 std::optional<ViewName> parseViewName(const std::string& name) {
   return detail::parseName(kViewNames, name);

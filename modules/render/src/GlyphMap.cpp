@@ -1,9 +1,12 @@
 #include "mvw/render/GlyphMap.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <iomanip>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "mvw/core/Error.h"
@@ -45,35 +48,135 @@ const glm::vec4& GlyphMap::at(int i, int j, int k) const {
   return texels[(static_cast<std::size_t>(wrap(k)) * size + wrap(j)) * size + wrap(i)];
 }
 
+namespace {
+
+// 160 voxels (80^3 cells, 512 kB: still cache-sized) keep the cell clearance at 1/8 of the
+// spacing, so glyphs can fill 3/4 of it and still jitter.
+constexpr int kBlueNoiseMapSize = 160;
+
+int cellSizeOf(int size) { return size % 2 == 0 ? 2 : 1; }  // a 64^3 grid for a 128^3 map
+
+std::string voxels(double v) {
+  std::ostringstream o;
+  o << std::setprecision(3) << v;
+  return o.str();
+}
+
+// The jittered BCC lattice (see GlyphPlacement::BlueNoise): the whole lattice shifted by a
+// seeded offset, each site by a seeded offset within a ball of the jitter radius.
+std::vector<glm::dvec3> blueNoiseCentres(const GlyphMapSettings& s) {
+  const double jitter = blueNoiseJitter(s.size, s.diameter);
+  if (jitter < 0.0)
+    throw Error("a glyph diameter of " + voxels(s.diameter) +
+                " map voxels does not fit a spacing of " + voxels(blueNoiseSpacing(s.size)) +
+                " (at most " + voxels(blueNoiseSpacing(s.size) - glyphClearance(s.size)) + ")");
+  const double edge = double(s.size) / kBlueNoiseCubes;
+  std::mt19937 rng(s.seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const glm::dvec3 shift = (glm::dvec3(unit(rng), unit(rng), unit(rng)) + 1.0) * (0.5 * edge);
+  std::vector<glm::dvec3> centres;
+  for (int k = 0; k < kBlueNoiseCubes; ++k)
+    for (int j = 0; j < kBlueNoiseCubes; ++j)
+      for (int i = 0; i < kBlueNoiseCubes; ++i)
+        for (double body : {0.0, 0.5}) {
+          glm::dvec3 offset;
+          do offset = glm::dvec3(unit(rng), unit(rng), unit(rng));
+          while (glm::dot(offset, offset) > 1.0);
+          glm::dvec3 c = (glm::dvec3(i, j, k) + body) * edge + shift + jitter * offset;
+          for (int a = 0; a < 3; ++a) c[a] -= s.size * std::floor(c[a] / s.size);
+          centres.push_back(c);
+        }
+  return centres;
+}
+
+// The paper's map: rejection sampling at random positions. A glyph may not come closer than
+// one diameter plus one cell diagonal to another, measured on the periodic lattice, so no
+// cell is reached by two glyphs.
+std::vector<glm::dvec3> paperCentres(const GlyphMapSettings& s) {
+  const double n = s.size;
+  std::mt19937 rng(s.seed);
+  std::uniform_real_distribution<double> position(0.0, n);
+  const double minDistance = s.diameter + glyphClearance(s.size) + 1e-6;
+  std::vector<glm::dvec3> centres;
+  for (int attempts = 0; static_cast<int>(centres.size()) < s.count; ++attempts) {
+    if (attempts > 200000)
+      throw Error("cannot place " + std::to_string(s.count) + " glyphs of " + voxels(s.diameter) +
+                  " voxels without overlap in a " + std::to_string(s.size) +
+                  "^3 map (random placement fitted " + std::to_string(centres.size()) +
+                  "; use fewer or smaller glyphs, or the blue-noise placement)");
+    const glm::dvec3 c(position(rng), position(rng), position(rng));
+    bool free = true;
+    for (const auto& other : centres)
+      free &= glm::length(periodicDelta(c, other, n)) >= minDistance;
+    if (free) centres.push_back(c);
+  }
+  return centres;
+}
+
+}  // namespace
+
+double blueNoiseSpacing(int size) {
+  return double(size) / kBlueNoiseCubes * std::sqrt(3.0) / 2.0;  // half the cube's diagonal
+}
+
+double glyphClearance(int size) { return std::sqrt(3.0) * cellSizeOf(size); }
+
+double blueNoiseJitter(int size, double diameter) {
+  const double spacing = blueNoiseSpacing(size);
+  // 1e-6: the strict inequality the cells rely on (see paperCentres).
+  const double room = 0.5 * (spacing - diameter - glyphClearance(size) - 2e-6);
+  return std::min(room, 0.15 * spacing);
+}
+
+double blueNoiseCoverage(int size, double diameter) {
+  return std::sqrt(5.0) / 4.0 * size / kBlueNoiseCubes +
+         std::max(0.0, blueNoiseJitter(size, diameter));
+}
+
+glm::dmat3 glyphMapRotation(GlyphPlacement placement) {
+  if (placement == GlyphPlacement::Paper) return glm::dmat3(1.0);
+  // 37 degrees about (1, 2, 3): no lattice direction of low index lies along a patient axis.
+  return glm::dmat3(
+      glm::rotate(glm::dmat4(1.0), glm::radians(37.0), glm::normalize(glm::dvec3(1, 2, 3))));
+}
+
+GlyphMapSettings blueNoiseGlyphMap(double spacingMm, double diameterMm, std::uint32_t seed) {
+  if (!(spacingMm > 0.0) || !(diameterMm > 0.0))
+    throw Error("glyph spacing and diameter must be positive");
+  GlyphMapSettings s;
+  s.placement = GlyphPlacement::BlueNoise;
+  s.size = kBlueNoiseMapSize;
+  s.seed = seed;
+  s.count = 2 * kBlueNoiseCubes * kBlueNoiseCubes * kBlueNoiseCubes;
+  s.diameter = diameterMm * blueNoiseSpacing(s.size) / spacingMm;
+  if (blueNoiseJitter(s.size, s.diameter) < 0.0) {
+    std::ostringstream o;
+    o << std::setprecision(3) << "a glyph diameter of " << diameterMm
+      << " mm does not fit a spacing of " << spacingMm << " mm (at most "
+      << maxBlueNoiseDiameterMm(spacingMm) << " mm)";
+    throw Error(o.str());
+  }
+  return s;
+}
+
+double maxBlueNoiseDiameterMm(double spacingMm) {
+  const int size = kBlueNoiseMapSize;
+  return spacingMm * (1.0 - glyphClearance(size) / blueNoiseSpacing(size)) - 1e-6;
+}
+
 GlyphMap makeGlyphMap(const GlyphMapSettings& s, bool texels) {
   if (s.size < 8 || s.size > 512) throw Error("glyph map size must be 8..512 voxels");
-  if (s.count < 1 || s.count > 255) throw Error("glyph count must be 1..255");
+  if (s.placement == GlyphPlacement::Paper && (s.count < 1 || s.count > 255))
+    throw Error("glyph count must be 1..255");
   if (!(s.diameter >= 2.0) || s.diameter > s.size / 2.0)
     throw Error("glyph diameter must be 2 .. half the map size (" + std::to_string(s.size / 2) +
                 ") voxels");
   GlyphMap map;
   map.size = s.size;
   map.radius = s.diameter / 2.0;
-  const double n = s.size;
-  std::mt19937 rng(s.seed);
-  std::uniform_real_distribution<double> position(0.0, n);
-  // Cells of 2 voxels where the size allows (a 64^3 grid for the default map), else 1.
-  map.cellSize = s.size % 2 == 0 ? 2 : 1;
-  const double halfDiagonal = 0.5 * std::sqrt(3.0) * map.cellSize;
-  // Rejection sampling: a glyph may not come closer than one diameter plus one cell diagonal
-  // to another, measured on the periodic lattice, so no cell is reached by two glyphs.
-  const double minDistance = s.diameter + 2.0 * halfDiagonal + 1e-6;
-  for (int attempts = 0; static_cast<int>(map.centres.size()) < s.count; ++attempts) {
-    if (attempts > 200000)
-      throw Error("cannot place " + std::to_string(s.count) + " glyphs of " +
-                  std::to_string(s.diameter) + " voxels without overlap in a " +
-                  std::to_string(s.size) + "^3 map");
-    const glm::dvec3 c(position(rng), position(rng), position(rng));
-    bool free = true;
-    for (const auto& other : map.centres)
-      free &= glm::length(periodicDelta(c, other, n)) >= minDistance;
-    if (free) map.centres.push_back(c);
-  }
+  map.cellSize = cellSizeOf(s.size);
+  const double halfDiagonal = 0.5 * glyphClearance(s.size);
+  map.centres = s.placement == GlyphPlacement::BlueNoise ? blueNoiseCentres(s) : paperCentres(s);
   // A glyph reaches into a cell only if the cell's centre lies within radius + half a diagonal
   // of its centre; then, by the clearance, no other glyph reaches that cell.
   const int cells = s.size / map.cellSize;

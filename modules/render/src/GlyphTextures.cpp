@@ -1,5 +1,6 @@
 #include "GlyphTextures.h"
 
+#include <algorithm>
 #include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -11,7 +12,8 @@ namespace mvw::render::detail {
 
 void GlyphTextures::uploadMap(const GlyphMapSettings& g) {
   if (cells_.id() && g.size == settings_.size && g.count == settings_.count &&
-      g.diameter == settings_.diameter && g.seed == settings_.seed)
+      g.diameter == settings_.diameter && g.seed == settings_.seed &&
+      g.placement == settings_.placement)
     return;
   const GlyphMap map = makeGlyphMap(g, /*texels=*/false);
   const int n = map.size / map.cellSize;
@@ -75,17 +77,19 @@ void GlyphTextures::updateBeta(const VolumeTextures& volume, const FunctionalTex
   betaKey_ = key;
 }
 
-void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm) const {
+void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm, double minSize) const {
   const GLuint block = glGetUniformBlockIndex(p.id(), "GlyphCentres");
   if (block != GL_INVALID_INDEX) {
     glUniformBlockBinding(p.id(), block, 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, centres_.id());
   }
   const double voxelsPerMm = settings_.diameter / diameterMm;
-  glUniform1f(p.uniform("uGlyphVoxelsPerMm"), float(voxelsPerMm));
+  const glm::mat3 glyphFromWorld(voxelsPerMm * glyphMapRotation(settings_.placement));
+  glUniformMatrix3fv(p.uniform("uGlyphFromWorld"), 1, GL_FALSE, glm::value_ptr(glyphFromWorld));
   glUniform1f(p.uniform("uGlyphMapSize"), float(settings_.size));
   glUniform1f(p.uniform("uGlyphInvMapSize"), float(1.0 / settings_.size));
   glUniform1f(p.uniform("uGlyphRadius"), float(radius_));
+  glUniform1f(p.uniform("uGlyphMinSize"), float(std::clamp(minSize, 0.0, 1.0)));
 }
 
 }  // namespace mvw::render::detail

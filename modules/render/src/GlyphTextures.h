@@ -27,7 +27,7 @@ class GlyphTextures {
                   glm::vec2 window, int classes, const ShaderProgram& betaProgram, GLuint vao);
 
   // The glyph centres' uniform block and the map's scale, for glyphs of diameterMm.
-  void setUniforms(const ShaderProgram& program, double diameterMm) const;
+  void setUniforms(const ShaderProgram& program, double diameterMm, double minSize) const;
 
   GLuint cells() const { return cells_.id(); }
 

@@ -16,6 +16,7 @@ const ShaderProgram& RaycastPrograms::forMode(RenderMode mode, const RenderSetti
     if (!s.glyphSizeControl) defines.push_back("MVW_GLYPH_SIMPLE 1");
     if (s.glyphConvexity == GlyphConvexity::Dimples) defines.push_back("MVW_GLYPH_CONCAVE 1");
     if (s.glyphConvexity == GlyphConvexity::Both) defines.push_back("MVW_GLYPH_BOTH 1");
+    if (s.glyphMap.placement == GlyphPlacement::Paper) defines.push_back("MVW_GLYPH_PAPER 1");
   }
   switch (mode) {
     case RenderMode::Composite:

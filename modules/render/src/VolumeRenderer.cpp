@@ -136,7 +136,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setVolumeUniforms(p);
   setRayUniforms(p, s, camera, step);
   setShadingUniforms(p, s, camera);
-  if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm);
+  if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize);
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   bindTextures(p);
 

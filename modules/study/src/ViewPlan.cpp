@@ -3,6 +3,7 @@
 #include <array>
 
 #include "mvw/core/Error.h"
+#include "mvw/render/GlyphMap.h"
 #include "mvw/study/ModalityDefaults.h"
 
 namespace mvw::study {
@@ -138,7 +139,23 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.glyphSizeControl = v.glyphMethod == config::GlyphMethod::Sized;
     s.glyphConvexity = v.glyphConvexity;
     s.glyphDiameterMm = v.glyphDiameterMm;
+    s.glyphMinSize = v.glyphMinSize;
     s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
+    if (v.glyphs) {
+      // A map that cannot hold the request is bad input, said before any GL work.
+      const bool paper = v.glyphPlacement == config::GlyphPlacement::Paper;
+      const std::string keys = paper ? "glyphs.count / glyphs.map_diameter / glyphs.map_size"
+                                     : "glyphs.diameter_mm / glyphs.spacing_mm";
+      try {
+        if (!paper)
+          s.glyphMap = render::blueNoiseGlyphMap(v.glyphSpacingMm, v.glyphDiameterMm, v.glyphSeed);
+        render::makeGlyphMap(s.glyphMap, /*texels=*/false);
+      } catch (const InputError&) {
+        throw;
+      } catch (const Error& e) {
+        throw InputError(study.file, "view '" + v.name + "': " + keys + ": " + e.what());
+      }
+    }
     if (v.glyphs && !study.functional)
       throw InputError(study.file,
                        "view '" + v.name + "': glyphs need a functional volume in the study");
@@ -217,6 +234,12 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.glyphCount = s.glyphMap.count;
   v.glyphMapDiameter = s.glyphMap.diameter;
   v.glyphSeed = s.glyphMap.seed;
+  v.glyphMinSize = s.glyphMinSize;
+  const bool blueNoise = s.glyphMap.placement == render::GlyphPlacement::BlueNoise;
+  v.glyphPlacement = blueNoise ? config::GlyphPlacement::BlueNoise : config::GlyphPlacement::Paper;
+  if (blueNoise)  // the map's scale, back in mm
+    v.glyphSpacingMm =
+        render::blueNoiseSpacing(s.glyphMap.size) * s.glyphDiameterMm / s.glyphMap.diameter;
   if (s.functionalHigh > s.functionalLow)
     v.functionalWindow = std::array<double, 2>{s.functionalLow, s.functionalHigh};
   v.light = {s.lightOffset.x, s.lightOffset.y};

@@ -45,6 +45,13 @@ enum class ViewName {
 enum class Sampling { Linear, Nearest };
 // Volumetric normal glyphs: size control by eqs. (2)-(3) of Seipel 2007, or eq. (1) blending.
 enum class GlyphMethod { Sized, Simple };
+// Where glyphs sit in the normal map: a turned, jittered lattice with the spacing in mm
+// (blue-noise), or the paper's 16 random glyphs of 32 voxels in 128^3 (paper).
+enum class GlyphPlacement { BlueNoise, Paper };
+// The glyph diameter when the view does not give one: most of the blue-noise spacing, and the
+// paper map's own size on the patient.
+inline constexpr double kBlueNoiseDiameterFraction = 0.85;
+inline constexpr double kPaperGlyphDiameterMm = 6.0;
 
 // One rendered view ("render": {"views": [...]}). Every default below is the one default of
 // its key: the parser starts from a default-constructed ViewConfig.
@@ -59,12 +66,19 @@ struct ViewConfig {
   std::string preset;                               // transfer function preset; "" = by modality
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
-  // "convexity": "convex" | "concave" | "both", "diameter_mm", "count", "seed", "map_size",
+  // "convexity": "convex" | "concave" | "both", "placement": "blue-noise" | "paper",
+  // "spacing_mm" (blue-noise: glyph centre spacing), "diameter_mm" (default: blue-noise
+  // kBlueNoiseDiameterFraction of the spacing, paper kPaperGlyphDiameterMm), "min_size"
+  // (apparent bump radius at the window's low end, in glyph radii; blue-noise only: "paper" is
+  // the paper's map and shading), "seed", and for the paper's random map "count", "map_size",
   // "map_diameter"}; the functional attribute is mapped to beta 0..1 by functional_window.
   bool glyphs = false;
   GlyphMethod glyphMethod = GlyphMethod::Sized;
   GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
-  double glyphDiameterMm = 6.0;
+  GlyphPlacement glyphPlacement = GlyphPlacement::BlueNoise;
+  double glyphSpacingMm = 5.0;
+  double glyphMinSize = 0.6;
+  double glyphDiameterMm = kBlueNoiseDiameterFraction * 5.0;
   int glyphCount = 16, glyphMapSize = 128;
   double glyphMapDiameter = 32.0;
   unsigned glyphSeed = 1;
@@ -138,6 +152,7 @@ std::string toString(ViewName view);
 std::string toString(Sampling sampling);
 std::string toString(GlyphMethod method);
 std::string toString(GlyphConvexity convexity);
+std::string toString(GlyphPlacement placement);
 std::string toString(RegistrationMethod method);
 std::optional<ViewName> parseViewName(const std::string& name);
 std::optional<Sampling> parseSampling(const std::string& name);

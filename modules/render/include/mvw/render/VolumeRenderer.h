@@ -70,8 +70,11 @@ struct RenderSettings {
   bool glyphs = false;
   bool glyphSizeControl = true;  // eqs. (2)-(3); false: simple blending, eq. (1)
   GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
-  double glyphDiameterMm = 12.0;
-  GlyphMapSettings glyphMap;  // size, count, diameter in map voxels, seed
+  double glyphDiameterMm = 6.0;  // the paper map's size on the patient, as config::ViewConfig
+  GlyphMapSettings glyphMap;     // size, count, diameter in map voxels, seed, placement
+  // The apparent bump radius just above the attribute window's low end, in glyph radii; it
+  // grows linearly to 1 at the high end (shaders/common/glyphs.glsl).
+  double glyphMinSize = 0.6;
   // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
   double functionalLow = 0.0, functionalHigh = 0.0;
   // Nominal attribute (labels): K > 0 maps label L > 0 to glyph size (L mod K + 1) / K.
