@@ -48,10 +48,11 @@ void runBench(const BenchOptions& o) {
   auto context = render::createHeadlessContext({16, 16});
   const auto t0 = std::chrono::steady_clock::now();
   render::VolumeRenderer renderer(*context, volume);
-  const double uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const double uploadMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const glm::ivec3 d = volume.dimensions();
-  std::printf("mvw bench render: %s, %d x %d x %d, %d x %d pixels, %d frames per mode\n", context->renderer().c_str(),
-              d.x, d.y, d.z, o.size, o.size, o.frames);
+  std::printf("mvw bench render: %s, %d x %d x %d, %d x %d pixels, %d frames per mode\n",
+              context->renderer().c_str(), d.x, d.y, d.z, o.size, o.size, o.frames);
   std::printf("  upload (volume, gradient, blocks): %.0f ms\n", uploadMs);
   for (render::RenderMode mode : modes) {
     render::RenderSettings s;
@@ -75,7 +76,8 @@ void runBench(const BenchOptions& o) {
     s.stepMm = step / 4.0;
     const Image reference = renderer.render(s).image;
     std::printf("  %-11s %8.1f ms/frame  %6.2f fps  step %.3f mm  PSNR %.1f dB vs 4x oversampled\n",
-                render::toString(mode).c_str(), ms, 1000.0 / ms, step, validate::psnr(image, reference));
+                render::toString(mode).c_str(), ms, 1000.0 / ms, step,
+                validate::psnr(image, reference));
   }
 }
 
@@ -84,14 +86,16 @@ void runBench(const BenchOptions& o) {
 void addBenchCommand(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks (not tests): print timings");
-  CLI::App* cmd = bench->add_subcommand("render", "ms/frame of each render mode over an azimuth orbit");
+  CLI::App* cmd =
+      bench->add_subcommand("render", "ms/frame of each render mode over an azimuth orbit");
   bench->require_subcommand(1);
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("--size", o->size, "Image width and height")->check(CLI::Range(16, 4096));
   cmd->add_option("--frames", o->frames, "Azimuth steps per mode")->check(CLI::Range(1, 3600));
   cmd->add_option("--modes", o->modes, "Comma-separated modes");
   cmd->add_option("--preset", o->preset, "Transfer function for composite");
-  cmd->add_option("--step", o->stepMm, "Sample distance in mm (default: half the smallest spacing)");
+  cmd->add_option("--step", o->stepMm,
+                  "Sample distance in mm (default: half the smallest spacing)");
   cmd->add_flag("--no-shading", o->noShading, "Composite without Phong shading");
   cmd->callback([o] { runBench(*o); });
   addBenchRegisterCommand(*bench);

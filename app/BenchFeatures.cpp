@@ -1,6 +1,5 @@
 #include "BenchFeatures.h"
 
-
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -50,10 +49,14 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   if (study.functional) functional = mvw::study::readSource(*study.functional);
   auto context = render::createHeadlessContext({16, 16});
   render::VolumeRenderer renderer(*context, anatomy);
-  if (functional) renderer.setFunctional(*functional, mvw::study::placeFunctional(study, anatomy, *functional).anatomicalFromFunctional);
+  if (functional)
+    renderer.setFunctional(
+        *functional,
+        mvw::study::placeFunctional(study, anatomy, *functional).anatomicalFromFunctional);
   std::printf("mvw bench features: %s, %s, %d azimuth steps per view, with/without interleaved\n",
               study.file.filename().c_str(), context->renderer().c_str(), o.frames);
-  std::printf("  %-30s %-11s %-15s %10s %10s %8s\n", "view", "mode", "feature", "without", "with", "ratio");
+  std::printf("  %-30s %-11s %-15s %10s %10s %8s\n", "view", "mode", "feature", "without", "with",
+              "ratio");
   for (mvw::study::PlannedView& v : views) {
     if (!hasFeature(v.settings)) continue;
     mvw::study::applyDefaultPreset(v, anatomy);
@@ -65,7 +68,8 @@ void runFeatureBench(const FeatureBenchOptions& o) {
     std::vector<double> ratios;
     double msWith = 0.0, msWithout = 0.0;
     for (int f = 0; f < o.frames; ++f) {
-      with.camera.azimuthDeg = without.camera.azimuthDeg = v.settings.camera.azimuthDeg + 360.0 * f / o.frames;
+      with.camera.azimuthDeg = without.camera.azimuthDeg =
+          v.settings.camera.azimuthDeg + 360.0 * f / o.frames;
       // Alternate which goes first, so neither always finds the caches warm.
       const bool withFirst = f % 2 == 0;
       const double a = renderer.render(withFirst ? with : without).milliseconds;
@@ -76,8 +80,9 @@ void runFeatureBench(const FeatureBenchOptions& o) {
       ratios.push_back(w / wo);
     }
     std::printf("  %-30s %-11s %-15s %7.1f ms %7.1f ms %7.3fx  (median of per-frame ratios %.3f)\n",
-                v.config.name.c_str(), toString(v.config.mode).c_str(), featureName(v.settings).c_str(), msWithout / o.frames,
-                msWith / o.frames, msWith / msWithout, median(ratios));
+                v.config.name.c_str(), toString(v.config.mode).c_str(),
+                featureName(v.settings).c_str(), msWithout / o.frames, msWith / o.frames,
+                msWith / msWithout, median(ratios));
   }
 }
 
@@ -86,9 +91,11 @@ void runFeatureBench(const FeatureBenchOptions& o) {
 void addBenchFeaturesCommand(CLI::App& bench) {
   auto o = std::make_shared<FeatureBenchOptions>();
   CLI::App* cmd = bench.add_subcommand(
-      "features", "ms/frame of each view with its glyphs, fusion or depth cue and without, interleaved");
+      "features",
+      "ms/frame of each view with its glyphs, fusion or depth cue and without, interleaved");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
-  cmd->add_option("--size", o->size, "Image width and height (default: each view's own)")->check(CLI::Range(16, 4096));
+  cmd->add_option("--size", o->size, "Image width and height (default: each view's own)")
+      ->check(CLI::Range(16, 4096));
   cmd->add_option("--frames", o->frames, "Azimuth steps per view")->check(CLI::Range(1, 3600));
   cmd->callback([o] { runFeatureBench(*o); });
 }

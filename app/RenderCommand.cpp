@@ -16,13 +16,13 @@
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
-#include "mvw/core/VesselPhantom.h"
 #include "mvw/core/Version.h"
+#include "mvw/core/VesselPhantom.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/PngWriter.h"
-#include "mvw/io/VolumeWriter.h"
 #include "mvw/io/VolumeReader.h"
+#include "mvw/io/VolumeWriter.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/GlyphMap.h"
@@ -85,7 +85,8 @@ void runRender(const RenderOptions& o) {
                            v.settings.mode == render::RenderMode::ShellSum ||
                            v.settings.mode == render::RenderMode::ShellLit;
     const bool overlayShown =
-        functional && (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion);
+        functional &&
+        (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion);
     if (v.config.annotate) {
       render::annotate(frame.image, frame.camera, caption);
       if (overlayShown) {
@@ -114,8 +115,10 @@ void runRender(const RenderOptions& o) {
     if (v.settings.glyphs)
       r["glyphs"] = {{"method", config::toString(v.config.glyphMethod)},
                      {"convexity", config::toString(v.config.glyphConvexity)},
-                     {"diameter_mm", v.config.glyphDiameterMm}, {"count", v.config.glyphCount},
-                     {"seed", v.config.glyphSeed}, {"map_size", v.config.glyphMapSize},
+                     {"diameter_mm", v.config.glyphDiameterMm},
+                     {"count", v.config.glyphCount},
+                     {"seed", v.config.glyphSeed},
+                     {"map_size", v.config.glyphMapSize},
                      {"map_diameter", v.config.glyphMapDiameter}};
     if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
     if (v.settings.functionalHigh > v.settings.functionalLow)
@@ -125,7 +128,8 @@ void runRender(const RenderOptions& o) {
       r["shells_disabled"] = v.config.shellsDisabled;
     }
     if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue)
-      r["depth_cue"] = {{"brightness", v.settings.cueBrightness}, {"amount", v.settings.cueAmount},
+      r["depth_cue"] = {{"brightness", v.settings.cueBrightness},
+                        {"amount", v.settings.cueAmount},
                         {"contrast", v.settings.cueContrast}};
     r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : render::defaultStepMm(anatomy);
     r["sampling"] = config::toString(v.config.sampling);
@@ -147,8 +151,8 @@ void runRender(const RenderOptions& o) {
     r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);
     outputs.push_back({v.config.name + ".png", std::move(frame.image), r});
     std::cerr << "rendered " << v.config.name << " (" << toString(v.config.mode) << ", "
-              << config::toString(v.config.view) << ") in "
-              << static_cast<int>(frame.milliseconds) << " ms\n";
+              << config::toString(v.config.view) << ") in " << static_cast<int>(frame.milliseconds)
+              << " ms\n";
   }
   // All frames exist before anything is written: a failure leaves no partial output.
   fs::create_directories(o.outDir);
@@ -189,8 +193,8 @@ void runGlyphMap(const GlyphMapOptions& o) {
   std::memcpy(v.data(), map.texels.data(), v.byteSize());
   v.metadata().seriesDescription = "mvw glyph normal map";
   io::writeVolume(v, o.output);
-  std::cout << "wrote " << map.centres.size() << " glyphs of " << 2 * map.radius << " voxels in a " << map.size
-            << "^3 map to " << o.output << "\n";
+  std::cout << "wrote " << map.centres.size() << " glyphs of " << 2 * map.radius << " voxels in a "
+            << map.size << "^3 map to " << o.output << "\n";
 }
 
 struct PhantomOptions {
@@ -202,7 +206,8 @@ struct PhantomOptions {
 void runVesselPhantom(const PhantomOptions& o) {
   const VesselTree tree = makeVesselTree(o.vessels);
   io::writeVolume(tree.volume, o.output);
-  std::cout << "wrote a vessel tree of " << tree.segments.size() << " segments to " << o.output << "\n";
+  std::cout << "wrote a vessel tree of " << tree.segments.size() << " segments to " << o.output
+            << "\n";
 }
 
 struct PetPhantomOptions {
@@ -222,8 +227,8 @@ void runPetPhantom(const PetPhantomOptions& o) {
   Volume pet = phantom.pet(petFromCt, o.seed);
   pet.metadata().seriesDescription = "mvw PET-like phantom";
   io::writeVolume(pet, o.output);
-  std::cout << "wrote a PET-like volume (" << pet.dimensions().x << " x " << pet.dimensions().y << " x "
-            << pet.dimensions().z << ") to " << o.output << "\n";
+  std::cout << "wrote a PET-like volume (" << pet.dimensions().x << " x " << pet.dimensions().y
+            << " x " << pet.dimensions().z << ") to " << o.output << "\n";
 }
 
 void addRenderCommand(CLI::App& app) {
@@ -231,35 +236,48 @@ void addRenderCommand(CLI::App& app) {
     auto ph = std::make_shared<PhantomOptions>();
     CLI::App* phantom = app.add_subcommand("phantom", "Synthetic volumes with known geometry");
     phantom->require_subcommand(1);
-    CLI::App* cmd = phantom->add_subcommand("vessels", "Branching tubes of decreasing radius on a dim noisy background");
-    cmd->add_option("-o,--output", ph->output, "Output file (.nii, .nii.gz, .mha, .mhd)")->required();
-    cmd->add_option("--size", ph->vessels.dimensions.x, "Voxels per side")->check(CLI::Range(16, 512));
-    cmd->add_option("--generations", ph->vessels.generations, "Branching generations")->check(CLI::Range(1, 12));
+    CLI::App* cmd = phantom->add_subcommand(
+        "vessels", "Branching tubes of decreasing radius on a dim noisy background");
+    cmd->add_option("-o,--output", ph->output, "Output file (.nii, .nii.gz, .mha, .mhd)")
+        ->required();
+    cmd->add_option("--size", ph->vessels.dimensions.x, "Voxels per side")
+        ->check(CLI::Range(16, 512));
+    cmd->add_option("--generations", ph->vessels.generations, "Branching generations")
+        ->check(CLI::Range(1, 12));
     cmd->add_option("--seed", ph->vessels.seed, "Random seed");
-    cmd->add_option("--noise", ph->vessels.noiseSigma, "Noise sigma")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--noise", ph->vessels.noiseSigma, "Noise sigma")
+        ->check(CLI::NonNegativeNumber);
     cmd->callback([ph] {
       ph->vessels.dimensions = glm::ivec3(ph->vessels.dimensions.x);
       runVesselPhantom(*ph);
     });
     auto pet = std::make_shared<PetPhantomOptions>();
-    CLI::App* petCmd = phantom->add_subcommand(
-        "pet", "A PET-like volume made from a CT (uptake model, 6 mm blur, 4 mm grid, noise) under a known rigid transform");
+    CLI::App* petCmd =
+        phantom->add_subcommand("pet",
+                                "A PET-like volume made from a CT (uptake model, 6 mm blur, 4 mm "
+                                "grid, noise) under a known rigid transform");
     petCmd->add_option("--ct", pet->ct, "The CT (HU)")->required();
     petCmd->add_option("-o,--output", pet->output, "Output file")->required();
-    petCmd->add_option("--rotate", pet->rotateDeg, "Rotation about x, y, z in degrees (ITK Euler order)")->expected(3);
+    petCmd
+        ->add_option("--rotate", pet->rotateDeg,
+                     "Rotation about x, y, z in degrees (ITK Euler order)")
+        ->expected(3);
     petCmd->add_option("--shift", pet->shiftMm, "Translation in mm")->expected(3);
     petCmd->add_option("--seed", pet->seed, "Noise seed");
     petCmd->callback([pet] { runPetPhantom(*pet); });
   }
   {
     auto g = std::make_shared<GlyphMapOptions>();
-    CLI::App* cmd = app.add_subcommand("glyphmap", "Export the volumetric normal glyph map (NIfTI or MetaImage)");
-    cmd->add_option("-o,--output", g->output, "Output file (.nii, .nii.gz, .mha, .mhd)")->required();
+    CLI::App* cmd = app.add_subcommand(
+        "glyphmap", "Export the volumetric normal glyph map (NIfTI or MetaImage)");
+    cmd->add_option("-o,--output", g->output, "Output file (.nii, .nii.gz, .mha, .mhd)")
+        ->required();
     cmd->add_option("--size", g->settings.size, "Voxels per side")->check(CLI::Range(8, 512));
     cmd->add_option("--count", g->settings.count, "Number of glyphs")->check(CLI::Range(1, 255));
     cmd->add_option("--diameter", g->settings.diameter, "Glyph diameter in map voxels");
     cmd->add_option("--seed", g->settings.seed, "Random seed of the positions");
-    cmd->add_option("--voxel-mm", g->voxelMm, "Voxel size written to the file")->check(CLI::PositiveNumber);
+    cmd->add_option("--voxel-mm", g->voxelMm, "Voxel size written to the file")
+        ->check(CLI::PositiveNumber);
     cmd->callback([g] {
       try {
         runGlyphMap(*g);
@@ -271,28 +289,39 @@ void addRenderCommand(CLI::App& app) {
     });
   }
   auto o = std::make_shared<RenderOptions>();
-  CLI::App* cmd = app.add_subcommand("render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("-o,--output", o->outDir, "Output folder")->required();
   cmd->add_option("--mode", o->overrides.mode,
-                  "composite | isosurface | mip | minip | average | mpr | shells-mip | shells-sum | shells-lit");
+                  "composite | isosurface | mip | minip | average | mpr | shells-mip | shells-sum "
+                  "| shells-lit");
   cmd->add_option("--view", o->overrides.view,
-                  "anterior | posterior | left | right | superior | inferior (MPR: axial | coronal | sagittal)");
-  cmd->add_option("--preset", o->overrides.preset, "Transfer function: ct-bone, ct-skin, ct-muscle-bone, mr-default, pet-hot-metal");
-  cmd->add_option("--size", o->overrides.size, "Image width and height in pixels")->check(CLI::Range(1, 8192));
+                  "anterior | posterior | left | right | superior | inferior (MPR: axial | coronal "
+                  "| sagittal)");
+  cmd->add_option("--preset", o->overrides.preset,
+                  "Transfer function: ct-bone, ct-skin, ct-muscle-bone, mr-default, pet-hot-metal");
+  cmd->add_option("--size", o->overrides.size, "Image width and height in pixels")
+      ->check(CLI::Range(1, 8192));
   cmd->add_option("--azimuth", o->overrides.azimuth, "Degrees about the view's up axis");
   cmd->add_option("--elevation", o->overrides.elevation, "Degrees about the view's right axis");
   cmd->add_option("--roll", o->overrides.roll, "Degrees about the line of sight");
-  cmd->add_option("--zoom", o->overrides.zoom, "Magnification (1 fits the volume)")->check(CLI::PositiveNumber);
-  cmd->add_option("--window", o->overrides.window, "Window width for projections")->check(CLI::PositiveNumber);
+  cmd->add_option("--zoom", o->overrides.zoom, "Magnification (1 fits the volume)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--window", o->overrides.window, "Window width for projections")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--level", o->overrides.level, "Window centre for projections");
   cmd->add_option("--iso", o->overrides.iso, "Isosurface value");
   cmd->add_option("--sampling", o->overrides.sampling, "linear | nearest");
-  cmd->add_option("--cue-brightness", o->overrides.cueBrightness, "MIP depth cue: brightness beta0 (Heidrich 1995)");
+  cmd->add_option("--cue-brightness", o->overrides.cueBrightness,
+                  "MIP depth cue: brightness beta0 (Heidrich 1995)");
   cmd->add_option("--cue-amount", o->overrides.cueAmount, "MIP depth cue: amount a (0 = none)");
-  cmd->add_option("--cue-contrast", o->overrides.cueContrast, "MIP depth cue: contrast b (1 = plain MIP)");
-  cmd->add_flag("--perspective", o->overrides.perspective, "Perspective instead of orthographic projection");
-  cmd->add_flag("--no-annotate", o->overrides.noAnnotate, "No orientation labels, scale bar or caption");
+  cmd->add_option("--cue-contrast", o->overrides.cueContrast,
+                  "MIP depth cue: contrast b (1 = plain MIP)");
+  cmd->add_flag("--perspective", o->overrides.perspective,
+                "Perspective instead of orthographic projection");
+  cmd->add_flag("--no-annotate", o->overrides.noAnnotate,
+                "No orientation labels, scale bar or caption");
   cmd->callback([o] {
     if (o->overrides.window.has_value() != o->overrides.level.has_value())
       throw InputError(o->study, "--window and --level go together");

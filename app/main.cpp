@@ -7,15 +7,16 @@
 
 #include "BenchCommand.h"
 #include "InfoCommand.h"
-#include "view/ViewCommand.h"
 #include "RegisterCommand.h"
 #include "RenderCommand.h"
 #include "ValidateCommand.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Version.h"
+#include "view/ViewCommand.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"mvw - multimodal volume workstation: anatomy + functional volumes, registered and rendered"};
+  CLI::App app{
+      "mvw - multimodal volume workstation: anatomy + functional volumes, registered and rendered"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("mvw ") + mvw::kVersion);
   mvw::app::addInfoCommand(app);

@@ -9,14 +9,6 @@ cmake_minimum_required(VERSION 3.25)
 # must still exist and still fail the check: once it is formatted (or gone) the check fails
 # until it is removed here, so the list can only shrink.
 set(pending
-  app/ViewPlan.cpp
-  app/ViewPlan.h
-  app/view/GlfwContext.cpp
-  app/view/ViewCommand.cpp
-  app/view/Viewer.cpp
-  app/view/Viewer.h
-  modules/render/src/VolumeRenderer.cpp
-  tests/render/raycast_gltest.cpp
 )
 
 if(NOT CLANG_FORMAT OR NOT EXISTS "${CLANG_FORMAT}")

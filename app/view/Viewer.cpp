@@ -9,7 +9,6 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "mvw/study/FunctionalPlacement.h"
 #include "GlfwContext.h"
 #include "ViewerPanel.h"
 #include "ViewerScript.h"
@@ -19,6 +18,7 @@
 #include "mvw/render/DisplayTexture.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/render/WindowFramebuffer.h"
+#include "mvw/study/FunctionalPlacement.h"
 
 namespace mvw::app {
 
@@ -77,9 +77,8 @@ int runViewer(ViewerOptions options) {
     const mvw::study::FunctionalPlacement placement =
         mvw::study::placeFunctional(options.study, options.anatomical, *functional);
     renderer.setFunctional(*functional, placement.anatomicalFromFunctional);
-    scene.registration =
-        ViewerState::describePlacement(config::toString(options.study.registration.method),
-                                       placement.report);
+    scene.registration = ViewerState::describePlacement(
+        config::toString(options.study.registration.method), placement.report);
     scene.functionalRange = renderer.functionalRange();
   }
   scene.centre = renderer.centre();

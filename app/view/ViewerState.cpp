@@ -7,13 +7,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
+#include "mvw/io/PngWriter.h"
+#include "mvw/render/TransferFunction.h"
 #include "mvw/study/Caption.h"
 #include "mvw/study/ModalityDefaults.h"
 #include "mvw/study/ViewPlan.h"
-#include "mvw/core/Error.h"
-#include "mvw/io/PngWriter.h"
-#include "mvw/render/TransferFunction.h"
 
 namespace mvw::app {
 
@@ -267,9 +267,12 @@ std::optional<std::filesystem::path> ViewerState::takeScreenshotRequest() {
 }
 
 config::ViewConfig ViewerState::viewConfigOf(int pane) const {
-  config::ViewConfig v = mvw::study::describeView(renderSettings(pane), std::string("view-") + kPaneNames[pane],
-                                      pane == k3d ? presetName_ : "");
-  if (pane != k3d) v.view = *config::parseViewName(kPaneNames[pane]);  // axial, coronal, sagittal: the planes' own names
+  config::ViewConfig v =
+      mvw::study::describeView(renderSettings(pane), std::string("view-") + kPaneNames[pane],
+                               pane == k3d ? presetName_ : "");
+  if (pane != k3d)
+    v.view = *config::parseViewName(
+        kPaneNames[pane]);  // axial, coronal, sagittal: the planes' own names
   return v;
 }
 

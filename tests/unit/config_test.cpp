@@ -68,13 +68,16 @@ TEST(StudyConfig, RefusesTyposMissingKeysAndBadValues) {
             std::string::npos);
   // Glyph placement keys (issue 15).
   std::ofstream(dir / "a.nii") << "x";
-  const std::string glyphView = R"({"anatomical": {"path": "a.nii"}, "render": {"views": [{"glyphs": )";
-  EXPECT_NE(errorOf(writeConfig(dir, glyphView + R"({"placement": "poisson"}}]}})")).find("glyphs.placement"),
+  const std::string glyphView =
+      R"({"anatomical": {"path": "a.nii"}, "render": {"views": [{"glyphs": )";
+  EXPECT_NE(errorOf(writeConfig(dir, glyphView + R"({"placement": "poisson"}}]}})"))
+                .find("glyphs.placement"),
             std::string::npos);
   EXPECT_NE(errorOf(writeConfig(dir, glyphView + R"({"min_size": 2}}]}})")).find("glyphs.min_size"),
             std::string::npos);
-  EXPECT_NE(errorOf(writeConfig(dir, glyphView + R"({"spacing_mm": 0}}]}})")).find("glyphs.spacing_mm"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf(writeConfig(dir, glyphView + R"({"spacing_mm": 0}}]}})")).find("glyphs.spacing_mm"),
+      std::string::npos);
 }
 
 // Defaults: blue-noise glyphs 0.85 of their spacing; the paper's map keeps its 6 mm.

@@ -45,7 +45,7 @@ const EnumNames<GlyphConvexity> kConvexities = {{GlyphConvexity::Bumps, "convex"
                                                 {GlyphConvexity::Both, "both"}};
 
 const EnumNames<GlyphPlacement> kPlacements = {{GlyphPlacement::BlueNoise, "blue-noise"},
-                                                {GlyphPlacement::Paper, "paper"}};
+                                               {GlyphPlacement::Paper, "paper"}};
 
 const EnumNames<RegistrationMethod> kRegistrations = {{RegistrationMethod::None, "none"},
                                                       {RegistrationMethod::Rigid, "rigid"},

@@ -20,7 +20,8 @@ std::uintmax_t regularFileSize(const std::filesystem::path& path) {
   return size;
 }
 
-std::uintmax_t companionFileSize(const std::filesystem::path& header, const std::filesystem::path& data) {
+std::uintmax_t companionFileSize(const std::filesystem::path& header,
+                                 const std::filesystem::path& data) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(data, ec))
     throw InputError(header, "its data file " + data.string() + " is missing");
@@ -31,20 +32,22 @@ std::size_t checkedVolumeBytes(const std::filesystem::path& file, glm::ivec3 dim
                                long long components, std::size_t bytesPerValue,
                                std::size_t maxBytes) {
   if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0 || components <= 0)
-    throw InputError(file, "header gives non-positive dimensions " + std::to_string(dims.x) + " x " +
-                               std::to_string(dims.y) + " x " + std::to_string(dims.z) + " x " +
-                               std::to_string(components));
+    throw InputError(file, "header gives non-positive dimensions " + std::to_string(dims.x) +
+                               " x " + std::to_string(dims.y) + " x " + std::to_string(dims.z) +
+                               " x " + std::to_string(components));
   unsigned long long bytes = bytesPerValue;
   bool overflow = false;
-  for (unsigned long long factor : {static_cast<unsigned long long>(dims.x), static_cast<unsigned long long>(dims.y),
-                                    static_cast<unsigned long long>(dims.z), static_cast<unsigned long long>(components)})
+  for (unsigned long long factor :
+       {static_cast<unsigned long long>(dims.x), static_cast<unsigned long long>(dims.y),
+        static_cast<unsigned long long>(dims.z), static_cast<unsigned long long>(components)})
     overflow |= __builtin_mul_overflow(bytes, factor, &bytes);
   if (overflow || bytes > maxBytes)
-    throw InputError(file, "header claims " + std::to_string(dims.x) + " x " +
-                               std::to_string(dims.y) + " x " + std::to_string(dims.z) + " x " +
-                               std::to_string(components) + " values (" + (overflow ? std::string("more than 2^64 bytes")
-                                         : std::to_string(bytes >> 20) + " MiB") + "), more than the limit of " +
-                               std::to_string(maxBytes >> 20) + " MiB");
+    throw InputError(
+        file, "header claims " + std::to_string(dims.x) + " x " + std::to_string(dims.y) + " x " +
+                  std::to_string(dims.z) + " x " + std::to_string(components) + " values (" +
+                  (overflow ? std::string("more than 2^64 bytes")
+                            : std::to_string(bytes >> 20) + " MiB") +
+                  "), more than the limit of " + std::to_string(maxBytes >> 20) + " MiB");
   return static_cast<std::size_t>(bytes);
 }
 

@@ -13,9 +13,9 @@
 #include <zlib.h>
 
 #include "FileChecks.h"
-#include "mvw/io/AtomicFile.h"
 #include "Formats.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/AtomicFile.h"
 
 namespace mvw::io::detail {
 

@@ -17,11 +17,11 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "FileChecks.h"
-#include "mvw/io/AtomicFile.h"
 #include "Formats.h"
 #include "VtkBridge.h"
 #include "VtkMessages.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/AtomicFile.h"
 #include "mvw/io/VtkImageView.h"
 
 namespace mvw::io::detail {

@@ -5,8 +5,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "FileChecks.h"
-#include "mvw/io/AtomicFile.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/AtomicFile.h"
 
 namespace mvw::io {
 

@@ -38,7 +38,6 @@ GlContext& madeCurrent(GlContext& context) {
 
 }  // namespace
 
-
 struct VolumeRenderer::Impl {
   GlContext& context;
   detail::VolumeTextures volume;
