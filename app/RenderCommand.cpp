@@ -1,7 +1,6 @@
 #include "RenderCommand.h"
 
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -11,24 +10,18 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Version.h"
-#include "mvw/core/VesselPhantom.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/io/VolumeReader.h"
-#include "mvw/io/VolumeWriter.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Framing.h"
-#include "mvw/render/GlyphMap.h"
 #include "mvw/render/VolumeRenderer.h"
-#include "mvw/resampling/PetPhantom.h"
-#include "mvw/resampling/Transform.h"
 #include "mvw/study/Caption.h"
 #include "mvw/study/FunctionalPlacement.h"
 #include "mvw/study/StudyLoader.h"
@@ -178,116 +171,7 @@ void runRender(const RenderOptions& o) {
 
 }  // namespace
 
-struct GlyphMapOptions {
-  std::string output;
-  render::GlyphMapSettings settings;
-  double voxelMm = 1.0;
-};
-
-// `mvw glyphmap -o FILE`: the normal map as a 4-component float volume (RGB normal, A distance
-// to the glyph centre / radius, -1 outside) for inspection in any NIfTI/MetaImage viewer.
-void runGlyphMap(const GlyphMapOptions& o) {
-  const render::GlyphMap map = render::makeGlyphMap(o.settings);
-  Volume v({map.size, map.size, map.size}, 4, ScalarType::Float32,
-           makeWorldFromIndex(glm::dvec3(0.0), glm::dvec3(o.voxelMm), glm::dmat3(1.0)));
-  std::memcpy(v.data(), map.texels.data(), v.byteSize());
-  v.metadata().seriesDescription = "mvw glyph normal map";
-  io::writeVolume(v, o.output);
-  std::cout << "wrote " << map.centres.size() << " glyphs of " << 2 * map.radius << " voxels in a "
-            << map.size << "^3 map to " << o.output << "\n";
-}
-
-struct PhantomOptions {
-  std::string output;
-  VesselTreeSettings vessels;
-};
-
-// `mvw phantom vessels -o FILE`: the synthetic vessel tree of the depth-cued MIP tests.
-void runVesselPhantom(const PhantomOptions& o) {
-  const VesselTree tree = makeVesselTree(o.vessels);
-  io::writeVolume(tree.volume, o.output);
-  std::cout << "wrote a vessel tree of " << tree.segments.size() << " segments to " << o.output
-            << "\n";
-}
-
-struct PetPhantomOptions {
-  std::string ct, output;
-  std::vector<double> rotateDeg{0, 0, 0}, shiftMm{0, 0, 0};
-  unsigned seed = 1;
-};
-
-// `mvw phantom pet`: the PET-like test volume of the registration tests, as a file.
-void runPetPhantom(const PetPhantomOptions& o) {
-  const Volume ct = io::readVolume(o.ct);
-  const resampling::PetPhantom phantom(ct);
-  resampling::RigidParameters p;
-  p.angles = glm::radians(glm::dvec3(o.rotateDeg[0], o.rotateDeg[1], o.rotateDeg[2]));
-  p.translation = glm::dvec3(o.shiftMm[0], o.shiftMm[1], o.shiftMm[2]);
-  const glm::dmat4 petFromCt = resampling::rigidMatrix(p, phantom.centre());
-  Volume pet = phantom.pet(petFromCt, o.seed);
-  pet.metadata().seriesDescription = "mvw PET-like phantom";
-  io::writeVolume(pet, o.output);
-  std::cout << "wrote a PET-like volume (" << pet.dimensions().x << " x " << pet.dimensions().y
-            << " x " << pet.dimensions().z << ") to " << o.output << "\n";
-}
-
 void addRenderCommand(CLI::App& app) {
-  {
-    auto ph = std::make_shared<PhantomOptions>();
-    CLI::App* phantom = app.add_subcommand("phantom", "Synthetic volumes with known geometry");
-    phantom->require_subcommand(1);
-    CLI::App* cmd = phantom->add_subcommand(
-        "vessels", "Branching tubes of decreasing radius on a dim noisy background");
-    cmd->add_option("-o,--output", ph->output, "Output file (.nii, .nii.gz, .mha, .mhd)")
-        ->required();
-    cmd->add_option("--size", ph->vessels.dimensions.x, "Voxels per side")
-        ->check(CLI::Range(16, 512));
-    cmd->add_option("--generations", ph->vessels.generations, "Branching generations")
-        ->check(CLI::Range(1, 12));
-    cmd->add_option("--seed", ph->vessels.seed, "Random seed");
-    cmd->add_option("--noise", ph->vessels.noiseSigma, "Noise sigma")
-        ->check(CLI::NonNegativeNumber);
-    cmd->callback([ph] {
-      ph->vessels.dimensions = glm::ivec3(ph->vessels.dimensions.x);
-      runVesselPhantom(*ph);
-    });
-    auto pet = std::make_shared<PetPhantomOptions>();
-    CLI::App* petCmd =
-        phantom->add_subcommand("pet",
-                                "A PET-like volume made from a CT (uptake model, 6 mm blur, 4 mm "
-                                "grid, noise) under a known rigid transform");
-    petCmd->add_option("--ct", pet->ct, "The CT (HU)")->required();
-    petCmd->add_option("-o,--output", pet->output, "Output file")->required();
-    petCmd
-        ->add_option("--rotate", pet->rotateDeg,
-                     "Rotation about x, y, z in degrees (ITK Euler order)")
-        ->expected(3);
-    petCmd->add_option("--shift", pet->shiftMm, "Translation in mm")->expected(3);
-    petCmd->add_option("--seed", pet->seed, "Noise seed");
-    petCmd->callback([pet] { runPetPhantom(*pet); });
-  }
-  {
-    auto g = std::make_shared<GlyphMapOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "glyphmap", "Export the volumetric normal glyph map (NIfTI or MetaImage)");
-    cmd->add_option("-o,--output", g->output, "Output file (.nii, .nii.gz, .mha, .mhd)")
-        ->required();
-    cmd->add_option("--size", g->settings.size, "Voxels per side")->check(CLI::Range(8, 512));
-    cmd->add_option("--count", g->settings.count, "Number of glyphs")->check(CLI::Range(1, 255));
-    cmd->add_option("--diameter", g->settings.diameter, "Glyph diameter in map voxels");
-    cmd->add_option("--seed", g->settings.seed, "Random seed of the positions");
-    cmd->add_option("--voxel-mm", g->voxelMm, "Voxel size written to the file")
-        ->check(CLI::PositiveNumber);
-    cmd->callback([g] {
-      try {
-        runGlyphMap(*g);
-      } catch (const InputError&) {
-        throw;
-      } catch (const Error& e) {
-        throw InputError(g->output, e.what());  // impossible glyph requests are bad input
-      }
-    });
-  }
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand(
       "render", "Render the views of a study config headless (OSMesa) to PNG + render.json");

@@ -6,7 +6,9 @@
 #include <CLI/CLI.hpp>
 
 #include "BenchCommand.h"
+#include "GlyphMapCommand.h"
 #include "InfoCommand.h"
+#include "PhantomCommand.h"
 #include "RegisterCommand.h"
 #include "RenderCommand.h"
 #include "ValidateCommand.h"
@@ -22,6 +24,8 @@ int main(int argc, char** argv) {
   mvw::app::addInfoCommand(app);
   mvw::app::addRegisterCommand(app);
   mvw::app::addRenderCommand(app);
+  mvw::app::addPhantomCommand(app);
+  mvw::app::addGlyphMapCommand(app);
   mvw::app::addBenchCommand(app);
   mvw::app::addViewCommand(app);
   mvw::app::addValidateCommand(app);
