@@ -60,6 +60,9 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   for (mvw::study::PlannedView& v : views) {
     if (!hasFeature(v.settings)) continue;
     mvw::study::applyDefaultPreset(v, anatomy);
+    if (functional)
+      mvw::study::applyAttributeDefaults(v, study.functionalKind, *functional,
+                                         renderer.functionalRange());
     render::RenderSettings with = v.settings;
     render::RenderSettings without = with;
     without.glyphs = without.fusion = without.depthCue = false;

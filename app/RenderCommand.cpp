@@ -71,6 +71,9 @@ void runRender(const RenderOptions& o) {
   std::vector<Output> outputs;
   for (auto& v : views) {
     mvw::study::applyDefaultPreset(v, anatomy);
+    if (functional)
+      mvw::study::applyAttributeDefaults(v, study.functionalKind, *functional,
+                                         renderer.functionalRange());
     render::Frame frame = renderer.render(v.settings);
     const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
     const std::string caption = mvw::study::viewCaption(v, shown);

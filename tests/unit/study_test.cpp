@@ -154,3 +154,44 @@ TEST(ModalityDefaults, CtGetsBoneAndTheSoftTissueWindowMrTheRange) {
 
 }  // namespace
 }  // namespace mvw::study
+
+namespace mvw::study {
+namespace {
+
+TEST(AttributeDefaults, PetInSuvFromTheLesionThresholdOtherUnitsFrom41Percent) {
+  const Volume suv = volumeOf("PT", "SUVbw");
+  const auto a = defaultAttributeWindow(config::FunctionalKind::Pet, suv, {0.0, 19.5});
+  ASSERT_TRUE(a.has_value());
+  EXPECT_EQ((*a)[0], 2.5);
+  EXPECT_EQ((*a)[1], 19.5);
+  // No uptake above 2.5: a valid window that shows none.
+  const auto none = defaultAttributeWindow(config::FunctionalKind::Pet, suv, {0.0, 1.8});
+  ASSERT_TRUE(none.has_value());
+  EXPECT_EQ((*none)[0], 2.5);
+  EXPECT_GT((*none)[1], 2.5);
+  // Bq/ml, or a NIfTI PET without a unit: relative to the maximum.
+  const auto bq = defaultAttributeWindow(config::FunctionalKind::Pet, volumeOf("", ""), {0, 4.0});
+  ASSERT_TRUE(bq.has_value());
+  EXPECT_DOUBLE_EQ((*bq)[0], 0.41 * 4.0);
+  EXPECT_EQ((*bq)[1], 4.0);
+  // The modality alone says PET too; fMRI, labels and the rest keep the full range.
+  EXPECT_TRUE(defaultAttributeWindow(config::FunctionalKind::Other, volumeOf("NM", ""), {0, 9}));
+  EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Fmri, volumeOf("MR", ""), {0, 9}));
+  EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Labels, volumeOf("", ""), {0, 9}));
+}
+
+TEST(AttributeDefaults, AViewsOwnWindowOrClassesWin) {
+  PlannedView own = planViews(studyWith({{"functional_window", {1.0, 3.0}}})).at(0);
+  applyAttributeDefaults(own, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
+  EXPECT_EQ(own.settings.functionalLow, 1.0);
+  PlannedView classes = planViews(studyWith({{"functional_classes", 4}})).at(0);
+  applyAttributeDefaults(classes, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
+  EXPECT_EQ(classes.settings.functionalHigh, 0.0);
+  PlannedView none = planViews(studyWith(nlohmann::json::object())).at(0);
+  applyAttributeDefaults(none, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
+  EXPECT_EQ(none.settings.functionalLow, 2.5);
+  EXPECT_EQ(none.settings.functionalHigh, 10.0);
+}
+
+}  // namespace
+}  // namespace mvw::study

@@ -1,5 +1,7 @@
 #include "mvw/study/ModalityDefaults.h"
 
+#include <algorithm>
+
 namespace mvw::study {
 
 namespace {
@@ -34,6 +36,20 @@ ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, doubl
     d.mpr = windowOrFullRange(0.0, 0.0, lo, hi);
   }
   return d;
+}
+
+std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKind kind,
+                                                            const Volume& functional,
+                                                            std::pair<double, double> range) {
+  const bool emission =
+      kind == config::FunctionalKind::Pet || kind == config::FunctionalKind::Spect ||
+      functional.metadata().modality == "PT" || functional.metadata().modality == "NM";
+  if (!emission || kind == config::FunctionalKind::Labels) return std::nullopt;
+  const double max = range.second;
+  if (functional.metadata().unit.rfind("SUV", 0) == 0)
+    return std::array<double, 2>{kSuvLesionThreshold, std::max(max, kSuvLesionThreshold + 1.0)};
+  if (!(max > 0)) return std::nullopt;
+  return std::array<double, 2>{kRelativeUptakeThreshold * max, max};
 }
 
 }  // namespace mvw::study

@@ -202,6 +202,15 @@ void applyDefaultPreset(PlannedView& view, const Volume& anatomy) {
   view.settings.transfer = render::transferPreset(view.presetName);
 }
 
+void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
+                            const Volume& functional, std::pair<double, double> range) {
+  if (view.config.functionalWindow || view.config.functionalClasses > 0) return;
+  const auto window = defaultAttributeWindow(kind, functional, range);
+  if (!window) return;
+  view.settings.functionalLow = (*window)[0];
+  view.settings.functionalHigh = (*window)[1];
+}
+
 config::ViewConfig describeView(const render::RenderSettings& s, const std::string& name,
                                 const std::string& preset) {
   config::ViewConfig v;

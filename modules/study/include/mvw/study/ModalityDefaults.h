@@ -2,8 +2,12 @@
 // What a view shows before the reader chooses: the transfer preset, isosurface value and MPR
 // window that suit the anatomy's modality. The one home of the rule `mvw render` (views
 // without a preset) and `mvw view` (its panes when the study says nothing) share.
+#include <array>
+#include <optional>
 #include <string>
 #include <utility>
+
+#include "mvw/config/StudyConfig.h"
 
 #include "mvw/core/Volume.h"
 #include "mvw/core/WindowLevel.h"
@@ -23,5 +27,19 @@ ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, doubl
 
 // The preset part of modalityDefaults, which needs no value range.
 std::string defaultPreset(const Volume& anatomy);
+
+// What a functional reader starts from, the one home of these numbers.
+inline constexpr double kSuvLesionThreshold = 2.5;        // SUVbw: the usual lesion threshold
+inline constexpr double kRelativeUptakeThreshold = 0.41;  // of the maximum (metabolic volumes)
+
+// The attribute window (colour map, glyph beta) of a view whose config names none:
+//   PET or SPECT in SUV: from SUV 2.5 to the maximum (at least 1 SUV wide, so a study with no
+//     uptake above 2.5 shows none);
+//   PET or SPECT in other units (Bq/ml, counts, none): from 41 % of the maximum to the maximum;
+//   otherwise (fMRI, perfusion, dose, labels, other): none, the full value range as before.
+// range: the functional volume's value range (min, max).
+std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKind kind,
+                                                            const Volume& functional,
+                                                            std::pair<double, double> range);
 
 }  // namespace mvw::study

@@ -39,6 +39,11 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study,
 // Views without a preset get the one that suits the anatomy's modality.
 void applyDefaultPreset(PlannedView& view, const Volume& anatomy);
 
+// Views without an attribute window (functional_window) or label classes get the one that
+// suits the functional volume (defaultAttributeWindow); range: its value range.
+void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
+                            const Volume& functional, std::pair<double, double> range);
+
 // The inverse of planViews for one view: the config that plans back to `settings` (the
 // viewer saves its panes this way). preset: its name, "" for the modality's default.
 config::ViewConfig describeView(const render::RenderSettings& settings, const std::string& name,
