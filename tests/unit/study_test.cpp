@@ -181,16 +181,22 @@ TEST(AttributeDefaults, PetInSuvFromTheLesionThresholdOtherUnitsFrom41Percent) {
 }
 
 TEST(AttributeDefaults, AViewsOwnWindowOrClassesWin) {
-  PlannedView own = planViews(studyWith({{"functional_window", {1.0, 3.0}}})).at(0);
+  const nlohmann::json glyphs = nlohmann::json::object();
+  PlannedView own =
+      planViews(studyWith({{"glyphs", glyphs}, {"functional_window", {1.0, 3.0}}})).at(0);
   applyAttributeDefaults(own, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
   EXPECT_EQ(own.settings.functionalLow, 1.0);
-  PlannedView classes = planViews(studyWith({{"functional_classes", 4}})).at(0);
+  PlannedView classes = planViews(studyWith({{"glyphs", glyphs}, {"functional_classes", 4}})).at(0);
   applyAttributeDefaults(classes, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
   EXPECT_EQ(classes.settings.functionalHigh, 0.0);
-  PlannedView none = planViews(studyWith(nlohmann::json::object())).at(0);
+  PlannedView none = planViews(studyWith({{"glyphs", glyphs}})).at(0);
   applyAttributeDefaults(none, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
   EXPECT_EQ(none.settings.functionalLow, 2.5);
   EXPECT_EQ(none.settings.functionalHigh, 10.0);
+  // A colour overlay keeps the full range as its colour scale.
+  PlannedView mpr = planViews(studyWith({{"mode", "mpr"}})).at(0);
+  applyAttributeDefaults(mpr, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
+  EXPECT_EQ(mpr.settings.functionalHigh, 0.0);
 }
 
 }  // namespace

@@ -204,6 +204,10 @@ void applyDefaultPreset(PlannedView& view, const Volume& anatomy) {
 
 void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
                             const Volume& functional, std::pair<double, double> range) {
+  // Glyph views only: there the window's low end is the threshold below which no glyph shows.
+  // A colour overlay or fusion keeps the full range as its colour scale (its threshold is a
+  // fraction of the window: a raised low end would hide moderate uptake twice over).
+  if (!view.settings.glyphs) return;
   if (view.config.functionalWindow || view.config.functionalClasses > 0) return;
   const auto window = defaultAttributeWindow(kind, functional, range);
   if (!window) return;

@@ -39,8 +39,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study,
 // Views without a preset get the one that suits the anatomy's modality.
 void applyDefaultPreset(PlannedView& view, const Volume& anatomy);
 
-// Views without an attribute window (functional_window) or label classes get the one that
-// suits the functional volume (defaultAttributeWindow); range: its value range.
+// Glyph views without an attribute window (functional_window) or label classes get the one
+// that suits the functional volume (defaultAttributeWindow); range: its value range.
 void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
                             const Volume& functional, std::pair<double, double> range);
 
