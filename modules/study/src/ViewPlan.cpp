@@ -141,15 +141,17 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.glyphDiameterMm = v.glyphDiameterMm;
     s.glyphMinSize = v.glyphMinSize;
     s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
-    if (v.glyphs) {
-      // A map that cannot hold the request is bad input, said before any GL work.
+    {
+      // The map follows the config's placement even while glyphs are off, so a viewer that
+      // switches them on shows the same glyphs `mvw render` would. A map that cannot hold the
+      // request is bad input, said before any GL work.
       const bool paper = v.glyphPlacement == config::GlyphPlacement::Paper;
       const std::string keys = paper ? "glyphs.count / glyphs.map_diameter / glyphs.map_size"
                                      : "glyphs.diameter_mm / glyphs.spacing_mm";
       try {
         if (!paper)
           s.glyphMap = render::blueNoiseGlyphMap(v.glyphSpacingMm, v.glyphDiameterMm, v.glyphSeed);
-        render::makeGlyphMap(s.glyphMap, /*texels=*/false);
+        if (v.glyphs) render::makeGlyphMap(s.glyphMap, /*texels=*/false);
       } catch (const InputError&) {
         throw;
       } catch (const Error& e) {
