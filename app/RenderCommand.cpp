@@ -77,9 +77,7 @@ void runRender(const RenderOptions& o) {
     render::Frame frame = renderer.render(v.settings);
     const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
     const std::string caption = mvw::study::viewCaption(v, shown);
-    const bool shellMode = v.settings.mode == render::RenderMode::ShellMip ||
-                           v.settings.mode == render::RenderMode::ShellSum ||
-                           v.settings.mode == render::RenderMode::ShellLit;
+    const bool shellMode = isShellMode(v.settings.mode);
     const bool overlayShown =
         functional &&
         (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion);

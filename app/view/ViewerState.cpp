@@ -41,11 +41,6 @@ double sampleAt(const Volume& v, const glm::dvec3& world, bool* inside) {
   return *inside ? v.value(n.x, n.y, n.z) : 0.0;
 }
 
-double smallestSpacing(const Volume& v) {
-  const glm::dvec3 s = v.spacing();
-  return std::min({s.x, s.y, s.z});
-}
-
 }  // namespace
 
 ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomical,
@@ -162,7 +157,7 @@ void ViewerState::wheel(int pane, double steps) {
     return;
   }
   // One notch: one slice of the finest spacing.
-  crosshair_ += pane_(pane).camera.forward * steps * smallestSpacing(anatomical_);
+  crosshair_ += pane_(pane).camera.forward * steps * anatomical_.smallestSpacing();
   markMprDirty();
 }
 
@@ -246,7 +241,7 @@ render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) c
   s.size = image.size;
   if (pane == k3d && interacting) {  // coarse while dragging
     s.size = glm::max(image.size / 2, glm::ivec2(8));
-    s.stepMm = 2.0 * smallestSpacing(anatomical_);
+    s.stepMm = 2.0 * anatomical_.smallestSpacing();
   }
   return s;
 }

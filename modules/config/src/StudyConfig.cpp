@@ -1,6 +1,7 @@
 #include "mvw/config/StudyConfig.h"
 
 #include <fstream>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -61,16 +62,24 @@ EnumNames<RenderMode> renderModes() {
 
 constexpr double kMaxSeed = 4294967295.0;
 
-// A [low, high] pair with low < high (and low >= minLow).
-template <class T>
-typename FieldTable<T>::Reader orderedPair(std::array<double, 2> T::*member, double minLow,
-                                           std::string what) {
-  return [member, minLow, what](const json& v, T& out, const Where& w) {
-    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
-        !(v[0].get<double>() >= minLow && v[0].get<double>() < v[1].get<double>()))
-      w.bad("must be " + what);
-    out.*member = {v[0].get<double>(), v[1].get<double>()};
-  };
+// A [low, high] pair with minLow <= low < high; `what` describes it in the message.
+std::array<double, 2> readOrderedPair(const json& v, const Where& w, double minLow,
+                                      const char* what) {
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
+      !(v[0].get<double>() >= minLow && v[0].get<double>() < v[1].get<double>()))
+    w.bad(std::string("must be ") + what);
+  return {v[0].get<double>(), v[1].get<double>()};
+}
+
+// A path in the config: relative ones are relative to the config file's folder.
+fs::path resolvePath(const std::string& path, const fs::path& configFile) {
+  const fs::path p(path);
+  return (p.is_absolute() ? p : configFile.parent_path() / p).lexically_normal();
+}
+
+// How the writer stores paths: absolute, so the written config works from any folder.
+std::string absolutePath(const fs::path& path) {
+  return fs::absolute(path).lexically_normal().string();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -144,21 +153,22 @@ const FieldTable<ViewConfig>& viewTable() {
         .add(
             "functional_window",
             [](const json& fw, V& out, const Where& w) {
-              if (!fw.is_array() || fw.size() != 2 || !fw[0].is_number() || !fw[1].is_number() ||
-                  !(fw[0].get<double>() < fw[1].get<double>()))
-                w.bad("must be [low, high] with low < high");
-              out.functionalWindow =
-                  std::array<double, 2>{fw[0].get<double>(), fw[1].get<double>()};
+              out.functionalWindow = readOrderedPair(fw, w, -std::numeric_limits<double>::max(),
+                                                     "[low, high] with low < high");
             },
             [](const V& in, json& j, const char* k) {
               if (in.functionalWindow) j[k] = *in.functionalWindow;
             })
         .section("depth_cue", &V::depthCue, depthCueTable())
-        .add("gradient_opacity",
-             orderedPair<V>(&V::gradientOpacity, 0.0, "[low, high] with 0 <= low < high (unit/mm)"),
-             [](const V& in, json& j, const char* k) {
-               if (in.gradientOpacity[1] > 0.0) j[k] = in.gradientOpacity;
-             })
+        .add(
+            "gradient_opacity",
+            [](const json& g, V& out, const Where& w) {
+              out.gradientOpacity =
+                  readOrderedPair(g, w, 0.0, "[low, high] with 0 <= low < high (unit/mm)");
+            },
+            [](const V& in, json& j, const char* k) {
+              if (in.gradientOpacity[1] > 0.0) j[k] = in.gradientOpacity;
+            })
         .number("plane_offset_mm", &V::planeOffsetMm, -1e4, 1e4)
         .number("slab_mm", &V::slabMm, 0.0, 1e4)
         .boolean("overlay", &V::overlay)
@@ -231,15 +241,12 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
        [](const json& v, SourceEntry& out, const Where& w) {
          const std::string p = detail::readString(v, w);
          if (p.empty()) w.bad("is empty");
-         fs::path path = fs::path(p).is_absolute() ? fs::path(p) : w.file.parent_path() / p;
-         out.source.path = path.lexically_normal();
+         out.source.path = resolvePath(p, w.file);
          std::error_code ec;
          if (!fs::exists(out.source.path, ec))
            w.bad("names " + out.source.path.string() + ", which does not exist");
        },
-       [](const SourceEntry& in, json& j, const char* k) {
-         j[k] = fs::absolute(in.source.path).lexically_normal().string();
-       })
+       [](const SourceEntry& in, json& j, const char* k) { j[k] = absolutePath(in.source.path); })
       .add(
           "series",
           [](const json& v, SourceEntry& out, const Where& w) {
@@ -271,12 +278,10 @@ const FieldTable<RegistrationConfig>& registrationTable() {
             [](const json& v, R& out, const Where& w) {
               const std::string p = detail::readString(v, w);
               if (p.empty()) return;
-              out.transform = (fs::path(p).is_absolute() ? fs::path(p) : w.file.parent_path() / p)
-                                  .lexically_normal();
+              out.transform = resolvePath(p, w.file);
             },
             [](const R& in, json& j, const char* k) {
-              if (!in.transform.empty())
-                j[k] = fs::absolute(in.transform).lexically_normal().string();
+              if (!in.transform.empty()) j[k] = absolutePath(in.transform);
             })
         .number("rotation_search_deg", &R::rotationSearchDeg, 0.0, 180.0);
     return r;
@@ -284,20 +289,25 @@ const FieldTable<RegistrationConfig>& registrationTable() {
   return t;
 }
 
-std::vector<ViewConfig> readViews(const json& r, const fs::path& file) {
-  if (!r.is_object()) throw InputError(file, "'render' must be an object");
-  for (const auto& [key, value] : r.items()) {
-    (void)value;
-    if (key != "views")
-      throw InputError(file, "unknown key 'render." + key + "' (known here: views)");
-  }
-  std::vector<ViewConfig> views;
-  if (!r.contains("views")) return views;
-  if (!r["views"].is_array()) throw InputError(file, "'render.views' must be an array");
-  for (std::size_t i = 0; i < r["views"].size(); ++i)
-    views.push_back(parseViewConfig(r["views"][i], file, "render.views[" + std::to_string(i) + "]",
-                                    static_cast<int>(i)));
-  return views;
+const FieldTable<RenderConfig>& renderTable() {
+  static const FieldTable<RenderConfig> t = [] {
+    FieldTable<RenderConfig> r;
+    r.add(
+        "views",
+        [](const json& v, RenderConfig& out, const Where& w) {
+          if (!v.is_array()) w.bad("must be an array");
+          for (std::size_t i = 0; i < v.size(); ++i)
+            out.views.push_back(parseViewConfig(v[i], w.file, w.key + "[" + std::to_string(i) + "]",
+                                                static_cast<int>(i)));
+        },
+        [](const RenderConfig& in, json& j, const char* k) {
+          json views = json::array();
+          for (const ViewConfig& view : in.views) views.push_back(viewConfigJson(view));
+          j[k] = views;
+        });
+    return r;
+  }();
+  return t;
 }
 
 // The study object itself: every key delegates to the table of its own object.
@@ -335,12 +345,10 @@ const FieldTable<StudyConfig>& studyTable() {
             })
         .add(
             "render",
-            [](const json& v, S& out, const Where& w) { out.render.views = readViews(v, w.file); },
-            [](const S& in, json& j, const char* k) {
-              json views = json::array();
-              for (const ViewConfig& v : in.render.views) views.push_back(viewConfigJson(v));
-              j[k] = {{"views", views}};
-            });
+            [](const json& v, S& out, const Where& w) {
+              renderTable().read(v, out.render, Where{w.file, "render."});
+            },
+            [](const S& in, json& j, const char* k) { j[k] = renderTable().write(in.render); });
     return s;
   }();
   return t;

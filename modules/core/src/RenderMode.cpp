@@ -33,6 +33,11 @@ std::string toString(RenderMode mode) {
   return "?";
 }
 
+bool isShellMode(RenderMode mode) {
+  return mode == RenderMode::ShellMip || mode == RenderMode::ShellSum ||
+         mode == RenderMode::ShellLit;
+}
+
 std::vector<std::string> renderModeNames() {
   std::vector<std::string> out;
   for (const auto& [m, n] : kModeNames) out.push_back(n);

@@ -1,5 +1,6 @@
 #include "mvw/core/Volume.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -39,6 +40,11 @@ void Volume::setValue(int i, int j, int k, int component, double v) {
 }
 
 glm::dvec3 Volume::origin() const { return glm::dvec3(worldFromIndex_[3]); }
+
+double Volume::smallestSpacing() const {
+  const glm::dvec3 s = spacing();
+  return std::min({s.x, s.y, s.z});
+}
 
 glm::dvec3 Volume::spacing() const {
   return {glm::length(glm::dvec3(worldFromIndex_[0])), glm::length(glm::dvec3(worldFromIndex_[1])),

@@ -1,7 +1,5 @@
 #include "mvw/render/Framing.h"
 
-#include <algorithm>
-
 #include <glm/geometric.hpp>
 
 namespace mvw::render {
@@ -16,9 +14,6 @@ FramingSphere framingSphere(const Volume& volume) {
   return {0.5 * (corner0 + corner1), 0.5 * glm::length(dims * volume.spacing())};
 }
 
-double defaultStepMm(const Volume& volume) {
-  const glm::dvec3 spacing = volume.spacing();
-  return 0.5 * std::min({spacing.x, spacing.y, spacing.z});
-}
+double defaultStepMm(const Volume& volume) { return 0.5 * volume.smallestSpacing(); }
 
 }  // namespace mvw::render

@@ -25,11 +25,6 @@ namespace mvw::render {
 
 namespace {
 
-bool isShellMode(RenderMode mode) {
-  return mode == RenderMode::ShellMip || mode == RenderMode::ShellSum ||
-         mode == RenderMode::ShellLit;
-}
-
 // The members below upload as they are constructed: the context must be current first.
 GlContext& madeCurrent(GlContext& context) {
   context.makeCurrent();

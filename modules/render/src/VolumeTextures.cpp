@@ -70,7 +70,7 @@ std::vector<float> gradientOf(const std::vector<float>& v, glm::ivec3 d, const g
 VolumeTextures::VolumeTextures(const Volume& volume)
     : dims_(volume.dimensions()), worldFromIndex_(volume.worldFromIndex()) {
   const glm::dvec3 spacing = volume.spacing();
-  referenceStepMm_ = std::min({spacing.x, spacing.y, spacing.z});
+  referenceStepMm_ = volume.smallestSpacing();
   GLint max3d = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
   if (dims_.x > max3d || dims_.y > max3d || dims_.z > max3d)

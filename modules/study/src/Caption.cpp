@@ -4,15 +4,6 @@
 
 namespace mvw::study {
 
-namespace {
-
-bool isShellMode(render::RenderMode m) {
-  return m == render::RenderMode::ShellMip || m == render::RenderMode::ShellSum ||
-         m == render::RenderMode::ShellLit;
-}
-
-}  // namespace
-
 std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   const render::RenderSettings& s = v.settings;
   std::string caption = toString(v.config.mode);

@@ -27,6 +27,9 @@ std::optional<RenderMode> parseRenderMode(const std::string& name);
 std::string toString(RenderMode mode);
 std::vector<std::string> renderModeNames();
 
+// The paper's discrete modes (isosurface shells drawn as triangles, not ray cast).
+bool isShellMode(RenderMode mode);
+
 // Volumetric normal glyphs (Seipel 2007): convex bumps, concave dimples, or both (dimples
 // below the attribute window's middle, bumps above). Config names: convex, concave, both.
 enum class GlyphConvexity { Bumps, Dimples, Both };

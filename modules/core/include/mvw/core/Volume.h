@@ -64,9 +64,10 @@ class Volume {
 
   const glm::dmat4& worldFromIndex() const { return worldFromIndex_; }
   void setWorldFromIndex(const glm::dmat4& m) { worldFromIndex_ = m; }
-  glm::dvec3 origin() const;     // world position of voxel (0,0,0), LPS mm
-  glm::dvec3 spacing() const;    // mm between voxel centres along i, j, k
-  glm::dmat3 direction() const;  // unit columns: world direction of i, j, k
+  glm::dvec3 origin() const;       // world position of voxel (0,0,0), LPS mm
+  glm::dvec3 spacing() const;      // mm between voxel centres along i, j, k
+  double smallestSpacing() const;  // the finest of the three (the default step's reference)
+  glm::dmat3 direction() const;    // unit columns: world direction of i, j, k
   glm::dvec3 worldFromIndexPoint(const glm::dvec3& ijk) const;
 
   // min and max over all voxels and components (NaNs ignored); {0,0} for an empty volume.
