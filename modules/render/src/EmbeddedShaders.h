@@ -4,7 +4,8 @@
 
 namespace mvw::render::detail {
 
-// Every shaders/**/*.glsl, keyed by its path relative to shaders/ (generated at build time).
+// Every shaders/**/*.glsl, keyed by its path relative to shaders/ (generated at build time by
+// cmake/EmbedFiles.cmake).
 const std::map<std::string_view, std::string_view>& embeddedShaders();
 
 }  // namespace mvw::render::detail

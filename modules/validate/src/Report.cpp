@@ -2,14 +2,11 @@
 
 #include <sstream>
 
+#include "EmbeddedResources.h"
 #include "Format.h"
 #include "mvw/io/AtomicFile.h"
 
 namespace mvw::validate {
-
-namespace detail {
-std::string_view reportTemplate();  // generated: EmbedText.cmake
-}  // namespace detail
 
 namespace fs = std::filesystem;
 using detail::fmt;
@@ -214,7 +211,7 @@ std::string reportHtml(const Suite& suite, const std::vector<CaseResult>& result
   summaryTable(h, suite, results);
   for (std::size_t ci = 0; ci < suite.cases.size(); ++ci)
     caseSection(h, suite.cases[ci], results[ci]);
-  std::string page(detail::reportTemplate());
+  std::string page(detail::embeddedResources().at("report.html"));
   replaceAll(page, "@TITLE@", html(suite.name));
   replaceAll(page, "@BODY@", h.str());
   return page;
