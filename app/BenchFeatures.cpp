@@ -60,9 +60,11 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   for (mvw::study::PlannedView& v : views) {
     if (!hasFeature(v.settings)) continue;
     mvw::study::applyDefaultPreset(v, anatomy);
-    if (functional)
+    if (functional) {
       mvw::study::applyAttributeDefaults(v, study.functionalKind, *functional,
                                          renderer.functionalRange());
+      mvw::study::applyGlyphScale(v, anatomy, *functional);
+    }
     render::RenderSettings with = v.settings;
     render::RenderSettings without = with;
     without.glyphs = without.fusion = without.depthCue = false;

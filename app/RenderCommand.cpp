@@ -71,9 +71,11 @@ void runRender(const RenderOptions& o) {
   std::vector<Output> outputs;
   for (auto& v : views) {
     mvw::study::applyDefaultPreset(v, anatomy);
-    if (functional)
+    if (functional) {
       mvw::study::applyAttributeDefaults(v, study.functionalKind, *functional,
                                          renderer.functionalRange());
+      mvw::study::applyGlyphScale(v, anatomy, *functional);
+    }
     render::Frame frame = renderer.render(v.settings);
     const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
     const std::string caption = mvw::study::viewCaption(v, shown);
@@ -83,6 +85,9 @@ void runRender(const RenderOptions& o) {
         (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion);
     if (v.config.annotate) {
       render::annotate(frame.image, frame.camera, caption);
+      if (functional)
+        render::drawGlyphLegend(frame.image, mvw::study::glyphLegend(v, functional->metadata().unit,
+                                                                     renderer.functionalRange()));
       if (overlayShown) {
         auto [flo, fhi] = renderer.functionalRange();
         if (v.settings.functionalHigh > v.settings.functionalLow)
@@ -107,13 +112,18 @@ void runRender(const RenderOptions& o) {
     r["level"] = shown.level;
     r["iso"] = v.settings.isoValue;
     if (v.settings.glyphs)
-      r["glyphs"] = {{"method", config::toString(v.config.glyphMethod)},
-                     {"convexity", config::toString(v.config.glyphConvexity)},
-                     {"diameter_mm", v.config.glyphDiameterMm},
-                     {"count", v.config.glyphCount},
-                     {"seed", v.config.glyphSeed},
-                     {"map_size", v.config.glyphMapSize},
-                     {"map_diameter", v.config.glyphMapDiameter}};
+      r["glyphs"] = {
+          {"method", config::toString(v.config.glyphMethod)},
+          {"convexity", config::toString(v.config.glyphConvexity)},
+          {"diameter_mm", v.settings.glyphDiameterMm},
+          {"spacing_mm", v.settings.glyphMap.placement == render::GlyphPlacement::BlueNoise
+                             ? render::blueNoiseSpacing(v.settings.glyphMap.size) *
+                                   v.settings.glyphDiameterMm / v.settings.glyphMap.diameter
+                             : 0.0},
+          {"count", v.config.glyphCount},
+          {"seed", v.config.glyphSeed},
+          {"map_size", v.config.glyphMapSize},
+          {"map_diameter", v.config.glyphMapDiameter}};
     if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
     if (v.settings.functionalHigh > v.settings.functionalLow)
       r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};

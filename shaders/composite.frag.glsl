@@ -61,8 +61,19 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
       // attribute comes with the gradient (its alpha): no second volume is read per sample.
       // Below the window (g.a = 0) the glyph code is skipped outright: where a whole block of
       // samples lies there, a software rasteriser need not run it at all.
-      if (g.a > 0.0 && (1.0 - s.color.a) * alpha > 1.0 / 255.0)
-        n = glyphNormalMapped(s.glyphOrigin + t * s.glyphDir, n, -ray.dir, g.a);
+      // Beyond the paper (not in its own placement): a sample a bump tilts gets at least
+      // uGlyphAlpha (GlyphDefaults.h: kGlyphDvrOpacityPerMm per step), so in translucent
+      // tissue the bump is shaded like a small surface instead of a few grey levels' change.
+#if defined(MVW_GLYPH_PAPER)
+      const float glyphAlpha = 0.0;
+#else
+      const float glyphAlpha = uGlyphAlpha;
+#endif
+      if (g.a > 0.0 && (1.0 - s.color.a) * max(alpha, glyphAlpha) > 1.0 / 255.0) {
+        vec3 bumped = glyphNormalMapped(s.glyphOrigin + t * s.glyphDir, n, -ray.dir, g.a);
+        if (bumped != n) alpha = max(alpha, glyphAlpha);
+        n = bumped;
+      }
 #endif
       rgb = phong(rgb, n, ray.dir);
     }

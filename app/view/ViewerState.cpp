@@ -66,9 +66,11 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   for (mvw::study::PlannedView& v : planned) {
     if (!is3dMode(v.settings.mode)) continue;
     mvw::study::applyDefaultPreset(v, anatomical_);
-    if (functional_)
+    if (functional_) {
       mvw::study::applyAttributeDefaults(v, study_.functionalKind, *functional_,
                                          scene_.functionalRange);
+      mvw::study::applyGlyphScale(v, anatomical_, *functional_);
+    }
     view3d_ = v.settings;
     presetName_ = v.presetName;
     break;

@@ -19,12 +19,20 @@ float functionalValue(vec3 world, out bool inside) {
 // Nominal attributes (atlas labels): with uFunctionalClasses = K > 0 a label L > 0 maps to
 // class (L mod K) + 1 of K, so neighbouring labels get distinct glyph sizes; 0 stays 0.
 uniform int uFunctionalClasses;
+// Labels chosen by the reader: uLabelGlyphCount > 0 looks each label up in uLabelGlyphs (1: a
+// bump, just above 0: a dimple under the "both" shading, 0: none; labels past the table: none).
+uniform sampler1D uLabelGlyphs;
+uniform int uLabelGlyphCount;
 
 // 0 .. 1 over uFunctionalRange, or by class (0 outside the functional volume).
 float functionalFraction(vec3 world) {
   bool inside;
   float v = functionalValue(world, inside);
   if (!inside) return 0.0;
+  if (uLabelGlyphCount > 0) {
+    int label = int(round(v));
+    return label <= 0 || label >= uLabelGlyphCount ? 0.0 : texelFetch(uLabelGlyphs, label, 0).r;
+  }
   if (uFunctionalClasses > 0) {
     int label = int(round(v));
     return label <= 0 ? 0.0 : float(label % uFunctionalClasses + 1) / float(uFunctionalClasses);

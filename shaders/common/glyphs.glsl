@@ -21,6 +21,8 @@ uniform float uGlyphRadius;       // map voxels
 // The smallest apparent bump radius (fraction of the glyph radius), the one an attribute just
 // above the window's low end gets (see glyphNormal).
 uniform float uGlyphMinSize;
+// Composite DVR: the least opacity per step of a sample a bump tilts (beyond the paper).
+uniform float uGlyphAlpha;
 // Method and convexity are compile-time variants, like every feature switch in the ray loop:
 // MVW_GLYPH_SIMPLE: simple blending, eq. (1) (default: size and convexity control, eqs. 2-3);
 // MVW_GLYPH_CONCAVE: dimples; MVW_GLYPH_BOTH: dimples below the middle of the attribute's

@@ -80,17 +80,18 @@ TEST(StudyConfig, RefusesTyposMissingKeysAndBadValues) {
       std::string::npos);
 }
 
-// Defaults: blue-noise glyphs 0.85 of their spacing; the paper's map keeps its 6 mm.
-TEST(StudyConfig, GlyphDefaultsFollowThePlacement) {
+// The config leaves a glyph spacing or diameter it was not given open (study::planViews and
+// applyGlyphScale choose them: see study_test), and keeps what it was given.
+TEST(StudyConfig, GlyphSpacingAndDiameterStayOpenUnlessGiven) {
   const fs::path dir = test::scratchDir();
   std::ofstream(dir / "a.nii") << "x";
   const StudyConfig c = loadStudyConfig(writeConfig(dir, R"({"anatomical": {"path": "a.nii"},
-      "render": {"views": [{"glyphs": {}}, {"glyphs": {"spacing_mm": 8}}, {"glyphs": {"placement": "paper"}}]}})"));
-  ASSERT_EQ(c.render.views.size(), 3u);
-  EXPECT_EQ(c.render.views[0].glyphPlacement, GlyphPlacement::BlueNoise);
-  EXPECT_DOUBLE_EQ(c.render.views[0].glyphDiameterMm, 0.85 * c.render.views[0].glyphSpacingMm);
-  EXPECT_DOUBLE_EQ(c.render.views[1].glyphDiameterMm, 0.85 * 8.0);
-  EXPECT_EQ(c.render.views[2].glyphDiameterMm, 6.0);
+      "render": {"views": [{"glyphs": {}}, {"glyphs": {"spacing_mm": 8, "diameter_mm": 5}}]}})"));
+  ASSERT_EQ(c.render.views.size(), 2u);
+  EXPECT_FALSE(c.render.views[0].glyphSpacingMm.has_value());
+  EXPECT_FALSE(c.render.views[0].glyphDiameterMm.has_value());
+  EXPECT_EQ(c.render.views[1].glyphSpacingMm, 8.0);
+  EXPECT_EQ(c.render.views[1].glyphDiameterMm, 5.0);
 }
 
 // writeStudyConfig is loadStudyConfig's inverse: every field survives the round trip (the

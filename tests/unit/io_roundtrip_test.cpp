@@ -1,6 +1,7 @@
 // Writers and readers keep the geometry: a volume with odd sizes, anisotropic spacing and an
 // oblique direction matrix comes back with every voxel at the same world position.
 #include <cmath>
+#include <fstream>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -89,6 +90,23 @@ TEST(RoundTrip, FourDimensionalNiftiKeepsFramesAsComponents) {
   const Volume r = readVolume(file);
   EXPECT_EQ(r.components(), 4);
   expectSameWorldContent(v, r, 1e-4);
+}
+
+// A statistic map names its statistic by the NIfTI intent code (bytes 68-69 of a NIfTI-1
+// header): z for NIFTI_INTENT_ZSCORE (5), t for NIFTI_INTENT_TTEST (3).
+TEST(RoundTrip, NiftiIntentCodeNamesTheStatistic) {
+  const auto dir = test::scratchDir();
+  Volume v({4, 4, 4}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  for (const auto& [code, unit] : {std::pair{5, "z"}, std::pair{3, "t"}, std::pair{0, ""}}) {
+    const auto file = dir / ("stat" + std::to_string(code) + ".nii");
+    writeVolume(v, file);
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    const char bytes[2] = {static_cast<char>(code), 0};  // little endian, as written
+    f.seekp(68);
+    f.write(bytes, 2);
+    f.close();
+    EXPECT_EQ(readVolume(file).metadata().unit, unit) << code;
+  }
 }
 
 TEST(RoundTrip, WriterLeavesNoPartialFileOnError) {

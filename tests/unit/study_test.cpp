@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "TestUtil.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/render/Framing.h"
 #include "mvw/study/Caption.h"
 #include "mvw/study/ModalityDefaults.h"
 #include "mvw/study/ViewPlan.h"
@@ -177,7 +179,108 @@ TEST(AttributeDefaults, PetInSuvFromTheLesionThresholdOtherUnitsFrom41Percent) {
   // The modality alone says PET too; fMRI, labels and the rest keep the full range.
   EXPECT_TRUE(defaultAttributeWindow(config::FunctionalKind::Other, volumeOf("NM", ""), {0, 9}));
   EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Fmri, volumeOf("MR", ""), {0, 9}));
+  // An fMRI statistic map (z or t from the NIfTI intent code): from z = 2.3.
+  const auto z = defaultAttributeWindow(config::FunctionalKind::Fmri, volumeOf("", "z"), {-4, 9});
+  ASSERT_TRUE(z.has_value());
+  EXPECT_EQ((*z)[0], 2.3);
+  EXPECT_EQ((*z)[1], 9.0);
+  EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Fmri, volumeOf("", "t"), {-4, 2}));
   EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Labels, volumeOf("", ""), {0, 9}));
+}
+
+// Defaults: blue-noise glyphs 0.85 of their spacing (provisionally 5 mm until the volumes are
+// known); the paper's map keeps its 6 mm.
+TEST(GlyphDefaults, DiameterFollowsThePlacementAndSpacing) {
+  const auto diameter = [](const nlohmann::json& glyphs) {
+    return planViews(studyWith({{"glyphs", glyphs}})).at(0).settings.glyphDiameterMm;
+  };
+  EXPECT_DOUBLE_EQ(diameter(nlohmann::json::object()), 0.85 * 5.0);
+  EXPECT_DOUBLE_EQ(diameter({{"spacing_mm", 8}}), 0.85 * 8.0);
+  EXPECT_EQ(diameter({{"placement", "paper"}}), 6.0);
+  EXPECT_EQ(diameter({{"spacing_mm", 8}, {"diameter_mm", 3}}), 3.0);
+}
+
+// The automatic spacing: the functional voxel, within [what the image shows, 5 mm]; the scale
+// wins where a 5 mm glyph would make sub-pixel bumps (a whole-body MIP-sized field of view).
+TEST(GlyphDefaults, SpacingFollowsTheFunctionalVoxelAndTheRenderedScale) {
+  // The weakest bump's radius is 0.6 * 0.85 / 2 of the spacing; it must be 1.5 px.
+  const double perPixel = 1.5 / (0.6 * 0.85 / 2.0);
+  EXPECT_DOUBLE_EQ(defaultGlyphSpacingMm(4.0, 0.2, 0.6), 4.0);             // PET voxel
+  EXPECT_DOUBLE_EQ(defaultGlyphSpacingMm(2.0, 0.5, 0.6), perPixel * 0.5);  // fine fMRI: scale
+  EXPECT_DOUBLE_EQ(defaultGlyphSpacingMm(8.0, 0.2, 0.6), 5.0);             // coarse SPECT: 5 mm
+  EXPECT_DOUBLE_EQ(defaultGlyphSpacingMm(4.0, 2.0, 0.6), perPixel * 2.0);  // whole body
+  // Through the plan: a 200 mm box (framing radius 100 sqrt 3) at 512 px, zoom 1.
+  Volume ct({200, 200, 200}, 1, ScalarType::Int16, glm::dmat4(1.0));
+  Volume pet({50, 50, 50}, 1, ScalarType::Float32,
+             makeWorldFromIndex({}, {4, 4, 4}, glm::dmat3(1.0)));
+  PlannedView v = planViews(studyWith({{"glyphs", nlohmann::json::object()}})).at(0);
+  applyGlyphScale(v, ct, pet);
+  const double mmPerPixel = 2.0 * render::framingSphere(ct).radius / 512.0;
+  const double spacing = defaultGlyphSpacingMm(4.0, mmPerPixel, 0.6);
+  EXPECT_DOUBLE_EQ(v.settings.glyphDiameterMm, 0.85 * spacing);
+  EXPECT_NEAR(describeView(v.settings, "a", "").glyphSpacingMm.value_or(0), spacing, 1e-9);
+  // A given spacing stays.
+  PlannedView given = planViews(studyWith({{"glyphs", {{"spacing_mm", 7}}}})).at(0);
+  applyGlyphScale(given, ct, pet);
+  EXPECT_DOUBLE_EQ(given.settings.glyphDiameterMm, 0.85 * 7);
+}
+
+// Issue 15 item 4: labels chosen by number or by their AAL name (the label table beside the
+// atlas, aal.nii.txt); "none" drops one; a name the table lacks, or a name without a table,
+// is bad input naming the study.
+TEST(GlyphLabels, ChosenByNumberOrAtlasName) {
+  config::StudyConfig study = studyWith(
+      {{"mode", "isosurface"},
+       {"glyphs", {{"labels", {{"Hippocampus_L", "bumps"}, {"38", "dimples"}, {"7", "none"}}}}}});
+  study.functional->path = test::sampleData("mricron/aal.nii.gz");
+  study.functionalKind = config::FunctionalKind::Labels;
+  const auto labels = planViews(study).at(0).settings.glyphLabels;
+  ASSERT_EQ(labels.size(), 2u);
+  // nlohmann::json keeps object keys sorted: "38" before "Hippocampus_L".
+  EXPECT_EQ(labels[0], (render::LabelGlyph{38, true, "Hippocampus_R"}));
+  EXPECT_EQ(labels[1], (render::LabelGlyph{37, false, "Hippocampus_L"}));
+  const auto legend = glyphLegend(planViews(study).at(0), "", {0, 116});
+  ASSERT_EQ(legend.entries.size(), 2u);
+  EXPECT_EQ(legend.entries[1].label, "37 Hippocampus_L");
+  EXPECT_TRUE(legend.entries[0].dimple);
+
+  study.render.views[0].glyphLabels[1].label = "Hippocampus_X";
+  try {
+    planViews(study);
+    FAIL() << "an unknown label name was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no label named 'Hippocampus_X' in"), std::string::npos)
+        << e.what();
+  }
+  study.functional->path = "/nonexistent/labels.nii.gz";
+  EXPECT_THROW(planViews(study), InputError);
+  study.functionalKind = config::FunctionalKind::Pet;
+  EXPECT_THROW(planViews(study), InputError);
+}
+
+// The legend says what the bump sizes mean: none at or below the window, then the minimum
+// size just above its low end up to full size at its high end (dimples below the middle for
+// "both").
+TEST(GlyphLegend, SizesFollowTheAttributeWindow) {
+  PlannedView v =
+      planViews(studyWith({{"glyphs", nlohmann::json::object()}, {"functional_window", {2.5, 8}}}))
+          .at(0);
+  const render::GlyphLegend legend = glyphLegend(v, "SUVbw", {0, 20});
+  EXPECT_EQ(legend.title, "glyphs: SUVbw");
+  ASSERT_EQ(legend.entries.size(), 4u);
+  EXPECT_EQ(legend.entries[0].size, 0.0);
+  EXPECT_EQ(legend.entries[1].label, "> 2.5");
+  EXPECT_NEAR(legend.entries[1].size, 0.6, 1e-3);
+  EXPECT_EQ(legend.entries[2].label, "5.25");
+  EXPECT_DOUBLE_EQ(legend.entries[2].size, 0.8);
+  EXPECT_DOUBLE_EQ(legend.entries[3].size, 1.0);
+  v.settings.glyphConvexity = GlyphConvexity::Both;
+  const render::GlyphLegend both = glyphLegend(v, "SUVbw", {0, 20});
+  ASSERT_EQ(both.entries.size(), 5u);
+  EXPECT_TRUE(both.entries[1].dimple);
+  EXPECT_FALSE(both.entries[4].dimple);
+  v.settings.glyphs = false;
+  EXPECT_TRUE(glyphLegend(v, "SUVbw", {0, 20}).entries.empty());
 }
 
 TEST(AttributeDefaults, AViewsOwnWindowOrClassesWin) {

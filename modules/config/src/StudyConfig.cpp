@@ -91,13 +91,41 @@ const FieldTable<ViewConfig>& glyphTable() {
     g.enumeration("method", &ViewConfig::glyphMethod, kGlyphMethods)
         .enumeration("convexity", &ViewConfig::glyphConvexity, kConvexities)
         .enumeration("placement", &ViewConfig::glyphPlacement, kPlacements)
-        .number("spacing_mm", &ViewConfig::glyphSpacingMm, 0.5, 1000.0)
+        .optionalNumber("spacing_mm", &ViewConfig::glyphSpacingMm, 0.5, 1000.0)
         .number("min_size", &ViewConfig::glyphMinSize, 0.0, 1.0)
-        .number("diameter_mm", &ViewConfig::glyphDiameterMm, 0.1, 1000.0)
+        .number("dvr_opacity", &ViewConfig::glyphDvrOpacity, 0.0, 1.0)
+        .optionalNumber("diameter_mm", &ViewConfig::glyphDiameterMm, 0.1, 1000.0)
         .number("count", &ViewConfig::glyphCount, 1, 255)
         .number("seed", &ViewConfig::glyphSeed, 0, kMaxSeed)
         .number("map_size", &ViewConfig::glyphMapSize, 8, 512)
-        .number("map_diameter", &ViewConfig::glyphMapDiameter, 2, 256);
+        .number("map_diameter", &ViewConfig::glyphMapDiameter, 2, 256)
+        .add(
+            "labels",
+            [](const json& v, ViewConfig& out, const Where& w) {
+              if (!v.is_object() || v.empty())
+                w.bad(
+                    "must be an object of labels (number or name) and \"bumps\" | "
+                    "\"dimples\" | \"none\"");
+              out.glyphLabels.clear();
+              for (const auto& [label, kind] : v.items()) {
+                const Where item{w.file, w.key + "." + label};
+                const std::string k = readString(kind, item);
+                if (k != "bumps" && k != "dimples" && k != "none")
+                  item.bad("must be \"bumps\", \"dimples\" or \"none\"");
+                out.glyphLabels.push_back({label, k == "bumps"     ? LabelGlyphKind::Bumps
+                                                  : k == "dimples" ? LabelGlyphKind::Dimples
+                                                                   : LabelGlyphKind::None});
+              }
+            },
+            [](const ViewConfig& in, json& j, const char* k) {
+              if (in.glyphLabels.empty()) return;
+              json o = json::object();
+              for (const LabelChoice& c : in.glyphLabels)
+                o[c.label] = c.kind == LabelGlyphKind::Bumps     ? "bumps"
+                             : c.kind == LabelGlyphKind::Dimples ? "dimples"
+                                                                 : "none";
+              j[k] = o;
+            });
     return g;
   }();
   return t;
@@ -202,11 +230,6 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
   viewTable().read(j, v, Where{file, where + "."});
   const std::string w = where + ".";
   if (v.name.empty()) v.name = "view" + std::to_string(index);
-  // The glyph diameter's default follows the placement (and the spacing).
-  if (j.contains("glyphs") && j["glyphs"].is_object() && !j["glyphs"].contains("diameter_mm"))
-    v.glyphDiameterMm = v.glyphPlacement == GlyphPlacement::Paper
-                            ? kPaperGlyphDiameterMm
-                            : kBlueNoiseDiameterFraction * v.glyphSpacingMm;
   if (v.name.find_first_of("/\\") != std::string::npos || v.name == "." || v.name == "..")
     throw InputError(file, "'" + w + "name' must be a plain file name");
   if (v.window.has_value() != v.level.has_value())

@@ -337,6 +337,24 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   meta.format = facts.version == 2 ? "NIfTI-2" : facts.version == 1 ? "NIfTI-1" : "Analyze 7.5";
   meta.sourcePath = path.string();
   if (const char* d = header->GetDescrip(); d && *d) meta.seriesDescription = d;
+  // A statistic map says so in its intent code: its values are the statistic, named as the unit
+  // (the attribute window of an fMRI statistic map starts from it: study/ModalityDefaults).
+  switch (header->GetIntentCode()) {
+    case 2:
+      meta.unit = "r";  // NIFTI_INTENT_CORREL
+      break;
+    case 3:
+      meta.unit = "t";  // NIFTI_INTENT_TTEST
+      break;
+    case 4:
+      meta.unit = "F";  // NIFTI_INTENT_FTEST
+      break;
+    case 5:
+      meta.unit = "z";  // NIFTI_INTENT_ZSCORE
+      break;
+    default:
+      break;
+  }
   return volume;
 }
 

@@ -103,4 +103,42 @@ void drawColourBar(Image& image, double lo, double hi, const std::string& unit) 
   }
 }
 
+void drawGlyphLegend(Image& image, const GlyphLegend& legend) {
+  if (legend.entries.empty()) return;
+  cv::Mat m(image.height, image.width, CV_8UC4, image.rgba.data());
+  const double scale = std::max(0.4, std::min(image.width, image.height) / 600.0);
+  const int radius = std::max(5, static_cast<int>(std::lround(12 * scale)));
+  const int pad = static_cast<int>(10 * scale), row = 2 * radius + static_cast<int>(6 * scale);
+  const double textScale = 0.4 * scale;
+  const int thick = std::max(1, static_cast<int>(std::lround(scale)));
+  const cv::Scalar yellow(255, 230, 60, 255), black(0, 0, 0, 255);
+  auto text = [&](const std::string& s, cv::Point at) {
+    cv::putText(m, s, at, cv::FONT_HERSHEY_SIMPLEX, textScale, black, thick + 2, cv::LINE_AA);
+    cv::putText(m, s, at, cv::FONT_HERSHEY_SIMPLEX, textScale, yellow, thick, cv::LINE_AA);
+  };
+  int y = pad + static_cast<int>(12 * scale);
+  text(legend.title, {pad, y});
+  y += static_cast<int>(8 * scale);
+  const glm::dvec3 light = glm::normalize(glm::dvec3(-0.6, -0.6, 1.0));  // image y points down
+  for (const GlyphLegendEntry& e : legend.entries) {
+    const int cx = pad + radius, cy = y + radius;
+    // The icon's square: mid grey, the bump shaded on it with the renderer's light direction.
+    cv::rectangle(m, {cx - radius, cy - radius}, {cx + radius, cy + radius},
+                  cv::Scalar(110, 110, 110, 255), cv::FILLED);
+    const double r = radius * std::clamp(e.size, 0.0, 1.0);
+    for (int dy = -radius; dy <= radius && r >= 0.5; ++dy)
+      for (int dx = -radius; dx <= radius; ++dx) {
+        const double q = (dx * dx + dy * dy) / (r * r);
+        if (q > 1.0) continue;
+        glm::dvec3 n(dx / r, dy / r, std::sqrt(1.0 - q));
+        if (e.dimple) n.x = -n.x, n.y = -n.y;
+        const double shade = 255.0 * std::clamp(0.2 + 0.8 * glm::dot(n, light), 0.0, 1.0);
+        auto* px = m.ptr<cv::Vec4b>(cy + dy, cx + dx);
+        (*px)[0] = (*px)[1] = (*px)[2] = static_cast<unsigned char>(shade);
+      }
+    text(e.label, {cx + radius + static_cast<int>(6 * scale), cy + static_cast<int>(5 * scale)});
+    y += row;
+  }
+}
+
 }  // namespace mvw::render

@@ -1,6 +1,7 @@
 #include "GlyphTextures.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -41,11 +42,30 @@ void GlyphTextures::uploadMap(const GlyphMapSettings& g) {
 // Beta sits in the gradient's alpha so that the ray loop reads it with the gradient instead of
 // sampling a second volume per step.
 void GlyphTextures::updateBeta(const VolumeTextures& volume, const FunctionalTextures& functional,
-                               glm::vec2 window, int classes, const ShaderProgram& p, GLuint vao) {
-  const BetaKey key{functional.generation(), window.x, window.y, classes};
+                               glm::vec2 window, int classes, const std::vector<LabelGlyph>& labels,
+                               const ShaderProgram& p, GLuint vao) {
+  // Chosen labels: a table over label numbers, 1 for a bump, just above 0 for a dimple (the
+  // "both" shading: beta = 2u - 1), 0 for none.
+  std::vector<float> table;
+  for (const LabelGlyph& l : labels)
+    if (l.label > 0) table.resize(std::max<std::size_t>(table.size(), std::size_t(l.label) + 1));
+  for (const LabelGlyph& l : labels)
+    if (l.label > 0) table[std::size_t(l.label)] = l.dimple ? 1e-3f : 1.0f;
+  const BetaKey key{functional.generation(), window.x, window.y, classes, table};
   if (betaKey_ == key) return;
   p.use();
   functional.setUniforms(p, window, classes);
+  if (!table.empty()) {
+    labelTable_ = makeTexture();
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_1D, labelTable_.id());
+    glTexImage1D(GL_TEXTURE_1D, 0, GL_R32F, GLsizei(table.size()), 0, GL_RED, GL_FLOAT,
+                 table.data());
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  glUniform1i(p.uniform("uLabelGlyphs"), 1);  // never unit 0, the 3D functional volume's
+  glUniform1i(p.uniform("uLabelGlyphCount"), GLint(table.size()));
   const glm::mat4 worldFromIndex(volume.worldFromIndex());
   glUniformMatrix4fv(p.uniform("uWorldFromIndex"), 1, GL_FALSE, glm::value_ptr(worldFromIndex));
   glActiveTexture(GL_TEXTURE0);
@@ -77,7 +97,8 @@ void GlyphTextures::updateBeta(const VolumeTextures& volume, const FunctionalTex
   betaKey_ = key;
 }
 
-void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm, double minSize) const {
+void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm, double minSize,
+                                double dvrOpacityPerMm, double stepMm) const {
   const GLuint block = glGetUniformBlockIndex(p.id(), "GlyphCentres");
   if (block != GL_INVALID_INDEX) {
     glUniformBlockBinding(p.id(), block, 0);
@@ -90,6 +111,9 @@ void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm, doubl
   glUniform1f(p.uniform("uGlyphInvMapSize"), float(1.0 / settings_.size));
   glUniform1f(p.uniform("uGlyphRadius"), float(radius_));
   glUniform1f(p.uniform("uGlyphMinSize"), float(std::clamp(minSize, 0.0, 1.0)));
+  // Per mm to per step, as the transfer table's opacity: 1 - (1 - a)^(step / 1 mm).
+  const double a = std::clamp(dvrOpacityPerMm, 0.0, 1.0);
+  glUniform1f(p.uniform("uGlyphAlpha"), float(a >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - a, stepMm)));
 }
 
 }  // namespace mvw::render::detail

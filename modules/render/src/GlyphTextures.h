@@ -4,6 +4,7 @@
 // gradient texture's alpha, each derived again only when its inputs change.
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include <glm/vec2.hpp>
 
@@ -12,6 +13,7 @@
 #include "VolumeTextures.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/ShaderProgram.h"
+#include "mvw/render/VolumeRenderer.h"
 
 namespace mvw::render::detail {
 
@@ -23,16 +25,20 @@ class GlyphTextures {
   // The functional attribute through `window` and `classes`, written into the alpha of the
   // volume's gradient texture with `betaProgram` (beta.frag.glsl) one slice at a time, unless
   // the gradient already holds it. Leaves the default framebuffer bound.
+  // `labels` (when not empty) chooses which labels get glyphs, bumps or dimples.
   void updateBeta(const VolumeTextures& volume, const FunctionalTextures& functional,
-                  glm::vec2 window, int classes, const ShaderProgram& betaProgram, GLuint vao);
+                  glm::vec2 window, int classes, const std::vector<LabelGlyph>& labels,
+                  const ShaderProgram& betaProgram, GLuint vao);
 
-  // The glyph centres' uniform block and the map's scale, for glyphs of diameterMm.
-  void setUniforms(const ShaderProgram& program, double diameterMm, double minSize) const;
+  // The glyph centres' uniform block and the map's scale, for glyphs of diameterMm; the DVR
+  // opacity floor per mm turned into one per step of stepMm.
+  void setUniforms(const ShaderProgram& program, double diameterMm, double minSize,
+                   double dvrOpacityPerMm, double stepMm) const;
 
   GLuint cells() const { return cells_.id(); }
 
  private:
-  Texture cells_;
+  Texture cells_, labelTable_;
   Buffer centres_;
   GlyphMapSettings settings_{0, 0, 0.0, 0};
   double radius_ = 0.0;  // map voxels
@@ -41,6 +47,7 @@ class GlyphTextures {
     std::uint64_t generation;
     float low, high;
     int classes;
+    std::vector<float> labels;
     bool operator==(const BetaKey&) const = default;
   };
   std::optional<BetaKey> betaKey_;

@@ -14,8 +14,11 @@ const ShaderProgram& RaycastPrograms::forMode(RenderMode mode, const RenderSetti
   if ((mode == RenderMode::Composite || mode == RenderMode::Isosurface) && s.glyphs) {
     defines.push_back("MVW_GLYPHS 1");
     if (!s.glyphSizeControl) defines.push_back("MVW_GLYPH_SIMPLE 1");
-    if (s.glyphConvexity == GlyphConvexity::Dimples) defines.push_back("MVW_GLYPH_CONCAVE 1");
-    if (s.glyphConvexity == GlyphConvexity::Both) defines.push_back("MVW_GLYPH_BOTH 1");
+    // Chosen labels carry their own kind (bump or dimple) through the "both" shading.
+    const bool both = s.glyphConvexity == GlyphConvexity::Both || !s.glyphLabels.empty();
+    if (!both && s.glyphConvexity == GlyphConvexity::Dimples)
+      defines.push_back("MVW_GLYPH_CONCAVE 1");
+    if (both) defines.push_back("MVW_GLYPH_BOTH 1");
     if (s.glyphMap.placement == GlyphPlacement::Paper) defines.push_back("MVW_GLYPH_PAPER 1");
   }
   switch (mode) {

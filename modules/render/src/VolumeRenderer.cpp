@@ -119,8 +119,8 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   const glm::vec2 functionalWindow = functional.window(s.functionalLow, s.functionalHigh);
   if (s.glyphs) {
     glyphs.uploadMap(s.glyphMap);
-    glyphs.updateBeta(volume, functional, functionalWindow, s.functionalClasses, programs.beta(),
-                      vao.id());
+    glyphs.updateBeta(volume, functional, functionalWindow, s.functionalClasses, s.glyphLabels,
+                      programs.beta(), vao.id());
   }
 
   target.bind(s.size);
@@ -130,7 +130,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setVolumeUniforms(p);
   setRayUniforms(p, s, camera, step);
   setShadingUniforms(p, s, camera);
-  if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize);
+  if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize, s.glyphDvrOpacity, step);
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   bindTextures(p);
 

@@ -1,5 +1,6 @@
 #include "mvw/study/Caption.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace mvw::study {
@@ -19,7 +20,8 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
                std::to_string(static_cast<int>(shown.level));
   if (s.glyphs)
     caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
-               config::toString(v.config.glyphConvexity);
+               (s.glyphLabels.empty() ? config::toString(v.config.glyphConvexity)
+                                      : std::string("by chosen label"));
   if (s.fusion) caption += "  + colour fusion";
   const bool shells = isShellMode(s.mode);
   if (shells) caption += "  " + std::to_string(s.shellCount) + " shells";
@@ -30,6 +32,65 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
     caption += cue;
   }
   return caption;
+}
+
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+}  // namespace
+
+render::GlyphLegend glyphLegend(const PlannedView& v, const std::string& unit,
+                                std::pair<double, double> range) {
+  const render::RenderSettings& s = v.settings;
+  render::GlyphLegend legend;
+  if (!s.glyphs) return legend;
+  // The apparent bump radius for an attribute u in 0..1 (shaders/common/glyphs.glsl): eq. (1)
+  // blends at full size; eqs. (2)-(3) run from the minimum size to 1 (paper: from 0).
+  const bool paper = s.glyphMap.placement == render::GlyphPlacement::Paper;
+  const bool both = s.glyphConvexity == GlyphConvexity::Both || !s.glyphLabels.empty();
+  auto bump = [&](double u, std::string label) {
+    const double beta = both ? 2.0 * u - 1.0 : u;
+    const double size =
+        !s.glyphSizeControl ? (beta == 0.0 ? 0.0 : 1.0)
+        : paper             ? std::abs(beta)
+                : (beta == 0.0 ? 0.0 : s.glyphMinSize + (1.0 - s.glyphMinSize) * std::abs(beta));
+    const bool dimple = s.glyphConvexity == GlyphConvexity::Dimples || (both && beta < 0.0);
+    legend.entries.push_back({std::move(label), size, dimple});
+  };
+  if (!s.glyphLabels.empty()) {
+    legend.title = "glyphs: chosen labels";
+    for (const render::LabelGlyph& l : s.glyphLabels) {
+      if (legend.entries.size() == 10) {
+        legend.entries.push_back(
+            {"... " + std::to_string(s.glyphLabels.size() - 10) + " more", 0.0, false});
+        break;
+      }
+      legend.entries.push_back(
+          {std::to_string(l.label) + (l.name.empty() ? "" : " " + l.name), 1.0, l.dimple});
+    }
+    return legend;
+  }
+  if (s.functionalClasses > 0) {
+    const int k = s.functionalClasses;
+    legend.title = "glyphs: label mod " + std::to_string(k);
+    for (int c = 0; c < std::min(k, 8); ++c)
+      bump(double(c + 1) / k, "labels " + std::to_string(c) + " mod " + std::to_string(k));
+    return legend;
+  }
+  double lo = s.functionalLow, hi = s.functionalHigh;
+  if (!(hi > lo)) lo = range.first, hi = range.second;
+  legend.title = "glyphs: " + (unit.empty() ? std::string("attribute") : unit);
+  bump(0.0, "<= " + number(lo) + "  none");
+  const std::vector<double> steps =
+      both ? std::vector<double>{1e-3, 0.25, 0.75, 1.0} : std::vector<double>{1e-3, 0.5, 1.0};
+  for (double u : steps) bump(u, number(lo + u * (hi - lo)));
+  legend.entries[1].label = "> " + number(lo);  // just above the low end
+  return legend;
 }
 
 }  // namespace mvw::study

@@ -41,6 +41,13 @@ ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, doubl
 std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKind kind,
                                                             const Volume& functional,
                                                             std::pair<double, double> range) {
+  // fMRI statistic maps (z or t, from the NIfTI intent code): from the usual cluster-forming
+  // threshold, z = 2.3.
+  const std::string& unit = functional.metadata().unit;
+  if (kind != config::FunctionalKind::Labels && (unit == "z" || unit == "t")) {
+    if (!(range.second > kStatisticThreshold)) return std::nullopt;
+    return std::array<double, 2>{kStatisticThreshold, range.second};
+  }
   const bool emission =
       kind == config::FunctionalKind::Pet || kind == config::FunctionalKind::Spect ||
       functional.metadata().modality == "PT" || functional.metadata().modality == "NM";

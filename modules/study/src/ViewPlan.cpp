@@ -1,8 +1,14 @@
 #include "mvw/study/ViewPlan.h"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
+#include <map>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/GlyphDefaults.h"
+#include "mvw/io/LabelTable.h"
+#include "mvw/render/Framing.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/study/ModalityDefaults.h"
 
@@ -64,6 +70,90 @@ config::ViewName viewName(render::StandardView view) {
       return ViewName::Inferior;
   }
   return ViewName::Anterior;
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Chosen labels live in a table over label numbers (a 1D texture: GL_MAX_TEXTURE_SIZE is at
+// least 16384 in GL 4.x; llvmpipe has 16384).
+constexpr int kMaxGlyphLabel = 16383;
+
+// The blue-noise map of a view: its spacing (autoSpacingMm unless the config gives one; at
+// least what a diameter alone asks for) and diameter (a fraction of the spacing unless given).
+void setBlueNoiseMap(render::RenderSettings& s, const config::ViewConfig& v, double autoSpacingMm) {
+  const double spacing = v.glyphSpacingMm.value_or(
+      std::max(autoSpacingMm, v.glyphDiameterMm.value_or(0.0) / kBlueNoiseDiameterFraction));
+  s.glyphDiameterMm = v.glyphDiameterMm.value_or(kBlueNoiseDiameterFraction * spacing);
+  s.glyphMap = render::blueNoiseGlyphMap(spacing, s.glyphDiameterMm, v.glyphSeed);
+}
+
+// The labels a view chose for glyphs, by number or by name in the atlas's label table (beside
+// the functional volume: io::labelTableBeside). "none" drops a label.
+std::vector<render::LabelGlyph> chosenLabels(const config::StudyConfig& study,
+                                             const config::ViewConfig& v) {
+  const std::string where = "view '" + v.name + "': glyphs.labels: ";
+  if (study.functionalKind != config::FunctionalKind::Labels)
+    throw InputError(study.file, where + "the functional volume must be a label map (kind labels)");
+  std::map<int, std::string> names;
+  std::optional<fs::path> table;
+  if (study.functional) table = io::labelTableBeside(study.functional->path);
+  if (table) names = io::readLabelTable(*table);
+  std::vector<render::LabelGlyph> out;
+  for (const config::LabelChoice& c : v.glyphLabels) {
+    render::LabelGlyph g;
+    const bool numeric = !c.label.empty() && c.label.size() < 10 &&
+                         std::all_of(c.label.begin(), c.label.end(), ::isdigit);
+    if (numeric) {
+      g.label = std::stoi(c.label);
+      if (g.label < 1 || g.label > kMaxGlyphLabel)
+        throw InputError(study.file, where + "label " + c.label + " is outside 1 .. " +
+                                         std::to_string(kMaxGlyphLabel));
+      if (auto it = names.find(g.label); it != names.end()) g.name = it->second;
+    } else {
+      if (!table)
+        throw InputError(study.file, where + "'" + c.label +
+                                         "' is a name, but no label table lies beside " +
+                                         study.functional->path.string() +
+                                         " (X.nii.txt or X.txt): give label numbers");
+      const auto it = std::find_if(names.begin(), names.end(),
+                                   [&](const auto& n) { return n.second == c.label; });
+      if (it == names.end())
+        throw InputError(study.file,
+                         where + "no label named '" + c.label + "' in " + table->string());
+      g.label = it->first, g.name = it->second;
+    }
+    if (g.label > kMaxGlyphLabel)
+      throw InputError(study.file, where + "label " + std::to_string(g.label) + " is above " +
+                                       std::to_string(kMaxGlyphLabel));
+    if (c.kind == config::LabelGlyphKind::None) continue;
+    g.dimple = c.kind == config::LabelGlyphKind::Dimples;
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
+}  // namespace
+
+double defaultGlyphSpacingMm(double functionalVoxelMm, double mmPerPixel, double minSize) {
+  // The weakest bump (minSize glyph radii, the glyph kBlueNoiseDiameterFraction of the
+  // spacing) must be kGlyphMinBumpPixels in radius on the image.
+  const double radiusPerSpacing = 0.5 * kBlueNoiseDiameterFraction * std::max(minSize, 0.2);
+  const double visible = kGlyphMinBumpPixels * mmPerPixel / radiusPerSpacing;
+  return std::min(std::max(functionalVoxelMm, visible), std::max(kGlyphSpacingMm, visible));
+}
+
+void applyGlyphScale(PlannedView& view, const Volume& anatomy, const Volume& functional) {
+  const config::ViewConfig& v = view.config;
+  if (v.glyphPlacement != config::GlyphPlacement::BlueNoise || v.glyphSpacingMm) return;
+  render::RenderSettings& s = view.settings;
+  const double pixels = std::max(1, std::min(s.size.x, s.size.y));
+  const double mmPerPixel =
+      2.0 * render::framingSphere(anatomy).radius / std::max(s.camera.zoom, 1e-3) / pixels;
+  const glm::dvec3 fv = functional.spacing();
+  const double voxel = std::max({fv.x, fv.y, fv.z});
+  setBlueNoiseMap(s, v, defaultGlyphSpacingMm(voxel, mmPerPixel, v.glyphMinSize));
 }
 
 std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& o) {
@@ -138,8 +228,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.glyphs = v.glyphs;
     s.glyphSizeControl = v.glyphMethod == config::GlyphMethod::Sized;
     s.glyphConvexity = v.glyphConvexity;
-    s.glyphDiameterMm = v.glyphDiameterMm;
     s.glyphMinSize = v.glyphMinSize;
+    s.glyphDvrOpacity = v.glyphDvrOpacity;
     s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
     {
       // The map follows the config's placement even while glyphs are off, so a viewer that
@@ -149,8 +239,10 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
       const std::string keys = paper ? "glyphs.count / glyphs.map_diameter / glyphs.map_size"
                                      : "glyphs.diameter_mm / glyphs.spacing_mm";
       try {
-        if (!paper)
-          s.glyphMap = render::blueNoiseGlyphMap(v.glyphSpacingMm, v.glyphDiameterMm, v.glyphSeed);
+        if (paper)
+          s.glyphDiameterMm = v.glyphDiameterMm.value_or(kPaperGlyphDiameterMm);
+        else  // an automatic spacing is provisional until applyGlyphScale knows the volumes
+          setBlueNoiseMap(s, v, kGlyphSpacingMm);
         if (v.glyphs) render::makeGlyphMap(s.glyphMap, /*texels=*/false);
       } catch (const InputError&) {
         throw;
@@ -186,6 +278,7 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.overlay = v.overlay;
     s.fusion = v.fusion;
     s.functionalClasses = v.functionalClasses;
+    if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
     if (v.fusion && !study.functional)
       throw InputError(study.file,
                        "view '" + v.name + "': fusion needs a functional volume in the study");
@@ -244,12 +337,13 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.glyphs = s.glyphs;
   v.glyphMethod = s.glyphSizeControl ? config::GlyphMethod::Sized : config::GlyphMethod::Simple;
   v.glyphConvexity = s.glyphConvexity;
-  v.glyphDiameterMm = s.glyphDiameterMm;
+  v.glyphDiameterMm = s.glyphDiameterMm;  // what is shown, explicit
   v.glyphMapSize = s.glyphMap.size;
   v.glyphCount = s.glyphMap.count;
   v.glyphMapDiameter = s.glyphMap.diameter;
   v.glyphSeed = s.glyphMap.seed;
   v.glyphMinSize = s.glyphMinSize;
+  v.glyphDvrOpacity = s.glyphDvrOpacity;
   const bool blueNoise = s.glyphMap.placement == render::GlyphPlacement::BlueNoise;
   v.glyphPlacement = blueNoise ? config::GlyphPlacement::BlueNoise : config::GlyphPlacement::Paper;
   if (blueNoise)  // the map's scale, back in mm

@@ -18,6 +18,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/RenderMode.h"
 
 namespace mvw::config {
@@ -48,10 +49,19 @@ enum class GlyphMethod { Sized, Simple };
 // Where glyphs sit in the normal map: a turned, jittered lattice with the spacing in mm
 // (blue-noise), or the paper's 16 random glyphs of 32 voxels in 128^3 (paper).
 enum class GlyphPlacement { BlueNoise, Paper };
-// The glyph diameter when the view does not give one: most of the blue-noise spacing, and the
-// paper map's own size on the patient.
-inline constexpr double kBlueNoiseDiameterFraction = 0.85;
-inline constexpr double kPaperGlyphDiameterMm = 6.0;
+// The glyph defaults (spacing, diameter fraction, paper diameter, minimum size, DVR opacity)
+// live in mvw/core/GlyphDefaults.h, shared with the renderer.
+using mvw::kBlueNoiseDiameterFraction;
+using mvw::kPaperGlyphDiameterMm;
+
+// A label chosen for glyphs (issue 15 item 4): by number ("37") or by its name in the atlas's
+// label table ("Hippocampus_L"), and what it gets.
+enum class LabelGlyphKind { Bumps, Dimples, None };
+struct LabelChoice {
+  std::string label;
+  LabelGlyphKind kind = LabelGlyphKind::Bumps;
+  bool operator==(const LabelChoice&) const = default;
+};
 
 // One rendered view ("render": {"views": [...]}). Every default below is the one default of
 // its key: the parser starts from a default-constructed ViewConfig.
@@ -67,23 +77,31 @@ struct ViewConfig {
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
   // "convexity": "convex" | "concave" | "both", "placement": "blue-noise" | "paper",
-  // "spacing_mm" (blue-noise: glyph centre spacing), "diameter_mm" (default: blue-noise
+  // "spacing_mm" (blue-noise: glyph centre spacing; default: the functional voxel, within what
+  // the rendered scale shows and kGlyphSpacingMm), "diameter_mm" (default: blue-noise
   // kBlueNoiseDiameterFraction of the spacing, paper kPaperGlyphDiameterMm), "min_size"
-  // (apparent bump radius at the window's low end, in glyph radii; blue-noise only: "paper" is
+  // (apparent bump radius at the window's low end, in glyph radii), "dvr_opacity" (composite:
+  // the least opacity per mm a bump gives its samples; blue-noise only: "paper" is
   // the paper's map and shading), "seed", and for the paper's random map "count", "map_size",
   // "map_diameter"}; the functional attribute is mapped to beta 0..1 by functional_window.
   bool glyphs = false;
   GlyphMethod glyphMethod = GlyphMethod::Sized;
   GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
   GlyphPlacement glyphPlacement = GlyphPlacement::BlueNoise;
-  double glyphSpacingMm = 5.0;
-  double glyphMinSize = 0.6;
-  double glyphDiameterMm = kBlueNoiseDiameterFraction * 5.0;
+  // Empty spacing: from the functional voxel and the rendered scale (study::applyGlyphScale);
+  // empty diameter: kBlueNoiseDiameterFraction of the spacing (paper: kPaperGlyphDiameterMm).
+  std::optional<double> glyphSpacingMm;
+  double glyphMinSize = kGlyphMinSize;
+  std::optional<double> glyphDiameterMm;
+  double glyphDvrOpacity = kGlyphDvrOpacityPerMm;  // per mm of ray (composite DVR)
   int glyphCount = 16, glyphMapSize = 128;
   double glyphMapDiameter = 32.0;
   unsigned glyphSeed = 1;
   std::optional<std::array<double, 2>> functionalWindow;  // values -> 0..1 (overlay, glyph beta)
   int functionalClasses = 0;  // labels: K > 0 gives label L the glyph size (L mod K + 1) / K
+  // glyphs.labels {"Hippocampus_L": "bumps", "38": "dimples", ...}: only these labels get
+  // glyphs ("bumps" | "dimples" | "none"); names come from the atlas's label table.
+  std::vector<LabelChoice> glyphLabels;
   std::optional<double> window, level;
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.

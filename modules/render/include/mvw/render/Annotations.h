@@ -2,6 +2,7 @@
 // Text and marks burned into headless renders (OpenCV Hershey fonts): orientation labels at
 // the four edges, a scale bar in mm (orthographic views), and a caption (mode, window/level).
 #include <string>
+#include <vector>
 
 #include "mvw/core/Image.h"
 #include "mvw/render/Camera.h"
@@ -16,5 +17,21 @@ void annotate(Image& image, const Camera& camera, const std::string& caption);
 
 // A vertical colour bar (hot metal) at the right edge, labelled with the value range.
 void drawColourBar(Image& image, double lo, double hi, const std::string& unit);
+
+// A glyph legend (issue 15): what a bump's size or kind means. size: the apparent bump radius
+// as a fraction of the glyph radius (0: no glyph); the icons keep the sizes' ratios.
+struct GlyphLegendEntry {
+  std::string label;
+  double size = 1.0;
+  bool dimple = false;
+};
+struct GlyphLegend {
+  std::string title;
+  std::vector<GlyphLegendEntry> entries;
+};
+
+// The legend at the top-left corner: its title, then per entry a shaded bump (lit from the
+// upper left, as the renders are) or dimple and its label.
+void drawGlyphLegend(Image& image, const GlyphLegend& legend);
 
 }  // namespace mvw::render

@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/Image.h"
 #include "mvw/core/RenderMode.h"
 #include "mvw/core/Volume.h"
@@ -22,6 +23,14 @@
 #include "mvw/render/TransferFunction.h"
 
 namespace mvw::render {
+
+// A label chosen for glyphs: its number, a bump or a dimple, and its atlas name (if any).
+struct LabelGlyph {
+  int label = 0;
+  bool dimple = false;
+  std::string name;
+  bool operator==(const LabelGlyph&) const = default;
+};
 
 // The modes and glyph kinds are the study config's vocabulary too (mvw/core/RenderMode.h).
 using mvw::GlyphConvexity;
@@ -70,13 +79,20 @@ struct RenderSettings {
   bool glyphs = false;
   bool glyphSizeControl = true;  // eqs. (2)-(3); false: simple blending, eq. (1)
   GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
-  double glyphDiameterMm = 6.0;  // the paper map's size on the patient, as config::ViewConfig
-  GlyphMapSettings glyphMap;     // size, count, diameter in map voxels, seed, placement
+  double glyphDiameterMm = kPaperGlyphDiameterMm;  // the default map is the paper's
+  GlyphMapSettings glyphMap;  // size, count, diameter in map voxels, seed, placement
   // The apparent bump radius just above the attribute window's low end, in glyph radii; it
   // grows linearly to 1 at the high end (shaders/common/glyphs.glsl).
-  double glyphMinSize = 0.6;
+  double glyphMinSize = kGlyphMinSize;
+  // Composite DVR (beyond the paper): the least opacity per mm of ray a bump gives the samples
+  // it tilts, so bumps show in translucent tissue (mvw/core/GlyphDefaults.h).
+  double glyphDvrOpacity = kGlyphDvrOpacityPerMm;
   // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
   double functionalLow = 0.0, functionalHigh = 0.0;
+  // Nominal attribute (labels), chosen by the reader (issue 15 item 4): when not empty only
+  // these labels get glyphs, each a full-size bump or dimple (the "both" shading of
+  // glyphs.glsl); other labels and 0 get none.
+  std::vector<LabelGlyph> glyphLabels;
   // Nominal attribute (labels): K > 0 maps label L > 0 to glyph size (L mod K + 1) / K.
   int functionalClasses = 0;
   // Functional colour overlay, when the renderer holds a functional volume: on MPR by

@@ -4,11 +4,19 @@
 #include <string>
 
 #include "mvw/core/WindowLevel.h"
+#include "mvw/render/Annotations.h"
 #include "mvw/study/ViewPlan.h"
 
 namespace mvw::study {
 
 // `shown`: the window the projection or MPR actually used (windowOrFullRange).
 std::string viewCaption(const PlannedView& view, const WindowLevel& shown);
+
+// What a glyph view's bumps mean (empty for views without glyphs): the attribute values at the
+// window's low end, middle and high end with the bump sizes eqs. (2)-(3) and the minimum size
+// give them (dimples below the middle for "both"), or the label classes. unit: the attribute's.
+// range: the functional value range, for views without their own window.
+render::GlyphLegend glyphLegend(const PlannedView& view, const std::string& unit,
+                                std::pair<double, double> range);
 
 }  // namespace mvw::study

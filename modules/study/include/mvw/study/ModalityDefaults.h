@@ -31,12 +31,15 @@ std::string defaultPreset(const Volume& anatomy);
 // What a functional reader starts from, the one home of these numbers.
 inline constexpr double kSuvLesionThreshold = 2.5;        // SUVbw: the usual lesion threshold
 inline constexpr double kRelativeUptakeThreshold = 0.41;  // of the maximum (metabolic volumes)
+inline constexpr double kStatisticThreshold = 2.3;  // z (or t): the usual cluster-forming threshold
 
 // The attribute window (colour map, glyph beta) of a view whose config names none:
 //   PET or SPECT in SUV: from SUV 2.5 to the maximum (at least 1 SUV wide, so a study with no
 //     uptake above 2.5 shows none);
 //   PET or SPECT in other units (Bq/ml, counts, none): from 41 % of the maximum to the maximum;
-//   otherwise (fMRI, perfusion, dose, labels, other): none, the full value range as before.
+//   a statistic map (unit z or t: the NIfTI intent code) that is not a label map: from 2.3 to
+//     the maximum (none when nothing exceeds 2.3);
+//   otherwise (fMRI signal, perfusion, dose, labels, other): none, the full value range.
 // range: the functional volume's value range (min, max).
 std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKind kind,
                                                             const Volume& functional,

@@ -44,6 +44,17 @@ void applyDefaultPreset(PlannedView& view, const Volume& anatomy);
 void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
                             const Volume& functional, std::pair<double, double> range);
 
+// Glyph views whose config leaves the blue-noise spacing open get it from the functional
+// volume's voxel and the rendered scale (defaultGlyphSpacingMm), the diameter following.
+void applyGlyphScale(PlannedView& view, const Volume& anatomy, const Volume& functional);
+
+// Issue 15's default glyph spacing (mm): one glyph per functional voxel (the attribute's own
+// resolution), but no finer than makes the weakest bump (minSize glyph radii) kGlyphMinBumpPixels
+// in radius at mmPerPixel, and no coarser than kGlyphSpacingMm unless the scale demands it,
+// so that a 10 mm region above the window carries at least three bumps where the image can
+// show them.
+double defaultGlyphSpacingMm(double functionalVoxelMm, double mmPerPixel, double minSize);
+
 // The inverse of planViews for one view: the config that plans back to `settings` (the
 // viewer saves its panes this way). preset: its name, "" for the modality's default.
 config::ViewConfig describeView(const render::RenderSettings& settings, const std::string& name,
