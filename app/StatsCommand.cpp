@@ -50,6 +50,7 @@ struct Roi {
   std::string what;  // "sphere ...", "box ...", or the label's name
   std::optional<study::LabelRoi> label;
   study::VoxelList voxels;
+  bool gridsCoincide = false;  // labels: the label grid is the volume's, voxel for voxel
 };
 
 nlohmann::json toJson(const Roi& roi, const study::RoiStats& s) {
@@ -58,6 +59,7 @@ nlohmann::json toJson(const Roi& roi, const study::RoiStats& s) {
   if (roi.label) {
     j["label"] = roi.label->number;
     j["name"] = roi.label->name;
+    j["grids_coincide"] = roi.gridsCoincide;
     if (roi.label->rgb)
       j["rgb"] = {(*roi.label->rgb)[0], (*roi.label->rgb)[1], (*roi.label->rgb)[2]};
   }
@@ -145,12 +147,12 @@ void runStats(const StatsOptions& opt) {
   if (!opt.sphere.empty()) {
     const study::SphereRoi s{{opt.sphere[0], opt.sphere[1], opt.sphere[2]}, opt.sphere[3]};
     list.push_back({"sphere at " + mm(s.centre) + " mm LPS, radius " + num(s.radiusMm) + " mm",
-                    std::nullopt, study::sphereVoxels(volume, s)});
+                    std::nullopt, study::sphereVoxels(volume, s), false});
   } else if (!opt.box.empty()) {
     const study::BoxRoi b{{opt.box[0], opt.box[1], opt.box[2]},
                           {opt.box[3], opt.box[4], opt.box[5]}};
     list.push_back({"box " + mm(b.min) + " .. " + mm(b.max) + " mm LPS", std::nullopt,
-                    study::boxVoxels(volume, b)});
+                    study::boxVoxels(volume, b), false});
   } else {
     const fs::path file(opt.labels);
     io::ReadOptions labelRead;
@@ -168,7 +170,8 @@ void runStats(const StatsOptions& opt) {
       if (l.voxels.empty())
         throw InputError(file, "label " + std::to_string(l.number) + " (\"" + l.name +
                                    "\") covers no voxel centre of " + opt.source);
-      list.push_back({"label " + std::to_string(l.number) + " \"" + l.name + "\"", l, l.voxels});
+      list.push_back({"label " + std::to_string(l.number) + " \"" + l.name + "\"", l, l.voxels,
+                      placed.gridsCoincide});
     }
     if (!found)
       throw InputError(file, "no label " + std::to_string(opt.label) + " (labels: " + known + ")");
