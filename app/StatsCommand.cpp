@@ -205,6 +205,18 @@ void runStats(const StatsOptions& opt) {
 
 void addStatsCommand(CLI::App& app) {
   auto opt = std::make_shared<StatsOptions>();
+  // Coordinates, radii and thresholds: finite numbers only (NaN would pass every comparison).
+  const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const double v = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(v)) return "";
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' is not a finite number";
+      },
+      "NUMBER");
   CLI::App* cmd = app.add_subcommand(
       "stats",
       "Statistics in a region of interest (LPS mm) or per label: voxels, volume, max, mean, SD, "
@@ -215,17 +227,20 @@ void addStatsCommand(CLI::App& app) {
   cmd->add_option("--of", opt->of, "With a study config: which volume (default functional)")
       ->check(CLI::IsMember({"anatomical", "functional"}));
   cmd->add_option("--sphere", opt->sphere, "Sphere X Y Z R: centre in LPS mm, radius in mm")
-      ->expected(4);
+      ->expected(4)
+      ->check(finite);
   cmd->add_option("--box", opt->box, "Box X0 Y0 Z0 X1 Y1 Z1: opposite corners in LPS mm")
-      ->expected(6);
+      ->expected(6)
+      ->check(finite);
   cmd->add_option("--labels", opt->labels,
                   "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value)");
   cmd->add_option("--label", opt->label, "Only this label (segment number)");
   cmd->add_option("--threshold", opt->threshold,
-                  "Metabolic volume: voxels at or above this value (e.g. 2.5 for SUV 2.5)");
-  cmd->add_option(
-      "--threshold-fraction", opt->thresholdFraction,
-      "Metabolic volume: voxels at or above this fraction of the ROI's max (e.g. 0.41)");
+                  "Metabolic volume: voxels at or above this value (e.g. 2.5 for SUV 2.5)")
+      ->check(finite);
+  cmd->add_option("--threshold-fraction", opt->thresholdFraction,
+                  "Metabolic volume: voxels at or above this fraction of the ROI's max (e.g. 0.41)")
+      ->check(finite);
   cmd->add_flag("--json", opt->json, "Print a JSON array, one object per ROI or label");
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
   cmd->callback([opt] { runStats(*opt); });

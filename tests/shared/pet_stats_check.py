@@ -203,6 +203,9 @@ bad = {
     "two ROIs": ["--sphere", *centre, 10, "--box", *lo, *hi],
     "both thresholds": ["--sphere", *centre, 10, "--threshold", 2.5, "--threshold-fraction", 0.4],
     "unknown label": ["--labels", seg_file, "--label", 7],
+    "NaN coordinate": ["--sphere", centre[0], "nan", centre[2], 10],
+    "infinite threshold": ["--sphere", *centre, 10, "--threshold", "inf"],
+    "fraction above 1": ["--sphere", *centre, 10, "--threshold-fraction", 41],
 }
 for what, args in bad.items():
     p = subprocess.run([mvw, "stats", folder, "--series", "PET WB"] + [str(a) for a in args],
