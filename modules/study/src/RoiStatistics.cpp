@@ -37,6 +37,27 @@ std::vector<double> valuesOf(const Volume& volume) {
   return out;
 }
 
+// Component 0 of a voxel as double, read in place (no copy of a large volume per ROI).
+class ValueReader {
+ public:
+  explicit ValueReader(const Volume& volume)
+      : data_(volume.data()),
+        type_(volume.scalarType()),
+        stride_(static_cast<std::size_t>(volume.components())) {}
+  double operator[](std::size_t voxel) const {
+    const std::size_t at = voxel * stride_;
+    return dispatchScalar(type_, [&](auto t) {
+      using T = decltype(t);
+      return static_cast<double>(reinterpret_cast<const T*>(data_)[at]);
+    });
+  }
+
+ private:
+  const std::byte* data_;
+  ScalarType type_;
+  std::size_t stride_;
+};
+
 // Index-space bounding box (clamped to the volume) of a world-space axis-aligned box; false
 // when it misses the volume.
 bool indexBounds(const Volume& volume, const glm::dvec3& lo, const glm::dvec3& hi, glm::ivec3& from,
@@ -230,7 +251,7 @@ LabelPlacement placeLabelVolume(const Volume& volume, const Volume& labels) {
 RoiStats roiStatistics(const Volume& volume, const VoxelList& voxels, const StatsOptions& options) {
   RoiStats out;
   out.unit = volume.metadata().unit;
-  const std::vector<double> values = valuesOf(volume);
+  const ValueReader values(volume);
   const glm::ivec3 d = volume.dimensions();
   const glm::dmat3 linear(volume.worldFromIndex());
   const double voxelMl = std::abs(glm::determinant(linear)) / 1000.0;
