@@ -144,6 +144,9 @@ TEST(RoiStatistics, BadRoisAreInputErrors) {
   EXPECT_THROW(sphereVoxels(v, {c, 0.0}), InputError);
   EXPECT_THROW(sphereVoxels(v, {c, -1.0}), InputError);
   EXPECT_THROW(sphereVoxels(v, {{0, 0, 500}, 10.0}), InputError);
+  EXPECT_THROW(sphereVoxels(v, {{0, 0, 1e300}, 10.0}), InputError);  // no int overflow
+  EXPECT_THROW(sphereVoxels(v, {{0, 0, -1e300}, 1e299}), InputError);
+  EXPECT_THROW(boxVoxels(v, {{-1e300, 1e300, 0}, {1e300, 1e300, 1}}), InputError);
   EXPECT_THROW(sphereVoxels(v, {{0.5, 0.5, 0.5}, 0.1}), InputError);  // between centres
   EXPECT_THROW(boxVoxels(v, {{1, 0, 0}, {0, 1, 1}}), InputError);
   EXPECT_THROW(boxVoxels(v, {{100, 100, 100}, {200, 200, 200}}), InputError);

@@ -73,9 +73,12 @@ bool indexBounds(const Volume& volume, const glm::dvec3& lo, const glm::dvec3& h
   }
   const glm::ivec3 d = volume.dimensions();
   for (int axis = 0; axis < 3; ++axis) {
-    from[axis] = static_cast<int>(std::max(0.0, std::floor(a[axis])));
-    to[axis] = static_cast<int>(std::min(static_cast<double>(d[axis] - 1), std::ceil(b[axis])));
-    if (from[axis] > to[axis]) return false;
+    // Compared as doubles before any cast: a far-away ROI (1e300 mm) must not overflow an int.
+    const double first = std::max(0.0, std::floor(a[axis]));
+    const double last = std::min(static_cast<double>(d[axis] - 1), std::ceil(b[axis]));
+    if (!(first <= last)) return false;
+    from[axis] = static_cast<int>(first);
+    to[axis] = static_cast<int>(last);
   }
   return true;
 }
