@@ -21,9 +21,11 @@
 #include "mvw/io/VolumeReader.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Framing.h"
+#include "mvw/render/SegmentLegend.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/study/Caption.h"
 #include "mvw/study/FunctionalPlacement.h"
+#include "mvw/study/SegmentOverlay.h"
 #include "mvw/study/StudyLoader.h"
 #include "mvw/study/ViewPlan.h"
 
@@ -62,6 +64,17 @@ void runRender(const RenderOptions& o) {
     placement = mvw::study::placeFunctional(study, anatomy, *functional);
     renderer.setFunctional(*functional, placement->anatomicalFromFunctional);
   }
+  // The study's "segmentation": outlines on the MPR views, placed with the functional volume
+  // when it shares its frame of reference.
+  std::optional<mvw::study::SegmentOverlay> segments;
+  if (study.segmentation) {
+    segments = mvw::study::readSegmentOverlay(*study.segmentation);
+    renderer.setSegmentation(
+        segments->masks, segments->colours,
+        mvw::study::anatomicalFromSegmentation(
+            *segments, functional ? &*functional : nullptr,
+            placement ? placement->anatomicalFromFunctional : glm::dmat4(1.0)));
+  }
   const auto [lo, hi] = renderer.valueRange();
   struct Output {
     std::string file;
@@ -93,6 +106,12 @@ void runRender(const RenderOptions& o) {
         if (v.settings.functionalHigh > v.settings.functionalLow)
           flo = v.settings.functionalLow, fhi = v.settings.functionalHigh;
         render::drawColourBar(frame.image, flo, fhi, functional->metadata().unit);
+      }
+      if (segments && v.settings.mode == render::RenderMode::Mpr && v.settings.segmentOutlines) {
+        std::vector<render::LegendEntry> legend;
+        for (std::size_t i = 0; i < segments->names.size(); ++i)
+          legend.push_back({segments->names[i], segments->colours[i]});
+        render::drawSegmentLegend(frame.image, legend);
       }
     }
     nlohmann::json r;
@@ -146,6 +165,8 @@ void runRender(const RenderOptions& o) {
       r["slab_mm"] = v.settings.slabMm;
     }
     r["functional_overlay"] = overlayShown;
+    if (segments && v.settings.mode == render::RenderMode::Mpr)
+      r["segment_outlines"] = segments->names;
     if (overlayShown) {
       r["overlay_opacity"] = v.settings.overlayOpacity;
       r["overlay_threshold"] = v.settings.overlayThreshold;

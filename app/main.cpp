@@ -11,6 +11,7 @@
 #include "PhantomCommand.h"
 #include "RegisterCommand.h"
 #include "RenderCommand.h"
+#include "StatsCommand.h"
 #include "ValidateCommand.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Version.h"
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   mvw::app::addInfoCommand(app);
   mvw::app::addRegisterCommand(app);
   mvw::app::addRenderCommand(app);
+  mvw::app::addStatsCommand(app);
   mvw::app::addPhantomCommand(app);
   mvw::app::addGlyphMapCommand(app);
   mvw::app::addBenchCommand(app);

@@ -3,9 +3,10 @@
 // thick-slab MIP over that many mm. The functional volume, when present, is blended on top
 // through a colour map where it exceeds the threshold; it is sampled at the same world
 // point through its own textureFromWorld (which includes the registration), so no
-// resampled copy is needed.
+// resampled copy is needed. Segment outlines, when a segmentation is set, go on top.
 #include "raycast/common.glsl"
 #include "common/functional.glsl"
+#include "common/segments.glsl"
 
 uniform vec3 uPlaneCentre;   // world mm
 uniform float uSlab;         // mm, 0: a single plane
@@ -18,6 +19,7 @@ void main() {
   Ray ray = makeRay();
   float t0 = dot(uPlaneCentre - ray.origin, ray.dir);
   vec3 world = ray.origin + t0 * ray.dir;
+  vec3 pixelRight = dFdx(world), pixelUp = dFdy(world);  // uniform control flow here
   float value = -3.4e38;
   bool any = false;
   int n = uSlab > 0.0 ? max(1, int(ceil(uSlab / uStep))) : 1;
@@ -36,6 +38,7 @@ void main() {
   float grey = clamp((value - (uWindowLevel.y - 0.5 * uWindowLevel.x)) / uWindowLevel.x, 0.0, 1.0);
   vec3 rgb = vec3(grey);
   if (uHasFunctional) rgb = fuseColour(rgb, world);
+  rgb = outlineSegments(rgb, world, pixelRight, pixelUp);
   fragColor = vec4(rgb, 1.0);
   fragDepth = t0;
 }

@@ -19,6 +19,7 @@
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/render/WindowFramebuffer.h"
 #include "mvw/study/FunctionalPlacement.h"
+#include "mvw/study/SegmentOverlay.h"
 
 namespace mvw::app {
 
@@ -66,6 +67,16 @@ int runViewer(ViewerOptions options) {
   ViewerScript script;
   if (!options.script.empty()) script = ViewerScript::load(options.script);
   const Volume* functional = options.functional ? &*options.functional : nullptr;
+  // The study's segmentation, outlined on the MPR panes: read before the window opens too.
+  std::optional<mvw::study::SegmentOverlay> segments;
+  if (options.study.segmentation)
+    segments = mvw::study::readSegmentOverlay(*options.study.segmentation);
+  auto placeSegments = [&](render::VolumeRenderer& r, const glm::dmat4& anatomicalFromFunctional) {
+    if (segments)
+      r.setSegmentation(
+          segments->masks, segments->colours,
+          mvw::study::anatomicalFromSegmentation(*segments, functional, anatomicalFromFunctional));
+  };
 
   // Declaration order is teardown order in reverse: the state (and a running registration,
   // which reads the volumes) goes first, the GL objects while the context still exists.
@@ -80,6 +91,9 @@ int runViewer(ViewerOptions options) {
     scene.registration = ViewerState::describePlacement(
         config::toString(options.study.registration.method), placement.report);
     scene.functionalRange = renderer.functionalRange();
+    placeSegments(renderer, placement.anatomicalFromFunctional);
+  } else {
+    placeSegments(renderer, glm::dmat4(1.0));
   }
   scene.centre = renderer.centre();
   scene.radius = renderer.radius();
@@ -95,8 +109,10 @@ int runViewer(ViewerOptions options) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (auto anatomicalFromFunctional = state.finishRegistration())
+    if (auto anatomicalFromFunctional = state.finishRegistration()) {
       renderer.setFunctional(*functional, *anatomicalFromFunctional);
+      placeSegments(renderer, *anatomicalFromFunctional);
+    }
     const bool dragging = panel.draw();
     renderDirtyPanes(state, renderer, textures, dragging);
     ImGui::Render();

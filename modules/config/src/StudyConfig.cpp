@@ -359,6 +359,16 @@ const FieldTable<StudyConfig>& studyTable() {
                 j[k] = sourceTable(true).write(SourceEntry{*in.functional, in.functionalKind});
             })
         .add(
+            "segmentation",
+            [](const json& v, S& out, const Where& w) {
+              out.segmentation = readSource(v, w.file, "segmentation", false).source;
+            },
+            [](const S& in, json& j, const char* k) {
+              if (in.segmentation)
+                j[k] =
+                    sourceTable(false).write(SourceEntry{*in.segmentation, FunctionalKind::Other});
+            })
+        .add(
             "registration",
             [](const json& v, S& out, const Where& w) {
               registrationTable().read(v, out.registration, Where{w.file, "registration."});

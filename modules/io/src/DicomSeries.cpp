@@ -33,6 +33,7 @@
 #include "VtkMessages.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Suv.h"
+#include "mvw/io/DicomSeg.h"
 
 namespace mvw::io::detail {
 
@@ -307,6 +308,7 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   md.seriesInstanceUid = ref.uid;
   md.seriesDescription = ref.description;
   md.seriesNumber = ref.number;
+  md.frameOfReferenceUid = meta->Get(0, DC::FrameOfReferenceUID).AsString();
   if (meta->Get(0, DC::ImageOrientationPatient).GetNumberOfValues() != 6)
     md.notes.push_back("no ImageOrientationPatient: patient orientation unknown, axes assumed LPS");
   md.sliceSpacing = sliceSpacing(reader, glm::normalize(glm::dvec3(patientFromData[2])));
@@ -347,6 +349,8 @@ Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
     throw InputError(path,
                      "not a readable DICOM file" + (why.empty() ? std::string() : ": " + why));
   }
+  if (meta->Get(DC::SOPClassUID).AsString() == "1.2.840.10008.5.1.4.1.1.66.4")  // DicomSeg.cpp
+    return labelVolume(readDicomSegmentation(path, options));
   if (!parser->GetPixelDataFound()) {
     const std::string modality = meta->Get(DC::Modality).AsString();
     throw InputError(path, "no pixel data: " +
@@ -415,8 +419,13 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
                                " series here; choose one by UID, number or description:" + list);
   }
   std::vector<Volume> volumes;
-  for (const auto& s : chosen)
-    volumes.push_back(readSeries(path, dir->GetFileNamesForSeries(s.index), s, options));
+  for (const auto& s : chosen) {
+    vtkStringArray* files = dir->GetFileNamesForSeries(s.index);
+    if (s.modality == "SEG" && files->GetNumberOfValues() == 1)  // DicomSeg.cpp
+      volumes.push_back(labelVolume(readDicomSegmentation(files->GetValue(0).c_str(), options)));
+    else
+      volumes.push_back(readSeries(path, files, s, options));
+  }
   return volumes;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <map>
 
 #include <glad/gl.h>
@@ -14,6 +15,7 @@
 #include "GlyphTextures.h"
 #include "RaycastPrograms.h"
 #include "RenderTarget.h"
+#include "SegmentTextures.h"
 #include "ShellRenderer.h"
 #include "TransferTable.h"
 #include "VolumeTextures.h"
@@ -42,6 +44,7 @@ struct VolumeRenderer::Impl {
   detail::TransferTable transfer;
   detail::FunctionalTextures functional;
   detail::GlyphTextures glyphs;
+  detail::SegmentTextures segments;
   detail::RaycastPrograms programs;
   detail::RenderTarget target;
   detail::VertexArray vao;
@@ -132,6 +135,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setShadingUniforms(p, s, camera);
   if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize, s.glyphDvrOpacity, step);
   setFunctionalUniforms(p, s, fusion, functionalWindow);
+  segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentOutlines);
   bindTextures(p);
 
   glViewport(0, 0, s.size.x, s.size.y);
@@ -217,8 +221,9 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p) const {
                {"uBlockRange", GL_TEXTURE_3D, blocks.minMax()},
                {"uFunctional", GL_TEXTURE_3D, functional.texture()},
                {"uColormap", GL_TEXTURE_1D, functional.colormap()},
-               {"uGlyphCells", GL_TEXTURE_3D, glyphs.cells()}};
-  for (int u = 0; u < 8; ++u) {
+               {"uGlyphCells", GL_TEXTURE_3D, glyphs.cells()},
+               {"uSegments", GL_TEXTURE_3D, segments.texture()}};
+  for (int u = 0; u < static_cast<int>(std::size(units)); ++u) {
     glActiveTexture(GL_TEXTURE0 + u);
     glBindTexture(units[u].target, units[u].id);
     glUniform1i(p.uniform(units[u].name), u);
@@ -257,6 +262,12 @@ void VolumeRenderer::setFunctional(const Volume& functional,
                                    const glm::dmat4& anatomicalFromFunctional) {
   impl_->context.makeCurrent();
   impl_->functional.set(functional, anatomicalFromFunctional);
+}
+
+void VolumeRenderer::setSegmentation(const Volume& masks, const std::vector<glm::vec3>& colours,
+                                     const glm::dmat4& anatomicalFromSegmentation) {
+  impl_->context.makeCurrent();
+  impl_->segments.set(masks, colours, anatomicalFromSegmentation);
 }
 
 bool VolumeRenderer::hasFunctional() const { return impl_->functional.present(); }

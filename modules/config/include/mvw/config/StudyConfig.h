@@ -149,6 +149,9 @@ struct StudyConfig {
   VolumeSource anatomical;
   std::optional<VolumeSource> functional;
   FunctionalKind functionalKind = FunctionalKind::Other;
+  // A segmentation (DICOM SEG, or a label volume) outlined on MPR views in its segments'
+  // colours; it moves with the functional volume when it shares its frame of reference.
+  std::optional<VolumeSource> segmentation;
   RegistrationConfig registration;
   RenderConfig render;
 };

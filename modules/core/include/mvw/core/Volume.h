@@ -31,6 +31,7 @@ struct VolumeMetadata {
   std::string sourcePath;
   std::string seriesInstanceUid;  // DICOM only
   std::string seriesDescription;
+  std::string frameOfReferenceUid;  // DICOM only
   int seriesNumber = -1;
   std::optional<SliceSpacing> sliceSpacing;
   std::vector<std::string> notes;  // what a user should know: unit decisions, reorderings

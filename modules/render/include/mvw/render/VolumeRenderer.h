@@ -102,6 +102,8 @@ struct RenderSettings {
   bool fusion = false;
   float overlayOpacity = 0.5f;
   float overlayThreshold = 0.25f;  // fraction of the functional range
+  // MPR: outline the segments of a segmentation set with setSegmentation, in their colours.
+  bool segmentOutlines = true;
 };
 
 struct Frame {
@@ -131,6 +133,11 @@ class VolumeRenderer {
   // anatomicalFromFunctional maps functional world points (LPS mm) to anatomical ones.
   void setFunctional(const Volume& functional, const glm::dmat4& anatomicalFromFunctional);
   bool hasFunctional() const;
+  // Segment masks (one component per segment, non-zero inside; the first 16 are drawn) on
+  // their own grid, outlined on MPR views in `colours` (sRGB 0..1, one per segment);
+  // anatomicalFromSegmentation maps segmentation world points to anatomical ones.
+  void setSegmentation(const Volume& masks, const std::vector<glm::vec3>& colours,
+                       const glm::dmat4& anatomicalFromSegmentation);
   std::pair<double, double> functionalRange() const;
 
  private:

@@ -1,0 +1,249 @@
+#include "StatsCommand.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+#include "mvw/io/DicomSeg.h"
+#include "mvw/io/VolumeReader.h"
+#include "mvw/study/RoiStatistics.h"
+#include "mvw/study/StudyLoader.h"
+
+namespace mvw::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct StatsOptions {
+  std::string source;
+  std::string series;
+  std::string of = "functional";
+  std::vector<double> sphere, box;
+  std::string labels;
+  int label = 0;
+  double threshold = NAN, thresholdFraction = NAN;
+  bool json = false;
+  bool noSuv = false;
+};
+
+std::string num(double v, int significant = 4) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", significant, v);
+  return buf;
+}
+std::string mm(const glm::dvec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.1f, %.1f, %.1f", p.x, p.y, p.z);
+  return buf;
+}
+
+struct Roi {
+  std::string what;  // "sphere ...", "box ...", or the label's name
+  std::optional<study::LabelRoi> label;
+  study::VoxelList voxels;
+  bool gridsCoincide = false;  // labels: the label grid is the volume's, voxel for voxel
+};
+
+nlohmann::json toJson(const Roi& roi, const study::RoiStats& s) {
+  nlohmann::json j;
+  j["roi"] = roi.what;
+  if (roi.label) {
+    j["label"] = roi.label->number;
+    j["name"] = roi.label->name;
+    j["grids_coincide"] = roi.gridsCoincide;
+    if (roi.label->rgb)
+      j["rgb"] = {(*roi.label->rgb)[0], (*roi.label->rgb)[1], (*roi.label->rgb)[2]};
+  }
+  j["voxels"] = s.voxels;
+  j["voxels_no_data"] = s.noData;
+  j["volume_ml"] = s.volumeMl;
+  j["unit"] = s.unit;
+  if (s.voxels) {
+    j["max"] = s.max;
+    j["max_at_lps_mm"] = {s.maxAt.x, s.maxAt.y, s.maxAt.z};
+    j["mean"] = s.mean;
+    j["sd"] = s.sd;
+  } else {
+    j["max"] = j["mean"] = j["sd"] = nullptr;
+  }
+  if (s.peak) {
+    j["peak"] = *s.peak;
+    j["peak_at_lps_mm"] = {s.peakAt.x, s.peakAt.y, s.peakAt.z};
+    j["peak_sphere_voxels"] = s.peakSphereVoxels;
+  }
+  if (s.thresholdValue) {
+    j["threshold"] = *s.thresholdValue;
+    j["metabolic_voxels"] = s.metabolicVoxels;
+    j["metabolic_volume_ml"] = *s.metabolicVolumeMl;
+  }
+  return j;
+}
+
+void printText(std::ostream& out, const Roi& roi, const study::RoiStats& s,
+               const StatsOptions& opt) {
+  const std::string unit = s.unit.empty() ? "" : " " + s.unit;
+  out << roi.what << "\n";
+  out << "  voxels       " << s.voxels << "  (" << num(s.volumeMl) << " ml)";
+  if (s.noData) out << ", " << s.noData << " without data (NaN) left out";
+  out << "\n";
+  if (!s.voxels) return;
+  out << "  max          " << num(s.max) << unit << "  at " << mm(s.maxAt) << " mm LPS\n";
+  out << "  mean         " << num(s.mean) << unit << "\n";
+  out << "  sd           " << num(s.sd) << unit << "\n";
+  if (s.peak)
+    out << "  peak         " << num(*s.peak) << unit << "  (1 cm^3 sphere at " << mm(s.peakAt)
+        << " mm LPS, " << s.peakSphereVoxels << " voxels)\n";
+  if (s.thresholdValue) {
+    out << "  metabolic    " << num(*s.metabolicVolumeMl) << " ml  (" << s.metabolicVoxels
+        << " voxels >= " << num(*s.thresholdValue) << unit;
+    if (!std::isnan(opt.thresholdFraction))
+      out << ", " << num(opt.thresholdFraction * 100) << " % of max";
+    out << ")\n";
+  }
+}
+
+void runStats(const StatsOptions& opt) {
+  const int rois = (!opt.sphere.empty()) + (!opt.box.empty()) + (!opt.labels.empty());
+  if (rois != 1)
+    throw CLI::ValidationError("ROI",
+                               "give exactly one of --sphere X Y Z R, --box X0 Y0 Z0 X1 Y1 "
+                               "Z1 or --labels FILE");
+  if (!std::isnan(opt.threshold) && !std::isnan(opt.thresholdFraction))
+    throw CLI::ValidationError("--threshold", "give --threshold or --threshold-fraction, not both");
+  if (!std::isnan(opt.thresholdFraction) &&
+      !(opt.thresholdFraction > 0 && opt.thresholdFraction <= 1))
+    throw CLI::ValidationError("--threshold-fraction", "must lie in (0, 1], e.g. 0.41");
+  if (opt.label != 0 && opt.labels.empty())
+    throw CLI::ValidationError("--label", "needs --labels FILE");
+
+  io::ReadOptions read;
+  read.series = opt.series;
+  read.suv = !opt.noSuv;
+  Volume volume;
+  const fs::path source(opt.source);
+  if (source.extension() == ".json") {
+    const auto study = config::loadStudyConfig(source);
+    if (opt.of == "anatomical") {
+      volume = study::readSource(study.anatomical, read);
+    } else {
+      if (!study.functional) throw InputError(source, "the study names no functional volume");
+      volume = study::readSource(*study.functional, read);
+    }
+  } else {
+    volume = io::readVolume(source, read);
+  }
+
+  std::vector<Roi> list;
+  std::string placementNote;
+  if (!opt.sphere.empty()) {
+    const study::SphereRoi s{{opt.sphere[0], opt.sphere[1], opt.sphere[2]}, opt.sphere[3]};
+    list.push_back({"sphere at " + mm(s.centre) + " mm LPS, radius " + num(s.radiusMm) + " mm",
+                    std::nullopt, study::sphereVoxels(volume, s), false});
+  } else if (!opt.box.empty()) {
+    const study::BoxRoi b{{opt.box[0], opt.box[1], opt.box[2]},
+                          {opt.box[3], opt.box[4], opt.box[5]}};
+    list.push_back({"box " + mm(b.min) + " .. " + mm(b.max) + " mm LPS", std::nullopt,
+                    study::boxVoxels(volume, b), false});
+  } else {
+    const fs::path file(opt.labels);
+    io::ReadOptions labelRead;
+    const study::LabelPlacement placed =
+        io::isDicomSegmentation(file)
+            ? study::placeSegmentation(volume, io::readDicomSegmentation(file, labelRead))
+            : study::placeLabelVolume(volume, io::readVolume(file, labelRead));
+    placementNote = placed.note;
+    bool found = false;
+    std::string known;
+    for (const auto& l : placed.labels) {
+      known += (known.empty() ? "" : ", ") + std::to_string(l.number);
+      if (opt.label != 0 && l.number != opt.label) continue;
+      found = true;
+      if (l.voxels.empty())
+        throw InputError(file, "label " + std::to_string(l.number) + " (\"" + l.name +
+                                   "\") covers no voxel centre of " + opt.source);
+      list.push_back({"label " + std::to_string(l.number) + " \"" + l.name + "\"", l, l.voxels,
+                      placed.gridsCoincide});
+    }
+    if (!found)
+      throw InputError(file, "no label " + std::to_string(opt.label) + " (labels: " + known + ")");
+  }
+
+  study::StatsOptions so;
+  so.peak = study::isSuvUnit(volume.metadata().unit);
+  if (!std::isnan(opt.threshold))
+    so.threshold = {study::Threshold::Kind::Absolute, opt.threshold};
+  else if (!std::isnan(opt.thresholdFraction))
+    so.threshold = {study::Threshold::Kind::FractionOfMax, opt.thresholdFraction};
+
+  if (opt.json) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& roi : list)
+      out.push_back(toJson(roi, study::roiStatistics(volume, roi.voxels, so)));
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  const auto& md = volume.metadata();
+  std::cout << md.sourcePath;
+  if (!md.seriesDescription.empty()) std::cout << "  \"" << md.seriesDescription << "\"";
+  std::cout << "  (" << (md.modality.empty() ? "modality not stated" : md.modality)
+            << (md.unit.empty() ? ", no unit" : ", values in " + md.unit) << ")\n";
+  if (!placementNote.empty()) std::cout << "  " << placementNote << "\n";
+  for (const auto& roi : list)
+    printText(std::cout, roi, study::roiStatistics(volume, roi.voxels, so), opt);
+}
+
+}  // namespace
+
+void addStatsCommand(CLI::App& app) {
+  auto opt = std::make_shared<StatsOptions>();
+  // Coordinates, radii and thresholds: finite numbers only (NaN would pass every comparison).
+  const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const double v = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(v)) return "";
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' is not a finite number";
+      },
+      "NUMBER");
+  CLI::App* cmd = app.add_subcommand(
+      "stats",
+      "Statistics in a region of interest (LPS mm) or per label: voxels, volume, max, mean, SD, "
+      "SUVpeak and the metabolic volume for PET in SUV");
+  cmd->add_option("source", opt->source, "Volume (file or DICOM folder) or study config (.json)")
+      ->required();
+  cmd->add_option("--series", opt->series, "DICOM series: UID, number or part of the description");
+  cmd->add_option("--of", opt->of, "With a study config: which volume (default functional)")
+      ->check(CLI::IsMember({"anatomical", "functional"}));
+  cmd->add_option("--sphere", opt->sphere, "Sphere X Y Z R: centre in LPS mm, radius in mm")
+      ->expected(4)
+      ->check(finite);
+  cmd->add_option("--box", opt->box, "Box X0 Y0 Z0 X1 Y1 Z1: opposite corners in LPS mm")
+      ->expected(6)
+      ->check(finite);
+  cmd->add_option("--labels", opt->labels,
+                  "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value)");
+  cmd->add_option("--label", opt->label, "Only this label (segment number)");
+  cmd->add_option("--threshold", opt->threshold,
+                  "Metabolic volume: voxels at or above this value (e.g. 2.5 for SUV 2.5)")
+      ->check(finite);
+  cmd->add_option("--threshold-fraction", opt->thresholdFraction,
+                  "Metabolic volume: voxels at or above this fraction of the ROI's max (e.g. 0.41)")
+      ->check(finite);
+  cmd->add_flag("--json", opt->json, "Print a JSON array, one object per ROI or label");
+  cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
+  cmd->callback([opt] { runStats(*opt); });
+}
+
+}  // namespace mvw::app

@@ -1,0 +1,83 @@
+#include "mvw/study/SegmentOverlay.h"
+
+#include <cmath>
+#include <map>
+
+#include "mvw/core/Error.h"
+#include "mvw/io/DicomSeg.h"
+
+namespace mvw::study {
+
+namespace {
+
+// Distinct, readable on grey and on hot colour maps (Slicer's first label colours).
+const glm::vec3 kPalette[] = {{0.50f, 0.68f, 0.50f}, {0.95f, 0.84f, 0.57f}, {0.69f, 0.48f, 0.39f},
+                              {0.44f, 0.72f, 0.82f}, {0.85f, 0.40f, 0.33f}, {0.87f, 0.51f, 0.89f},
+                              {0.56f, 0.93f, 0.56f}, {0.30f, 0.45f, 0.95f}};
+
+}  // namespace
+
+SegmentOverlay readSegmentOverlay(const config::VolumeSource& source,
+                                  const io::ReadOptions& given) {
+  io::ReadOptions options = given;
+  options.series = source.series;
+  SegmentOverlay out;
+  if (io::isDicomSegmentation(source.path)) {
+    io::Segmentation seg = io::readDicomSegmentation(source.path, options);
+    for (std::size_t s = 0; s < seg.segments.size(); ++s) {
+      const auto& segment = seg.segments[s];
+      out.numbers.push_back(segment.number);
+      out.names.push_back(segment.label.empty() ? "segment " + std::to_string(segment.number)
+                                                : segment.label);
+      out.colours.push_back(
+          segment.rgb ? glm::vec3((*segment.rgb)[0], (*segment.rgb)[1], (*segment.rgb)[2]) / 255.0f
+                      : kPalette[s % std::size(kPalette)]);
+    }
+    out.masks = std::move(seg.masks);
+    return out;
+  }
+  const Volume labels = io::readVolume(source.path, options);
+  std::map<long long, int> component;
+  const glm::ivec3 d = labels.dimensions();
+  for (int k = 0; k < d.z; ++k)
+    for (int j = 0; j < d.y; ++j)
+      for (int i = 0; i < d.x; ++i) {
+        const double v = labels.value(i, j, k);
+        if (std::isnan(v) || v == 0.0) continue;
+        if (v != std::floor(v))
+          throw InputError(source.path,
+                           "a segmentation must be a DICOM SEG or a label volume; "
+                           "this one holds the non-integer value " +
+                               std::to_string(v));
+        if (component.emplace(static_cast<long long>(v), 0).second && component.size() > 16)
+          throw InputError(source.path, "more than 16 labels: outlines take at most 16 segments");
+      }
+  int c = 0;
+  for (auto& [label, index] : component) {
+    index = c;
+    out.numbers.push_back(static_cast<int>(label));
+    out.names.push_back("label " + std::to_string(label));
+    out.colours.push_back(kPalette[static_cast<std::size_t>(c) % std::size(kPalette)]);
+    ++c;
+  }
+  out.masks = Volume(d, std::max(1, c), ScalarType::UInt8, labels.worldFromIndex());
+  out.masks.metadata() = labels.metadata();
+  for (int k = 0; k < d.z; ++k)
+    for (int j = 0; j < d.y; ++j)
+      for (int i = 0; i < d.x; ++i) {
+        const double v = labels.value(i, j, k);
+        if (std::isnan(v) || v == 0.0) continue;
+        out.masks.setValue(i, j, k, component[static_cast<long long>(v)], 1.0);
+      }
+  return out;
+}
+
+glm::dmat4 anatomicalFromSegmentation(const SegmentOverlay& overlay, const Volume* functional,
+                                      const glm::dmat4& anatomicalFromFunctional) {
+  const std::string& mine = overlay.masks.metadata().frameOfReferenceUid;
+  if (functional && !mine.empty() && mine == functional->metadata().frameOfReferenceUid)
+    return anatomicalFromFunctional;
+  return glm::dmat4(1.0);
+}
+
+}  // namespace mvw::study
