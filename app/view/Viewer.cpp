@@ -55,6 +55,7 @@ void renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     render::Frame f = renderer.render(s);
     Image shown = f.image;
     render::annotate(shown, f.camera, state.caption(p, s));
+    render::drawGlyphLegend(shown, state.glyphLegend(p, s));
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting);
   }

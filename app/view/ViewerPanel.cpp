@@ -8,6 +8,8 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "mvw/core/GlyphDefaults.h"
+#include "mvw/render/GlyphMap.h"
 #include "mvw/render/TransferFunction.h"
 
 namespace mvw::app {
@@ -144,9 +146,30 @@ void ViewerPanel::drawControls() {
     if (ImGui::Checkbox("glyphs (G)", &glyphs)) v.glyphs = glyphs, state_.markDirty(k3d);
     ImGui::SameLine();
     if (ImGui::Checkbox("colour fusion (F)", &fusion)) v.fusion = fusion, state_.markDirty(k3d);
-    float gd = float(v.glyphDiameterMm);
-    if (ImGui::SliderFloat("glyph size mm", &gd, 1, 40))
-      v.glyphDiameterMm = gd, state_.markDirty(k3d);
+    if (v.glyphMap.placement == render::GlyphPlacement::BlueNoise) {
+      // The blue-noise spacing (the diameter follows at its default fraction) and the size range.
+      float spacing = float(render::blueNoiseSpacing(v.glyphMap.size) * v.glyphDiameterMm /
+                            v.glyphMap.diameter);
+      if (ImGui::SliderFloat("glyph spacing mm", &spacing, 2, 30)) {
+        v.glyphDiameterMm = kBlueNoiseDiameterFraction * spacing;
+        v.glyphMap = render::blueNoiseGlyphMap(spacing, v.glyphDiameterMm, v.glyphMap.seed);
+        state_.markDirty(k3d);
+      }
+      float minSize = float(v.glyphMinSize);
+      if (ImGui::SliderFloat("smallest bump", &minSize, 0, 1))
+        v.glyphMinSize = minSize, state_.markDirty(k3d);
+    } else {
+      float gd = float(v.glyphDiameterMm);
+      if (ImGui::SliderFloat("glyph size mm", &gd, 1, 40))
+        v.glyphDiameterMm = gd, state_.markDirty(k3d);
+    }
+    // The legend, as the 3D pane shows it: what each bump size or kind means.
+    for (const render::GlyphLegendEntry& e : state_.glyphLegend(k3d, v).entries)
+      ImGui::BulletText("%s  %s", e.label.c_str(),
+                        e.size <= 0 ? "no glyph"
+                                    : (std::to_string(int(std::lround(100 * e.size))) + " % " +
+                                       (e.dimple ? "dimple" : "bump"))
+                                          .c_str());
     int method = v.glyphSizeControl ? 0 : 1;
     const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};
     if (ImGui::Combo("glyph method", &method, methods, 2))

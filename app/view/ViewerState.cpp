@@ -254,6 +254,12 @@ std::string ViewerState::caption(int pane, const render::RenderSettings& s) cons
   return mvw::study::viewCaption(shown, windowOrFullRange(s.window, s.level, lo, hi));
 }
 
+render::GlyphLegend ViewerState::glyphLegend(int pane, const render::RenderSettings& s) const {
+  if (!functional_) return {};
+  mvw::study::PlannedView shown{viewConfigOf(pane), s, ""};
+  return mvw::study::glyphLegend(shown, functional_->metadata().unit, scene_.functionalRange);
+}
+
 void ViewerState::rendered(int pane, const render::Camera& camera, Image raw, bool interacting) {
   PaneState& p = pane_(pane);
   p.camera = camera;

@@ -20,6 +20,7 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Image.h"
 #include "mvw/core/Volume.h"
+#include "mvw/render/Annotations.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/VolumeRenderer.h"
 
@@ -81,6 +82,8 @@ class ViewerState {
   // As rendered at the pane's size; while interacting the 3D pane renders coarse.
   render::RenderSettings renderSettings(int pane, bool interacting = false) const;
   std::string caption(int pane, const render::RenderSettings& settings) const;
+  // What the pane's glyphs mean (empty without glyphs), as `mvw render` burns it in.
+  render::GlyphLegend glyphLegend(int pane, const render::RenderSettings& settings) const;
   void rendered(int pane, const render::Camera& camera, Image raw, bool interacting);
   bool anyDirty() const;
   void markDirty(int pane) { panes_[static_cast<std::size_t>(pane)].dirty = true; }
