@@ -6,6 +6,7 @@
 // resampled copy is needed.
 #include "raycast/common.glsl"
 #include "common/functional.glsl"
+#include "common/colormap.glsl"
 
 uniform vec3 uPlaneCentre;   // world mm
 uniform float uSlab;         // mm, 0: a single plane
@@ -29,12 +30,12 @@ void main() {
     any = true;
   }
   if (!any) {
-    fragColor = vec4(uBackground, 1.0);
+    fragColor = vec4(backgroundColour(uBackground), 1.0);
     fragDepth = -1.0;
     return;
   }
   float grey = clamp((value - (uWindowLevel.y - 0.5 * uWindowLevel.x)) / uWindowLevel.x, 0.0, 1.0);
-  vec3 rgb = vec3(grey);
+  vec3 rgb = imageColour(grey);
   if (uHasFunctional) rgb = fuseColour(rgb, world);
   fragColor = vec4(rgb, 1.0);
   fragDepth = t0;

@@ -17,6 +17,7 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   else
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));
+  if (render::showsImageColors(s)) caption += "  " + toString(s.imageColors->map);
   if (s.glyphs)
     caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
                config::toString(v.config.glyphConvexity);
