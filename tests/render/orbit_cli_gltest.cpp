@@ -178,7 +178,7 @@ TEST(OrbitCli, BadInputIsRefusedWithNothingWritten) {
   EXPECT_NE(r.err.find("--orbit-mode must be spin or rock"), std::string::npos) << r.err;
   r = mvw("render " + study.string() + " -o " + out.string() + " --orbit 8 --view superior", dir);
   EXPECT_EQ(r.rc, 2);
-  EXPECT_NE(r.err.find("long axis"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("every view of the study looks along it"), std::string::npos) << r.err;
   const fs::path badMap = writeStudy(dir, R"({ "mode": "mip", "colormap": "rainbow" })");
   r = mvw("render " + badMap.string() + " -o " + out.string(), dir);
   EXPECT_EQ(r.rc, 2);

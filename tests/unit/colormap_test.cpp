@@ -253,13 +253,35 @@ TEST(Orbit, OverridesAreCheckedBeforeAnyWork) {
   study::ViewOverrides badMap;
   badMap.colormap = "jet";
   EXPECT_NE(problem(badMap).find("--colormap 'jet' is not a colour map"), std::string::npos);
+  config::StudyConfig dvrOnly = study;
+  dvrOnly.render.views = {dvr};
+  study::ViewOverrides colours;
+  colours.colormap = "pet";
+  try {
+    study::planViews(dvrOnly, colours);
+    ADD_FAILURE() << "--colormap on a study without projections";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.problem()).find("--colormap colours mip, minip, average and mpr"),
+              std::string::npos);
+  }
   study::ViewOverrides badMode;
   badMode.orbitMode = "tumble";
   EXPECT_NE(problem(badMode).find("--orbit-mode"), std::string::npos);
   study::ViewOverrides along;
   along.orbit = 8;
   along.view = "axial";
-  EXPECT_NE(problem(along).find("long axis"), std::string::npos);
+  EXPECT_NE(problem(along).find("every view of the study looks along it"), std::string::npos);
+  // With a view along the axis among others, --orbit turns the others only.
+  config::ViewConfig axial;
+  axial.name = "axial";
+  axial.mode = RenderMode::Mpr;
+  axial.view = config::ViewName::Axial;
+  study.render.views.push_back(axial);
+  study::ViewOverrides some;
+  some.orbit = 6;
+  const auto mixed = study::planViews(study, some);
+  EXPECT_EQ(mixed[0].config.orbit, 6);
+  EXPECT_EQ(mixed[2].config.orbit, 0);
 }
 
 Image solid(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b) {

@@ -1,5 +1,6 @@
 #include "mvw/study/ViewPlan.h"
 
+#include <algorithm>
 #include <array>
 
 #include "mvw/core/Error.h"
@@ -140,7 +141,11 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
     if (colormap && takesImageColors(v.mode)) v.colormap = *colormap;
     if (overlayColormap) v.overlayColormap = *overlayColormap;
-    if (o.orbit) v.orbit = *o.orbit;
+    // --orbit turns the views that can turn about the long axis (not those looking along it).
+    const render::StandardView sight = standardView(v.view);
+    const bool alongS =
+        sight == render::StandardView::Superior || sight == render::StandardView::Inferior;
+    if (o.orbit && !alongS) v.orbit = *o.orbit;
     if (orbitMode) v.orbitMode = *orbitMode;
     PlannedView p;
     auto& s = p.settings;
@@ -241,6 +246,17 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     p.config = v;
     out.push_back(std::move(p));
   }
+  if (colormap && std::none_of(out.begin(), out.end(), [](const PlannedView& p) {
+        return takesImageColors(p.config.mode);
+      }))
+    throw InputError(study.file,
+                     "--colormap colours mip, minip, average and mpr views, and the study has "
+                     "none (--overlay-colormap colours the functional overlay)");
+  if (o.orbit &&
+      std::none_of(out.begin(), out.end(), [](const PlannedView& p) { return p.config.orbit > 0; }))
+    throw InputError(study.file,
+                     "--orbit turns views about the patient's long axis, and every view of the "
+                     "study looks along it (superior, inferior or axial)");
   return out;
 }
 
