@@ -120,8 +120,8 @@ void ViewerPanel::drawControls() {
   if (ImGui::DragFloat("MPR window", &w, 2.0f, 1.0f, float(hi - lo) * 2) |
       ImGui::DragFloat("MPR level", &l, 2.0f, float(lo), float(hi)))
     state_.setMprWindow(w, l);
-  colormapCombo(state_, "colour map (MIP)", ColorTarget::View3d);
-  colormapCombo(state_, "colour map (MPR)", ColorTarget::Mpr);
+  colormapCombo(state_, "MIP colours", ColorTarget::View3d);
+  colormapCombo(state_, "MPR colours", ColorTarget::Mpr);
   // The rotating 3D view, as `mvw render --orbit` (keys O and K).
   const Orbit orbit = state_.orbit();
   if (ImGui::Button(orbit == Orbit::Spin ? "stop spin (O)" : "spin (O)"))

@@ -18,7 +18,8 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));
   if (render::showsImageColors(s)) caption += "  " + toString(s.imageColors->map);
-  if (s.glyphs)
+  if (s.glyphs &&
+      (s.mode == render::RenderMode::Composite || s.mode == render::RenderMode::Isosurface))
     caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
                config::toString(v.config.glyphConvexity);
   if (s.fusion) caption += "  + colour fusion";

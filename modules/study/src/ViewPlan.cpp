@@ -303,7 +303,9 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.background = {s.background.r, s.background.g, s.background.b};
   v.cropMin = {s.cropMin.x, s.cropMin.y, s.cropMin.z};
   v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
-  v.glyphs = s.glyphs;
+  // Glyphs only where they show (a viewer may leave them on while it shows a MIP): a saved MIP
+  // with glyphs would not load.
+  v.glyphs = s.glyphs && (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface);
   v.glyphMethod = s.glyphSizeControl ? config::GlyphMethod::Sized : config::GlyphMethod::Simple;
   v.glyphConvexity = s.glyphConvexity;
   v.glyphDiameterMm = s.glyphDiameterMm;
