@@ -132,6 +132,36 @@ TEST(OrbitCli, RockSwingsOverItsRangeWithDepthCue) {
   EXPECT_TRUE(record.contains("depth_cue"));
 }
 
+TEST(OrbitCli, FusionOrbitsWithItsOverlayColourMap) {
+  const fs::path dir = test::scratchDir();
+  const fs::path study = dir / "fusion.json";
+  std::ofstream(study) << R"({ "anatomical": { "path": ")"
+                       << test::sampleData("cranium/cranium.nii.gz").string()
+                       << R"(" }, "functional": { "path": ")"
+                       << test::sampleData("derived/pet_like.nii.gz").string() << R"(" },
+      "render": { "views": [ { "name": "fused", "mode": "composite", "preset": "ct-skin",
+        "fusion": true, "overlay_colormap": "pet", "width": 48, "height": 48 } ] } })";
+  ASSERT_EQ(
+      mvw("render " + study.string() + " -o " + (dir / "spin").string() + " --orbit 4", dir).rc, 0);
+  ASSERT_EQ(
+      mvw("render " + study.string() + " -o " + (dir / "back").string() + " --azimuth 180", dir).rc,
+      0);
+  EXPECT_TRUE(
+      samePixels(png(dir / "spin" / "fused" / "frame-002.png"), png(dir / "back" / "fused.png")));
+  ASSERT_EQ(mvw("render " + study.string() + " -o " + (dir / "hot").string() +
+                    " --overlay-colormap hot-metal",
+                dir)
+                .rc,
+            0);
+  EXPECT_FALSE(samePixels(png(dir / "spin" / "fused.png"), png(dir / "hot" / "fused.png")))
+      << "the overlay colour map changed nothing";
+  const nlohmann::json record =
+      nlohmann::json::parse(std::ifstream(dir / "spin" / "render.json"))["views"][0];
+  EXPECT_EQ(record["overlay_colormap"], "pet");
+  EXPECT_EQ(record["orbit"]["frames"], 4);
+  EXPECT_EQ(io::readMovieInfo(dir / "spin" / "fused.mp4").frames, 4);
+}
+
 TEST(OrbitCli, ColourMapsReachThePixels) {
   const fs::path dir = test::scratchDir();
   const fs::path study = writeStudy(dir, kMip);
