@@ -50,7 +50,7 @@ std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
   return buf;
 }
 
-// Orbit frames and movies are written into a folder beside the output folder while they are
+// Orbit frames and movies are written into a staging folder near the output folder while they are
 // rendered, and moved into place with everything else once every view has rendered, so a
 // failure leaves no partial output. Removed with whatever is left in it.
 class Staging {
@@ -58,8 +58,13 @@ class Staging {
   explicit Staging(const fs::path& outDir) {
     fs::path out = fs::absolute(outDir).lexically_normal();
     if (out.filename().empty()) out = out.parent_path();
-    dir_ = out.parent_path() /
-           (".mvw-render-" + std::to_string(::getpid()) + "-" + out.filename().string());
+    // In the nearest folder that exists (the same file system, so the moves are renames), so
+    // a failure creates no folder on the way to the output either.
+    fs::path existing = out.parent_path();
+    std::error_code ec;
+    while (!existing.empty() && existing != existing.root_path() && !fs::is_directory(existing, ec))
+      existing = existing.parent_path();
+    dir_ = existing / (".mvw-render-" + std::to_string(::getpid()) + "-" + out.filename().string());
   }
   ~Staging() {
     std::error_code ec;
@@ -69,7 +74,7 @@ class Staging {
   Staging& operator=(const Staging&) = delete;
   const fs::path& dir() {
     if (!made_) {
-      fs::create_directories(dir_);
+      fs::create_directory(dir_);
       made_ = true;
     }
     return dir_;

@@ -115,17 +115,22 @@ TEST(OrbitCli, RockSwingsOverItsRangeWithDepthCue) {
       dir, R"({ "name": "cued", "mode": "mip", "view": "left", "window": 2000, "level": 900,
                "width": 48, "height": 48, "depth_cue": { "amount": 0.8, "contrast": 0.35 },
                "colormap": "hot-iron", "orbit": 8, "orbit_mode": "rock", "orbit_range": 20 })");
-  ASSERT_EQ(mvw("render " + study.string() + " -o " + (dir / "rock").string(), dir).rc, 0);
+  // Into folders that do not exist yet: created, with nothing staged left on the way.
+  const fs::path rock = dir / "deep" / "er" / "rock";
+  ASSERT_EQ(mvw("render " + study.string() + " -o " + rock.string(), dir).rc, 0);
+  for (const fs::path& d : {dir, dir / "deep", dir / "deep" / "er"})
+    for (const auto& e : fs::directory_iterator(d))
+      EXPECT_EQ(e.path().filename().string().find(".mvw-render-"), std::string::npos) << e.path();
   // Frame 2 of 8 is the top of the swing: azimuth + 20 exactly (sin(pi/2) = 1).
   ASSERT_EQ(
       mvw("render " + study.string() + " -o " + (dir / "top").string() + " --azimuth 20", dir).rc,
       0);
   // --azimuth keeps the orbit, so the top run's own first frame is the still at azimuth 20.
-  EXPECT_TRUE(samePixels(png(dir / "rock" / "cued" / "frame-002.png"),
+  EXPECT_TRUE(samePixels(png(rock / "cued" / "frame-002.png"),
                          png(dir / "top" / "cued" / "frame-000.png")));
-  EXPECT_EQ(io::readMovieInfo(dir / "rock" / "cued.mp4").frames, 8);
+  EXPECT_EQ(io::readMovieInfo(rock / "cued.mp4").frames, 8);
   const nlohmann::json record =
-      nlohmann::json::parse(std::ifstream(dir / "rock" / "render.json"))["views"][0];
+      nlohmann::json::parse(std::ifstream(rock / "render.json"))["views"][0];
   EXPECT_EQ(record["orbit"]["mode"], "rock");
   EXPECT_EQ(record["orbit"]["range_deg"], 20.0);
   EXPECT_EQ(record["colormap"], "hot-iron");
