@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -17,6 +19,7 @@
 #include "mvw/core/Version.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/AtomicFile.h"
+#include "mvw/io/MovieWriter.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/render/Annotations.h"
@@ -46,6 +49,47 @@ std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
   for (std::uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+// Orbit frames and movies are written into a staging folder near the output folder while they are
+// rendered, and moved into place with everything else once every view has rendered, so a
+// failure leaves no partial output. Removed with whatever is left in it.
+class Staging {
+ public:
+  explicit Staging(const fs::path& outDir) {
+    fs::path out = fs::absolute(outDir).lexically_normal();
+    if (out.filename().empty()) out = out.parent_path();
+    // In the nearest folder that exists (the same file system, so the moves are renames), so
+    // a failure creates no folder on the way to the output either.
+    fs::path existing = out.parent_path();
+    std::error_code ec;
+    while (!existing.empty() && existing != existing.root_path() && !fs::is_directory(existing, ec))
+      existing = existing.parent_path();
+    dir_ = existing / (".mvw-render-" + std::to_string(::getpid()) + "-" + out.filename().string());
+  }
+  ~Staging() {
+    std::error_code ec;
+    if (made_) fs::remove_all(dir_, ec);
+  }
+  Staging(const Staging&) = delete;
+  Staging& operator=(const Staging&) = delete;
+  const fs::path& dir() {
+    if (!made_) {
+      fs::create_directory(dir_);
+      made_ = true;
+    }
+    return dir_;
+  }
+
+ private:
+  fs::path dir_;
+  bool made_ = false;
+};
+
+std::string frameName(int k) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame-%03d.png", k);
   return buf;
 }
 
@@ -82,6 +126,8 @@ void runRender(const RenderOptions& o) {
     nlohmann::json record;
   };
   std::vector<Output> outputs;
+  Staging staging(o.outDir);
+  std::vector<std::string> orbits;  // views whose frames and movie wait in staging
   for (auto& v : views) {
     mvw::study::applyDefaultPreset(v, anatomy);
     if (functional) {
@@ -89,30 +135,84 @@ void runRender(const RenderOptions& o) {
                                          renderer.functionalRange());
       mvw::study::applyGlyphScale(v, anatomy, *functional);
     }
-    render::Frame frame = renderer.render(v.settings);
     const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
     const std::string caption = mvw::study::viewCaption(v, shown);
     const bool shellMode = isShellMode(v.settings.mode);
     const bool overlayShown =
         functional &&
         (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion);
-    if (v.config.annotate) {
-      render::annotate(frame.image, frame.camera, caption);
+    // The colour bar follows the map shown: the overlay's, else the image's own (over its
+    // window, in the anatomy's unit); a grey image has none.
+    auto renderAnnotated = [&](const render::RenderSettings& settings) {
+      render::Frame f = renderer.render(settings);
+      if (!v.config.annotate) return f;
+      render::annotate(f.image, f.camera, caption);
       if (functional)
-        render::drawGlyphLegend(frame.image, mvw::study::glyphLegend(v, functional->metadata().unit,
-                                                                     renderer.functionalRange()));
+        render::drawGlyphLegend(f.image, mvw::study::glyphLegend(v, functional->metadata().unit,
+                                                                 renderer.functionalRange()));
       if (overlayShown) {
         auto [flo, fhi] = renderer.functionalRange();
-        if (v.settings.functionalHigh > v.settings.functionalLow)
-          flo = v.settings.functionalLow, fhi = v.settings.functionalHigh;
-        render::drawColourBar(frame.image, flo, fhi, functional->metadata().unit);
+        if (settings.functionalHigh > settings.functionalLow)
+          flo = settings.functionalLow, fhi = settings.functionalHigh;
+        if (settings.overlayColors)
+          render::drawColourBar(f.image, flo, fhi, functional->metadata().unit,
+                                *settings.overlayColors);
+        else
+          render::drawColourBar(f.image, flo, fhi, functional->metadata().unit);
+      } else if (render::showsImageColors(settings)) {
+        render::drawColourBar(f.image, shown.level - 0.5 * shown.window,
+                              shown.level + 0.5 * shown.window, anatomy.metadata().unit,
+                              *settings.imageColors);
       }
-      if (segments && v.settings.mode == render::RenderMode::Mpr && v.settings.segmentOutlines) {
+      if (segments && settings.mode == render::RenderMode::Mpr && settings.segmentOutlines) {
         std::vector<render::LegendEntry> legend;
         for (std::size_t i = 0; i < segments->names.size(); ++i)
           legend.push_back({segments->names[i], segments->colours[i]});
-        render::drawSegmentLegend(frame.image, legend);
+        render::drawSegmentLegend(f.image, legend);
       }
+      return f;
+    };
+    render::Frame frame = renderAnnotated(v.settings);
+    nlohmann::json orbitRecord;
+    if (v.config.orbit > 0) {
+      // Frame 0 is the still itself (the view's own azimuth), rendered once.
+      const fs::path folder = staging.dir() / v.config.name;
+      fs::create_directories(folder);
+      const std::string movieName = v.config.name + ".mp4";
+      io::MovieWriter movie(staging.dir() / movieName, frame.image.width, frame.image.height,
+                            v.config.orbitFps);
+      const std::vector<double> azimuths = config::orbitAzimuths(v.config);
+      nlohmann::json files = nlohmann::json::array();
+      double ms = frame.milliseconds;
+      for (std::size_t k = 0; k < azimuths.size(); ++k) {
+        render::Frame f;
+        if (k == 0) {
+          f.image = frame.image;
+        } else {
+          render::RenderSettings turned = v.settings;
+          turned.camera.azimuthDeg = azimuths[k];
+          f = renderAnnotated(turned);
+          ms += f.milliseconds;
+        }
+        const std::string name = frameName(static_cast<int>(k));
+        io::writePng(f.image, folder / name);
+        movie.add(f.image);
+        files.push_back(v.config.name + "/" + name);
+      }
+      movie.finish();
+      orbitRecord = {{"mode", config::toString(v.config.orbitMode)},
+                     {"frames", azimuths.size()},
+                     {"azimuths_deg", azimuths},
+                     {"folder", v.config.name},
+                     {"files", files},
+                     {"movie", movieName},
+                     {"movie_codec", "mp4v (MPEG-4 Part 2), OpenCV VideoWriter"},
+                     {"movie_size", {movie.width(), movie.height()}},
+                     {"fps", v.config.orbitFps},
+                     {"ms_all_frames", ms}};
+      if (v.config.orbitMode == config::OrbitMode::Rock)
+        orbitRecord["range_deg"] = v.config.orbitRangeDeg;
+      orbits.push_back(v.config.name);
     }
     nlohmann::json r;
     r["file"] = v.config.name + ".png";
@@ -164,16 +264,19 @@ void runRender(const RenderOptions& o) {
       r["plane_offset_mm"] = v.settings.planeOffsetMm;
       r["slab_mm"] = v.settings.slabMm;
     }
+    if (render::showsImageColors(v.settings)) r["colormap"] = toString(v.settings.imageColors->map);
     r["functional_overlay"] = overlayShown;
     if (segments && v.settings.mode == render::RenderMode::Mpr)
       r["segment_outlines"] = segments->names;
     if (overlayShown) {
       r["overlay_opacity"] = v.settings.overlayOpacity;
       r["overlay_threshold"] = v.settings.overlayThreshold;
+      r["overlay_colormap"] = toString(v.config.overlayColormap);
       r["functional_placement"] = placement ? placement->report["method"] : nlohmann::json("none");
     }
     r["ms_per_frame"] = frame.milliseconds;
     r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);
+    if (!orbitRecord.is_null()) r["orbit"] = orbitRecord;
     outputs.push_back({v.config.name + ".png", std::move(frame.image), r});
     std::cerr << "rendered " << v.config.name << " (" << toString(v.config.mode) << ", "
               << config::toString(v.config.view) << ") in " << static_cast<int>(frame.milliseconds)
@@ -196,6 +299,12 @@ void runRender(const RenderOptions& o) {
   for (const auto& out : outputs) {
     io::writePng(out.image, fs::path(o.outDir) / out.file);
     report["views"].push_back(out.record);
+  }
+  for (const std::string& name : orbits) {
+    const fs::path folder = fs::path(o.outDir) / name;
+    fs::remove_all(folder);  // an earlier run's frames
+    fs::rename(staging.dir() / name, folder);
+    fs::rename(staging.dir() / (name + ".mp4"), fs::path(o.outDir) / (name + ".mp4"));
   }
   io::writeTextAtomically(fs::path(o.outDir) / "render.json", report.dump(2) + "\n");
   std::cout << "wrote " << outputs.size() << " view(s) and render.json to " << o.outDir << "\n";
@@ -234,6 +343,16 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--cue-amount", o->overrides.cueAmount, "MIP depth cue: amount a (0 = none)");
   cmd->add_option("--cue-contrast", o->overrides.cueContrast,
                   "MIP depth cue: contrast b (1 = plain MIP)");
+  cmd->add_option("--colormap", o->overrides.colormap,
+                  "Colour map of mip, minip, average and mpr views: grey | grey-inverted | "
+                  "hot-iron | pet | hot-metal-blue | pet-20-step | hot-metal");
+  cmd->add_option("--overlay-colormap", o->overrides.overlayColormap,
+                  "Colour map of the functional overlay and fusion (default hot-metal)");
+  cmd->add_option("--orbit", o->overrides.orbit,
+                  "Rotating view: N frames (2..720) about the patient's long axis, written as "
+                  "VIEW/frame-000.png ... and VIEW.mp4");
+  cmd->add_option("--orbit-mode", o->overrides.orbitMode,
+                  "spin (a full turn) | rock (back and forth over +-orbit_range, default 30 deg)");
   cmd->add_flag("--perspective", o->overrides.perspective,
                 "Perspective instead of orthographic projection");
   cmd->add_flag("--no-annotate", o->overrides.noAnnotate,

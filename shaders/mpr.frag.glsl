@@ -7,6 +7,7 @@
 #include "raycast/common.glsl"
 #include "common/functional.glsl"
 #include "common/segments.glsl"
+#include "common/colormap.glsl"
 
 uniform vec3 uPlaneCentre;   // world mm
 uniform float uSlab;         // mm, 0: a single plane
@@ -31,12 +32,12 @@ void main() {
     any = true;
   }
   if (!any) {
-    fragColor = vec4(uBackground, 1.0);
+    fragColor = vec4(backgroundColour(uBackground), 1.0);
     fragDepth = -1.0;
     return;
   }
   float grey = clamp((value - (uWindowLevel.y - 0.5 * uWindowLevel.x)) / uWindowLevel.x, 0.0, 1.0);
-  vec3 rgb = vec3(grey);
+  vec3 rgb = imageColour(grey);
   if (uHasFunctional) rgb = fuseColour(rgb, world);
   rgb = outlineSegments(rgb, world, pixelRight, pixelUp);
   fragColor = vec4(rgb, 1.0);

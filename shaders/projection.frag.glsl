@@ -3,6 +3,7 @@
 // MVW_AVERAGE. No empty-space skipping: measured on llvmpipe, a per-sample block test for
 // "this block cannot beat the current maximum" made MIP 3x slower (82 -> 256 ms/frame).
 #include "raycast/common.glsl"
+#include "common/colormap.glsl"
 
 uniform vec2 uWindowLevel;  // window width, level (centre), in the volume's unit
 
@@ -76,7 +77,7 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 
 void finishHook(inout RayState s, Ray ray, vec2 span) {
   if (s.count == 0) {
-    fragColor = vec4(uBackground, 1.0);
+    fragColor = vec4(backgroundColour(uBackground), 1.0);
     fragDepth = -1.0;
     return;
   }
@@ -89,7 +90,7 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
   // eq. (3): the background term beta0 Phi[0] competes in the maximum.
   grey = clamp(max(v, uCue.x * dot(uBackground, vec3(1.0 / 3.0))), 0.0, 1.0);
 #endif
-  fragColor = vec4(vec3(grey), 1.0);
+  fragColor = vec4(imageColour(grey), 1.0);
   fragDepth = s.depth;
 }
 

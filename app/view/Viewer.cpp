@@ -115,6 +115,7 @@ int runViewer(ViewerOptions options) {
       placeSegments(renderer, *anatomicalFromFunctional);
     }
     const bool dragging = panel.draw();
+    state.advanceOrbit();  // one step per drawn frame while the 3D view spins or rocks
     renderDirtyPanes(state, renderer, textures, dragging);
     ImGui::Render();
     framebuffer.clear({0.08f, 0.08f, 0.1f, 1.0f});

@@ -16,6 +16,18 @@ namespace mvw::app {
 
 namespace {
 const char* kModeLabels[] = {"composite", "isosurface", "mip (depth cue: D)", "minip", "average"};
+
+// A colour map chooser: every map by its config name.
+void colormapCombo(ViewerState& state, const char* label, ColorTarget target) {
+  const ColorMap current = state.colormap(target);
+  if (ImGui::BeginCombo(label, toString(current).c_str())) {
+    for (const std::string& n : colorMapNames()) {
+      const ColorMap map = *parseColorMap(n);
+      if (ImGui::Selectable(n.c_str(), map == current)) state.setColormap(target, map);
+    }
+    ImGui::EndCombo();
+  }
+}
 }  // namespace
 
 void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
@@ -110,6 +122,15 @@ void ViewerPanel::drawControls() {
   if (ImGui::DragFloat("MPR window", &w, 2.0f, 1.0f, float(hi - lo) * 2) |
       ImGui::DragFloat("MPR level", &l, 2.0f, float(lo), float(hi)))
     state_.setMprWindow(w, l);
+  colormapCombo(state_, "MIP colours", ColorTarget::View3d);
+  colormapCombo(state_, "MPR colours", ColorTarget::Mpr);
+  // The rotating 3D view, as `mvw render --orbit` (keys O and K).
+  const Orbit orbit = state_.orbit();
+  if (ImGui::Button(orbit == Orbit::Spin ? "stop spin (O)" : "spin (O)"))
+    state_.toggleOrbit(Orbit::Spin);
+  ImGui::SameLine();
+  if (ImGui::Button(orbit == Orbit::Rock ? "stop rock (K)" : "rock +-30 (K)"))
+    state_.toggleOrbit(Orbit::Rock);
   ImGui::Separator();
   ImGui::Text("depth-cued MIP (Heidrich 1995)");
   bool cue = v.depthCue;
@@ -123,6 +144,7 @@ void ViewerPanel::drawControls() {
   if (functional) {
     ImGui::Separator();
     ImGui::Text("functional volume");
+    colormapCombo(state_, "overlay colours", ColorTarget::Overlay);
     if (ImGui::SliderFloat("overlay opacity", &v.overlayOpacity, 0, 1) |
         ImGui::SliderFloat("threshold", &v.overlayThreshold, 0, 1))
       state_.markAllDirty();
@@ -208,7 +230,8 @@ void ViewerPanel::drawControls() {
       "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom. MPR: left "
       "click/drag moves the crosshair, wheel scrolls slices, right-drag or Ctrl-drag "
       "window/level. Double-click maximises a view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
-      "fusion, P next preset, R reset, S screenshot, Ctrl+S save state as a study config.");
+      "fusion, P next preset, O spin, K rock, R reset, S screenshot, Ctrl+S save state as a "
+      "study config.");
   if (!state_.status().empty()) ImGui::TextWrapped("%s", state_.status().c_str());
 }
 
@@ -238,8 +261,9 @@ bool ViewerPanel::draw() {
   ImGui::End();
   if (!io.WantTextInput) {
     // GLFW's key codes for digits and letters are their ASCII upper-case characters.
-    for (int key : {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5, GLFW_KEY_D,
-                    GLFW_KEY_G, GLFW_KEY_F, GLFW_KEY_P, GLFW_KEY_R, GLFW_KEY_S})
+    for (int key :
+         {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5, GLFW_KEY_D, GLFW_KEY_G,
+          GLFW_KEY_F, GLFW_KEY_P, GLFW_KEY_R, GLFW_KEY_S, GLFW_KEY_O, GLFW_KEY_K})
       if (ImGui::IsKeyPressed(key, false)) state_.key(static_cast<char>(key), io.KeyCtrl);
   }
   return dragging_;

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
@@ -68,7 +69,7 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
   if (cmd == "key") {
     c.kind = Kind::Key;
     const std::string k = in.word("key");
-    if (k.size() != 1) in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s)");
+    if (k.size() != 1) in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k)");
     c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
     if (in.more()) {
       const std::string mod = in.word("modifier");
@@ -113,6 +114,36 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
     c.kind = Kind::Dump;
     c.pane = in.pane();
     c.file = in.word("file");
+  } else if (cmd == "colormap") {
+    c.kind = Kind::Colormap;
+    const std::string target = in.word("target");
+    if (target == "3d")
+      c.target = ColorTarget::View3d;
+    else if (target == "mpr")
+      c.target = ColorTarget::Mpr;
+    else if (target == "overlay")
+      c.target = ColorTarget::Overlay;
+    else
+      in.fail("colormap: unknown target '" + target + "' (3d, mpr, overlay)");
+    const std::string name = in.word("colour map");
+    const std::optional<ColorMap> map = parseColorMap(name);
+    if (!map) {
+      std::string names;
+      for (const auto& n : colorMapNames()) names += (names.empty() ? "" : ", ") + n;
+      in.fail("colormap: unknown colour map '" + name + "' (" + names + ")");
+    }
+    c.colormap = *map;
+  } else if (cmd == "orbit") {
+    c.kind = Kind::Orbit;
+    const std::string mode = in.word("mode");
+    if (mode == "spin")
+      c.orbit = Orbit::Spin;
+    else if (mode == "rock")
+      c.orbit = Orbit::Rock;
+    else if (mode == "off")
+      c.orbit = Orbit::Off;
+    else
+      in.fail("orbit: unknown mode '" + mode + "' (spin, rock, off)");
   } else if (cmd == "register") {
     c.kind = Kind::Register;
   } else if (cmd == "wait-registration") {
@@ -178,6 +209,12 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Dump:
       state.dump(c.pane, c.file);
+      break;
+    case Kind::Colormap:
+      state.setColormap(c.target, c.colormap);
+      break;
+    case Kind::Orbit:
+      state.setOrbit(c.orbit);
       break;
     case Kind::Register:
       state.startRegistration();

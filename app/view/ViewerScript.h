@@ -1,6 +1,6 @@
 #pragma once
 // The viewer's --script (tests under Xvfb drive the window with it). One command per line:
-//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s)
+//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k)
 //   drag PANE dx dy [left|right|middle] a drag by fractions of the pane (default left)
 //   click PANE x y                      a click at fractions of the pane (y down)
 //   wheel PANE n                        n wheel notches
@@ -8,6 +8,9 @@
 //   screenshot FILE                     the whole window as drawn, PNG
 //   save-config FILE                    the state as a study config (Ctrl+S)
 //   dump PANE FILE                      the pane's full-resolution render, without annotations
+//   colormap 3d|mpr|overlay NAME        a colour map chooser (grey, grey-inverted, hot-iron, pet,
+//                                       hot-metal-blue, pet-20-step, hot-metal)
+//   orbit spin|rock|off                 the rotating 3D view (keys O and K toggle it)
 //   register | wait-registration        re-run the registration in the background | wait for it
 //   quit
 // PANE: 3d, axial, coronal, sagittal. Blank lines and lines starting with # are skipped (each
@@ -35,6 +38,8 @@ class ViewerScript {
       Screenshot,
       SaveConfig,
       Dump,
+      Colormap,
+      Orbit,
       Register,
       WaitRegistration,
       Quit
@@ -48,6 +53,9 @@ class ViewerScript {
     MouseButton button = MouseButton::Left;
     int frames = 0;
     std::filesystem::path file;
+    ColorTarget target = ColorTarget::View3d;
+    ColorMap colormap = ColorMap::Grey;
+    app::Orbit orbit = app::Orbit::Off;
   };
 
   ViewerScript() = default;

@@ -78,6 +78,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   for (const mvw::study::PlannedView& v : planned)
     if (v.settings.mode == RenderMode::Mpr) {
       if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
+      mprColors_ = v.settings.imageColors;
       break;
     }
   job_ = [this](std::stop_token) {
@@ -119,6 +120,7 @@ bool ViewerState::anyDirty() const {
 void ViewerState::drag(int pane, double dx, double dy, MouseButton button, bool ctrl) {
   if (pane == k3d) {
     if (button == MouseButton::Left) {
+      setOrbit(Orbit::Off);  // the reader takes the camera: the orbit stops where it is
       view3d_.camera.azimuthDeg += dx * 180.0;
       view3d_.camera.elevationDeg =
           std::clamp(view3d_.camera.elevationDeg + dy * 180.0, -89.0, 89.0);
@@ -180,8 +182,13 @@ void ViewerState::key(char key, bool ctrl) {
     presetName_ = it == names.end() || it + 1 == names.end() ? names.front() : *(it + 1);
     view3d_.transfer = render::transferPreset(presetName_);
   } else if (key == 'R') {
+    setOrbit(Orbit::Off);
     view3d_.camera = render::CameraSettings{};
     crosshair_ = scene_.centre;
+  } else if (key == 'O') {
+    toggleOrbit(Orbit::Spin);
+  } else if (key == 'K') {
+    toggleOrbit(Orbit::Rock);
   } else if (key == 'S' && ctrl) {
     saveConfig("mvw-view-state.json");
   } else if (key == 'S') {
@@ -211,6 +218,49 @@ void ViewerState::setMprWindow(double window, double level) {
   markAllDirty();
 }
 
+void ViewerState::setColormap(ColorTarget target, ColorMap map) {
+  auto table = [&](ColorMap none) {
+    return map == none ? std::nullopt : std::optional<ColorTable>(mvw::study::colorTable(map));
+  };
+  if (target == ColorTarget::View3d) view3d_.imageColors = table(ColorMap::Grey);
+  if (target == ColorTarget::Mpr) mprColors_ = table(ColorMap::Grey);
+  if (target == ColorTarget::Overlay) view3d_.overlayColors = table(ColorMap::HotMetal);
+  markAllDirty();
+}
+
+ColorMap ViewerState::colormap(ColorTarget target) const {
+  switch (target) {
+    case ColorTarget::View3d:
+      return view3d_.imageColors ? view3d_.imageColors->map : ColorMap::Grey;
+    case ColorTarget::Mpr:
+      return mprColors_ ? mprColors_->map : ColorMap::Grey;
+    case ColorTarget::Overlay:
+      break;
+  }
+  return view3d_.overlayColors ? view3d_.overlayColors->map : ColorMap::HotMetal;
+}
+
+void ViewerState::setOrbit(Orbit orbit) {
+  orbit_ = orbit;
+  orbitAzimuths_.clear();
+  orbitStep_ = 0;
+  if (orbit == Orbit::Off) return;
+  // The same angles `mvw render --orbit` renders, from the azimuth shown now.
+  config::ViewConfig v;
+  v.azimuth = view3d_.camera.azimuthDeg;
+  v.orbit = kOrbitFrames;
+  v.orbitMode = orbit == Orbit::Spin ? config::OrbitMode::Spin : config::OrbitMode::Rock;
+  v.orbitRangeDeg = kRockRangeDeg;
+  orbitAzimuths_ = config::orbitAzimuths(v);
+}
+
+void ViewerState::advanceOrbit() {
+  if (orbit_ == Orbit::Off || orbitAzimuths_.empty()) return;
+  orbitStep_ = (orbitStep_ + 1) % orbitAzimuths_.size();
+  view3d_.camera.azimuthDeg = orbitAzimuths_[orbitStep_];
+  markDirty(k3d);
+}
+
 void ViewerState::setPaneSize(int pane, glm::ivec2 size) {
   PaneState& p = pane_(pane);
   if (size != p.size) p.size = size, p.dirty = true;
@@ -236,6 +286,8 @@ render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) c
     s.functionalLow = view3d_.functionalLow;
     s.functionalHigh = view3d_.functionalHigh;
     s.functionalClasses = view3d_.functionalClasses;
+    s.imageColors = mprColors_;
+    s.overlayColors = view3d_.overlayColors;
     const glm::dvec3 forward =
         render::makeCamera(s.camera, scene_.centre, scene_.radius, image.size).forward;
     s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, forward);

@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -18,6 +19,7 @@
 
 #include "RegistrationWorker.h"
 #include "mvw/config/StudyConfig.h"
+#include "mvw/core/ColorMap.h"
 #include "mvw/core/Image.h"
 #include "mvw/core/Volume.h"
 #include "mvw/render/Annotations.h"
@@ -28,6 +30,12 @@ namespace mvw::app {
 
 enum Pane { k3d = 0, kAxial, kCoronal, kSagittal, kPaneCount };
 enum class MouseButton { Left = 0, Right = 1, Middle = 2 };
+// The rotating 3D view: off, a full turn (spin) or back and forth (rock), about the patient's
+// long axis as `mvw render --orbit` turns.
+enum class Orbit { Off, Spin, Rock };
+// Which image a colour map chooser sets: the 3D pane's projection, the MPR panes' anatomy, or
+// the functional overlay (MPR) and fusion (3D).
+enum class ColorTarget { View3d, Mpr, Overlay };
 
 // What the renderer knows about the volumes that the state's maths need (the renderer holds
 // them in GL; a test gives them by hand).
@@ -67,13 +75,28 @@ class ViewerState {
   void drag(int pane, double dx, double dy, MouseButton button, bool ctrl);
   void click(int pane, double x, double y);
   void wheel(int pane, double steps);
-  // key: an upper-case letter or digit ('1'..'5' modes, 'D', 'G', 'F', 'P', 'R', 'S'); other
-  // keys do nothing.
+  // key: an upper-case letter or digit ('1'..'5' modes, 'D', 'G', 'F', 'P', 'R', 'S', 'O' spin,
+  // 'K' rock); other keys do nothing.
   void key(char key, bool ctrl);
   void toggleMaximised(int pane);
   void setMode(render::RenderMode mode);  // one of modes3d()
   void setPreset(const std::string& name);
   void setMprWindow(double window, double level);
+  // Colour maps (grey for the images and hot metal for the overlay are the defaults); the 3D
+  // pane's shows in MIP, MinIP and average.
+  void setColormap(ColorTarget target, ColorMap map);
+  ColorMap colormap(ColorTarget target) const;
+
+  // The rotating 3D view: spin turns 360 degrees in kOrbitFrames frames, rock swings +-30
+  // degrees about the azimuth it started from; switching it off stops at the angle shown (so
+  // a reader can stop where a finding shows best). The same toggle again switches it off.
+  static constexpr int kOrbitFrames = 90;
+  static constexpr double kRockRangeDeg = 30.0;
+  void setOrbit(Orbit orbit);
+  void toggleOrbit(Orbit orbit) { setOrbit(orbit_ == orbit ? Orbit::Off : orbit); }
+  Orbit orbit() const { return orbit_; }
+  // The window calls this once per drawn frame: the next step of the orbit (the 3D pane dirty).
+  void advanceOrbit();
 
   // Rendering: the window loop sets each pane's size, renders the panes that need it with
   // renderSettings(), and reports each frame back.
@@ -150,6 +173,10 @@ class ViewerState {
   render::RenderSettings view3d_;
   std::string presetName_;
   double mprWindow_ = 0, mprLevel_ = 0;
+  std::optional<ColorTable> mprColors_;  // the MPR panes' anatomy; none: grey
+  Orbit orbit_ = Orbit::Off;
+  std::vector<double> orbitAzimuths_;
+  std::size_t orbitStep_ = 0;
   glm::dvec3 crosshair_{0.0};
   int maximised_ = -1;
   bool quit_ = false;

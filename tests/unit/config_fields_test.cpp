@@ -16,7 +16,7 @@ using nlohmann::json;
 ViewConfig fullySet() {
   ViewConfig v;
   v.name = "all";
-  v.mode = RenderMode::Isosurface;
+  v.mode = RenderMode::Mpr;  // a mode that takes a colormap
   v.view = ViewName::Sagittal;
   v.azimuth = 12.5;
   v.elevation = -3;
@@ -66,6 +66,12 @@ ViewConfig fullySet() {
   v.fusion = true;
   v.overlayOpacity = 0.7;
   v.overlayThreshold = 0.1;
+  v.colormap = ColorMap::HotIron;
+  v.overlayColormap = ColorMap::Pet20Step;
+  v.orbit = 24;
+  v.orbitMode = OrbitMode::Rock;
+  v.orbitRangeDeg = 45;
+  v.orbitFps = 20;
   return v;
 }
 
@@ -123,6 +129,12 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.fusion, a.fusion);
   EXPECT_EQ(b.overlayOpacity, a.overlayOpacity);
   EXPECT_EQ(b.overlayThreshold, a.overlayThreshold);
+  EXPECT_EQ(b.colormap, a.colormap);
+  EXPECT_EQ(b.overlayColormap, a.overlayColormap);
+  EXPECT_EQ(b.orbit, a.orbit);
+  EXPECT_EQ(b.orbitMode, a.orbitMode);
+  EXPECT_EQ(b.orbitRangeDeg, a.orbitRangeDeg);
+  EXPECT_EQ(b.orbitFps, a.orbitFps);
 }
 
 // From the table itself, so a key added later is covered without touching this test: the fully

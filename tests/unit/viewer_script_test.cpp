@@ -92,7 +92,8 @@ TEST(ViewerScript, BadLinesNameTheLineAndTheProblem) {
             "line 1: drag: unknown button 'sideways' (left, right, middle)");
   EXPECT_EQ(problemOf("wheel axial 2 3"), "line 1: wheel: unexpected '3'");
   EXPECT_EQ(problemOf("key"), "line 1: key: missing key");
-  EXPECT_EQ(problemOf("key ctrl"), "line 1: key: 'ctrl' is not one key (1-5, d, g, f, p, r, s)");
+  EXPECT_EQ(problemOf("key ctrl"),
+            "line 1: key: 'ctrl' is not one key (1-5, d, g, f, p, r, s, o, k)");
   EXPECT_EQ(problemOf("key s shift"), "line 1: key: unknown modifier 'shift' (ctrl)");
   EXPECT_EQ(problemOf("wait -1"),
             "line 1: wait: the frame count must be a whole number from 0 to 1000000");
@@ -177,6 +178,50 @@ TEST_F(ViewerScriptRun, WaitRegistrationHoldsUntilTheWorkerEnds) {
   s.step(state);  // wait-registration passes
   s.step(state);
   EXPECT_EQ(state.view3d().mode, render::RenderMode::Isosurface);
+}
+
+}  // namespace
+}  // namespace mvw::app
+
+namespace mvw::app {
+namespace {
+
+TEST(ViewerScript, ColormapAndOrbitCommands) {
+  const ViewerScript s = ViewerScript::parse(
+      "colormap 3d grey-inverted\ncolormap mpr hot-iron\ncolormap overlay pet-20-step\n"
+      "orbit spin\norbit rock\norbit off\n",
+      "t");
+  const auto& c = s.commands();
+  ASSERT_EQ(c.size(), 6u);
+  EXPECT_EQ(c[0].kind, Kind::Colormap);
+  EXPECT_EQ(c[0].target, ColorTarget::View3d);
+  EXPECT_EQ(c[0].colormap, ColorMap::GreyInverted);
+  EXPECT_EQ(c[1].target, ColorTarget::Mpr);
+  EXPECT_EQ(c[1].colormap, ColorMap::HotIron);
+  EXPECT_EQ(c[2].target, ColorTarget::Overlay);
+  EXPECT_EQ(c[2].colormap, ColorMap::Pet20Step);
+  EXPECT_EQ(c[3].kind, Kind::Orbit);
+  EXPECT_EQ(c[3].orbit, Orbit::Spin);
+  EXPECT_EQ(c[4].orbit, Orbit::Rock);
+  EXPECT_EQ(c[5].orbit, Orbit::Off);
+  EXPECT_EQ(problemOf("colormap 3d jet"),
+            "line 1: colormap: unknown colour map 'jet' (grey, grey-inverted, hot-iron, pet, "
+            "hot-metal-blue, pet-20-step, hot-metal)");
+  EXPECT_EQ(problemOf("colormap left pet"),
+            "line 1: colormap: unknown target 'left' (3d, mpr, overlay)");
+  EXPECT_EQ(problemOf("colormap 3d"), "line 1: colormap: missing colour map");
+  EXPECT_EQ(problemOf("orbit"), "line 1: orbit: missing mode");
+  EXPECT_EQ(problemOf("orbit tumble"), "line 1: orbit: unknown mode 'tumble' (spin, rock, off)");
+  EXPECT_EQ(problemOf("orbit spin 36"), "line 1: orbit: unexpected '36'");
+}
+
+TEST_F(ViewerScriptRun, ColormapAndOrbitActOnTheState) {
+  ViewerState state(study, ct, nullptr, scene);
+  ViewerScript s = ViewerScript::parse("colormap 3d hot-iron\norbit spin\n", "t");
+  EXPECT_TRUE(s.step(state));
+  EXPECT_EQ(state.colormap(ColorTarget::View3d), ColorMap::HotIron);
+  EXPECT_TRUE(s.step(state));
+  EXPECT_EQ(state.orbit(), Orbit::Spin);
 }
 
 }  // namespace

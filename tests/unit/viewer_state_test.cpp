@@ -384,3 +384,105 @@ TEST_F(ViewerStateTest, FailedRegistrationSaysWhy) {
 
 }  // namespace
 }  // namespace mvw::app
+
+namespace mvw::app {
+namespace {
+
+TEST_F(ViewerStateTest, SpinAndRockToggleAndTurnAboutTheLongAxis) {
+  ViewerState state(study, pet, nullptr, sceneOf(pet));
+  renderAll(state);
+  state.drag(k3d, 0.1, 0.0, MouseButton::Left, false);  // azimuth 18
+  const double start = state.view3d().camera.azimuthDeg;
+  EXPECT_DOUBLE_EQ(start, 18.0);
+  state.key('O', false);
+  EXPECT_EQ(state.orbit(), Orbit::Spin);
+  renderAll(state);
+  state.advanceOrbit();
+  EXPECT_TRUE(state.needsRender(k3d));
+  EXPECT_FALSE(state.needsRender(kAxial));  // the MPR panes stay as they are
+  EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, start + 360.0 / ViewerState::kOrbitFrames);
+  for (int k = 1; k < ViewerState::kOrbitFrames / 2; ++k) state.advanceOrbit();
+  EXPECT_NEAR(state.view3d().camera.azimuthDeg, start + 180.0, 1e-9);     // half way round
+  EXPECT_EQ(state.view3d().camera.view, render::StandardView::Anterior);  // up stays S
+  state.key('O', false);                                                  // off: stops where it is
+  EXPECT_EQ(state.orbit(), Orbit::Off);
+  state.advanceOrbit();
+  EXPECT_NEAR(state.view3d().camera.azimuthDeg, start + 180.0, 1e-9);
+
+  // Rock: +-30 degrees about where it starts, a quarter of the way at the top of the swing.
+  state.key('K', false);
+  EXPECT_EQ(state.orbit(), Orbit::Rock);
+  for (int k = 0; k < ViewerState::kOrbitFrames / 4; ++k) state.advanceOrbit();
+  const double top = state.view3d().camera.azimuthDeg - (start + 180.0);
+  EXPECT_NEAR(top,
+              ViewerState::kRockRangeDeg *
+                  std::sin(2 * M_PI * (ViewerState::kOrbitFrames / 4) / ViewerState::kOrbitFrames),
+              1e-9);
+  EXPECT_GT(top, 29.0);
+  state.key('O', false);  // the other toggle switches over
+  EXPECT_EQ(state.orbit(), Orbit::Spin);
+  state.drag(k3d, 0.1, 0.0, MouseButton::Left, false);  // the reader takes the camera
+  EXPECT_EQ(state.orbit(), Orbit::Off);
+  state.key('K', false);
+  state.key('R', false);
+  EXPECT_EQ(state.orbit(), Orbit::Off);
+  EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, 0.0);
+}
+
+TEST_F(ViewerStateTest, ColourMapChoosersReachThePanes) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  EXPECT_EQ(state.colormap(ColorTarget::View3d), ColorMap::Grey);
+  EXPECT_EQ(state.colormap(ColorTarget::Mpr), ColorMap::Grey);
+  EXPECT_EQ(state.colormap(ColorTarget::Overlay), ColorMap::HotMetal);
+  EXPECT_FALSE(state.renderSettings(kAxial).imageColors);
+  EXPECT_FALSE(state.renderSettings(kAxial).overlayColors);
+  renderAll(state);
+  state.setColormap(ColorTarget::View3d, ColorMap::GreyInverted);
+  EXPECT_TRUE(state.needsRender(k3d));
+  state.setColormap(ColorTarget::Mpr, ColorMap::HotIron);
+  state.setColormap(ColorTarget::Overlay, ColorMap::Pet);
+  ASSERT_TRUE(state.renderSettings(k3d).imageColors);
+  EXPECT_EQ(state.renderSettings(k3d).imageColors->map, ColorMap::GreyInverted);
+  EXPECT_EQ(state.renderSettings(k3d).imageColors->rgb[0],
+            (std::array<std::uint8_t, 3>{255, 255, 255}));
+  for (int p = kAxial; p < kPaneCount; ++p) {
+    ASSERT_TRUE(state.renderSettings(p).imageColors);
+    EXPECT_EQ(state.renderSettings(p).imageColors->map, ColorMap::HotIron);
+    ASSERT_TRUE(state.renderSettings(p).overlayColors);
+    EXPECT_EQ(state.renderSettings(p).overlayColors->map, ColorMap::Pet);
+  }
+  state.key('3', false);
+  EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)), "mip  W 3000 L 500  grey-inverted");
+  // Back to the defaults: no tables at all, so the renderer draws what it always drew.
+  state.setColormap(ColorTarget::View3d, ColorMap::Grey);
+  state.setColormap(ColorTarget::Overlay, ColorMap::HotMetal);
+  EXPECT_FALSE(state.renderSettings(k3d).imageColors);
+  EXPECT_FALSE(state.renderSettings(kAxial).overlayColors);
+}
+
+TEST_F(ViewerStateTest, TheStudysColourMapsOpenTheViewerAndAreSaved) {
+  const auto dir = test::scratchDir();
+  ct.metadata().sourcePath = (dir / "ct.nii.gz").string();
+  std::ofstream(ct.metadata().sourcePath) << "";
+  config::ViewConfig mip;
+  mip.name = "mip";
+  mip.mode = RenderMode::Mip;
+  mip.colormap = ColorMap::GreyInverted;
+  config::ViewConfig mpr;
+  mpr.name = "mpr";
+  mpr.mode = RenderMode::Mpr;
+  mpr.colormap = ColorMap::HotIron;
+  study.render.views = {mip, mpr};
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  EXPECT_EQ(state.colormap(ColorTarget::View3d), ColorMap::GreyInverted);
+  EXPECT_EQ(state.colormap(ColorTarget::Mpr), ColorMap::HotIron);
+  renderAll(state);
+  state.saveConfig(dir / "saved.json");
+  const config::StudyConfig saved = config::loadStudyConfig(dir / "saved.json");
+  ASSERT_EQ(saved.render.views.size(), 4u);
+  EXPECT_EQ(saved.render.views[0].colormap, ColorMap::GreyInverted);
+  EXPECT_EQ(saved.render.views[1].colormap, ColorMap::HotIron);
+}
+
+}  // namespace
+}  // namespace mvw::app

@@ -1,5 +1,6 @@
 #include "mvw/config/StudyConfig.h"
 
+#include <cmath>
 #include <fstream>
 #include <limits>
 
@@ -52,6 +53,15 @@ const EnumNames<RegistrationMethod> kRegistrations = {{RegistrationMethod::None,
                                                       {RegistrationMethod::Rigid, "rigid"},
                                                       {RegistrationMethod::Affine, "affine"},
                                                       {RegistrationMethod::File, "file"}};
+
+const EnumNames<OrbitMode> kOrbitModes = {{OrbitMode::Spin, "spin"}, {OrbitMode::Rock, "rock"}};
+
+EnumNames<ColorMap> colorMaps() {
+  EnumNames<ColorMap> names;
+  static const std::vector<std::string> kNames = colorMapNames();
+  for (const std::string& n : kNames) names.push_back({*parseColorMap(n), n.c_str()});
+  return names;
+}
 
 EnumNames<RenderMode> renderModes() {
   EnumNames<RenderMode> names;
@@ -216,7 +226,23 @@ const FieldTable<ViewConfig>& viewTable() {
             [](const V& in, json& j, const char* k) { j[k] = in.shellsDisabled; })
         .number("functional_classes", &V::functionalClasses, 0, 64)
         .number("overlay_opacity", &V::overlayOpacity, 0.0, 1.0)
-        .number("overlay_threshold", &V::overlayThreshold, 0.0, 1.0);
+        .number("overlay_threshold", &V::overlayThreshold, 0.0, 1.0)
+        .enumeration("colormap", &V::colormap, colorMaps())
+        .enumeration("overlay_colormap", &V::overlayColormap, colorMaps())
+        .add(
+            "orbit",
+            [](const json& n, V& out, const Where& w) {
+              if (!n.is_number_integer() || n.get<long long>() < 2 ||
+                  n.get<long long>() > kMaxOrbitFrames)
+                w.bad("must be a whole number of frames, 2.." + std::to_string(kMaxOrbitFrames));
+              out.orbit = n.get<int>();
+            },
+            [](const V& in, json& j, const char* k) {
+              if (in.orbit > 0) j[k] = in.orbit;
+            })
+        .enumeration("orbit_mode", &V::orbitMode, kOrbitModes)
+        .number("orbit_range", &V::orbitRangeDeg, 1.0, 180.0)
+        .number("orbit_fps", &V::orbitFps, 1.0, 60.0);
     return v;
   }();
   return t;
@@ -237,6 +263,16 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
   for (int a = 0; a < 3; ++a)
     if (v.cropMin[a] >= v.cropMax[a])
       throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
+  if (v.colormap != ColorMap::Grey && !takesImageColors(v.mode))
+    throw InputError(
+        file, "'" + w + "colormap' applies to mip, minip, average and mpr views, not " +
+                  toString(v.mode) + " (the functional overlay's is '" + w + "overlay_colormap')");
+  if (v.orbit > 0 &&
+      (v.view == ViewName::Superior || v.view == ViewName::Inferior || v.view == ViewName::Axial))
+    throw InputError(file, "'" + w + "orbit' turns about the patient's long axis, which view '" +
+                               toString(v.view) +
+                               "' looks along: use anterior, posterior, left, right, coronal "
+                               "or sagittal");
   for (int k : v.shellsDisabled)
     if (k > v.shells)
       throw InputError(
@@ -245,6 +281,24 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
 }
 
 json viewConfigJson(const ViewConfig& v) { return viewTable().write(v); }
+
+std::string toString(OrbitMode mode) { return detail::nameOf(kOrbitModes, mode); }
+
+std::optional<OrbitMode> parseOrbitMode(const std::string& name) {
+  return detail::parseName(kOrbitModes, name);
+}
+
+std::vector<double> orbitAzimuths(const ViewConfig& v) {
+  std::vector<double> azimuths;
+  constexpr double kPi = 3.14159265358979323846;
+  for (int k = 0; k < v.orbit; ++k) {
+    const double phase = static_cast<double>(k) / v.orbit;
+    azimuths.push_back(v.orbitMode == OrbitMode::Spin
+                           ? v.azimuth + 360.0 * phase
+                           : v.azimuth + v.orbitRangeDeg * std::sin(2.0 * kPi * phase));
+  }
+  return azimuths;
+}
 
 std::vector<std::string> viewConfigKeys() { return viewTable().keys(); }
 

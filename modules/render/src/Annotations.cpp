@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -72,17 +73,20 @@ void annotate(Image& image, const Camera& camera, const std::string& caption) {
   }
 }
 
-void drawColourBar(Image& image, double lo, double hi, const std::string& unit) {
+namespace {
+
+// The bar in 256 colours (index 0 at the bottom), the range's ends and the unit beside it.
+void drawBar(Image& image, double lo, double hi, const std::string& unit,
+             const std::vector<cv::Scalar>& colours) {
   cv::Mat m(image.height, image.width, CV_8UC4, image.rgba.data());
   const double scale = std::max(0.4, std::min(image.width, image.height) / 600.0);
   const int barW = std::max(6, static_cast<int>(14 * scale));
   const int top = image.height / 4, bottom = image.height * 3 / 4;
   const int x0 = image.width - barW - static_cast<int>(44 * scale), x1 = x0 + barW;
-  const auto lut = sampleTransferFunction(transferPreset("pet-hot-metal"), 0.0, 1.0, 256, 0.0, 1.0);
   for (int y = top; y <= bottom; ++y) {
-    const glm::vec4 c =
-        lut[static_cast<std::size_t>(255.0 * (bottom - y) / std::max(1, bottom - top))];
-    cv::line(m, {x0, y}, {x1, y}, cv::Scalar(255 * c.r, 255 * c.g, 255 * c.b, 255));
+    const cv::Scalar& c =
+        colours[static_cast<std::size_t>(255.0 * (bottom - y) / std::max(1, bottom - top))];
+    cv::line(m, {x0, y}, {x1, y}, c);
   }
   cv::rectangle(m, {x0 - 1, top - 1}, {x1 + 1, bottom + 1}, cv::Scalar(200, 200, 200, 255), 1);
   const double textScale = 0.4 * scale;
@@ -101,6 +105,22 @@ void drawColourBar(Image& image, double lo, double hi, const std::string& unit) 
     cv::putText(m, unit, {x0 - 2, bottom + static_cast<int>(32 * scale)}, cv::FONT_HERSHEY_SIMPLEX,
                 textScale, cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
   }
+}
+
+}  // namespace
+
+void drawColourBar(Image& image, double lo, double hi, const std::string& unit) {
+  const auto lut = sampleTransferFunction(transferPreset("pet-hot-metal"), 0.0, 1.0, 256, 0.0, 1.0);
+  std::vector<cv::Scalar> colours;
+  for (const glm::vec4& c : lut) colours.emplace_back(255 * c.r, 255 * c.g, 255 * c.b, 255);
+  drawBar(image, lo, hi, unit, colours);
+}
+
+void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
+                   const ColorTable& table) {
+  std::vector<cv::Scalar> colours;
+  for (const auto& c : table.rgb) colours.emplace_back(c[0], c[1], c[2], 255);
+  drawBar(image, lo, hi, unit, colours);
 }
 
 void drawGlyphLegend(Image& image, const GlyphLegend& legend) {

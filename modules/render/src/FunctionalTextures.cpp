@@ -35,6 +35,16 @@ void FunctionalTextures::set(const Volume& functional, const glm::dmat4& anatomi
   glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
 }
 
+GLuint FunctionalTextures::colormap(const std::optional<ColorTable>& table) {
+  if (!table) return colormap_.id();
+  if (!custom_ || custom_->rgb != table->rgb) {
+    if (!customColormap_.id()) customColormap_ = makeTexture();
+    uploadColorTable(customColormap_.id(), *table);
+    custom_ = table;
+  }
+  return customColormap_.id();
+}
+
 glm::vec2 FunctionalTextures::window(double low, double high) const {
   const bool userWindow = high > low;
   return {float(userWindow ? low : range_.first), float(userWindow ? high : range_.second)};

@@ -3,12 +3,14 @@
 // registration that places it and the colour map that fuses it over the anatomy; shaders
 // sample it through common/functional.glsl.
 #include <cstdint>
+#include <optional>
 #include <utility>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
 #include "GlObjects.h"
+#include "mvw/core/ColorMap.h"
 #include "mvw/core/Volume.h"
 #include "mvw/render/ShaderProgram.h"
 
@@ -32,10 +34,13 @@ class FunctionalTextures {
   void setUniforms(const ShaderProgram& program, glm::vec2 window, int classes) const;
 
   GLuint texture() const { return functional_.id(); }
-  GLuint colormap() const { return colormap_.id(); }
+  // The overlay's colour map: hot metal (interpolated, as always) or `table` (nearest: a
+  // palette's entries are shown as they are). Uploaded only when it changes.
+  GLuint colormap(const std::optional<ColorTable>& table);
 
  private:
-  Texture functional_, colormap_;
+  Texture functional_, colormap_, customColormap_;
+  std::optional<ColorTable> custom_;
   std::uint64_t generation_ = 0;
   glm::dmat4 textureFromAnatomicalWorld_{1.0};
   std::pair<double, double> range_{0.0, 1.0};

@@ -45,6 +45,7 @@ const ShaderProgram& RaycastPrograms::forMode(RenderMode mode, const RenderSetti
     case RenderMode::ShellLit:
       break;  // drawn by detail::ShellRenderer
   }
+  if (s.imageColors && takesImageColors(mode)) defines.push_back("MVW_IMAGE_COLORMAP 1");
   std::string key = toString(mode);
   for (const auto& d : defines) key += "+" + d;
   return cached(key, file, defines);

@@ -59,4 +59,18 @@ glm::dmat4 textureFromIndex(glm::ivec3 dims) {
   return m;
 }
 
+void uploadColorTable(GLuint texture, const ColorTable& table) {
+  std::vector<std::uint8_t> rgba(256 * 4, 255);
+  for (std::size_t i = 0; i < 256; ++i)
+    for (std::size_t c = 0; c < 3; ++c) rgba[4 * i + c] = table.rgb[i][c];
+  glBindTexture(GL_TEXTURE_1D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA8, 256, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAX_LEVEL, 0);
+  checkGl("uploading a colour map");
+}
+
 }  // namespace mvw::render::detail

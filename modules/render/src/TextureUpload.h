@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "GlObjects.h"
+#include "mvw/core/ColorMap.h"
 #include "mvw/core/Volume.h"
 
 namespace mvw::render::detail {
@@ -25,6 +26,9 @@ void setSampling(GLuint texture, GLenum target, bool linear);
 // A 3D float texture, clamped at the edges: the volume, its gradient, the functional volume.
 Texture upload3D(glm::ivec3 dims, GLint internalFormat, GLenum format, const float* data,
                  bool linear, const char* what);
+
+// A colour map's 256 entries as a 1D RGBA8 texture, nearest, clamped (texelFetch or u in 0..1).
+void uploadColorTable(GLuint texture, const ColorTable& table);
 
 // Index to texture coordinates of a dims-sized 3D texture: texel centres at (i + 0.5) / n.
 glm::dmat4 textureFromIndex(glm::ivec3 dims);

@@ -1,6 +1,8 @@
 #include "mvw/render/TransferFunction.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 #include "mvw/core/Error.h"
 
@@ -82,6 +84,17 @@ std::vector<glm::vec4> sampleTransferFunction(const TransferFunction& tf, double
     }
   }
   return lut;
+}
+
+ColorTable hotMetalTable() {
+  const auto lut = sampleTransferFunction(transferPreset("pet-hot-metal"), 0.0, 1.0, 256, 0.0, 1.0);
+  ColorTable t;
+  t.map = ColorMap::HotMetal;
+  for (std::size_t i = 0; i < 256; ++i)
+    for (int c = 0; c < 3; ++c)
+      t.rgb[i][static_cast<std::size_t>(c)] =
+          static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(lut[i][c], 0.0f, 1.0f)));
+  return t;
 }
 
 }  // namespace mvw::render

@@ -17,6 +17,7 @@
 #include "RenderTarget.h"
 #include "SegmentTextures.h"
 #include "ShellRenderer.h"
+#include "TextureUpload.h"
 #include "TransferTable.h"
 #include "VolumeTextures.h"
 #include "mvw/core/Error.h"
@@ -49,6 +50,9 @@ struct VolumeRenderer::Impl {
   detail::RenderTarget target;
   detail::VertexArray vao;
   std::unique_ptr<detail::ShellRenderer> shells;  // made on the first shell-mode frame
+  // The view's colour map (RenderSettings::imageColors), uploaded when it changes.
+  detail::Texture imageColormap;
+  std::optional<ColorTable> imageTable;
 
   Impl(GlContext& c, const Volume& v)
       : context(madeCurrent(c)),
@@ -68,8 +72,16 @@ struct VolumeRenderer::Impl {
                           const Camera& camera) const;
   void setFunctionalUniforms(const ShaderProgram& p, const RenderSettings& s, bool fusion,
                              glm::vec2 window) const;
-  void bindTextures(const ShaderProgram& p) const;
+  void bindTextures(const ShaderProgram& p, GLuint overlayColormap) const;
+  void updateImageColormap(const std::optional<ColorTable>& table);
 };
+
+void VolumeRenderer::Impl::updateImageColormap(const std::optional<ColorTable>& table) {
+  if (!table || (imageTable && imageTable->rgb == table->rgb)) return;
+  if (!imageColormap.id()) imageColormap = detail::makeTexture();
+  detail::uploadColorTable(imageColormap.id(), *table);
+  imageTable = table;
+}
 
 // Around the framing sphere. MPR is always orthographic; so are the shells, since the
 // paper's transform is affine in z.
@@ -136,7 +148,8 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize, s.glyphDvrOpacity, step);
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentOutlines);
-  bindTextures(p);
+  if (showsImageColors(s)) updateImageColormap(s.imageColors);
+  bindTextures(p, functional.colormap(s.overlayColors));
 
   glViewport(0, 0, s.size.x, s.size.y);
   glDisable(GL_DEPTH_TEST);
@@ -209,7 +222,7 @@ void VolumeRenderer::Impl::setFunctionalUniforms(const ShaderProgram& p, const R
 }
 
 // Every sampler on its own unit, also those the program does not use (uniform -1 is ignored).
-void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p) const {
+void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayColormap) const {
   const struct {
     const char* name;
     GLenum target;
@@ -220,8 +233,9 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p) const {
                {"uTransfer", GL_TEXTURE_2D, transfer.texture()},
                {"uBlockRange", GL_TEXTURE_3D, blocks.minMax()},
                {"uFunctional", GL_TEXTURE_3D, functional.texture()},
-               {"uColormap", GL_TEXTURE_1D, functional.colormap()},
+               {"uColormap", GL_TEXTURE_1D, overlayColormap},
                {"uGlyphCells", GL_TEXTURE_3D, glyphs.cells()},
+               {"uImageColormap", GL_TEXTURE_1D, imageColormap.id()},
                {"uSegments", GL_TEXTURE_3D, segments.texture()}};
   for (int u = 0; u < static_cast<int>(std::size(units)); ++u) {
     glActiveTexture(GL_TEXTURE0 + u);
@@ -230,6 +244,8 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p) const {
   }
   glActiveTexture(GL_TEXTURE0);
 }
+
+bool showsImageColors(const RenderSettings& s) { return s.imageColors && takesImageColors(s.mode); }
 
 VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume)
     : impl_(std::make_unique<Impl>(context, volume)) {}

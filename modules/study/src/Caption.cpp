@@ -18,7 +18,9 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   else
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));
-  if (s.glyphs)
+  if (render::showsImageColors(s)) caption += "  " + toString(s.imageColors->map);
+  if (s.glyphs &&
+      (s.mode == render::RenderMode::Composite || s.mode == render::RenderMode::Isosurface))
     caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
                (s.glyphLabels.empty() ? config::toString(v.config.glyphConvexity)
                                       : std::string("by chosen label"));

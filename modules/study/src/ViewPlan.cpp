@@ -7,6 +7,7 @@
 
 #include "mvw/core/Error.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/io/ColorPalettes.h"
 #include "mvw/io/LabelTable.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/GlyphMap.h"
@@ -156,8 +157,40 @@ void applyGlyphScale(PlannedView& view, const Volume& anatomy, const Volume& fun
   setBlueNoiseMap(s, v, defaultGlyphSpacingMm(voxel, mmPerPixel, v.glyphMinSize));
 }
 
+ColorTable colorTable(ColorMap map) {
+  return map == ColorMap::HotMetal ? render::hotMetalTable() : io::standardColorTable(map);
+}
+
+void applyColorMaps(render::RenderSettings& s, ColorMap image, ColorMap overlay) {
+  s.imageColors.reset();
+  s.overlayColors.reset();
+  if (image != ColorMap::Grey) s.imageColors = colorTable(image);
+  if (overlay != ColorMap::HotMetal) s.overlayColors = colorTable(overlay);
+}
+
 std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& o) {
   std::vector<PlannedView> out;
+  auto colorMapOption = [&](const std::optional<std::string>& name, const char* option) {
+    std::optional<ColorMap> map;
+    if (name) {
+      map = parseColorMap(*name);
+      if (!map)
+        throw InputError(study.file, std::string(option) + " '" + *name +
+                                         "' is not a colour map (" + joined(colorMapNames()) + ")");
+    }
+    return map;
+  };
+  const std::optional<ColorMap> colormap = colorMapOption(o.colormap, "--colormap");
+  const std::optional<ColorMap> overlayColormap =
+      colorMapOption(o.overlayColormap, "--overlay-colormap");
+  std::optional<config::OrbitMode> orbitMode;
+  if (o.orbitMode) {
+    orbitMode = config::parseOrbitMode(*o.orbitMode);
+    if (!orbitMode) throw InputError(study.file, "--orbit-mode must be spin or rock");
+  }
+  if (o.orbit && (*o.orbit < 2 || *o.orbit > config::kMaxOrbitFrames))
+    throw InputError(study.file, "--orbit must be 2.." + std::to_string(config::kMaxOrbitFrames) +
+                                     " frames, not " + std::to_string(*o.orbit));
   for (config::ViewConfig v : study.render.views) {
     if (o.mode) {
       const auto mode = parseRenderMode(*o.mode);
@@ -193,6 +226,16 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     if (o.cueAmount) v.cueAmount = *o.cueAmount;
     if (o.cueContrast) v.cueContrast = *o.cueContrast;
     if (o.perspective) v.perspective = true;
+    // A mode overridden to one without an image colour map drops the view's.
+    if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
+    if (colormap && takesImageColors(v.mode)) v.colormap = *colormap;
+    if (overlayColormap) v.overlayColormap = *overlayColormap;
+    // --orbit turns the views that can turn about the long axis (not those looking along it).
+    const render::StandardView sight = standardView(v.view);
+    const bool alongS =
+        sight == render::StandardView::Superior || sight == render::StandardView::Inferior;
+    if (o.orbit && !alongS) v.orbit = *o.orbit;
+    if (orbitMode) v.orbitMode = *orbitMode;
     PlannedView p;
     auto& s = p.settings;
     if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
@@ -284,10 +327,28 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
                        "view '" + v.name + "': fusion needs a functional volume in the study");
     s.overlayOpacity = static_cast<float>(v.overlayOpacity);
     s.overlayThreshold = static_cast<float>(v.overlayThreshold);
+    const render::StandardView along = standardView(v.view);
+    if (v.orbit > 0 &&
+        (along == render::StandardView::Superior || along == render::StandardView::Inferior))
+      throw InputError(study.file, "view '" + v.name +
+                                       "': an orbit turns about the patient's long axis, which " +
+                                       config::toString(v.view) + " looks along");
+    applyColorMaps(s, v.colormap, v.overlayColormap);
     p.presetName = v.preset;
     p.config = v;
     out.push_back(std::move(p));
   }
+  if (colormap && std::none_of(out.begin(), out.end(), [](const PlannedView& p) {
+        return takesImageColors(p.config.mode);
+      }))
+    throw InputError(study.file,
+                     "--colormap colours mip, minip, average and mpr views, and the study has "
+                     "none (--overlay-colormap colours the functional overlay)");
+  if (o.orbit &&
+      std::none_of(out.begin(), out.end(), [](const PlannedView& p) { return p.config.orbit > 0; }))
+    throw InputError(study.file,
+                     "--orbit turns views about the patient's long axis, and every view of the "
+                     "study looks along it (superior, inferior or axial)");
   return out;
 }
 
@@ -334,7 +395,9 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.background = {s.background.r, s.background.g, s.background.b};
   v.cropMin = {s.cropMin.x, s.cropMin.y, s.cropMin.z};
   v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
-  v.glyphs = s.glyphs;
+  // Glyphs only where they show (a viewer may leave them on while it shows a MIP): a saved MIP
+  // with glyphs would not load.
+  v.glyphs = s.glyphs && (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface);
   v.glyphMethod = s.glyphSizeControl ? config::GlyphMethod::Sized : config::GlyphMethod::Simple;
   v.glyphConvexity = s.glyphConvexity;
   v.glyphDiameterMm = s.glyphDiameterMm;  // what is shown, explicit
@@ -367,6 +430,9 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.functionalClasses = s.functionalClasses;
   v.overlayOpacity = s.overlayOpacity;
   v.overlayThreshold = s.overlayThreshold;
+  // Only where the mode shows it: a saved composite view with a colormap would not load.
+  v.colormap = render::showsImageColors(s) ? s.imageColors->map : ColorMap::Grey;
+  v.overlayColormap = s.overlayColors ? s.overlayColors->map : ColorMap::HotMetal;
   return v;
 }
 

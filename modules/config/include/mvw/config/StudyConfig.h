@@ -18,6 +18,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "mvw/core/ColorMap.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/RenderMode.h"
 
@@ -62,6 +63,10 @@ struct LabelChoice {
   LabelGlyphKind kind = LabelGlyphKind::Bumps;
   bool operator==(const LabelChoice&) const = default;
 };
+// A rotating view (a PET reader's rotating MIP): the camera turns about the patient's long axis
+// (S) in `orbit` steps, a full turn (spin) or back and forth over +-orbit_range degrees (rock).
+enum class OrbitMode { Spin, Rock };
+inline constexpr int kMaxOrbitFrames = 720;
 
 // One rendered view ("render": {"views": [...]}). Every default below is the one default of
 // its key: the parser starts from a default-constructed ViewConfig.
@@ -125,6 +130,18 @@ struct ViewConfig {
   bool fusion = false;                    // composite / isosurface: blend the functional colour in
   double overlayOpacity = 0.5;
   double overlayThreshold = 0.25;  // fraction of the functional value range
+  // Colour maps: the image of mip / minip / average / mpr views ("colormap"; grey-inverted also
+  // turns the black background white), and the functional overlay or fusion
+  // ("overlay_colormap").
+  ColorMap colormap = ColorMap::Grey;
+  ColorMap overlayColormap = ColorMap::HotMetal;
+  // Rotating view: 0 = a still; N in 2..kMaxOrbitFrames frames from the view's azimuth on,
+  // spin: azimuth + 360 k / N; rock: azimuth + orbit_range sin(2 pi k / N). Written as
+  // <name>/frame-000.png ... and <name>.mp4 at orbit_fps frames per second.
+  int orbit = 0;
+  OrbitMode orbitMode = OrbitMode::Spin;
+  double orbitRangeDeg = 30.0;
+  double orbitFps = 10.0;
 };
 
 struct RenderConfig {
@@ -175,6 +192,10 @@ std::string toString(GlyphMethod method);
 std::string toString(GlyphConvexity convexity);
 std::string toString(GlyphPlacement placement);
 std::string toString(RegistrationMethod method);
+std::string toString(OrbitMode mode);
+std::optional<OrbitMode> parseOrbitMode(const std::string& name);
+// The azimuths (degrees) of an orbiting view's frames; empty for a still.
+std::vector<double> orbitAzimuths(const ViewConfig& view);
 std::optional<ViewName> parseViewName(const std::string& name);
 std::optional<Sampling> parseSampling(const std::string& name);
 // "view names: a, b, c" lists for messages.

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "mvw/core/ColorMap.h"
 #include "mvw/core/Image.h"
 #include "mvw/render/Camera.h"
 
@@ -15,8 +16,10 @@ std::string orientationLabel(const glm::dvec3& worldDirection);
 
 void annotate(Image& image, const Camera& camera, const std::string& caption);
 
-// A vertical colour bar (hot metal) at the right edge, labelled with the value range.
+// A vertical colour bar (hot metal, or `table`) at the right edge, labelled with the value range.
 void drawColourBar(Image& image, double lo, double hi, const std::string& unit);
+void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
+                   const ColorTable& table);
 
 // A glyph legend (issue 15): what a bump's size or kind means. size: the apparent bump radius
 // as a fraction of the glyph radius (0: no glyph); the icons keep the sizes' ratios.

@@ -9,6 +9,8 @@
 
 #include <glm/vec4.hpp>
 
+#include "mvw/core/ColorMap.h"
+
 namespace mvw::render {
 
 struct TfPoint {
@@ -27,6 +29,10 @@ TransferFunction transferPreset(const std::string& name);
 std::vector<std::string> transferPresetNames();
 
 // n RGBA entries evenly spaced over [lo, hi] (absolute values); constant outside the points.
+// The pet-hot-metal preset's colours as a 256-entry table (ColorMap::HotMetal, the functional
+// overlay's default).
+ColorTable hotMetalTable();
+
 std::vector<glm::vec4> sampleTransferFunction(const TransferFunction& tf, double lo, double hi,
                                               int n, double rangeLo, double rangeHi);
 

@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "mvw/core/ColorMap.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/Image.h"
 #include "mvw/core/RenderMode.h"
@@ -104,7 +105,17 @@ struct RenderSettings {
   float overlayThreshold = 0.25f;  // fraction of the functional range
   // MPR: outline the segments of a segmentation set with setSegmentation, in their colours.
   bool segmentOutlines = true;
+  // Colour maps (mvw/core/ColorMap.h; io::standardColorTable fills the DICOM palettes): the
+  // image of MIP, MinIP, average and MPR views (none: grey), looked up by the grey byte, the
+  // background shown through it as the grey it is; and the functional overlay and fusion
+  // (none: hot metal). Other modes ignore imageColors.
+  std::optional<ColorTable> imageColors;
+  std::optional<ColorTable> overlayColors;
 };
+
+// Whether `settings` colours its image (a colour map on a mode that takes one).
+using mvw::takesImageColors;
+bool showsImageColors(const RenderSettings& settings);
 
 struct Frame {
   Image image;  // with depth: the ray distance (mm) of the reported sample, -1 for none

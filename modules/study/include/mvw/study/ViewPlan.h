@@ -14,6 +14,9 @@ namespace mvw::study {
 // Command-line values that replace each view's own.
 struct ViewOverrides {
   std::optional<std::string> mode, view, preset, sampling;
+  // colormap: views that take one (mip, minip, average, mpr); overlay colormap: every view.
+  std::optional<std::string> colormap, overlayColormap, orbitMode;
+  std::optional<int> orbit;
   std::optional<int> size;
   std::optional<double> azimuth, elevation, roll, zoom, window, level, iso;
   std::optional<double> cueBrightness, cueAmount, cueContrast;
@@ -35,6 +38,13 @@ config::ViewName viewName(render::StandardView view);
 // Throws InputError naming the study file for any view the renderer cannot honour.
 std::vector<PlannedView> planViews(const config::StudyConfig& study,
                                    const ViewOverrides& overrides = {});
+
+// A colour map as 256 entries: hot metal from the renderer's preset, the others from io (the
+// DICOM standard palettes through vtk-dicom, the grey ramps).
+ColorTable colorTable(ColorMap map);
+// The renderer's settings for the view's colour maps: none for grey and for the overlay's hot
+// metal (the renderer's defaults), a table otherwise.
+void applyColorMaps(render::RenderSettings& settings, ColorMap image, ColorMap overlay);
 
 // Views without a preset get the one that suits the anatomy's modality.
 void applyDefaultPreset(PlannedView& view, const Volume& anatomy);
