@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <tuple>
+#include <utility>
 
 #include <glad/gl.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -37,6 +39,7 @@ struct VolumeRenderer::Impl {
   GlContext& context;
   detail::VolumeTextures volume;
   FramingSphere framing;
+  PatientCrop crop;
   double defaultStep;
   detail::BlockGrid blocks;
   detail::TransferTable transfer;
@@ -51,6 +54,7 @@ struct VolumeRenderer::Impl {
       : context(madeCurrent(c)),
         volume(v),
         framing(framingSphere(v)),
+        crop(v),
         defaultStep(defaultStepMm(v)),
         blocks(volume.values(), volume.dims()),
         vao(detail::makeVertexArray()) {}
@@ -167,7 +171,10 @@ void VolumeRenderer::Impl::setRayUniforms(const ShaderProgram& p, const RenderSe
   glUniform1i(p.uniform("uMaxSteps"), static_cast<int>(std::ceil(2.0 * framing.radius / step)) + 2);
   glUniform1i(p.uniform("uJitter"), s.jitter ? 1 : 0);
   glUniform1ui(p.uniform("uSeed"), s.seed);
-  const glm::dvec3 cmin = glm::clamp(s.cropMin, 0.0, 1.0), cmax = glm::clamp(s.cropMax, 0.0, 1.0);
+  auto [lpsMin, lpsMax] = std::pair{s.cropMin, s.cropMax};
+  if (s.cropMinMm && s.cropMaxMm)
+    std::tie(lpsMin, lpsMax) = crop.fractionsFromMm(*s.cropMinMm, *s.cropMaxMm);
+  const auto [cmin, cmax] = crop.textureBox(lpsMin, lpsMax);
   glUniform3f(p.uniform("uBoxMin"), float(cmin.x), float(cmin.y), float(cmin.z));
   glUniform3f(p.uniform("uBoxMax"), float(cmax.x), float(cmax.y), float(cmax.z));
   const glm::dvec3& c = framing.centre;
