@@ -145,6 +145,13 @@ TEST(Raycast, CropBoxIsInPatientTermsForAnyStorageOrder) {
     old.cropMin = {0.0, 0.0, 0.45};
     old.cropMax = {1.0, 1.0, 1.0};
     const Image superiorPart = VolumeRenderer(*ctx, ct).render(old).image;
+    // The same box in LPS millimetres ("crop_mm"), on the copy written through NIfTI.
+    RenderSettings mm = s;
+    const PatientCrop box(written);
+    mm.cropMinMm = box.boxMin();
+    mm.cropMaxMm = box.boxMax() - glm::dvec3(0, 0, 0.45 * (box.boxMax().z - box.boxMin().z));
+    mm.cropMax = glm::dvec3(1.0);  // the millimetres win
+    images.push_back(VolumeRenderer(*ctx, written).render(mm).image);
     for (std::size_t i = 1; i < images.size(); ++i) {
       const Difference d = compare(images[0], images[i]);
       std::cout << "[ crop ] mode " << int(c.mode) << " copy " << i << ": PSNR " << d.psnr
