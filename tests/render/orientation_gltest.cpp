@@ -14,6 +14,7 @@
 #include "mvw/io/PngWriter.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
+#include "mvw/render/Framing.h"
 #include "mvw/render/VolumeRenderer.h"
 
 namespace mvw::render {
@@ -167,6 +168,45 @@ TEST(Raycast, CropBoxIsInPatientTermsForAnyStorageOrder) {
     std::cout << "[ crop ] mode " << int(c.mode) << " old semantics: PSNR " << o.psnr << " dB\n";
     EXPECT_LT(o.psnr, 25.0);
   }
+}
+
+// An oblique volume (tilted 30 degrees about L, as a gantry tilt tilts it) cropped at half its
+// superior extent: the cut is the world plane S = const, not the tilted slice plane. Seen from
+// the front, every column of the uniform block's MIP ends at the same row, the cut's row.
+TEST(Raycast, ObliqueVolumeIsCroppedAlongThePatientAxes) {
+  const double a = glm::radians(30.0);
+  const glm::dmat3 tilt(glm::dvec3(1, 0, 0), glm::dvec3(0, std::cos(a), std::sin(a)),
+                        glm::dvec3(0, -std::sin(a), std::cos(a)));
+  const glm::ivec3 d(40, 40, 40);
+  const Volume v = makeVolume(d, makeWorldFromIndex(tilt * glm::dvec3(-19.5), {1, 1, 1}, tilt),
+                              [](glm::dvec3) { return 1000.0f; });
+  const PatientCrop crop(v);
+  ASSERT_FALSE(crop.axisAligned());
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, v);
+  RenderSettings s;
+  s.mode = RenderMode::Mip;
+  s.size = {121, 121};
+  s.window = 1000;
+  s.level = 500;
+  s.jitter = false;
+  s.camera.view = StandardView::Anterior;
+  s.cropMax = {1.0, 1.0, 0.5};
+  const Frame f = renderer.render(s);
+  // The cut's row: the world point on the cut plane at the centre, through the camera.
+  const double zCut = 0.5 * (crop.boxMin().z + crop.boxMax().z);
+  const glm::dvec4 clip = f.camera.clipFromWorld * glm::dvec4(0.0, 0.0, zCut, 1.0);
+  const double rowCut = (1.0 - (clip.y / clip.w * 0.5 + 0.5)) * s.size.y;  // rows run down
+  int columns = 0;
+  for (int x = 0; x < s.size.x; ++x) {
+    int top = -1;
+    for (int y = 0; y < s.size.y && top < 0; ++y)
+      if (f.image.pixel(x, y)[0] > 128) top = y;
+    if (top < 0) continue;
+    ++columns;
+    EXPECT_NEAR(top, rowCut, 1.0) << "column " << x;
+  }
+  EXPECT_GT(columns, 30);
 }
 
 }  // namespace

@@ -74,9 +74,10 @@ TEST(PatientCrop, FractionsAlongLpsBecomeTheTextureBoxOfTheSameWorldContent) {
   EXPECT_NEAR(b.y, 1 - 0.1, 1e-12);
   EXPECT_NEAR(a.z, 0.2, 1e-12);  // k follows P
   EXPECT_NEAR(b.z, 0.9, 1e-12);
-  // Every one of the three has the same world-aligned box.
+  // Every one of the three has the same world-aligned box, and the texture box is exact.
   for (const Volume* v : {&lps, &rev, &perm}) {
     const PatientCrop c(*v);
+    EXPECT_TRUE(c.axisAligned());
     EXPECT_NEAR(c.boxMin().x, -0.5, 1e-9);
     EXPECT_NEAR(c.boxMax().x, 9.5, 1e-9);
     EXPECT_NEAR(c.boxMin().y, -0.25, 1e-9);
@@ -84,6 +85,24 @@ TEST(PatientCrop, FractionsAlongLpsBecomeTheTextureBoxOfTheSameWorldContent) {
     EXPECT_NEAR(c.boxMin().z, -1.5, 1e-9);
     EXPECT_NEAR(c.boxMax().z, 13.5, 1e-9);
   }
+}
+
+TEST(PatientCrop, AnObliqueVolumeIsCroppedByItsWorldAlignedBoxInMillimetres) {
+  // 10 voxels of 1 mm along each axis, turned 90 degrees about S and then tilted: i runs
+  // along P and S, so no texture box can hold an L, P, S crop and the world box does.
+  const double c = std::sqrt(0.5);
+  const Volume v(
+      {10, 10, 10}, 1, ScalarType::UInt8,
+      makeWorldFromIndex({0, 0, 0}, {1, 1, 1}, glm::dmat3({0, c, c}, {-1, 0, 0}, {0, -c, c})));
+  const PatientCrop crop(v);
+  EXPECT_FALSE(crop.axisAligned());
+  const auto [lo, hi] = crop.worldBox({0.0, 0.0, 0.5}, {1.0, 1.0, 1.0});
+  EXPECT_NEAR(lo.x, crop.boxMin().x, 1e-12);
+  EXPECT_NEAR(hi.y, crop.boxMax().y, 1e-12);
+  EXPECT_NEAR(lo.z, 0.5 * (crop.boxMin().z + crop.boxMax().z), 1e-12);
+  EXPECT_NEAR(hi.z, crop.boxMax().z, 1e-12);
+  // The box around the voxel box: i and k span 10 mm along P and S at 45 degrees each.
+  EXPECT_NEAR(crop.boxMax().z - crop.boxMin().z, 2 * 10 * c, 1e-9);
 }
 
 TEST(PatientCrop, MillimetresAreFractionsOfTheWorldAlignedBox) {

@@ -35,6 +35,8 @@ PatientCrop::PatientCrop(const Volume& volume) {
   for (int t = 0; t < 3; ++t) {
     worldAxis_[t] = best[static_cast<std::size_t>(t)];
     reversed_[t] = d[t][worldAxis_[t]] < 0.0;
+    for (int w = 0; w < 3; ++w)
+      if (w != worldAxis_[t] && std::abs(d[t][w]) > 1e-9) axisAligned_ = false;
   }
   const glm::dvec3 n(volume.dimensions());
   boxMin_ = glm::dvec3(1e300);
@@ -58,6 +60,13 @@ std::pair<glm::dvec3, glm::dvec3> PatientCrop::textureBox(const glm::dvec3& lpsM
     hi[t] = reversed_[t] ? 1.0 - a : b;
   }
   return {lo, hi};
+}
+
+std::pair<glm::dvec3, glm::dvec3> PatientCrop::worldBox(const glm::dvec3& lpsMin,
+                                                        const glm::dvec3& lpsMax) const {
+  const glm::dvec3 extent = boxMax_ - boxMin_;
+  return {boxMin_ + glm::clamp(lpsMin, 0.0, 1.0) * extent,
+          boxMin_ + glm::clamp(lpsMax, 0.0, 1.0) * extent};
 }
 
 std::pair<glm::dvec3, glm::dvec3> PatientCrop::fractionsFromMm(const glm::dvec3& minMm,

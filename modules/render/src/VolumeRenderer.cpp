@@ -174,9 +174,19 @@ void VolumeRenderer::Impl::setRayUniforms(const ShaderProgram& p, const RenderSe
   auto [lpsMin, lpsMax] = std::pair{s.cropMin, s.cropMax};
   if (s.cropMinMm && s.cropMaxMm)
     std::tie(lpsMin, lpsMax) = crop.fractionsFromMm(*s.cropMinMm, *s.cropMaxMm);
-  const auto [cmin, cmax] = crop.textureBox(lpsMin, lpsMax);
+  // Along the patient axes the texture box is the crop; an oblique volume is clipped in world
+  // mm instead (PatientCrop). 1e30: no world clip, so axis-aligned renders are unchanged.
+  auto [cmin, cmax] = crop.textureBox(lpsMin, lpsMax);
+  glm::dvec3 wmin(-1e30), wmax(1e30);
+  if (!crop.axisAligned()) {
+    std::tie(wmin, wmax) = crop.worldBox(lpsMin, lpsMax);
+    cmin = glm::dvec3(0.0);
+    cmax = glm::dvec3(1.0);
+  }
   glUniform3f(p.uniform("uBoxMin"), float(cmin.x), float(cmin.y), float(cmin.z));
   glUniform3f(p.uniform("uBoxMax"), float(cmax.x), float(cmax.y), float(cmax.z));
+  glUniform3f(p.uniform("uWorldBoxMin"), float(wmin.x), float(wmin.y), float(wmin.z));
+  glUniform3f(p.uniform("uWorldBoxMax"), float(wmax.x), float(wmax.y), float(wmax.z));
   const glm::dvec3& c = framing.centre;
   glUniform4f(p.uniform("uBoundingSphere"), float(c.x), float(c.y), float(c.z),
               float(framing.radius));

@@ -26,15 +26,21 @@ double defaultStepMm(const Volume& volume);
 // Crop boxes are given in patient terms, identical for any storage order: fractions of the
 // volume's world-aligned box along L, P, S (0 = its most right / anterior / inferior side,
 // 1 = its most left / posterior / superior side), or LPS millimetres. The ray caster clips in
-// texture (storage) coordinates; this is the one place that converts. Exact when the index
-// axes run along the patient axes, in any order and sense; an oblique volume's index axes
-// are each cropped by the patient axis they run closest to.
+// texture (storage) coordinates; this is the one place that converts. Where the index axes
+// run along the patient axes (in any order and sense) the texture box is the crop exactly;
+// an oblique (or sheared) volume keeps its whole texture box and is clipped by the crop's box
+// in world millimetres instead (worldBox), which the ray caster and MPR also test.
 class PatientCrop {
  public:
   explicit PatientCrop(const Volume& volume);
   // The texture-coordinate box (0..1 per index axis) of a box in fractions along L, P, S.
   std::pair<glm::dvec3, glm::dvec3> textureBox(const glm::dvec3& lpsMin,
                                                const glm::dvec3& lpsMax) const;
+  // True when every index axis runs along a patient axis (the texture box is exact).
+  bool axisAligned() const { return axisAligned_; }
+  // The box in LPS mm of fractions along L, P, S.
+  std::pair<glm::dvec3, glm::dvec3> worldBox(const glm::dvec3& lpsMin,
+                                             const glm::dvec3& lpsMax) const;
   // Fractions along L, P, S (clamped to 0..1) of a box in LPS millimetres.
   std::pair<glm::dvec3, glm::dvec3> fractionsFromMm(const glm::dvec3& minMm,
                                                     const glm::dvec3& maxMm) const;
@@ -47,6 +53,7 @@ class PatientCrop {
   glm::ivec3 worldAxis_{0, 1, 2};  // the patient axis (0 L, 1 P, 2 S) each index axis follows
   glm::bvec3 reversed_{false};     // index axis runs toward R, A or I
   glm::dvec3 boxMin_{0.0}, boxMax_{0.0};
+  bool axisAligned_ = true;
 };
 
 }  // namespace mvw::render
