@@ -287,8 +287,11 @@ void runRender(const RenderOptions& o) {
   nlohmann::json report;
   report["study"] = study.file.string();
   report["anatomical"] = anatomy.metadata().sourcePath;
+  // What the readers decided (units, reorderings, the frame a 4D volume contributes).
+  report["anatomical_notes"] = anatomy.metadata().notes;
   if (functional) {
     report["functional"] = functional->metadata().sourcePath;
+    report["functional_notes"] = functional->metadata().notes;
     report["registration"] = placement->report;
   }
   report["value_range"] = {lo, hi};

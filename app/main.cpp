@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "BenchCommand.h"
+#include "ConvertCommand.h"
 #include "GlyphMapCommand.h"
 #include "InfoCommand.h"
 #include "PhantomCommand.h"
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("mvw ") + mvw::kVersion);
   mvw::app::addInfoCommand(app);
+  mvw::app::addConvertCommand(app);
   mvw::app::addRegisterCommand(app);
   mvw::app::addRenderCommand(app);
   mvw::app::addStatsCommand(app);

@@ -27,7 +27,7 @@ void main() {
   for (int i = 0; i < n; ++i) {
     float dt = n > 1 ? (float(i) + 0.5) / float(n) * uSlab - 0.5 * uSlab : 0.0;
     vec3 tex = toTexture(world + dt * ray.dir);
-    if (!inside(tex)) continue;
+    if (!inside(tex) || !insideWorldBox(world + dt * ray.dir)) continue;
     value = max(value, sampleValue(tex));
     any = true;
   }

@@ -25,7 +25,9 @@ void runView(const ViewOptions& o) {
   } else {
     if (o.anatomical.empty()) throw InputError("mvw view", "give a study config or --anatomical");
     v.study.anatomical.path = o.anatomical;
-    if (!o.functional.empty()) v.study.functional = config::VolumeSource{o.functional, ""};
+    if (!o.functional.empty())
+      v.study.functional =
+          config::VolumeSource{o.functional, "", config::defaultFrame(v.study.functionalKind)};
   }
   v.anatomical = mvw::study::readSource(v.study.anatomical);
   if (v.study.functional) v.functional = mvw::study::readSource(*v.study.functional);

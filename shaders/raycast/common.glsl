@@ -29,6 +29,8 @@ uniform bool uJitter;
 uniform uint uSeed;
 uniform vec3 uBoxMin;          // crop box in texture coordinates
 uniform vec3 uBoxMax;
+uniform vec3 uWorldBoxMin;     // and in world mm (LPS), for an oblique volume's patient-axis crop;
+uniform vec3 uWorldBoxMax;     // +-1e30 (no clip) where the texture box says it exactly
 uniform vec3 uBackground;
 
 float gRayEntry;  // where the current ray enters the box (mm), set by the template
@@ -61,7 +63,18 @@ vec2 intersectBox(Ray r) {
   vec3 hi = max(t0, t1);
   float tNear = max(max(lo.x, lo.y), max(lo.z, 0.0));
   float tFar = min(min(hi.x, hi.y), hi.z);
+  vec3 invWorld = 1.0 / r.dir;
+  vec3 w0 = (uWorldBoxMin - r.origin) * invWorld;
+  vec3 w1 = (uWorldBoxMax - r.origin) * invWorld;
+  vec3 wlo = min(w0, w1);
+  vec3 whi = max(w0, w1);
+  tNear = max(tNear, max(max(wlo.x, wlo.y), wlo.z));
+  tFar = min(tFar, min(min(whi.x, whi.y), whi.z));
   return vec2(tNear, tFar);
+}
+
+bool insideWorldBox(vec3 world) {
+  return all(greaterThanEqual(world, uWorldBoxMin)) && all(lessThanEqual(world, uWorldBoxMax));
 }
 
 // A hash of the pixel and the seed in [0, 1): seeded jitter against wood-grain artefacts,

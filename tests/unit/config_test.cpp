@@ -96,6 +96,53 @@ TEST(StudyConfig, GlyphSpacingAndDiameterStayOpenUnlessGiven) {
 
 // writeStudyConfig is loadStudyConfig's inverse: every field survives the round trip (the
 // viewer saves its state this way, and `mvw render` must reproduce it).
+// "frame" of a source (issue 14 item 8) and "crop_mm" of a view (item 3): parsed, defaulted,
+// refused with the key's path, and written back.
+TEST(StudyConfig, FrameChoosesWhatA4DVolumeGivesAndCropMmIsABoxInLpsMm) {
+  const fs::path dir = test::scratchDir();
+  StudyConfig c = loadStudyConfig(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"},
+      "functional": {"path": "pet.nii", "kind": "fmri"}})"));
+  EXPECT_FALSE(c.anatomical.frame.has_value());  // the anatomy: frame 0 (StudyLoader)
+  ASSERT_TRUE(c.functional->frame.has_value());
+  EXPECT_TRUE(c.functional->frame->mean);  // a time series: the mean by default
+  c = loadStudyConfig(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"},
+      "functional": {"path": "pet.nii", "kind": "labels"}})"));
+  EXPECT_FALSE(c.functional->frame->mean);  // labels: frame 0
+  EXPECT_EQ(c.functional->frame->index, 0);
+  c = loadStudyConfig(writeConfig(dir, R"({"anatomical": {"path": "anat.nii", "frame": 2},
+      "functional": {"path": "pet.nii", "kind": "fmri", "frame": 7},
+      "render": {"views": [{"crop_mm": {"min": [-50, -60, -10], "max": [50, 40, 30.5]}}]}})"));
+  EXPECT_EQ(c.anatomical.frame->index, 2);
+  EXPECT_EQ(c.functional->frame->index, 7);
+  EXPECT_FALSE(c.functional->frame->mean);
+  ASSERT_TRUE(c.render.views[0].cropMaxMm.has_value());
+  EXPECT_EQ((*c.render.views[0].cropMaxMm)[2], 30.5);
+  EXPECT_EQ((*c.render.views[0].cropMinMm)[1], -60);
+  writeStudyConfig(c, dir / "written.json");
+  const StudyConfig d = loadStudyConfig(dir / "written.json");
+  EXPECT_EQ(d.functional->frame->index, 7);
+  EXPECT_EQ(d.render.views[0].cropMaxMm, c.render.views[0].cropMaxMm);
+  for (const char* bad : {R"("frame": -1)", R"("frame": "last")", R"("frame": 1.5)",
+                          R"("frame": "3")", R"("frame": true)"}) {
+    const std::string text = std::string(R"({"anatomical": {"path": "anat.nii"},
+        "functional": {"path": "pet.nii", )") +
+                             bad + "}}";
+    EXPECT_NE(errorOf(writeConfig(dir, text)).find("'functional.frame' must be a frame number"),
+              std::string::npos)
+        << bad;
+  }
+  for (const char* bad : {R"({"min": [0, 0, 0]})", R"({"min": [0, 0, 0], "max": [1, 1]})",
+                          R"({"min": [0, 0, 5], "max": [1, 1, 1]})", R"([0, 1])",
+                          R"({"min": [0, 0, 0], "max": [1, 1, 1], "mid": [0, 0, 0]})"}) {
+    const std::string text =
+        std::string(R"({"anatomical": {"path": "anat.nii"}, "render": {"views": [{"crop_mm": )") +
+        bad + "}]}}";
+    EXPECT_NE(errorOf(writeConfig(dir, text)).find("'render.views[0].crop_mm' must be"),
+              std::string::npos)
+        << bad;
+  }
+}
+
 TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   const fs::path dir = test::scratchDir();
   const auto p =

@@ -1,14 +1,16 @@
 // modules/study without GL or files: view planning and its inverse, overrides, captions,
-// defaults by modality.
+// defaults by modality; and the study loader on the fetched nipy fMRI.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "TestUtil.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/VolumeReader.h"
 #include "mvw/render/Framing.h"
 #include "mvw/study/Caption.h"
 #include "mvw/study/ModalityDefaults.h"
+#include "mvw/study/StudyLoader.h"
 #include "mvw/study/ViewPlan.h"
 
 namespace mvw::study {
@@ -18,7 +20,7 @@ config::StudyConfig studyWith(const nlohmann::json& view) {
   config::StudyConfig s;
   s.file = "study.json";
   s.anatomical.path = "ct.nii";
-  s.functional = config::VolumeSource{"pet.nii", ""};
+  s.functional = config::VolumeSource{"pet.nii", "", std::nullopt};
   s.render.views = {config::parseViewConfig(view, s.file, "view", 0)};
   return s;
 }
@@ -300,6 +302,38 @@ TEST(AttributeDefaults, AViewsOwnWindowOrClassesWin) {
   PlannedView mpr = planViews(studyWith({{"mode", "mpr"}})).at(0);
   applyAttributeDefaults(mpr, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
   EXPECT_EQ(mpr.settings.functionalHigh, 0.0);
+}
+
+// A study's 4D functional volume (the nipy fMRI: 20 frames) becomes one 3D volume with a note:
+// the mean by default, or the frame the config names; a frame it lacks is bad input.
+TEST(StudyLoader, A4DFunctionalVolumeContributesTheMeanOrTheChosenFrame) {
+  const auto path = test::sampleData("nipy/functional.nii.gz");
+  const Volume all = io::readVolume(path);
+  ASSERT_EQ(all.components(), 20);
+  config::VolumeSource source{path, "", config::defaultFrame(config::FunctionalKind::Fmri)};
+  const Volume mean = readSource(source);
+  EXPECT_EQ(mean.components(), 1);
+  EXPECT_EQ(mean.dimensions(), all.dimensions());
+  EXPECT_EQ(mean.worldFromIndex(), all.worldFromIndex());
+  double sum = 0.0;
+  for (int f = 0; f < 20; ++f) sum += all.value(8, 10, 1, f);
+  EXPECT_NEAR(mean.value(8, 10, 1), sum / 20, 1e-3);
+  EXPECT_NE(mean.metadata().notes.back().find("mean over all frames"), std::string::npos);
+  source.frame = FrameChoice{false, 7};
+  const Volume f7 = readSource(source);
+  EXPECT_EQ(f7.value(8, 10, 1), all.value(8, 10, 1, 7));
+  EXPECT_EQ(f7.metadata().notes.back(), "4D volume of 20 frames: frame 7 is used");
+  source.frame = FrameChoice{false, 20};
+  try {
+    readSource(source);
+    FAIL() << "frame 20 of 20 accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_NE(e.problem().find("20 frames (0 .. 19)"), std::string::npos) << e.what();
+  }
+  // No frame given (the anatomy's default): frame 0, said in a note.
+  source.frame.reset();
+  EXPECT_EQ(readSource(source).metadata().notes.back(), "4D volume of 20 frames: frame 0 is used");
 }
 
 }  // namespace

@@ -178,6 +178,31 @@ const FieldTable<ViewConfig>& viewTable() {
         .numbers("background", &V::background, 0.0, 1.0)
         .numbers("crop_min", &V::cropMin, 0.0, 1.0)
         .numbers("crop_max", &V::cropMax, 0.0, 1.0)
+        .add(
+            "crop_mm",
+            [](const json& c, V& out, const Where& w) {
+              const std::string what =
+                  "must be {\"min\": [L, P, S], \"max\": [L, P, S]} in LPS mm, min < max";
+              if (!c.is_object() || c.size() != 2 || !c.contains("min") || !c.contains("max"))
+                w.bad(what);
+              std::array<std::array<double, 3>, 2> box{};
+              for (int m = 0; m < 2; ++m) {
+                const json& a = c[m == 0 ? "min" : "max"];
+                if (!a.is_array() || a.size() != 3) w.bad(what);
+                for (std::size_t i = 0; i < 3; ++i) {
+                  if (!a[i].is_number() || !(std::abs(a[i].get<double>()) <= 1e6)) w.bad(what);
+                  box[static_cast<std::size_t>(m)][i] = a[i].get<double>();
+                }
+              }
+              for (std::size_t i = 0; i < 3; ++i)
+                if (!(box[0][i] < box[1][i])) w.bad(what);
+              out.cropMinMm = box[0];
+              out.cropMaxMm = box[1];
+            },
+            [](const V& in, json& j, const char* k) {
+              if (in.cropMinMm && in.cropMaxMm)
+                j[k] = {{"min", *in.cropMinMm}, {"max", *in.cropMaxMm}};
+            })
         .boolean("annotate", &V::annotate)
         .add(
             "light",
@@ -331,6 +356,25 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
           },
           [](const SourceEntry& in, json& j, const char* k) {
             if (!in.source.series.empty()) j[k] = in.source.series;
+          })
+      .add(
+          "frame",
+          [](const json& v, SourceEntry& out, const Where& w) {
+            std::optional<FrameChoice> f;
+            if (v.is_number_integer() && v.get<long long>() >= 0 && v.get<long long>() < 1000000)
+              f = FrameChoice{false, v.get<int>()};
+            else if (v.is_string())
+              f = parseFrameChoice(v.get<std::string>());
+            if (!f || (!f->mean && v.is_string()))
+              w.bad("must be a frame number (0, 1, ...) or \"mean\"");
+            out.source.frame = f;
+          },
+          [](const SourceEntry& in, json& j, const char* k) {
+            if (!in.source.frame) return;
+            if (in.source.frame->mean)
+              j[k] = "mean";
+            else
+              j[k] = in.source.frame->index;
           });
   if (withKind) t.enumeration("kind", &SourceEntry::kind, kKinds);
   return t;
@@ -406,6 +450,7 @@ const FieldTable<StudyConfig>& studyTable() {
             [](const json& v, S& out, const Where& w) {
               const SourceEntry e = readSource(v, w.file, "functional", true);
               out.functional = e.source;
+              if (!out.functional->frame) out.functional->frame = defaultFrame(e.kind);
               out.functionalKind = e.kind;
             },
             [](const S& in, json& j, const char* k) {
@@ -488,6 +533,10 @@ StudyConfig loadStudyConfig(const fs::path& file) {
 
 void writeStudyConfig(const StudyConfig& config, const fs::path& file) {
   io::writeTextAtomically(file, studyTable().write(config).dump(2) + "\n");
+}
+
+FrameChoice defaultFrame(FunctionalKind kind) {
+  return kind == FunctionalKind::Labels ? FrameChoice{false, 0} : FrameChoice{true, 0};
 }
 
 std::string toString(FunctionalKind kind) { return detail::nameOf(kKinds, kind); }

@@ -177,6 +177,7 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   volume = volume.converted(ScalarType::Float32, *factor, 0.0);
   volume.metadata() = keep;
   volume.metadata().unit = "SUVbw";
+  volume.metadata().suvFactor = *factor;
   volume.metadata().notes.push_back("SUVbw = Bq/ml x " + std::to_string(*factor) + " (weight " +
                                     std::to_string(dose.patientWeightKg) + " kg, dose " +
                                     std::to_string(dose.injectedDoseBq) + " Bq, decay correction " +

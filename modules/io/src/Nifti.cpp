@@ -390,6 +390,11 @@ void writeNifti(const Volume& input, const fs::path& path) {
     vtkNew<vtkNIFTIImageWriter> writer;
     writer->SetInputData(image);
     writer->SetFileName(tmp.c_str());
+    // VTK leaves xyzt_units 0 (unknown) unless a header says otherwise: say millimetres, so
+    // nibabel, FSL and 3D Slicer need not guess.
+    vtkNew<vtkNIFTIImageHeader> header;
+    header->SetXYZTUnits(vtkNIFTIImageHeader::UnitsMM | vtkNIFTIImageHeader::UnitsSec);
+    writer->SetNIFTIHeader(header);
     writer->SetQFormMatrix(matrix);
     writer->SetSFormMatrix(matrix);
     if (volume->components() > 1 && volume->scalarType() != ScalarType::UInt8)

@@ -1,5 +1,10 @@
 #include "mvw/render/Framing.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace mvw::render {
@@ -15,5 +20,60 @@ FramingSphere framingSphere(const Volume& volume) {
 }
 
 double defaultStepMm(const Volume& volume) { return 0.5 * volume.smallestSpacing(); }
+
+PatientCrop::PatientCrop(const Volume& volume) {
+  // The assignment of index axes to patient axes that follows the direction cosines best
+  // (of the six permutations), so even a 45-degree oblique volume gets each axis once.
+  const glm::dmat3 d = volume.direction();
+  std::array<int, 3> perm{0, 1, 2}, best = perm;
+  double bestScore = -1.0;
+  do {
+    const double score =
+        std::abs(d[0][perm[0]]) + std::abs(d[1][perm[1]]) + std::abs(d[2][perm[2]]);
+    if (score > bestScore + 1e-12) bestScore = score, best = perm;
+  } while (std::next_permutation(perm.begin(), perm.end()));
+  for (int t = 0; t < 3; ++t) {
+    worldAxis_[t] = best[static_cast<std::size_t>(t)];
+    reversed_[t] = d[t][worldAxis_[t]] < 0.0;
+    for (int w = 0; w < 3; ++w)
+      if (w != worldAxis_[t] && std::abs(d[t][w]) > 1e-9) axisAligned_ = false;
+  }
+  const glm::dvec3 n(volume.dimensions());
+  boxMin_ = glm::dvec3(1e300);
+  boxMax_ = glm::dvec3(-1e300);
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 ijk((c & 1) ? n.x - 0.5 : -0.5, (c & 2) ? n.y - 0.5 : -0.5,
+                         (c & 4) ? n.z - 0.5 : -0.5);
+    const glm::dvec3 p = volume.worldFromIndexPoint(ijk);
+    boxMin_ = glm::min(boxMin_, p);
+    boxMax_ = glm::max(boxMax_, p);
+  }
+}
+
+std::pair<glm::dvec3, glm::dvec3> PatientCrop::textureBox(const glm::dvec3& lpsMin,
+                                                          const glm::dvec3& lpsMax) const {
+  glm::dvec3 lo, hi;
+  for (int t = 0; t < 3; ++t) {
+    const double a = std::clamp(lpsMin[worldAxis_[t]], 0.0, 1.0);
+    const double b = std::clamp(lpsMax[worldAxis_[t]], 0.0, 1.0);
+    lo[t] = reversed_[t] ? 1.0 - b : a;
+    hi[t] = reversed_[t] ? 1.0 - a : b;
+  }
+  return {lo, hi};
+}
+
+std::pair<glm::dvec3, glm::dvec3> PatientCrop::worldBox(const glm::dvec3& lpsMin,
+                                                        const glm::dvec3& lpsMax) const {
+  const glm::dvec3 extent = boxMax_ - boxMin_;
+  return {boxMin_ + glm::clamp(lpsMin, 0.0, 1.0) * extent,
+          boxMin_ + glm::clamp(lpsMax, 0.0, 1.0) * extent};
+}
+
+std::pair<glm::dvec3, glm::dvec3> PatientCrop::fractionsFromMm(const glm::dvec3& minMm,
+                                                               const glm::dvec3& maxMm) const {
+  const glm::dvec3 extent = glm::max(boxMax_ - boxMin_, glm::dvec3(1e-9));
+  return {glm::clamp((minMm - boxMin_) / extent, 0.0, 1.0),
+          glm::clamp((maxMm - boxMin_) / extent, 0.0, 1.0)};
+}
 
 }  // namespace mvw::render

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <iterator>
 #include <map>
+#include <tuple>
+#include <utility>
 
 #include <glad/gl.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -40,6 +42,7 @@ struct VolumeRenderer::Impl {
   GlContext& context;
   detail::VolumeTextures volume;
   FramingSphere framing;
+  PatientCrop crop;
   double defaultStep;
   detail::BlockGrid blocks;
   detail::TransferTable transfer;
@@ -58,6 +61,7 @@ struct VolumeRenderer::Impl {
       : context(madeCurrent(c)),
         volume(v),
         framing(framingSphere(v)),
+        crop(v),
         defaultStep(defaultStepMm(v)),
         blocks(volume.values(), volume.dims()),
         vao(detail::makeVertexArray()) {}
@@ -184,9 +188,22 @@ void VolumeRenderer::Impl::setRayUniforms(const ShaderProgram& p, const RenderSe
   glUniform1i(p.uniform("uMaxSteps"), static_cast<int>(std::ceil(2.0 * framing.radius / step)) + 2);
   glUniform1i(p.uniform("uJitter"), s.jitter ? 1 : 0);
   glUniform1ui(p.uniform("uSeed"), s.seed);
-  const glm::dvec3 cmin = glm::clamp(s.cropMin, 0.0, 1.0), cmax = glm::clamp(s.cropMax, 0.0, 1.0);
+  auto [lpsMin, lpsMax] = std::pair{s.cropMin, s.cropMax};
+  if (s.cropMinMm && s.cropMaxMm)
+    std::tie(lpsMin, lpsMax) = crop.fractionsFromMm(*s.cropMinMm, *s.cropMaxMm);
+  // Along the patient axes the texture box is the crop; an oblique volume is clipped in world
+  // mm instead (PatientCrop). 1e30: no world clip, so axis-aligned renders are unchanged.
+  auto [cmin, cmax] = crop.textureBox(lpsMin, lpsMax);
+  glm::dvec3 wmin(-1e30), wmax(1e30);
+  if (!crop.axisAligned()) {
+    std::tie(wmin, wmax) = crop.worldBox(lpsMin, lpsMax);
+    cmin = glm::dvec3(0.0);
+    cmax = glm::dvec3(1.0);
+  }
   glUniform3f(p.uniform("uBoxMin"), float(cmin.x), float(cmin.y), float(cmin.z));
   glUniform3f(p.uniform("uBoxMax"), float(cmax.x), float(cmax.y), float(cmax.z));
+  glUniform3f(p.uniform("uWorldBoxMin"), float(wmin.x), float(wmin.y), float(wmin.z));
+  glUniform3f(p.uniform("uWorldBoxMax"), float(wmax.x), float(wmax.y), float(wmax.z));
   const glm::dvec3& c = framing.centre;
   glUniform4f(p.uniform("uBoundingSphere"), float(c.x), float(c.y), float(c.z),
               float(framing.radius));

@@ -268,6 +268,10 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.background = {v.background[0], v.background[1], v.background[2]};
     s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
     s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
+    if (v.cropMinMm && v.cropMaxMm) {
+      s.cropMinMm = glm::dvec3((*v.cropMinMm)[0], (*v.cropMinMm)[1], (*v.cropMinMm)[2]);
+      s.cropMaxMm = glm::dvec3((*v.cropMaxMm)[0], (*v.cropMaxMm)[1], (*v.cropMaxMm)[2]);
+    }
     s.glyphs = v.glyphs;
     s.glyphSizeControl = v.glyphMethod == config::GlyphMethod::Sized;
     s.glyphConvexity = v.glyphConvexity;
@@ -395,6 +399,10 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.background = {s.background.r, s.background.g, s.background.b};
   v.cropMin = {s.cropMin.x, s.cropMin.y, s.cropMin.z};
   v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
+  if (s.cropMinMm && s.cropMaxMm) {
+    v.cropMinMm = std::array<double, 3>{s.cropMinMm->x, s.cropMinMm->y, s.cropMinMm->z};
+    v.cropMaxMm = std::array<double, 3>{s.cropMaxMm->x, s.cropMaxMm->y, s.cropMaxMm->z};
+  }
   // Glyphs only where they show (a viewer may leave them on while it shows a MIP): a saved MIP
   // with glyphs would not load.
   v.glyphs = s.glyphs && (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface);

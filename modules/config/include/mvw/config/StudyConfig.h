@@ -19,6 +19,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "mvw/core/ColorMap.h"
+#include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/RenderMode.h"
 
@@ -27,6 +28,9 @@ namespace mvw::config {
 struct VolumeSource {
   std::filesystem::path path;
   std::string series;  // DICOM series selection: UID, number or part of the description
+  // What a 4D volume contributes ("frame": N or "mean"); unset: frame 0 (the anatomy), for the
+  // functional volume the loader sets defaultFrame(kind). A 3D volume ignores frame 0 / mean.
+  std::optional<FrameChoice> frame;
 };
 
 enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };
@@ -121,7 +125,11 @@ struct ViewConfig {
   bool jitter = true;
   unsigned seed = 1;
   std::array<double, 3> background{0.0, 0.0, 0.0};
-  std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};  // fractions of the box
+  // Crop box in patient terms, the same for any storage order: fractions of the volume's
+  // world-aligned box along L, P, S (0 = most right / anterior / inferior, 1 = most left /
+  // posterior / superior); or "crop_mm": {"min": [...], "max": [...]} in LPS mm, which wins.
+  std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};
+  std::optional<std::array<double, 3>> cropMinMm, cropMaxMm;
   bool annotate = true;
   std::array<double, 2> light{0.0, 0.0};  // light offset in screen terms; 0, 0: headlight
   double planeOffsetMm = 0.0;             // mpr: plane moved along the line of sight
@@ -174,6 +182,12 @@ struct StudyConfig {
 };
 
 StudyConfig loadStudyConfig(const std::filesystem::path& file);
+
+// What a 4D functional volume contributes when the study does not say: the mean over the
+// frames (a time series' frames are repeated measurements: the mean is the reference image
+// SPM and FSL register, and the first frames of a run are often not yet at steady state),
+// frame 0 for label maps (a mean of labels is no label).
+FrameChoice defaultFrame(FunctionalKind kind);
 
 // One view object ("render": {"views": [...]} entry), validated as loadStudyConfig does;
 // errors name `file` and `where` (e.g. "render.views[2]"); a view without a name is

@@ -34,7 +34,8 @@ struct VolumeMetadata {
   std::string frameOfReferenceUid;  // DICOM only
   int seriesNumber = -1;
   std::optional<SliceSpacing> sliceSpacing;
-  std::vector<std::string> notes;  // what a user should know: unit decisions, reorderings
+  std::optional<double> suvFactor;  // PET read as SUVbw: SUVbw = Bq/ml x suvFactor
+  std::vector<std::string> notes;   // what a user should know: unit decisions, reorderings
 };
 
 class Volume {

@@ -68,8 +68,11 @@ struct RenderSettings {
   // Where the light comes from, in screen terms: (0, 0) is a headlight; (-1, 1) from the
   // upper left at 45 degrees off the line of sight.
   glm::dvec2 lightOffset{0.0};
-  glm::dvec3 cropMin{0.0};  // crop box as fractions of the volume box
+  // Crop box in patient terms (PatientCrop, Framing.h): fractions of the volume's world-aligned
+  // box along L, P, S, whatever the storage order; or, when set, LPS millimetres (these win).
+  glm::dvec3 cropMin{0.0};
   glm::dvec3 cropMax{1.0};
+  std::optional<glm::dvec3> cropMinMm, cropMaxMm;
   // MPR: the plane faces the camera through the volume centre, moved along the line of
   // sight; a slab > 0 mm is a thick-slab MIP. (Always orthographic.)
   double planeOffsetMm = 0.0;

@@ -1,0 +1,147 @@
+#include "ConvertCommand.h"
+
+#include <unistd.h>
+
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "VolumeReport.h"
+#include "mvw/core/Error.h"
+#include "mvw/core/Frame.h"
+#include "mvw/io/AtomicFile.h"
+#include "mvw/io/VolumeReader.h"
+#include "mvw/io/VolumeWriter.h"
+
+namespace mvw::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ConvertOptions {
+  std::string input;
+  std::string output;
+  std::string series;
+  std::string frame;  // "": every frame of a 4D volume is written
+  bool noSuv = false;
+};
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// OUT.nii.gz -> OUT.json (dcm2niix's sidecar name); empty for an extension mvw does not write.
+fs::path sidecarOf(const fs::path& output) {
+  const std::string name = output.filename().string();
+  for (const char* ext : {".nii.gz", ".nii", ".mha"})
+    if (endsWith(name, ext) && name.size() > std::string(ext).size())
+      return output.parent_path() /
+             (name.substr(0, name.size() - std::string(ext).size()) + ".json");
+  return {};
+}
+
+// Everything about the output that can be wrong is said before the input is read.
+void checkOutput(const fs::path& output, const fs::path& sidecar) {
+  if (sidecar.empty())
+    throw InputError(output, "unknown output format (use .nii.gz, .nii or .mha)");
+  std::error_code ec;
+  if (fs::is_directory(output, ec)) throw InputError(output, "is a folder, not a file name");
+  const fs::path parent = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  if (!fs::is_directory(parent, ec))
+    throw InputError(output, "its folder " + parent.string() + " does not exist");
+  if (::access(parent.c_str(), W_OK | X_OK) != 0)
+    throw InputError(output, "its folder " + parent.string() + " is not writable");
+  if (fs::is_directory(sidecar, ec))
+    throw InputError(sidecar, "the sidecar's name is taken by a folder");
+}
+
+// What dcm2niix's BIDS sidecar says, in mvw's words: what the values are and where they came
+// from; the geometry is the image's own (and repeated here for a reader without NIfTI).
+nlohmann::json sidecarJson(const Volume& volume, const ConvertOptions& o) {
+  nlohmann::json j = volumeJson(volume);
+  j.erase("path");
+  j["source_path"] = fs::absolute(o.input).lexically_normal().string();
+  const auto& md = volume.metadata();
+  j["series_description"] = md.seriesDescription;
+  j["series_number"] = md.seriesNumber;
+  j["series_instance_uid"] = md.seriesInstanceUid;
+  if (md.suvFactor) j["suv_factor"] = *md.suvFactor;  // SUVbw = Bq/ml x suv_factor
+  j["frame"] = o.frame.empty() ? nlohmann::json("all") : nlohmann::json(o.frame);
+  j["written_by"] = "mvw convert";
+  return j;
+}
+
+void runConvert(const ConvertOptions& o) {
+  const fs::path output = o.output, sidecar = sidecarOf(output);
+  checkOutput(output, sidecar);
+  std::optional<FrameChoice> frame;
+  if (!o.frame.empty()) {
+    frame = parseFrameChoice(o.frame);
+    if (!frame)
+      throw InputError(o.input,
+                       "--frame '" + o.frame + "' must be a frame number (0, 1, ...) or 'mean'");
+  }
+  io::ReadOptions read;
+  read.series = o.series;
+  read.suv = !o.noSuv;
+  Volume volume = io::readVolume(o.input, read);
+  if (frame) volume = selectFrame(volume, *frame);
+  const std::string text = sidecarJson(volume, o).dump(2) + "\n";
+
+  // Both files appear or neither: each is written whole under a temporary name in the output
+  // folder, then both are renamed into place; a failure on the way removes what was written.
+  const std::string stage = ".mvw-convert-" + std::to_string(::getpid()) + "-";
+  const fs::path imageTmp = output.parent_path() / (stage + output.filename().string());
+  const fs::path sidecarTmp = sidecar.parent_path() / (stage + sidecar.filename().string());
+  std::error_code ec;
+  try {
+    io::writeVolume(volume, imageTmp);
+    io::writeTextAtomically(sidecarTmp, text);
+    fs::rename(imageTmp, output);
+    fs::rename(sidecarTmp, sidecar);
+  } catch (...) {
+    fs::remove(imageTmp, ec);
+    fs::remove(sidecarTmp, ec);
+    if (!fs::exists(sidecar, ec)) fs::remove(output, ec);
+    // The output is a name the user typed: a place that cannot be written is bad input.
+    try {
+      throw;
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw InputError(output, std::string("cannot be written: ") + e.what());
+    }
+  }
+  const glm::ivec3 d = volume.dimensions();
+  std::cout << "wrote " << output.string() << " (" << d.x << " x " << d.y << " x " << d.z;
+  if (volume.components() > 1) std::cout << " x " << volume.components() << " frames";
+  std::cout << ", " << scalarName(volume.scalarType())
+            << (volume.metadata().unit.empty() ? "" : ", " + volume.metadata().unit) << ") and "
+            << sidecar.string() << "\n";
+}
+
+}  // namespace
+
+void addConvertCommand(CLI::App& app) {
+  auto opt = std::make_shared<ConvertOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "convert",
+      "Write a volume (DICOM series, NIfTI, MetaImage) as NIfTI or MetaImage, in its physical "
+      "unit and LPS geometry as every mvw command reads it, with a JSON sidecar (OUT.json)");
+  cmd->add_option("input", opt->input, "DICOM folder or file, NIfTI or MetaImage file")->required();
+  cmd->add_option("-o,--output", opt->output, "Output file: .nii.gz, .nii or .mha")->required();
+  cmd->add_option("--series", opt->series,
+                  "DICOM series, where the folder holds several: UID, number or part of the "
+                  "description");
+  cmd->add_option("--frame", opt->frame,
+                  "Of a 4D volume, write frame N (from 0) or 'mean' (default: every frame)");
+  cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
+  cmd->callback([opt] { runConvert(*opt); });
+}
+
+}  // namespace mvw::app
