@@ -4,6 +4,7 @@ namespace mvw::study {
 
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options) {
   options.series = source.series;
+  options.sliceSpacing = source.sliceSpacingMm;
   return io::readVolume(source.path, options);
 }
 

@@ -25,6 +25,9 @@ namespace mvw::config {
 struct VolumeSource {
   std::filesystem::path path;
   std::string series;  // DICOM series selection: UID, number or part of the description
+  // Slice distance (mm) for DICOM series that must be resampled (uneven or missing slices,
+  // gantry tilt); 0: automatic. See io::ReadOptions::sliceSpacing.
+  double sliceSpacingMm = 0.0;
 };
 
 enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };
