@@ -27,6 +27,7 @@
 #include <vtkStringArray.h>
 
 #include "DecoderGuard.h"
+#include "DeflatedDicom.h"
 #include "FileChecks.h"
 #include "Formats.h"
 #include "SiemensMosaic.h"
@@ -348,6 +349,13 @@ SeriesRef seriesRefFrom(vtkDICOMMetaData* meta) {
 // that is not an image says what it is.
 Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
   regularFileSize(path);
+  if (const auto inflated = inflateDeflatedDicom(path, options.maxBytes)) {
+    Volume volume = readSingleFile(inflated->path(), options);
+    volume.metadata().sourcePath = path.string();
+    volume.metadata().notes.push_back(
+        "Deflated Explicit VR Little Endian: the data set was inflated before reading");
+    return volume;
+  }
   DecoderGuard guard(path);
   VtkMessageScope messages;
   vtkNew<vtkDICOMMetaData> meta;
