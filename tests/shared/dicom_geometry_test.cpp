@@ -104,6 +104,21 @@ TEST(RealDicomGeometry, T1WithAMissingSliceKeepsEveryAcquiredSliceExactly) {
   EXPECT_LE(result["max_abs_diff"].get<double>(), 1e-3);  // on grid points: exact
 }
 
+TEST(RealDicomGeometry, ObliqueT2WithAMissingSliceKeepsEveryAcquiredSliceExactly) {
+  MVW_REQUIRE_SHARED_DATA("mr-t1-t2-asl");
+  mvw::io::ReadOptions options;
+  options.series = "6";
+  const mvw::Volume t2 = mvw::io::readVolume(sharedPath, options);
+  EXPECT_EQ(t2.dimensions(), glm::ivec3(384, 512, 56));
+  EXPECT_NEAR(t2.spacing().z, 2.5, 1e-6);
+  EXPECT_TRUE(hasNote(t2, "gap of 5.000 mm after slice 34 of 55"));
+  const auto result = check(t2, "mr-t2", "slices", shellQuoted(sharedPath) + " 6");
+  ASSERT_FALSE(result.empty());
+  EXPECT_EQ(result["slices"], 55);
+  EXPECT_EQ(result["outside"], 0);
+  EXPECT_LE(result["max_abs_diff"].get<double>(), 1e-3);
+}
+
 class RealMosaic : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(RealMosaic, UnpacksLikeNibabelOnTheT1FrameOfReference) {

@@ -214,7 +214,7 @@ Volume placeSlices(Volume stack, const std::vector<glm::dvec3>& positions, doubl
       why = "capped at eight grid planes per acquired slice";
     }
     const double steps = std::max(1.0, std::round(extent / step));
-    if (std::abs(extent / steps - step) > 1e-9) why += ", adjusted to end on the last slice";
+    if (std::abs(extent / steps - step) > 1e-6) why += ", adjusted to end on the last slice";
     step = extent / steps;
   }
   const double planes = std::ceil(extent / step - 1e-6) + 1.0;
