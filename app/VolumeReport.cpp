@@ -57,11 +57,9 @@ nlohmann::json volumeJson(const Volume& volume) {
   }
   if (md.sliceSpacing) {
     const auto& ss = *md.sliceSpacing;
-    j["slice_spacing"] = {{"slices", ss.slices},
-                          {"nominal_mm", ss.nominal},
-                          {"min_mm", ss.minimum},
-                          {"max_mm", ss.maximum},
-                          {"regular", ss.regular}};
+    j["slice_spacing"] = {{"slices", ss.slices},   {"nominal_mm", ss.nominal},
+                          {"min_mm", ss.minimum},  {"max_mm", ss.maximum},
+                          {"regular", ss.regular}, {"resampled", ss.resampled}};
   }
   j["notes"] = md.notes;
   return j;
@@ -101,7 +99,7 @@ void printVolume(std::ostream& out, const Volume& volume) {
     out << "  slices       " << ss.slices << ", spacing " << fmt(ss.nominal) << " mm, "
         << (ss.regular ? "regular"
                        : "IRREGULAR (" + fmt(ss.minimum) + " .. " + fmt(ss.maximum) + " mm)")
-        << "\n";
+        << (ss.resampled ? ", resampled onto a regular grid" : "") << "\n";
   }
   for (const auto& note : md.notes) out << "  note         " << note << "\n";
 }

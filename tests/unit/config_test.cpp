@@ -45,6 +45,17 @@ TEST(StudyConfig, ResolvesPathsRelativeToTheConfig) {
   EXPECT_EQ(c.functionalKind, FunctionalKind::Pet);
 }
 
+TEST(StudyConfig, SliceSpacingForResampledDicomSeries) {
+  const fs::path dir = test::scratchDir();
+  const auto p =
+      writeConfig(dir, R"({"anatomical": {"path": "anat.nii", "slice_spacing_mm": 1.5}})");
+  EXPECT_EQ(loadStudyConfig(p).anatomical.sliceSpacingMm, 1.5);
+  EXPECT_NE(
+      errorOf(writeConfig(dir, R"({"anatomical": {"path": "anat.nii", "slice_spacing_mm": -1}})"))
+          .find("anatomical.slice_spacing_mm"),
+      std::string::npos);
+}
+
 TEST(StudyConfig, RefusesTyposMissingKeysAndBadValues) {
   const fs::path dir = test::scratchDir();
   EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"}, "fucntional": {}})"))

@@ -107,6 +107,24 @@ TEST(SampleData, AtlasAndTemplateLoadInTheSameFrame) {
   EXPECT_LT(glm::length(centre(t1) - centre(aal)), 30.0);
 }
 
+// pydicom's deflated file (Deflated Explicit VR Little Endian): inflated by mvw before
+// vtk-dicom reads it. Reference values from pydicom (pixel sum 33322688; (row, column)
+// (0,0) = 213, (100,200) = 41, (511,3) = 115).
+TEST(SampleData, DeflatedDicomIsInflatedAndMatchesPydicom) {
+  const mvw::Volume v =
+      mvw::io::readVolume(mvw::test::sampleData("pydicom/test_files/image_dfl.dcm"));
+  ASSERT_EQ(v.dimensions(), glm::ivec3(512, 512, 1));
+  double sum = 0;
+  for (int j = 0; j < 512; ++j)
+    for (int i = 0; i < 512; ++i) sum += v.value(i, j, 0);
+  EXPECT_EQ(sum, 33322688.0);
+  EXPECT_EQ(v.value(0, 0, 0), 213);
+  EXPECT_EQ(v.value(200, 100, 0), 41);
+  EXPECT_EQ(v.value(3, 511, 0), 115);
+  EXPECT_EQ(v.metadata().sourcePath,
+            mvw::test::sampleData("pydicom/test_files/image_dfl.dcm").string());
+}
+
 TEST(SampleData, FolderWithTwoSeriesNeedsAChoice) {
   const fs::path dir = test::scratchDir();
   fs::copy(test::sampleData("cranium/dicom"), dir / "ct");

@@ -375,6 +375,14 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
               j[k] = "mean";
             else
               j[k] = in.source.frame->index;
+          })
+      .add(
+          "slice_spacing_mm",
+          [](const json& v, SourceEntry& out, const Where& w) {
+            out.source.sliceSpacingMm = detail::readNumber(v, w, 0.0, 1000.0);
+          },
+          [](const SourceEntry& in, json& j, const char* k) {
+            if (in.source.sliceSpacingMm > 0) j[k] = in.source.sliceSpacingMm;
           });
   if (withKind) t.enumeration("kind", &SourceEntry::kind, kKinds);
   return t;

@@ -73,7 +73,8 @@ std::pair<double, double> Volume::valueRange() const {
     double hi = -lo;
     for (std::size_t i = 0; i < n; ++i) {
       const double v = static_cast<double>(p[i]);
-      if (v < lo) lo = v;  // NaN compares false both ways and is skipped
+      if (std::isinf(v)) continue;  // the range is always finite (readers clamp +-inf)
+      if (v < lo) lo = v;           // NaN compares false both ways and is skipped
       if (v > hi) hi = v;
     }
     if (lo > hi) return std::pair<double, double>{0.0, 0.0};  // all NaN

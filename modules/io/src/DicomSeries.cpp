@@ -27,8 +27,11 @@
 #include <vtkStringArray.h>
 
 #include "DecoderGuard.h"
+#include "DeflatedDicom.h"
 #include "FileChecks.h"
 #include "Formats.h"
+#include "SiemensMosaic.h"
+#include "SliceGeometry.h"
 #include "VtkBridge.h"
 #include "VtkMessages.h"
 #include "mvw/core/Error.h"
@@ -184,32 +187,41 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
                                     dose.decayCorrection + ")");
 }
 
-std::optional<SliceSpacing> sliceSpacing(vtkDICOMReader* reader, const glm::dvec3& normal) {
+// Each output slice's ImagePositionPatient (vtk-dicom maps output slice -> file and frame);
+// empty when any is missing.
+std::vector<glm::dvec3> slicePositions(vtkDICOMReader* reader) {
   vtkIntArray* fileIndex = reader->GetFileIndexArray();
   vtkIntArray* frameIndex = reader->GetFrameIndexArray();
   vtkDICOMMetaData* meta = reader->GetMetaData();
-  if (!fileIndex || !frameIndex || fileIndex->GetNumberOfTuples() < 2) return std::nullopt;
-  std::vector<double> positions;
+  std::vector<glm::dvec3> positions;
+  if (!fileIndex || !frameIndex || fileIndex->GetNumberOfTuples() < 2) return positions;
   for (vtkIdType s = 0; s < fileIndex->GetNumberOfTuples(); ++s) {
     const vtkDICOMValue& ipp = meta->Get(fileIndex->GetComponent(s, 0),
                                          frameIndex->GetComponent(s, 0), DC::ImagePositionPatient);
-    if (ipp.GetNumberOfValues() != 3) return std::nullopt;
-    positions.push_back(ipp.GetDouble(0) * normal.x + ipp.GetDouble(1) * normal.y +
-                        ipp.GetDouble(2) * normal.z);
+    if (ipp.GetNumberOfValues() != 3) return {};
+    const glm::dvec3 p(ipp.GetDouble(0), ipp.GetDouble(1), ipp.GetDouble(2));
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return {};
+    positions.push_back(p);
   }
-  std::vector<double> gaps;
-  for (std::size_t i = 1; i < positions.size(); ++i)
-    gaps.push_back(std::abs(positions[i] - positions[i - 1]));
-  SliceSpacing out;
-  out.slices = static_cast<int>(positions.size());
-  std::vector<double> sorted = gaps;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  out.nominal = sorted[sorted.size() / 2];
-  out.minimum = *std::min_element(gaps.begin(), gaps.end());
-  out.maximum = *std::max_element(gaps.begin(), gaps.end());
-  const double tol = std::max(0.01, 0.01 * out.nominal);
-  out.regular = out.maximum - out.nominal <= tol && out.nominal - out.minimum <= tol;
-  return out;
+  return positions;
+}
+
+bool isMosaic(vtkDICOMMetaData* meta) {
+  const vtkDICOMValue& type = meta->Get(0, DC::ImageType);
+  for (unsigned int i = 0; i < type.GetNumberOfValues(); ++i)
+    if (type.GetString(i) == "MOSAIC") return true;
+  return false;
+}
+
+Volume unpackMosaicFrom(Volume volume, vtkDICOMMetaData* meta) {
+  const vtkDICOMTag tag =
+      meta->ResolvePrivateTag(0, vtkDICOMTag(0x0029, 0x1010), "SIEMENS CSA HEADER");
+  const vtkDICOMValue& csa = meta->Get(0, tag);
+  const unsigned char* bytes = csa.IsValid() ? csa.GetUnsignedCharData() : nullptr;
+  const std::size_t size = bytes ? csa.GetNumberOfValues() : 0;
+  return unpackMosaic(std::move(volume), bytes, size,
+                      meta->Get(0, DC::SpacingBetweenSlices).AsDouble(),
+                      meta->Get(0, DC::SliceThickness).AsDouble());
 }
 
 // vtk-dicom returns the frames of a multi-frame file that carries no per-frame position
@@ -302,6 +314,12 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   if (files->GetNumberOfValues() == 1 && frames > 1 && volume.dimensions().z == 1 &&
       volume.components() == frames * spp)
     volume = stackFramesAsSlices(volume, frames, spp, meta);
+  else if (files->GetNumberOfValues() == 1 && frames <= 1 && volume.dimensions().z == 1 &&
+           isMosaic(meta))
+    volume = unpackMosaicFrom(std::move(volume), meta);
+  else
+    volume = placeSlices(std::move(volume), slicePositions(reader), options.sliceSpacing,
+                         options.maxBytes, first);
   auto& md = volume.metadata();
   md.format = "DICOM";
   md.sourcePath = path.string();
@@ -312,10 +330,6 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   md.frameOfReferenceUid = meta->Get(0, DC::FrameOfReferenceUID).AsString();
   if (meta->Get(0, DC::ImageOrientationPatient).GetNumberOfValues() != 6)
     md.notes.push_back("no ImageOrientationPatient: patient orientation unknown, axes assumed LPS");
-  md.sliceSpacing = sliceSpacing(reader, glm::normalize(glm::dvec3(patientFromData[2])));
-  if (md.sliceSpacing && !md.sliceSpacing->regular)
-    md.notes.push_back("irregular slice spacing: the volume uses one spacing of " +
-                       std::to_string(spacing[2]) + " mm");
   if (reader->GetStackIDs() && reader->GetStackIDs()->GetNumberOfValues() > 1)
     md.notes.push_back("series holds several stacks; the first was read");
   if (reader->GetTimeDimension() > 1)
@@ -338,6 +352,13 @@ SeriesRef seriesRefFrom(vtkDICOMMetaData* meta) {
 // that is not an image says what it is.
 Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
   regularFileSize(path);
+  if (const auto inflated = inflateDeflatedDicom(path, options.maxBytes)) {
+    Volume volume = readSingleFile(inflated->path(), options);
+    volume.metadata().sourcePath = path.string();
+    volume.metadata().notes.push_back(
+        "Deflated Explicit VR Little Endian: the data set was inflated before reading");
+    return volume;
+  }
   DecoderGuard guard(path);
   VtkMessageScope messages;
   vtkNew<vtkDICOMMetaData> meta;

@@ -3,6 +3,7 @@
 // the decompressed stream) and the memory limit before VTK allocates anything.
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include <vtkNew.h>
 #include <zlib.h>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "FileChecks.h"
@@ -314,6 +316,18 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
     rasFromData = fromVtk(reader->GetQFormMatrix());
   } else {
     notes.push_back("no qform or sform in the header: axes assumed to point toward R, A, S");
+  }
+  // A zero pixdim is no voxel size: say which one was used instead (VTK puts 1 for a zero).
+  for (int a = 1; a <= 3; ++a) {
+    if (std::abs(header->GetPixDim(a)) > 0 || std::isnan(header->GetPixDim(a))) continue;
+    const bool fromSform = header->GetSFormCode() > 0 && reader->GetSFormMatrix();
+    const double used =
+        fromSform ? glm::length(glm::dvec3(rasFromData[a - 1])) * spacing[a - 1] : spacing[a - 1];
+    char size[32];
+    std::snprintf(size, sizeof size, "%g", used * unitScale);
+    notes.push_back("pixdim[" + std::to_string(a) +
+                    "] is 0: " + (fromSform ? "the sform's voxel size " : std::string("")) + size +
+                    " mm assumed along axis " + std::to_string(a));
   }
   glm::dmat4 dataFromIndex(1.0);
   for (int a = 0; a < 3; ++a) {

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <limits>
+#include <type_traits>
 
 #include <unistd.h>
 
@@ -56,6 +60,55 @@ auto refuseOutOfMemory(const fs::path& path, F&& read) {
   }
 }
 
+// +-inf voxels are clamped to the finite range of the others, with a note, rather than the
+// file refused: a few infinite voxels (a ratio map divided by zero, a failed fit) should not
+// make a whole scan unreadable, and left in they break every window, transfer function and
+// histogram downstream. They are not made NaN: NaN means "no data", which an overflow is not.
+void clampInfinities(Volume& volume, const fs::path& path) {
+  if (volume.scalarType() != ScalarType::Float32 && volume.scalarType() != ScalarType::Float64)
+    return;
+  dispatchScalar(volume.scalarType(), [&](auto t) {
+    using T = decltype(t);
+    if constexpr (std::is_floating_point_v<T>) {
+      T* p = volume.dataAs<T>();
+      const std::size_t n = volume.valueCount();
+      std::size_t plus = 0, minus = 0;
+      T lo = std::numeric_limits<T>::infinity(), hi = -lo;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (std::isinf(p[i])) {
+          (p[i] > 0 ? plus : minus) += 1;
+        } else if (!std::isnan(p[i])) {
+          lo = std::min(lo, p[i]);
+          hi = std::max(hi, p[i]);
+        }
+      }
+      if (plus + minus == 0) return;
+      if (lo > hi) throw InputError(path, "no finite voxel value: every voxel is infinite or NaN");
+      for (std::size_t i = 0; i < n; ++i)
+        if (std::isinf(p[i])) p[i] = p[i] > 0 ? hi : lo;
+      auto g = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", v);
+        return std::string(buf);
+      };
+      std::string note;
+      if (plus)
+        note = std::to_string(plus) + " voxels +inf clamped to the largest finite value " + g(hi);
+      if (minus) {
+        if (!note.empty()) note += "; ";
+        note +=
+            std::to_string(minus) + " voxels -inf clamped to the smallest finite value " + g(lo);
+      }
+      volume.metadata().notes.push_back(note);
+    }
+  });
+}
+
+std::vector<Volume> finished(std::vector<Volume> volumes, const fs::path& path) {
+  for (auto& v : volumes) clampInfinities(v, path);
+  return volumes;
+}
+
 }  // namespace
 
 std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& given) {
@@ -66,16 +119,16 @@ std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& give
   return refuseOutOfMemory(path, [&]() -> std::vector<Volume> {
     switch (detectFormat(path)) {
       case FileFormat::Dicom:
-        return detail::readDicom(path, options, true);
+        return finished(detail::readDicom(path, options, true), path);
       case FileFormat::Nifti: {
         std::vector<Volume> v;
         v.push_back(detail::readNifti(path, options));
-        return v;
+        return finished(std::move(v), path);
       }
       case FileFormat::MetaImage: {
         std::vector<Volume> v;
         v.push_back(detail::readMetaImage(path, options));
-        return v;
+        return finished(std::move(v), path);
       }
       case FileFormat::Unknown:
         break;
@@ -92,7 +145,8 @@ Volume readVolume(const fs::path& path, const ReadOptions& given) {
   if (detectFormat(path) == FileFormat::Dicom) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
-    auto volumes = refuseOutOfMemory(path, [&] { return detail::readDicom(path, options, false); });
+    auto volumes = refuseOutOfMemory(
+        path, [&] { return finished(detail::readDicom(path, options, false), path); });
     return std::move(volumes.front());
   }
   auto volumes = readAllVolumes(path, options);

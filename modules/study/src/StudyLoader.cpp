@@ -7,6 +7,7 @@ namespace mvw::study {
 
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options) {
   options.series = source.series;
+  options.sliceSpacing = source.sliceSpacingMm;
   Volume volume = io::readVolume(source.path, options);
   // A 4D volume becomes the one 3D volume every view and the registration use, with a note;
   // a frame the volume does not have is bad input, said before any heavy work.

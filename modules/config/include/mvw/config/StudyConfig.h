@@ -31,6 +31,9 @@ struct VolumeSource {
   // What a 4D volume contributes ("frame": N or "mean"); unset: frame 0 (the anatomy), for the
   // functional volume the loader sets defaultFrame(kind). A 3D volume ignores frame 0 / mean.
   std::optional<FrameChoice> frame;
+  // Slice distance (mm) for DICOM series that must be resampled (uneven or missing slices,
+  // gantry tilt); 0: automatic. See io::ReadOptions::sliceSpacing.
+  double sliceSpacingMm = 0.0;
 };
 
 enum class FunctionalKind { Pet, Spect, Fmri, Perfusion, Dose, Labels, Other };

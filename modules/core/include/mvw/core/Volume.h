@@ -22,6 +22,9 @@ struct SliceSpacing {
   double minimum = 0.0;
   double maximum = 0.0;
   bool regular = true;  // every gap within 1 % (and 0.01 mm) of the nominal
+  // The acquired slices (described above) were resampled onto the volume's regular grid:
+  // uneven or missing slices, or gantry tilt (see the notes).
+  bool resampled = false;
 };
 
 struct VolumeMetadata {
@@ -72,7 +75,8 @@ class Volume {
   glm::dmat3 direction() const;    // unit columns: world direction of i, j, k
   glm::dvec3 worldFromIndexPoint(const glm::dvec3& ijk) const;
 
-  // min and max over all voxels and components (NaNs ignored); {0,0} for an empty volume.
+  // min and max over all voxels and components, NaN ("no data") and +-inf ignored: always
+  // finite; {0,0} for an empty or all-NaN volume.
   std::pair<double, double> valueRange() const;
 
   VolumeMetadata& metadata() { return meta_; }

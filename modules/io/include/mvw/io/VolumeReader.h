@@ -20,6 +20,10 @@ struct ReadOptions {
   std::size_t maxBytes = 0;
   // Convert PET Bq/ml to SUVbw when the DICOM tags allow it.
   bool suv = true;
+  // Slice distance (mm) of the regular grid that DICOM series with uneven or missing slices,
+  // or gantry tilt, are resampled onto; 0: automatic (the smallest distance that occurs, not
+  // below a quarter of the median, at most eight grid planes per acquired slice).
+  double sliceSpacing = 0.0;
 };
 
 std::size_t defaultMaxBytes();
