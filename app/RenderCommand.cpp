@@ -1,5 +1,7 @@
 #include "RenderCommand.h"
 
+#include "HeadlessGl.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -37,6 +39,7 @@ struct RenderOptions {
   std::string study;
   std::string outDir;
   mvw::study::ViewOverrides overrides;
+  std::string gl;  // --gl (empty: MVW_GL, else auto)
 };
 
 std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
@@ -54,7 +57,7 @@ void runRender(const RenderOptions& o) {
   const Volume& anatomy = volumes.anatomical;
   const std::optional<Volume>& functional = volumes.functional;
 
-  auto context = render::createHeadlessContext({16, 16});
+  auto context = makeHeadlessContext(o.gl);
   render::VolumeRenderer renderer(*context, anatomy);
   // The study's "registration" places the functional volume (none: by world coordinates).
   std::optional<mvw::study::FunctionalPlacement> placement;
@@ -158,6 +161,7 @@ void runRender(const RenderOptions& o) {
     report["registration"] = placement->report;
   }
   report["value_range"] = {lo, hi};
+  report["gl_backend"] = context->backend();
   report["gl_renderer"] = context->renderer();
   report["gl_version"] = context->version();
   report["mvw_version"] = kVersion;
@@ -175,7 +179,7 @@ void runRender(const RenderOptions& o) {
 void addRenderCommand(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
+      "render", "Render the views of a study config headless (EGL or OSMesa) to PNG + render.json");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("-o,--output", o->outDir, "Output folder")->required();
   cmd->add_option("--mode", o->overrides.mode,
@@ -207,6 +211,7 @@ void addRenderCommand(CLI::App& app) {
                 "Perspective instead of orthographic projection");
   cmd->add_flag("--no-annotate", o->overrides.noAnnotate,
                 "No orientation labels, scale bar or caption");
+  addGlOption(*cmd, o->gl);
   cmd->callback([o] {
     if (o->overrides.window.has_value() != o->overrides.level.has_value())
       throw InputError(o->study, "--window and --level go together");
