@@ -46,8 +46,8 @@ void runBench(const BenchOptions& o) {
     modes.push_back(*m);
   }
   const auto study = config::loadStudyConfig(o.study);
-  const Volume volume = mvw::study::readSource(study.anatomical);
   auto context = makeHeadlessContext(o.gl);
+  const Volume volume = mvw::study::readSource(study.anatomical);
   const auto t0 = std::chrono::steady_clock::now();
   render::VolumeRenderer renderer(*context, volume);
   const double uploadMs =

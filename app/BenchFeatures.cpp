@@ -47,10 +47,10 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   mvw::study::ViewOverrides overrides;
   overrides.size = o.size;
   std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, overrides);
+  auto context = makeHeadlessContext(o.gl);
   const Volume anatomy = mvw::study::readSource(study.anatomical);
   std::optional<Volume> functional;
   if (study.functional) functional = mvw::study::readSource(*study.functional);
-  auto context = makeHeadlessContext(o.gl);
   render::VolumeRenderer renderer(*context, anatomy);
   if (functional)
     renderer.setFunctional(

@@ -53,11 +53,12 @@ std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
 void runRender(const RenderOptions& o) {
   const config::StudyConfig study = config::loadStudyConfig(o.study);
   std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, o.overrides);
+  // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
+  auto context = makeHeadlessContext(o.gl);
   const Study volumes = mvw::study::loadStudy(study);
   const Volume& anatomy = volumes.anatomical;
   const std::optional<Volume>& functional = volumes.functional;
 
-  auto context = makeHeadlessContext(o.gl);
   render::VolumeRenderer renderer(*context, anatomy);
   // The study's "registration" places the functional volume (none: by world coordinates).
   std::optional<mvw::study::FunctionalPlacement> placement;
