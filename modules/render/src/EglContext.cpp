@@ -6,6 +6,7 @@
 #include <dlfcn.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -140,7 +141,12 @@ class EglContext final : public GlContext {
                                     EGL_NONE};
     EGLConfig config = nullptr;
     EGLint configs = 0;
-    if (!e.chooseConfig(display_, configAttribs, &config, 1, &configs)) configs = 0;
+    // MVW_EGL_NO_PBUFFER=1 takes the surfaceless-context path below on a display that has
+    // pbuffers too, so that path is tested (tests/render/gl-backends).
+    const char* noPbuffer = std::getenv("MVW_EGL_NO_PBUFFER");
+    if ((noPbuffer && *noPbuffer && std::string(noPbuffer) != "0") ||
+        !e.chooseConfig(display_, configAttribs, &config, 1, &configs))
+      configs = 0;
     const char* extensions = e.queryString(display_, EGL_EXTENSIONS);
     if (configs == 0) {
       // No pbuffer config: a context without a default framebuffer (the renderer's FBOs
