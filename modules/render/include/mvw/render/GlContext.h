@@ -1,7 +1,8 @@
 #pragma once
-// An OpenGL 4.5 core context, headless or windowed, chosen at run time. Render code talks
-// to this interface only and never includes OSMesa, EGL or GLFW headers; every GL function
-// is loaded through the context's own GetProcAddress (glad), so one binary can run both.
+// An OpenGL 4.5 core context, headless (EGL or OSMesa) or windowed (GLFW), chosen at run
+// time. Render code talks to this interface only; the EGL headers stay in EglContext.cpp and
+// no OSMesa or GLFW header is included. Every GL function is loaded through the context's
+// own GetProcAddress (glad), so one binary can run all of them.
 #include <memory>
 #include <optional>
 #include <string>
