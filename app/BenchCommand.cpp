@@ -2,6 +2,7 @@
 
 #include "BenchFeatures.h"
 #include "BenchRegister.h"
+#include "HeadlessGl.h"
 
 #include <chrono>
 #include <cmath>
@@ -33,6 +34,7 @@ struct BenchOptions {
   std::string preset = "ct-bone";
   double stepMm = 0.0;
   bool noShading = false;
+  std::string gl;
 };
 
 void runBench(const BenchOptions& o) {
@@ -44,15 +46,16 @@ void runBench(const BenchOptions& o) {
     modes.push_back(*m);
   }
   const auto study = config::loadStudyConfig(o.study);
+  auto context = makeHeadlessContext(o.gl);
   const Volume volume = mvw::study::readSource(study.anatomical);
-  auto context = render::createHeadlessContext({16, 16});
   const auto t0 = std::chrono::steady_clock::now();
   render::VolumeRenderer renderer(*context, volume);
   const double uploadMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const glm::ivec3 d = volume.dimensions();
-  std::printf("mvw bench render: %s, %d x %d x %d, %d x %d pixels, %d frames per mode\n",
-              context->renderer().c_str(), d.x, d.y, d.z, o.size, o.size, o.frames);
+  std::printf("mvw bench render: %s, %s, %s, %d x %d x %d, %d x %d pixels, %d frames per mode\n",
+              context->backend().c_str(), context->renderer().c_str(), context->version().c_str(),
+              d.x, d.y, d.z, o.size, o.size, o.frames);
   std::printf("  upload (volume, gradient, blocks): %.0f ms\n", uploadMs);
   for (render::RenderMode mode : modes) {
     render::RenderSettings s;
@@ -97,6 +100,7 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--step", o->stepMm,
                   "Sample distance in mm (default: half the smallest spacing)");
   cmd->add_flag("--no-shading", o->noShading, "Composite without Phong shading");
+  addGlOption(*cmd, o->gl);
   cmd->callback([o] { runBench(*o); });
   addBenchRegisterCommand(*bench);
   addBenchFeaturesCommand(*bench);

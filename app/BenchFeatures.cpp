@@ -1,5 +1,7 @@
 #include "BenchFeatures.h"
 
+#include "HeadlessGl.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -21,6 +23,7 @@ struct FeatureBenchOptions {
   std::string study;
   std::optional<int> size;
   int frames = 12;
+  std::string gl;
 };
 
 bool hasFeature(const render::RenderSettings& s) { return s.glyphs || s.fusion || s.depthCue; }
@@ -44,17 +47,19 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   mvw::study::ViewOverrides overrides;
   overrides.size = o.size;
   std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, overrides);
+  auto context = makeHeadlessContext(o.gl);
   const Volume anatomy = mvw::study::readSource(study.anatomical);
   std::optional<Volume> functional;
   if (study.functional) functional = mvw::study::readSource(*study.functional);
-  auto context = render::createHeadlessContext({16, 16});
   render::VolumeRenderer renderer(*context, anatomy);
   if (functional)
     renderer.setFunctional(
         *functional,
         mvw::study::placeFunctional(study, anatomy, *functional).anatomicalFromFunctional);
-  std::printf("mvw bench features: %s, %s, %d azimuth steps per view, with/without interleaved\n",
-              study.file.filename().c_str(), context->renderer().c_str(), o.frames);
+  std::printf(
+      "mvw bench features: %s, %s %s, %d azimuth steps per view, with/without interleaved\n",
+      study.file.filename().c_str(), context->backend().c_str(), context->renderer().c_str(),
+      o.frames);
   std::printf("  %-30s %-11s %-15s %10s %10s %8s\n", "view", "mode", "feature", "without", "with",
               "ratio");
   for (mvw::study::PlannedView& v : views) {
@@ -102,6 +107,7 @@ void addBenchFeaturesCommand(CLI::App& bench) {
   cmd->add_option("--size", o->size, "Image width and height (default: each view's own)")
       ->check(CLI::Range(16, 4096));
   cmd->add_option("--frames", o->frames, "Azimuth steps per view")->check(CLI::Range(1, 3600));
+  addGlOption(*cmd, o->gl);
   cmd->callback([o] { runFeatureBench(*o); });
 }
 

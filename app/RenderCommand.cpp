@@ -1,5 +1,7 @@
 #include "RenderCommand.h"
 
+#include "HeadlessGl.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -42,6 +44,7 @@ struct RenderOptions {
   std::string study;
   std::string outDir;
   mvw::study::ViewOverrides overrides;
+  std::string gl;  // --gl (empty: MVW_GL, else auto)
 };
 
 std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
@@ -96,11 +99,12 @@ std::string frameName(int k) {
 void runRender(const RenderOptions& o) {
   const config::StudyConfig study = config::loadStudyConfig(o.study);
   std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, o.overrides);
+  // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
+  auto context = makeHeadlessContext(o.gl);
   const Study volumes = mvw::study::loadStudy(study);
   const Volume& anatomy = volumes.anatomical;
   const std::optional<Volume>& functional = volumes.functional;
 
-  auto context = render::createHeadlessContext({16, 16});
   render::VolumeRenderer renderer(*context, anatomy);
   // The study's "registration" places the functional volume (none: by world coordinates).
   std::optional<mvw::study::FunctionalPlacement> placement;
@@ -295,6 +299,7 @@ void runRender(const RenderOptions& o) {
     report["registration"] = placement->report;
   }
   report["value_range"] = {lo, hi};
+  report["gl_backend"] = context->backend();
   report["gl_renderer"] = context->renderer();
   report["gl_version"] = context->version();
   report["mvw_version"] = kVersion;
@@ -318,7 +323,7 @@ void runRender(const RenderOptions& o) {
 void addRenderCommand(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "render", "Render the views of a study config headless (OSMesa) to PNG + render.json");
+      "render", "Render the views of a study config headless (EGL or OSMesa) to PNG + render.json");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("-o,--output", o->outDir, "Output folder")->required();
   cmd->add_option("--mode", o->overrides.mode,
@@ -360,6 +365,7 @@ void addRenderCommand(CLI::App& app) {
                 "Perspective instead of orthographic projection");
   cmd->add_flag("--no-annotate", o->overrides.noAnnotate,
                 "No orientation labels, scale bar or caption");
+  addGlOption(*cmd, o->gl);
   cmd->callback([o] {
     if (o->overrides.window.has_value() != o->overrides.level.has_value())
       throw InputError(o->study, "--window and --level go together");

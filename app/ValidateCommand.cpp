@@ -1,5 +1,7 @@
 #include "ValidateCommand.h"
 
+#include "HeadlessGl.h"
+
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -24,7 +26,12 @@ void addValidateCommand(CLI::App& app) {
       ->check(CLI::Range(1, 64));
   cmd->add_option("--timeout", o->timeoutS, "Seconds one render may take")
       ->check(CLI::PositiveNumber);
+  addGlOption(*cmd, o->gl);
   cmd->callback([o] {
+    // A backend the user named must exist here (exit 2 now, not one failure per case). The
+    // probe context is gone before the renders start.
+    if (!o->gl.empty() || resolveGl("").request != render::GlRequest::Auto)
+      makeHeadlessContext(o->gl);
     if (!validate::runValidate(*o)) {
       // A failing case is neither bad input nor an internal fault: exit 1 without a message.
       std::cout.flush();

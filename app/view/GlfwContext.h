@@ -17,6 +17,7 @@ class GlfwContext final : public render::GlContext {
   ~GlfwContext() override;
   void makeCurrent() override;
   glm::ivec2 size() const override;  // framebuffer pixels
+  std::string backend() const override { return "glfw"; }
   GLFWwindow* window() const { return window_; }
 
  private:

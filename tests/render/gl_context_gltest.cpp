@@ -1,5 +1,10 @@
-// Needs a GL context (OSMesa, headless): the loader and context layer the renderer builds on.
+// Needs a GL context (headless: MVW_GL chooses, auto by default): the loader and context layer
+// the renderer builds on.
 #include <array>
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include <glad/gl.h>
 #include <gtest/gtest.h>
@@ -45,6 +50,93 @@ TEST(GlContext, ThreeDimensionalTexturesWork) {
 }
 
 TEST(GlContext, InvalidSizeIsAnError) { EXPECT_THROW(createHeadlessContext({0, 10}), Error); }
+
+// Every headless path this machine (Debian 12's Mesa) has: OSMesa, EGL surfaceless and EGL's
+// software device, each with a default framebuffer of its size that clears and reads back.
+TEST(GlContext, EveryHeadlessBackendMakesACoreContextWithADefaultFramebuffer) {
+  for (const auto& [request, name] : {std::pair{GlRequest::OsMesa, "osmesa"},
+                                      std::pair{GlRequest::EglSurfaceless, "egl-surfaceless"},
+                                      std::pair{GlRequest::EglDevice, "egl-device"}}) {
+    SCOPED_TRACE(name);
+    auto ctx = createHeadlessContext({13, 7}, request);
+    EXPECT_EQ(ctx->backend(), name);
+    EXPECT_NE(ctx->version().find("4.5"), std::string::npos) << ctx->version();
+    glViewport(0, 0, 13, 7);
+    glClearColor(1.0f, 0.0f, 0.2f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    std::array<unsigned char, 4> px{};
+    glReadPixels(12, 6, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    EXPECT_EQ(px[0], 255);
+    EXPECT_EQ(px[1], 0);
+    EXPECT_EQ(px[2], 51);
+  }
+}
+
+// Two contexts on one EGL display at once, the first destroyed first: the display must stay
+// usable for the second (no eglTerminate under it).
+TEST(GlContext, EglContextsShareTheirDisplay) {
+  auto first = createHeadlessContext({4, 4}, GlRequest::EglSurfaceless);
+  auto second = createHeadlessContext({5, 5}, GlRequest::EglSurfaceless);
+  first.reset();
+  second->makeCurrent();
+  glClearColor(0.0f, 1.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  std::array<unsigned char, 4> px{};
+  glReadPixels(4, 4, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  EXPECT_EQ(px[1], 255);
+}
+
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    ::setenv(name, value, 1);
+  }
+  ~ScopedEnv() {
+    if (old_)
+      ::setenv(name_, old_->c_str(), 1);
+    else
+      ::unsetenv(name_);
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+TEST(GlContext, TheEnvironmentChoosesTheHeadlessBackend) {
+  {
+    ScopedEnv env(kGlEnvironmentVariable, "osmesa");
+    EXPECT_EQ(createHeadlessContext({4, 4})->backend(), "osmesa");
+  }
+  {
+    ScopedEnv env(kGlEnvironmentVariable, "egl-surfaceless");
+    EXPECT_EQ(createHeadlessContext({4, 4})->backend(), "egl-surfaceless");
+  }
+  {
+    ScopedEnv env(kGlEnvironmentVariable, "");
+    EXPECT_EQ(glRequestFromEnvironment(), GlRequest::Auto);
+  }
+  ScopedEnv env(kGlEnvironmentVariable, "vulkan");
+  try {
+    createHeadlessContext({4, 4});
+    ADD_FAILURE() << "MVW_GL=vulkan was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "MVW_GL");
+    EXPECT_NE(e.problem().find("'vulkan'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GlContext, RequestNamesRoundTrip) {
+  for (GlRequest r : {GlRequest::Auto, GlRequest::Egl, GlRequest::EglDevice,
+                      GlRequest::EglSurfaceless, GlRequest::OsMesa})
+    EXPECT_EQ(parseGlRequest(toString(r)), r);
+  EXPECT_FALSE(parseGlRequest("EGL"));
+  EXPECT_FALSE(parseGlRequest(""));
+}
 
 }  // namespace
 }  // namespace mvw::render

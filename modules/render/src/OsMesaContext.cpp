@@ -6,6 +6,7 @@
 
 #include <glad/gl.h>
 
+#include "HeadlessContexts.h"
 #include "mvw/core/Error.h"
 #include "mvw/render/GlContext.h"
 
@@ -33,22 +34,19 @@ class OsMesaContext final : public GlContext {
  public:
   explicit OsMesaContext(glm::ivec2 size)
       : size_(size), pixels_(static_cast<std::size_t>(size.x) * size.y * 4) {
-    if (size.x <= 0 || size.y <= 0 || size.x > 16384 || size.y > 16384)
-      throw Error("headless GL context: invalid size " + std::to_string(size.x) + " x " +
-                  std::to_string(size.y));
+    detail::checkHeadlessSize(size);
     for (const char* name : {"libOSMesa.so.8", "libOSMesa.so"}) {
       lib_ = ::dlopen(name, RTLD_NOW | RTLD_LOCAL);
       if (lib_) break;
     }
     if (!lib_)
-      throw Error("headless GL: cannot open libOSMesa.so.8 (install libosmesa6): " +
-                  std::string(::dlerror()));
+      throw Error("cannot open libOSMesa.so.8 (install libosmesa6): " + std::string(::dlerror()));
     auto create = reinterpret_cast<CreateFn>(::dlsym(lib_, "OSMesaCreateContextAttribs"));
     makeCurrent_ = reinterpret_cast<MakeCurrentFn>(::dlsym(lib_, "OSMesaMakeCurrent"));
     destroy_ = reinterpret_cast<DestroyFn>(::dlsym(lib_, "OSMesaDestroyContext"));
     getProc_ = reinterpret_cast<GetProcFn>(::dlsym(lib_, "OSMesaGetProcAddress"));
     if (!create || !makeCurrent_ || !destroy_ || !getProc_) {
-      throw Error("headless GL: libOSMesa lacks OSMesaCreateContextAttribs (Mesa too old)");
+      throw Error("libOSMesa lacks OSMesaCreateContextAttribs (Mesa too old)");
     }
     const int attribs[] = {kOsmesaFormat,
                            kOsmesaRgba,
@@ -65,7 +63,7 @@ class OsMesaContext final : public GlContext {
                            0};
     context_ = create(attribs, nullptr);
     if (!context_) {
-      throw Error("headless GL: OSMesa could not create an OpenGL 4.5 core context");
+      throw Error("OSMesa could not create an OpenGL 4.5 core context");
     }
     makeCurrent();
     loadFunctions([](const char* name,
@@ -84,6 +82,7 @@ class OsMesaContext final : public GlContext {
   }
 
   glm::ivec2 size() const override { return size_; }
+  std::string backend() const override { return "osmesa"; }
 
  private:
   glm::ivec2 size_;
@@ -97,7 +96,7 @@ class OsMesaContext final : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> createHeadlessContext(glm::ivec2 size) {
+std::unique_ptr<GlContext> detail::createOsMesaContext(glm::ivec2 size) {
   return std::make_unique<OsMesaContext>(size);
 }
 

@@ -202,7 +202,8 @@ std::string reportHtml(const Suite& suite, const std::vector<CaseResult>& result
     << " cases pass" << (updated ? " (references updated)" : "") << "</p>\n";
   h << "<h2>Environment</h2><table>";
   h << "<tr><th>suite</th><td>" << html(fs::absolute(suite.file).string()) << "</td></tr>";
-  for (const char* key : {"mvw_version", "gl_renderer", "gl_version", "host", "date_utc", "jobs"}) {
+  for (const char* key :
+       {"mvw_version", "gl_backend", "gl_renderer", "gl_version", "host", "date_utc", "jobs"}) {
     const json v = environment.contains(key) ? environment.at(key) : json();
     h << "<tr><th>" << key << "</th><td>" << html(v.is_string() ? v.get<std::string>() : v.dump())
       << "</td></tr>";

@@ -236,6 +236,7 @@ class CaseJudge {
     if (!environment_["gl_renderer"].is_null()) return;
     try {
       const json rj = json::parse(std::ifstream(renderJson));
+      environment_["gl_backend"] = rj.value("gl_backend", "");
       environment_["gl_renderer"] = rj.value("gl_renderer", "");
       environment_["gl_version"] = rj.value("gl_version", "");
       environment_["mvw_version"] = rj.value("mvw_version", "");
@@ -338,13 +339,19 @@ bool runValidate(const ValidateOptions& o) {
     if (ec) throw InputError(report, "cannot create the report folder: " + ec.message());
   }
   std::vector<ProcessJob> processes;
-  for (const Job& j : plan.jobs)
-    processes.push_back({{exe.string(), "render", j.study.string(), "-o", j.out.string()}, j.log});
+  for (const Job& j : plan.jobs) {
+    std::vector<std::string> argv{exe.string(), "render", j.study.string(), "-o", j.out.string()};
+    if (!o.gl.empty()) argv.insert(argv.end(), {"--gl", o.gl});
+    processes.push_back({argv, j.log});
+  }
   std::vector<int> pending(suite.cases.size(), 0);
   for (const Job& j : plan.jobs) ++pending[j.caseIndex];
 
   const bool tty = ::isatty(STDERR_FILENO) != 0;
-  json environment = {{"mvw_version", nullptr}, {"gl_renderer", nullptr}, {"gl_version", nullptr}};
+  json environment = {{"mvw_version", nullptr},
+                      {"gl_backend", nullptr},
+                      {"gl_renderer", nullptr},
+                      {"gl_version", nullptr}};
   std::vector<CaseResult> results(suite.cases.size());
   CaseJudge judge(o, suite, plan, environment);
   std::size_t casesDone = 0;
@@ -369,8 +376,10 @@ bool runValidate(const ValidateOptions& o) {
   for (const auto& r : results) passed += r.pass ? 1 : 0;
   const bool allPass = passed == static_cast<int>(results.size());
   std::cout << (allPass ? "passed: " : "FAILED: ") << passed << " of " << results.size()
-            << " cases pass" << (o.update ? " (references updated)" : "") << "; report "
-            << (report / "index.html").string() << std::endl;
+            << " cases pass" << (o.update ? " (references updated)" : "") << "; GL "
+            << (environment["gl_backend"].is_string() ? environment["gl_backend"].get<std::string>()
+                                                      : std::string("?"))
+            << "; report " << (report / "index.html").string() << std::endl;
   return allPass;
 }
 

@@ -27,7 +27,7 @@ struct CaseResult {
 // One line per case for the terminal: PASS/FAIL/UPDATED, the metrics, the problems below.
 std::string caseLine(const CaseSpec& spec, const CaseResult& result);
 
-// environment: mvw_version, gl_renderer, gl_version, host, date_utc, jobs.
+// environment: mvw_version, gl_backend, gl_renderer, gl_version, host, date_utc, jobs.
 void writeReport(const Suite& suite, const std::vector<CaseResult>& results,
                  const nlohmann::json& environment, bool updated,
                  const std::filesystem::path& reportDir);

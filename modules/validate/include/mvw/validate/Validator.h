@@ -3,6 +3,7 @@
 // process per render, N at a time), compared with its reference under the case's tolerances,
 // its analytic checks run, and the report written. See app/ValidateCommand.h for the format.
 #include <filesystem>
+#include <string>
 
 namespace mvw::validate {
 
@@ -12,6 +13,7 @@ struct ValidateOptions {
   bool update = false;  // rewrite the references with the new renders
   int jobs = 1;
   double timeoutS = 600.0;
+  std::string gl;  // `--gl` passed to every render (empty: none, so MVW_GL or auto decides)
   std::filesystem::path executable;  // the `mvw` binary that renders (default: this process's)
 };
 
