@@ -146,11 +146,12 @@ TEST(OrbitCli, FusionOrbitsWithItsOverlayColourMap) {
                        << test::sampleData("derived/pet_like.nii.gz").string() << R"(" },
       "render": { "views": [ { "name": "fused", "mode": "composite", "preset": "ct-skin",
         "fusion": true, "overlay_colormap": "pet", "width": 48, "height": 48 } ] } })";
-  ASSERT_EQ(
-      mvw("render " + study.string() + " -o " + (dir / "spin").string() + " --orbit 4", dir).rc, 0);
-  ASSERT_EQ(
-      mvw("render " + study.string() + " -o " + (dir / "back").string() + " --azimuth 180", dir).rc,
-      0);
+  const CliRun spin =
+      mvw("render " + study.string() + " -o " + (dir / "spin").string() + " --orbit 4", dir);
+  ASSERT_EQ(spin.rc, 0) << spin.err;
+  const CliRun back =
+      mvw("render " + study.string() + " -o " + (dir / "back").string() + " --azimuth 180", dir);
+  ASSERT_EQ(back.rc, 0) << back.err;
   EXPECT_TRUE(
       samePixels(png(dir / "spin" / "fused" / "frame-002.png"), png(dir / "back" / "fused.png")));
   ASSERT_EQ(mvw("render " + study.string() + " -o " + (dir / "hot").string() +
