@@ -13,15 +13,14 @@
 
 #include <vtkDICOMDictHash.h>
 #include <vtkDICOMMetaData.h>
-#include <vtkDICOMParser.h>
 #include <vtkDICOMTagPath.h>
 #include <vtkDICOMValue.h>
 #include <vtkNew.h>
 #include <glm/geometric.hpp>
 
 #include "DecoderGuard.h"
+#include "DicomFile.h"
 #include "FileChecks.h"
-#include "VtkMessages.h"
 #include "mvw/core/Error.h"
 
 namespace mvw::io {
@@ -40,20 +39,10 @@ struct Parsed {
 };
 
 void parseHeader(const fs::path& path, Parsed& out) {
-  detail::regularFileSize(path);
-  detail::VtkMessageScope messages;
-  vtkNew<vtkDICOMParser> parser;
-  parser->SetMetaData(out.meta);
-  parser->SetFileName(path.c_str());
-  parser->Update();
-  if (!messages.firstError().empty() || parser->GetErrorCode() != 0) {
-    const std::string why = messages.firstError();
-    throw InputError(path,
-                     "not a readable DICOM file" + (why.empty() ? std::string() : ": " + why));
-  }
-  out.pixelData = parser->GetPixelDataFound();
-  out.pixelOffset = parser->GetFileOffset();
-  out.pixelLength = parser->GetPixelDataVL();
+  const detail::ParsedDicomFile file = detail::parseDicomFile(path, out.meta);
+  out.pixelData = file.pixelData;
+  out.pixelOffset = file.pixelOffset;
+  out.pixelLength = file.pixelLength;
 }
 
 // A value of the first (and only) item of a functional group, per frame or shared.

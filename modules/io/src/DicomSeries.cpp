@@ -13,7 +13,6 @@
 #include <vtkDICOMDirectory.h>
 #include <vtkDICOMItem.h>
 #include <vtkDICOMMetaData.h>
-#include <vtkDICOMParser.h>
 #include <vtkDICOMReader.h>
 #include <vtkDICOMTagPath.h>
 #include <vtkDICOMValue.h>
@@ -28,6 +27,7 @@
 
 #include "DecoderGuard.h"
 #include "DeflatedDicom.h"
+#include "DicomFile.h"
 #include "FileChecks.h"
 #include "Formats.h"
 #include "SiemensMosaic.h"
@@ -360,20 +360,11 @@ Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
     return volume;
   }
   DecoderGuard guard(path);
-  VtkMessageScope messages;
   vtkNew<vtkDICOMMetaData> meta;
-  vtkNew<vtkDICOMParser> parser;
-  parser->SetMetaData(meta);
-  parser->SetFileName(path.c_str());
-  parser->Update();
-  if (!messages.firstError().empty() || parser->GetErrorCode() != 0) {
-    const std::string why = messages.firstError();
-    throw InputError(path,
-                     "not a readable DICOM file" + (why.empty() ? std::string() : ": " + why));
-  }
+  const ParsedDicomFile file = parseDicomFile(path, meta);
   if (meta->Get(DC::SOPClassUID).AsString() == "1.2.840.10008.5.1.4.1.1.66.4")  // DicomSeg.cpp
     return labelVolume(readDicomSegmentation(path, options));
-  if (!parser->GetPixelDataFound()) {
+  if (!file.pixelData) {
     const std::string modality = meta->Get(DC::Modality).AsString();
     throw InputError(path, "no pixel data: " +
                                (modality.empty() ? std::string("this DICOM object")

@@ -1,0 +1,20 @@
+#pragma once
+// One DICOM file's header through vtk-dicom's parser, with the one refusal every single-file
+// reader gives (internal to mvw_io: vtk-dicom types stay inside this folder).
+#include <filesystem>
+
+class vtkDICOMMetaData;
+
+namespace mvw::io::detail {
+
+struct ParsedDicomFile {
+  bool pixelData = false;     // the parser met the PixelData element
+  long long pixelOffset = 0;  // where its value starts in the file
+  unsigned int pixelLength = 0;
+};
+
+// Parses `path` into `meta`. Throws InputError naming the file when it is not a regular file
+// or vtk-dicom cannot parse it ("not a readable DICOM file: ...").
+ParsedDicomFile parseDicomFile(const std::filesystem::path& path, vtkDICOMMetaData* meta);
+
+}  // namespace mvw::io::detail
