@@ -6,6 +6,9 @@
 //   void finishHook(inout RayState s, Ray ray, vec2 span)  writes fragColor and fragDepth
 //   bool skipHook(RayState s, vec3 tex)                    true: nothing in this block can
 //                                                          change the result (skip to its exit)
+//   int plainSampleHook(...)  (only where the mode defines MVW_SPLIT_LOOP) like sampleHook
+//                             without its costly part: 0 go on, 1 end the ray, 2 hand this
+//                             sample and the rest of the ray over to sampleHook
 // RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
 void main() {
@@ -18,7 +21,21 @@ void main() {
     // Without jitter, samples sit at the middle of each step (midpoint rule): a ray through a
     // slab of thickness L takes exactly L / step samples.
     float t = span.x + (uJitter ? jitterOffset() : 0.5) * uStep;
-    for (int i = 0; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
+    int i = 0;
+    bool rest = true;
+#if defined(MVW_SPLIT_LOOP)
+    for (; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
+      vec3 tex = toTexture(ray.origin + t * ray.dir);
+      if (skipHook(s, tex)) {
+        t = skipBlock(ray, t, tex);
+        continue;
+      }
+      int next = plainSampleHook(s, t, tex, sampleValue(tex), ray);
+      if (next == 1) rest = false;
+      if (next != 0) break;
+    }
+#endif
+    for (; rest && i < uMaxSteps && t <= span.y; ++i, t += uStep) {
       vec3 tex = toTexture(ray.origin + t * ray.dir);
       // Tested per sample: caching the test once per block entered left ring artefacts on
       // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
