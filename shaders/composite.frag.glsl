@@ -86,11 +86,11 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 }
 
 #if defined(MVW_GLYPHS)
-// The ray runs without the glyph code until its first sample that needs it, then with it.
-// A software rasteriser (llvmpipe) runs a branch for a group of pixels at once, masked, so
-// the glyph code inside the one loop cost every shaded sample of every ray its full price
-// (composite DVR with glyphs 1.3x the frame without them, even with no attribute in view);
-// as a loop of its own it costs only the groups of rays that reach an attribute. The pixels
+// The ray runs without the glyph code until its first sample that needs it, then with it
+// (MVW_SPLIT_LOOP), and the glyph map position is computed per sample in that second loop
+// only: carried through one loop as ray state (six floats), the glyph ray cost composite DVR
+// 1.35x the frame without glyphs on llvmpipe even with no attribute in view (register
+// pressure in every iteration); split, 1.07x (README, "What the methods cost"). The pixels
 // are the same, bit for bit: below the window the glyph code returns the anatomy's normal.
 #define MVW_SPLIT_LOOP
 int plainSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {

@@ -39,9 +39,8 @@ uniform float uGlyphAlpha;
 // brain) are no surface, and eq. (2)'s distance is the one "as seen from the observer", so
 // every sample along a ray through a glyph tilts its normal the same way and the bump
 // accumulates instead of averaging out over depth. Where mapping is denied: nO, bit for bit.
-// p: the sample in map voxels, uGlyphFromWorld * world. A ray loop passes
-// (uGlyphFromWorld * origin) + t * (uGlyphFromWorld * dir) from two products made once per ray:
-// the matrix product per sample cost composite DVR a tenth of its frame time on llvmpipe.
+// p: the sample in map voxels, uGlyphFromWorld * world (composite DVR computes it only in the
+// part of the ray that runs the glyph code: see composite.frag.glsl).
 vec3 glyphNormalMapped(vec3 p, vec3 nO, vec3 frame, float u) {
 #if defined(MVW_GLYPH_PAPER)
   frame = nO;
