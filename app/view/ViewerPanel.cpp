@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -27,6 +29,48 @@ void colormapCombo(ViewerState& state, const char* label, ColorTarget target) {
     }
     ImGui::EndCombo();
   }
+}
+
+// The label picker (issue 15 items 4 and 8): which labels of a label map carry glyphs and of
+// which kind, as the config's glyphs.labels (Ctrl+S saves them). The filter narrows the
+// atlas's names; without a label table the labels are numbered up to the volume's maximum.
+void glyphLabelPicker(ViewerState& state) {
+  const std::vector<render::LabelGlyph> chosen = state.view3d().glyphLabels;
+  const std::string header = "glyph labels (" +
+                             (chosen.empty() ? std::string("all above the window")
+                                             : std::to_string(chosen.size()) + " chosen") +
+                             ")###glyph-labels";
+  ImGui::SetNextItemOpen(!chosen.empty(), ImGuiCond_Once);  // open where the study chose some
+  if (!ImGui::CollapsingHeader(header.c_str())) return;
+  static ImGuiTextFilter filter;
+  filter.Draw("filter");
+  std::vector<std::pair<int, std::string>> labels;
+  for (const auto& [n, name] : state.labelNames())
+    if (n > 0) labels.emplace_back(n, name);
+  if (labels.empty()) {
+    const int top = std::clamp(int(state.scene().functionalRange.second), 0, 255);
+    for (int n = 1; n <= top; ++n) labels.emplace_back(n, "");
+  }
+  const char* kinds[] = {"bumps", "dimples", "none"};  // config::LabelGlyphKind's order
+  ImGui::BeginChild("glyph-label-list", ImVec2(0, 180), true);
+  for (const auto& [n, name] : labels) {
+    const std::string text = std::to_string(n) + (name.empty() ? "" : " " + name);
+    if (!filter.PassFilter(text.c_str())) continue;
+    const auto it = std::find_if(chosen.begin(), chosen.end(),
+                                 [n = n](const render::LabelGlyph& g) { return g.label == n; });
+    int kind = it == chosen.end() ? 2 : (it->dimple ? 1 : 0);
+    ImGui::PushID(n);
+    ImGui::SetNextItemWidth(90);
+    if (ImGui::Combo("##kind", &kind, kinds, 3))
+      state.setGlyphLabel(n, static_cast<config::LabelGlyphKind>(kind));
+    ImGui::SameLine();
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopID();
+  }
+  ImGui::EndChild();
+  if (!chosen.empty() && ImGui::Button("glyphs on every label again"))
+    for (const render::LabelGlyph& g : chosen)
+      state.setGlyphLabel(g.label, config::LabelGlyphKind::None);
 }
 }  // namespace
 
@@ -202,6 +246,7 @@ void ViewerPanel::drawControls() {
       v.glyphConvexity = static_cast<GlyphConvexity>(convex);
       state_.markDirty(k3d);
     }
+    if (state_.study().functionalKind == config::FunctionalKind::Labels) glyphLabelPicker(state_);
     const std::string& registration = state_.registration();
     ImGui::TextWrapped("registration: %s",
                        registration == "none" ? "none (world coordinates)" : registration.c_str());

@@ -144,6 +144,21 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       c.orbit = Orbit::Off;
     else
       in.fail("orbit: unknown mode '" + mode + "' (spin, rock, off)");
+  } else if (cmd == "glyph-label") {
+    c.kind = Kind::GlyphLabel;
+    const double label = in.number("label");
+    if (label < 1 || label != std::floor(label) || label > 16383)
+      in.fail("glyph-label: the label must be a whole number from 1 to 16383");
+    c.label = static_cast<int>(label);
+    const std::string kind = in.word("kind");
+    if (kind == "bumps")
+      c.labelKind = config::LabelGlyphKind::Bumps;
+    else if (kind == "dimples")
+      c.labelKind = config::LabelGlyphKind::Dimples;
+    else if (kind == "none")
+      c.labelKind = config::LabelGlyphKind::None;
+    else
+      in.fail("glyph-label: unknown kind '" + kind + "' (bumps, dimples, none)");
   } else if (cmd == "register") {
     c.kind = Kind::Register;
   } else if (cmd == "wait-registration") {
@@ -215,6 +230,9 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Orbit:
       state.setOrbit(c.orbit);
+      break;
+    case Kind::GlyphLabel:
+      state.setGlyphLabel(c.label, c.labelKind);
       break;
     case Kind::Register:
       state.startRegistration();

@@ -11,6 +11,7 @@
 //   colormap 3d|mpr|overlay NAME        a colour map chooser (grey, grey-inverted, hot-iron, pet,
 //                                       hot-metal-blue, pet-20-step, hot-metal)
 //   orbit spin|rock|off                 the rotating 3D view (keys O and K toggle it)
+//   glyph-label N bumps|dimples|none    what label N of a label map gets (the panel's picker)
 //   register | wait-registration        re-run the registration in the background | wait for it
 //   quit
 // PANE: 3d, axial, coronal, sagittal. Blank lines and lines starting with # are skipped (each
@@ -40,6 +41,7 @@ class ViewerScript {
       Dump,
       Colormap,
       Orbit,
+      GlyphLabel,
       Register,
       WaitRegistration,
       Quit
@@ -56,6 +58,8 @@ class ViewerScript {
     ColorTarget target = ColorTarget::View3d;
     ColorMap colormap = ColorMap::Grey;
     app::Orbit orbit = app::Orbit::Off;
+    int label = 0;  // glyph-label
+    config::LabelGlyphKind labelKind = config::LabelGlyphKind::Bumps;
   };
 
   ViewerScript() = default;

@@ -9,6 +9,7 @@
 
 #include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
+#include "mvw/io/LabelTable.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/render/TransferFunction.h"
 #include "mvw/study/Caption.h"
@@ -81,6 +82,9 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       mprColors_ = v.settings.imageColors;
       break;
     }
+  if (study_.functionalKind == config::FunctionalKind::Labels && study_.functional)
+    if (auto table = io::labelTableBeside(study_.functional->path))
+      labelNames_ = io::readLabelTable(*table);
   job_ = [this](std::stop_token) {
     // registerRigid cannot be interrupted: a stop request waits for it to end.
     return resampling::registerRigid(anatomical_, *functional_);
@@ -197,6 +201,21 @@ void ViewerState::key(char key, bool ctrl) {
     return;
   }
   markAllDirty();
+}
+
+void ViewerState::setGlyphLabel(int label, config::LabelGlyphKind kind) {
+  std::vector<render::LabelGlyph>& chosen = view3d_.glyphLabels;
+  std::erase_if(chosen, [&](const render::LabelGlyph& g) { return g.label == label; });
+  if (kind != config::LabelGlyphKind::None) {
+    render::LabelGlyph g;
+    g.label = label;
+    g.dimple = kind == config::LabelGlyphKind::Dimples;
+    if (auto it = labelNames_.find(label); it != labelNames_.end()) g.name = it->second;
+    chosen.insert(std::upper_bound(chosen.begin(), chosen.end(), g,
+                                   [](const auto& a, const auto& b) { return a.label < b.label; }),
+                  g);
+  }
+  markDirty(k3d);
 }
 
 void ViewerState::toggleMaximised(int pane) { maximised_ = maximised_ == pane ? -1 : pane; }

@@ -6,6 +6,7 @@
 // --script interpreter all act through this class; the window loop renders what it asks for.
 #include <array>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -86,6 +87,12 @@ class ViewerState {
   // pane's shows in MIP, MinIP and average.
   void setColormap(ColorTarget target, ColorMap map);
   ColorMap colormap(ColorTarget target) const;
+  // Glyphs on chosen labels of a label map (issue 15 item 4), as the config's glyphs.labels:
+  // a label gets bumps, dimples or none. While no label is chosen every label above the
+  // attribute window carries glyphs. The names come from the atlas's label table beside the
+  // functional volume (empty without one).
+  void setGlyphLabel(int label, config::LabelGlyphKind kind);
+  const std::map<int, std::string>& labelNames() const { return labelNames_; }
 
   // The rotating 3D view: spin turns 360 degrees in kOrbitFrames frames, rock swings +-30
   // degrees about the azimuth it started from; switching it off stops at the angle shown (so
@@ -173,6 +180,7 @@ class ViewerState {
   render::RenderSettings view3d_;
   std::string presetName_;
   double mprWindow_ = 0, mprLevel_ = 0;
+  std::map<int, std::string> labelNames_;
   std::optional<ColorTable> mprColors_;  // the MPR panes' anatomy; none: grey
   Orbit orbit_ = Orbit::Off;
   std::vector<double> orbitAzimuths_;

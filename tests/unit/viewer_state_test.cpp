@@ -484,5 +484,58 @@ TEST_F(ViewerStateTest, TheStudysColourMapsOpenTheViewerAndAreSaved) {
   EXPECT_EQ(saved.render.views[1].colormap, ColorMap::HotIron);
 }
 
+// The panel's label picker and the script's glyph-label (issue 15 items 4 and 8): chosen
+// labels carry the atlas's names, reach the 3D pane's settings, and are saved and reopened.
+TEST_F(ViewerStateTest, ChosenGlyphLabelsReachTheRendererAndAreSaved) {
+  const auto dir = test::scratchDir();
+  ct.metadata().sourcePath = (dir / "ct.nii.gz").string();
+  std::ofstream(ct.metadata().sourcePath) << "";
+  Volume atlas = makeVolume("", 0.0, 3.0);
+  atlas.metadata().sourcePath = (dir / "atlas.nii.gz").string();
+  std::ofstream(atlas.metadata().sourcePath) << "";
+  std::ofstream(dir / "atlas.nii.txt") << "1 Precentral_L\n2 Precentral_R\n3 Frontal_Sup_L\n";
+  study.functional.emplace();
+  study.functional->path = atlas.metadata().sourcePath;
+  study.functionalKind = config::FunctionalKind::Labels;
+  ViewerScene scene = sceneOf(ct);
+  scene.functionalRange = {0.0, 3.0};
+  ViewerState state(study, ct, &atlas, scene);
+  ASSERT_EQ(state.labelNames().size(), 3u);
+  renderAll(state);
+  state.key('G', false);  // glyphs on: the config writes the glyphs object only then
+  ViewerScript script = ViewerScript::parse(
+      "glyph-label 3 bumps\nglyph-label 2 dimples\nglyph-label 1 bumps\nglyph-label 1 none\n",
+      dir / "labels.txt");
+  while (script.step(state)) {
+  }
+  EXPECT_TRUE(state.needsRender(k3d) || !state.paneRendered(k3d));
+  const std::vector<render::LabelGlyph> expected = {{2, true, "Precentral_R"},
+                                                    {3, false, "Frontal_Sup_L"}};
+  EXPECT_EQ(state.view3d().glyphLabels, expected);
+  ASSERT_TRUE(state.view3d().glyphs);
+  EXPECT_EQ(state.glyphLegend(k3d, state.renderSettings(k3d)).entries.size(), 2u);
+  state.saveConfig(dir / "saved.json");
+  const config::StudyConfig saved = config::loadStudyConfig(dir / "saved.json");
+  ASSERT_EQ(saved.render.views.size(), 4u);
+  const std::vector<config::LabelChoice> written = {{"2", config::LabelGlyphKind::Dimples},
+                                                    {"3", config::LabelGlyphKind::Bumps}};
+  EXPECT_EQ(saved.render.views[0].glyphLabels, written);
+  EXPECT_TRUE(saved.render.views[1].glyphLabels.empty());  // an MPR pane draws no glyphs
+  ViewerState reopened(saved, ct, &atlas, scene);
+  EXPECT_EQ(reopened.view3d().glyphLabels, expected);
+}
+
+TEST(ViewerScriptGlyphLabel, BadLabelsAndKindsNameTheLine) {
+  for (const char* line : {"glyph-label 0 bumps", "glyph-label 2.5 bumps", "glyph-label 3 spikes",
+                           "glyph-label 3", "glyph-label 16384 none"}) {
+    try {
+      ViewerScript::parse(line, "s.txt");
+      ADD_FAILURE() << line;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("line 1: glyph-label"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mvw::app

@@ -415,6 +415,12 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.glyphSeed = s.glyphMap.seed;
   v.glyphMinSize = s.glyphMinSize;
   v.glyphDvrOpacity = s.glyphDvrOpacity;
+  // Chosen labels by number (a table beside the volume names them again), in the modes
+  // that draw glyphs, kept while glyphs are switched off.
+  if (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface)
+    for (const render::LabelGlyph& l : s.glyphLabels)
+      v.glyphLabels.push_back({std::to_string(l.label), l.dimple ? config::LabelGlyphKind::Dimples
+                                                                 : config::LabelGlyphKind::Bumps});
   const bool blueNoise = s.glyphMap.placement == render::GlyphPlacement::BlueNoise;
   v.glyphPlacement = blueNoise ? config::GlyphPlacement::BlueNoise : config::GlyphPlacement::Paper;
   if (blueNoise)  // the map's scale, back in mm
