@@ -3,6 +3,8 @@
 // reader gives (internal to mvw_io: vtk-dicom types stay inside this folder).
 #include <filesystem>
 
+#include "mvw/io/DicomSeg.h"
+
 class vtkDICOMMetaData;
 
 namespace mvw::io::detail {
@@ -16,5 +18,10 @@ struct ParsedDicomFile {
 // Parses `path` into `meta`. Throws InputError naming the file when it is not a regular file
 // or vtk-dicom cannot parse it ("not a readable DICOM file: ...").
 ParsedDicomFile parseDicomFile(const std::filesystem::path& path, vtkDICOMMetaData* meta);
+
+// readDicomSegmentation on a header parseDicomFile has already read (a reader that met the
+// SEG's SOP class on its way need not parse the file a second time).
+Segmentation segmentationFromHeader(const std::filesystem::path& path, vtkDICOMMetaData* meta,
+                                    const ParsedDicomFile& parsed, const ReadOptions& options);
 
 }  // namespace mvw::io::detail

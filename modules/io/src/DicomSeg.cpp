@@ -31,20 +31,6 @@ namespace {
 
 constexpr const char* kSegmentationStorage = "1.2.840.10008.5.1.4.1.1.66.4";
 
-struct Parsed {
-  vtkNew<vtkDICOMMetaData> meta;
-  bool pixelData = false;
-  long long pixelOffset = 0;
-  unsigned int pixelLength = 0;
-};
-
-void parseHeader(const fs::path& path, Parsed& out) {
-  const detail::ParsedDicomFile file = detail::parseDicomFile(path, out.meta);
-  out.pixelData = file.pixelData;
-  out.pixelOffset = file.pixelOffset;
-  out.pixelLength = file.pixelLength;
-}
-
 // A value of the first (and only) item of a functional group, per frame or shared.
 const vtkDICOMValue& groupValue(vtkDICOMMetaData* meta, vtkDICOMTag groups, unsigned frame,
                                 vtkDICOMTag sequence, vtkDICOMTag tag) {
@@ -97,21 +83,26 @@ bool isDicomSegmentation(const fs::path& path) {
   if (!fs::is_regular_file(path, ec)) return false;
   try {
     detail::DecoderGuard guard(path);
-    Parsed parsed;
-    parseHeader(path, parsed);
-    return parsed.meta->Get(DC::SOPClassUID).AsString() == kSegmentationStorage;
+    vtkNew<vtkDICOMMetaData> meta;
+    detail::parseDicomFile(path, meta);
+    return meta->Get(DC::SOPClassUID).AsString() == kSegmentationStorage;
   } catch (const InputError&) {
     return false;
   }
 }
 
-Segmentation readDicomSegmentation(const fs::path& path, const ReadOptions& given) {
+Segmentation readDicomSegmentation(const fs::path& path, const ReadOptions& options) {
+  detail::DecoderGuard guard(path);
+  vtkNew<vtkDICOMMetaData> meta;
+  const detail::ParsedDicomFile parsed = detail::parseDicomFile(path, meta);
+  return detail::segmentationFromHeader(path, meta, parsed, options);
+}
+
+Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaData* meta,
+                                            const ParsedDicomFile& parsed,
+                                            const ReadOptions& given) {
   const std::size_t maxBytes = given.maxBytes ? given.maxBytes : defaultMaxBytes();
   const std::uintmax_t fileSize = detail::regularFileSize(path);
-  detail::DecoderGuard guard(path);
-  Parsed parsed;
-  parseHeader(path, parsed);
-  vtkDICOMMetaData* meta = parsed.meta;
   if (meta->Get(DC::SOPClassUID).AsString() != kSegmentationStorage)
     throw InputError(path, "not a DICOM Segmentation (SOPClassUID " +
                                meta->Get(DC::SOPClassUID).AsString() + ")");

@@ -363,7 +363,7 @@ Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
   vtkNew<vtkDICOMMetaData> meta;
   const ParsedDicomFile file = parseDicomFile(path, meta);
   if (meta->Get(DC::SOPClassUID).AsString() == "1.2.840.10008.5.1.4.1.1.66.4")  // DicomSeg.cpp
-    return labelVolume(readDicomSegmentation(path, options));
+    return labelVolume(segmentationFromHeader(path, meta, file, options));
   if (!file.pixelData) {
     const std::string modality = meta->Get(DC::Modality).AsString();
     throw InputError(path, "no pixel data: " +
