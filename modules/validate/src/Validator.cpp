@@ -295,7 +295,7 @@ class CaseJudge {
       r.hasDiff = true;
     }
     const bool exact = manifest_ && manifest_->exactOn(gl.first, gl.second);
-    r.comparison = exact ? "exact" : "tolerance only";
+    if (!o_.update) r.comparison = exact ? "exact" : "tolerance only";
     if (o_.update) {
       r.updateNote = updateNote(r, reference, rendered, refExists);
       if (updated_) updated_->images[updated_->keyOf(ref)] = pixelSha256(rendered);
