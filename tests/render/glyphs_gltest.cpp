@@ -177,6 +177,13 @@ TEST(Glyphs, StayVisibleInCompositeDvrAsTheOpacityIsLowered) {
   s.mode = RenderMode::Composite;
   s.lightOffset = {-0.8, 0.8};
   std::vector<double> shares, contrasts;
+  // Measured on llvmpipe (Mesa 22.3.6) at opacity 0.9, 0.3, 0.1, 0.05: the share of the
+  // sphere's right half changed by > 4, and the mean change over the brightness. Asserted
+  // within 25 % of these (other GL implementations filter the glyph map a little differently);
+  // the README's "8-13 %" is this test's output.
+  const double measuredShare[] = {0.0791, 0.1305, 0.1303, 0.0796};
+  const double measuredContrast[] = {0.0220, 0.0220, 0.0174, 0.0122};
+  int step = 0;
   for (double opacity : {0.9, 0.3, 0.1, 0.05}) {
     const glm::vec3 c(0.9f, 0.85f, 0.8f);
     s.transfer = {"step", false, {{-0.5, glm::vec4(c, 0.0f)}, {0.5, glm::vec4(c, float(opacity))}}};
@@ -209,9 +216,10 @@ TEST(Glyphs, StayVisibleInCompositeDvrAsTheOpacityIsLowered) {
     EXPECT_EQ(wrongSide, 0) << "opacity " << opacity;
     shares.push_back(share);
     contrasts.push_back(contrast);
-    // Measured on llvmpipe: 7.9, 13.0, 13.0, 8.0 % of the pixels; 2.2, 2.2, 1.7, 1.2 %.
-    EXPECT_GT(share, 0.04) << "opacity " << opacity;
-    EXPECT_GT(contrast, 0.008) << "opacity " << opacity;
+    EXPECT_NEAR(share, measuredShare[step], 0.25 * measuredShare[step]) << "opacity " << opacity;
+    EXPECT_NEAR(contrast, measuredContrast[step], 0.25 * measuredContrast[step])
+        << "opacity " << opacity;
+    ++step;
   }
   EXPECT_GT(shares.back(), 0.5 * shares.front());
 }

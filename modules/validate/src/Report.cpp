@@ -52,7 +52,9 @@ std::string caseLine(const CaseSpec& c, const CaseResult& r) {
          "% > " + fmt(c.tolerance.maxDelta, 0) + ")  mean " + fmt(r.metrics->meanDelta, 3) +
          "  PSNR " + fmt(r.metrics->psnr, 2) + " dB  SSIM " + fmt(r.metrics->ssim, 4);
   for (const auto& ch : r.checks) s += std::string("  check ") + (ch.pass ? "ok" : "FAILED");
+  if (!r.comparison.empty()) s += "  [" + r.comparison + "]";
   s += "  (" + fmt(r.seconds, 1) + " s)";
+  if (!r.updateNote.empty()) s += "\n          " + r.updateNote;
   for (const auto& p : r.problems) s += "\n          " + p;
   return s;
 }
@@ -82,6 +84,8 @@ json reportJson(const Suite& suite, const std::vector<CaseResult>& results, cons
     cj["updated"] = r.updated;
     cj["seconds"] = r.seconds;
     cj["problems"] = r.problems;
+    if (!r.comparison.empty()) cj["comparison"] = r.comparison;
+    if (!r.updateNote.empty()) cj["update"] = r.updateNote;
     if (c.reference) cj["reference"] = c.reference->string();
     cj["tolerance"] = {{"max_delta", c.tolerance.maxDelta},
                        {"max_delta_fraction", c.tolerance.maxDeltaFraction},
@@ -157,7 +161,9 @@ void caseSection(std::ostream& h, const CaseSpec& c, const CaseResult& r) {
     << (r.pass ? "pass" : "fail") << "\">" << verdict(r) << "</span></h3>\n";
   h << "<p>study " << html(c.study.string()) << ", view " << html(c.viewLabel);
   if (c.reference) h << ", reference " << html(c.reference->string());
+  if (!r.comparison.empty()) h << ", compared " << html(r.comparison);
   h << " (" << fmt(r.seconds, 1) << " s)</p>\n";
+  if (!r.updateNote.empty()) h << "<p>" << html(r.updateNote) << "</p>\n";
   for (const auto& p : r.problems) h << "<p class=\"fail\">" << html(p) << "</p>\n";
   if (c.reference) {
     if (r.hasReference) figure(h, dir + "reference.png", "reference");

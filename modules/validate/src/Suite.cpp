@@ -145,11 +145,14 @@ Suite loadSuite(const fs::path& file) {
   }
   Suite suite;
   suite.file = file;
-  checkKeys(root, {"name", "description", "study", "tolerance", "cases"}, file, "suite");
+  checkKeys(root, {"name", "description", "study", "tolerance", "checksums", "cases"}, file,
+            "suite");
   if (root.contains("name")) {
     if (!root["name"].is_string()) bad(file, "\"name\" must be a string");
     suite.name = root["name"];
   }
+  if (root.contains("checksums"))
+    suite.checksums = resolvePath(root["checksums"], file, "\"checksums\"");
   std::optional<fs::path> defaultStudy;
   if (root.contains("study")) defaultStudy = resolvePath(root["study"], file, "\"study\"");
   Tolerance defaults;

@@ -6,8 +6,10 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
@@ -17,6 +19,7 @@
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/study/StudyLoader.h"
+#include "mvw/validate/Checksums.h"
 #include "mvw/validate/ImageMetrics.h"
 #include "mvw/validate/MipCheck.h"
 #include "mvw/validate/ProcessPool.h"
@@ -189,8 +192,15 @@ class Plan {
 // The judgement of one case once all its renders have ended; copies what the report shows.
 class CaseJudge {
  public:
-  CaseJudge(const ValidateOptions& o, const Suite& suite, const Plan& plan, json& environment)
-      : o_(o), suite_(suite), plan_(plan), environment_(environment) {}
+  // manifest: the goldens' checksums (null: none); updated: the manifest --update writes.
+  CaseJudge(const ValidateOptions& o, const Suite& suite, const Plan& plan, json& environment,
+            const ChecksumManifest* manifest, ChecksumManifest* updated)
+      : o_(o),
+        suite_(suite),
+        plan_(plan),
+        environment_(environment),
+        manifest_(manifest),
+        updated_(updated) {}
 
   CaseResult judge(std::size_t ci, const fs::path& dir) {
     CaseResult r;
@@ -215,7 +225,7 @@ class CaseJudge {
       if (j.check >= 0)
         judgeCheck(r, ci, j, rendered, dir, tag);
       else
-        judgeImage(r, suite_.cases[ci], rendered, png, dir);
+        judgeImage(r, suite_.cases[ci], rendered, png, dir, glOf(j.out / "render.json"));
     }
     return r;
   }
@@ -244,6 +254,16 @@ class CaseJudge {
     }
   }
 
+  // The GL renderer and version string a render was made with (render.json).
+  static std::pair<std::string, std::string> glOf(const fs::path& renderJson) {
+    try {
+      const json rj = json::parse(std::ifstream(renderJson));
+      return {rj.value("gl_renderer", ""), rj.value("gl_version", "")};
+    } catch (const json::exception&) {
+      return {};
+    }
+  }
+
   void judgeCheck(CaseResult& r, std::size_t ci, const Job& j, const cv::Mat& rendered,
                   const fs::path& dir, const std::string& tag) const {
     const CaseSpec& c = suite_.cases[ci];
@@ -262,7 +282,7 @@ class CaseJudge {
   }
 
   void judgeImage(CaseResult& r, const CaseSpec& c, const cv::Mat& rendered, const fs::path& png,
-                  const fs::path& dir) const {
+                  const fs::path& dir, const std::pair<std::string, std::string>& gl) const {
     io::copyFileAtomically(png, dir / "render.png");
     r.hasRender = true;
     const fs::path& ref = *c.reference;
@@ -274,7 +294,11 @@ class CaseJudge {
       writeMatPng(r.metrics->heat, dir / "diff.png");
       r.hasDiff = true;
     }
+    const bool exact = manifest_ && manifest_->exactOn(gl.first, gl.second);
+    if (!o_.update) r.comparison = exact ? "exact" : "tolerance only";
     if (o_.update) {
+      r.updateNote = updateNote(r, reference, rendered, refExists);
+      if (updated_) updated_->images[updated_->keyOf(ref)] = pixelSha256(rendered);
       fs::create_directories(ref.parent_path());
       io::copyFileAtomically(png, ref);
       r.updated = true;
@@ -302,6 +326,46 @@ class CaseJudge {
       return;
     }
     judgeTolerance(r, *r.metrics, c.tolerance);
+    if (exact) judgeChecksum(r, ref, reference, rendered, gl.first);
+  }
+
+  // Old reference against the new render, printed by --update before a commit carries it.
+  static std::string updateNote(const CaseResult& r, const cv::Mat& reference,
+                                const cv::Mat& rendered, bool refExists) {
+    if (!refExists || reference.empty()) return "new reference";
+    if (reference.size() != rendered.size())
+      return "old vs new: size " + std::to_string(reference.cols) + " x " +
+             std::to_string(reference.rows) + " -> " + std::to_string(rendered.cols) + " x " +
+             std::to_string(rendered.rows);
+    const Metrics& m = *r.metrics;
+    if (m.maxDelta == 0) return "unchanged (old and new pixels are identical)";
+    return "old vs new: PSNR " + fmt(m.psnr, 2) + " dB, SSIM " + fmt(m.ssim, 4) +
+           ", mean abs delta " + fmt(m.meanDelta, 3) + "/255, max abs delta " + fmt(m.maxDelta, 0) +
+           "/255";
+  }
+
+  // On the goldens' own renderer the render must be bit-identical: its pixels, and the
+  // reference's, must hash to the manifest's checksum.
+  void judgeChecksum(CaseResult& r, const fs::path& ref, const cv::Mat& reference,
+                     const cv::Mat& rendered, const std::string& renderer) const {
+    const auto it = manifest_->images.find(manifest_->keyOf(ref));
+    if (it == manifest_->images.end()) {
+      r.problems.push_back("exact: " + manifest_->file.string() + " has no checksum for " +
+                           manifest_->keyOf(ref) + " (--update writes it)");
+    } else if (pixelSha256(reference) != it->second) {
+      r.problems.push_back("exact: the reference " + ref.string() +
+                           " does not match its checksum in " + manifest_->file.string() +
+                           " (changed without --update?)");
+    } else {
+      const std::string got = pixelSha256(rendered);
+      if (got != it->second)
+        r.problems.push_back("exact: the render's pixel SHA-256 " + got.substr(0, 16) +
+                             "... differs from the golden's " + it->second.substr(0, 16) +
+                             "... (on " + renderer +
+                             ", the goldens' renderer, renders are "
+                             "bit-identical)");
+    }
+    if (!r.problems.empty()) r.pass = false;
   }
 
   static void judgeTolerance(CaseResult& r, const Metrics& m, const Tolerance& t) {
@@ -321,12 +385,24 @@ class CaseJudge {
   const Suite& suite_;
   const Plan& plan_;
   json& environment_;
+  const ChecksumManifest* manifest_;
+  ChecksumManifest* updated_;
 };
 
 }  // namespace
 
 bool runValidate(const ValidateOptions& o) {
   const Suite suite = loadSuite(o.suite);
+  // The goldens' checksums, read before anything renders (a bad manifest is bad input).
+  std::optional<ChecksumManifest> manifest, updated;
+  if (suite.checksums) {
+    if (!o.update || fs::exists(*suite.checksums))
+      manifest = loadChecksumManifest(*suite.checksums);
+    if (o.update) {
+      updated.emplace();
+      updated->file = *suite.checksums;
+    }
+  }
   const WorkDir work;
   Plan plan(suite, work.dir);
 
@@ -353,7 +429,8 @@ bool runValidate(const ValidateOptions& o) {
                       {"gl_renderer", nullptr},
                       {"gl_version", nullptr}};
   std::vector<CaseResult> results(suite.cases.size());
-  CaseJudge judge(o, suite, plan, environment);
+  CaseJudge judge(o, suite, plan, environment, manifest ? &*manifest : nullptr,
+                  updated ? &*updated : nullptr);
   std::size_t casesDone = 0;
   progressBar(0, suite.cases.size(), tty);
   runProcesses(processes, o.jobs, o.timeoutS, [&](std::size_t job, const ProcessResult& result) {
@@ -371,6 +448,24 @@ bool runValidate(const ValidateOptions& o) {
   environment["host"] = hostName();
   environment["date_utc"] = utcNow();
   environment["jobs"] = o.jobs;
+  const auto envText = [&](const char* key) {
+    return environment[key].is_string() ? environment[key].get<std::string>() : std::string("?");
+  };
+  std::string comparison = "tolerance only (the suite has no checksums)";
+  if (updated) {
+    updated->glRenderer = envText("gl_renderer");
+    updated->glVersion = envText("gl_version");
+    writeChecksumManifest(*updated);
+    comparison = "checksums written for " + updated->glRenderer;
+  } else if (manifest && manifest->exactOn(envText("gl_renderer"), envText("gl_version"))) {
+    comparison =
+        "exact (pixel SHA-256) and by tolerance, on the goldens' renderer " + manifest->glRenderer;
+  } else if (manifest) {
+    comparison = "tolerance only: GL renderer " + envText("gl_renderer") + " / " +
+                 envText("gl_version") + " is not the goldens' " + manifest->glRenderer + " / " +
+                 manifest->glVersion;
+  }
+  environment["comparison"] = comparison;
   writeReport(suite, results, environment, o.update, report);
   int passed = 0;
   for (const auto& r : results) passed += r.pass ? 1 : 0;
@@ -379,7 +474,8 @@ bool runValidate(const ValidateOptions& o) {
             << " cases pass" << (o.update ? " (references updated)" : "") << "; GL "
             << (environment["gl_backend"].is_string() ? environment["gl_backend"].get<std::string>()
                                                       : std::string("?"))
-            << "; report " << (report / "index.html").string() << std::endl;
+            << "; compared " << comparison << "; report " << (report / "index.html").string()
+            << std::endl;
   return allPass;
 }
 

@@ -22,6 +22,12 @@ struct CaseResult {
   std::vector<CheckResult> checks;
   double seconds = 0;
   bool hasRender = false, hasReference = false, hasDiff = false;
+  // How the image was judged: "exact" (checksum and tolerances: the goldens' GL renderer),
+  // "tolerance only" (another renderer, or no checksums), empty for check-only cases.
+  std::string comparison;
+  // --update: the old reference against the new render (PSNR, SSIM, mean/max abs delta),
+  // "unchanged", or "new reference".
+  std::string updateNote;
 };
 
 // One line per case for the terminal: PASS/FAIL/UPDATED, the metrics, the problems below.

@@ -44,6 +44,9 @@ struct Suite {
   std::filesystem::path file;
   std::string name;
   std::vector<CaseSpec> cases;
+  // "checksums": the manifest of the goldens' pixel SHA-256 and the GL renderer they were
+  // made on (Checksums.h); absent: tolerances only.
+  std::optional<std::filesystem::path> checksums;
 };
 
 Suite loadSuite(const std::filesystem::path& file);
