@@ -59,6 +59,8 @@ void statsLine(const char* volume, const std::optional<study::RoiStats>& s,
 }
 
 const ImU32 kRoiColour = IM_COL32(80, 255, 120, 255);
+// Labels and centre marks lighter than the circle: a test can tell the circles apart.
+const ImU32 kRoiTextColour = IM_COL32(190, 255, 200, 255);
 const ImU32 kRulerColour = IM_COL32(255, 220, 60, 255);
 
 }  // namespace
@@ -79,11 +81,11 @@ void ViewerPanel::drawMeasurements(int pane, ImVec2 pos, ImVec2 size) {
     const ImVec2 centre = at(c->centre);
     const float rx = static_cast<float>(c->radius.x) * size.x;
     draw->AddCircle(centre, std::max(1.0f, rx), kRoiColour, 64, 2.0f);
-    draw->AddLine(ImVec2(centre.x - 3, centre.y), ImVec2(centre.x + 3, centre.y), kRoiColour);
-    draw->AddLine(ImVec2(centre.x, centre.y - 3), ImVec2(centre.x, centre.y + 3), kRoiColour);
+    draw->AddLine(ImVec2(centre.x - 3, centre.y), ImVec2(centre.x + 3, centre.y), kRoiTextColour);
+    draw->AddLine(ImVec2(centre.x, centre.y - 3), ImVec2(centre.x, centre.y + 3), kRoiTextColour);
     const std::string label = (i < saved ? "ROI " + std::to_string(i + 1) + "  " : std::string()) +
                               "r " + number(spheres[i].radiusMm, "%.1f") + " mm";
-    boxedText(draw, ImVec2(centre.x + rx * 0.72f + 4, centre.y - rx * 0.72f - 14), kRoiColour,
+    boxedText(draw, ImVec2(centre.x + rx * 0.72f + 4, centre.y - rx * 0.72f - 14), kRoiTextColour,
               label);
   }
   std::vector<config::RulerMeasurement> rulers = state_.measurements().rulers;
