@@ -13,6 +13,7 @@
 #include "ViewerPanel.h"
 #include "ViewerScript.h"
 #include "ViewerState.h"
+#include "mvw/core/WindowLevel.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/DisplayTexture.h"
@@ -56,6 +57,24 @@ void renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     Image shown = f.image;
     render::annotate(shown, f.camera, state.caption(p, s));
     render::drawGlyphLegend(shown, state.glyphLegend(p, s));
+    // The colour bar as `mvw render` draws it: the overlay's map where the functional volume
+    // is shown, else the image's own map over its window (a grey image has none).
+    const Volume* functional = state.functional();
+    const bool overlayShown =
+        functional && (s.mode == render::RenderMode::Mpr ? s.overlay : s.fusion);
+    if (overlayShown) {
+      auto [flo, fhi] = state.scene().functionalRange;
+      if (s.functionalHigh > s.functionalLow) flo = s.functionalLow, fhi = s.functionalHigh;
+      if (s.overlayColors)
+        render::drawColourBar(shown, flo, fhi, functional->metadata().unit, *s.overlayColors);
+      else
+        render::drawColourBar(shown, flo, fhi, functional->metadata().unit);
+    } else if (render::showsImageColors(s)) {
+      const auto [lo, hi] = state.scene().valueRange;
+      const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
+      render::drawColourBar(shown, wl.level - 0.5 * wl.window, wl.level + 0.5 * wl.window,
+                            state.anatomical().metadata().unit, *s.imageColors);
+    }
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting);
   }
@@ -92,6 +111,7 @@ int runViewer(ViewerOptions options) {
     scene.registration = ViewerState::describePlacement(
         config::toString(options.study.registration.method), placement.report);
     scene.functionalRange = renderer.functionalRange();
+    scene.anatomicalFromFunctional = placement.anatomicalFromFunctional;
     placeSegments(renderer, placement.anatomicalFromFunctional);
   } else {
     placeSegments(renderer, glm::dmat4(1.0));

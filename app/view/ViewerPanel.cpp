@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,7 +73,79 @@ void glyphLabelPicker(ViewerState& state) {
     for (const render::LabelGlyph& g : chosen)
       state.setGlyphLabel(g.label, config::LabelGlyphKind::None);
 }
+// Text readable on any image: a dark box under it.
+void boxedText(ImDrawList* draw, ImVec2 at, ImU32 colour, const std::string& text) {
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  draw->AddRectFilled(ImVec2(at.x - 2, at.y - 1), ImVec2(at.x + size.x + 2, at.y + size.y + 1),
+                      IM_COL32(0, 0, 0, 190), 2.0f);
+  draw->AddText(at, colour, text.c_str());
+}
+
+std::string number(double v, const char* format = "%.3g") {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+// One volume's line of a sphere's statistics.
+void statsLine(const char* volume, const std::optional<study::RoiStats>& s,
+               const std::string& problem) {
+  if (!s) {
+    ImGui::TextWrapped("  %s: %s", volume, problem.c_str());
+    return;
+  }
+  const std::string u = s->unit.empty() ? "" : " " + s->unit;
+  ImGui::Text("  %s: %zu voxels, %s ml", volume, s->voxels, number(s->volumeMl).c_str());
+  if (s->voxels == 0) return;
+  ImGui::Text("    max %s  mean %s  SD %s%s", number(s->max, "%.4g").c_str(),
+              number(s->mean, "%.4g").c_str(), number(s->sd, "%.4g").c_str(), u.c_str());
+  if (s->peak) ImGui::Text("    SUVpeak %s%s (1 cm3)", number(*s->peak, "%.4g").c_str(), u.c_str());
+}
+
+const ImU32 kRoiColour = IM_COL32(80, 255, 120, 255);
+// Labels and centre marks lighter than the circle: a test can tell the circles apart.
+const ImU32 kRoiTextColour = IM_COL32(190, 255, 200, 255);
+const ImU32 kRulerColour = IM_COL32(255, 220, 60, 255);
+
 }  // namespace
+
+void ViewerPanel::drawMeasurements(int pane, ImVec2 pos, ImVec2 size) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  auto at = [&](glm::dvec2 f) {
+    return ImVec2(pos.x + static_cast<float>(f.x) * size.x,
+                  pos.y + static_cast<float>(f.y) * size.y);
+  };
+  draw->PushClipRect(pos, ImVec2(pos.x + size.x, pos.y + size.y), true);
+  std::vector<config::SphereMeasurement> spheres = state_.measurements().spheres;
+  const std::size_t saved = spheres.size();
+  if (auto p = state_.pendingSphere()) spheres.push_back(*p);
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const auto c = state_.paneCircle(pane, spheres[i]);
+    if (!c) continue;
+    const ImVec2 centre = at(c->centre);
+    const float rx = static_cast<float>(c->radius.x) * size.x;
+    draw->AddCircle(centre, std::max(1.0f, rx), kRoiColour, 64, 2.0f);
+    draw->AddLine(ImVec2(centre.x - 3, centre.y), ImVec2(centre.x + 3, centre.y), kRoiTextColour);
+    draw->AddLine(ImVec2(centre.x, centre.y - 3), ImVec2(centre.x, centre.y + 3), kRoiTextColour);
+    const std::string label = (i < saved ? "ROI " + std::to_string(i + 1) + "  " : std::string()) +
+                              "r " + number(spheres[i].radiusMm, "%.1f") + " mm";
+    boxedText(draw, ImVec2(centre.x + rx * 0.72f + 4, centre.y - rx * 0.72f - 14), kRoiTextColour,
+              label);
+  }
+  std::vector<config::RulerMeasurement> rulers = state_.measurements().rulers;
+  if (auto p = state_.pendingRuler()) rulers.push_back(*p);
+  for (const config::RulerMeasurement& r : rulers) {
+    const PaneSegment seg = state_.paneSegment(pane, r);
+    if (!seg.inPlane) continue;  // a ruler shows on the slice it was drawn on
+    const ImVec2 a = at(seg.from), b = at(seg.to);
+    draw->AddLine(a, b, IM_COL32(0, 0, 0, 200), 4.0f);
+    draw->AddLine(a, b, kRulerColour, 2.0f);
+    for (const ImVec2& e : {a, b}) draw->AddCircleFilled(e, 3.0f, kRulerColour);
+    boxedText(draw, ImVec2((a.x + b.x) * 0.5f + 6, (a.y + b.y) * 0.5f - 16), kRulerColour,
+              number(ViewerState::rulerLengthMm(r), "%.1f") + " mm");
+  }
+  draw->PopClipRect();
+}
 
 void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
   const render::DisplayTexture& texture = textures_[static_cast<std::size_t>(pane)];
@@ -93,24 +166,48 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
   if (ImGui::IsItemHovered()) {
     if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) state_.toggleMaximised(pane);
     if (io.MouseWheel != 0.0f) state_.wheel(pane, io.MouseWheel);
-    if (pane != k3d && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.KeyCtrl)
-      state_.click(pane, fx, fy);
-    if (pane != k3d) {
-      hoverWorld_ = state_.onPlane(pane, fx, fy);
-      hoverValid_ = true;
+    // The tool, or Shift (sphere) / Alt (ruler) whatever the tool: a measurement starts.
+    const MprTool tool = io.KeyShift ? MprTool::Sphere : io.KeyAlt ? MprTool::Ruler : state_.tool();
+    if (pane != k3d && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.KeyCtrl) {
+      if (tool == MprTool::Crosshair)
+        state_.click(pane, fx, fy);
+      else
+        state_.beginMeasurement(pane, tool, fx, fy);
     }
+    // A still mouse leaves the cursor where a script's hover put it.
+    if (pane != k3d && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || !state_.cursor()))
+      state_.setCursor(pane, fx, fy);
   }
   for (int b = 0; b < 3; ++b)
     if (ImGui::IsItemActive() && ImGui::IsMouseDragging(b, 0.0f)) {
       const ImVec2 d = io.MouseDelta;
       if (d.x != 0 || d.y != 0) {
-        if (pane != k3d && b == 0 && !io.KeyCtrl)
+        if (pane != k3d && b == 0 && state_.measuring())
+          state_.moveMeasurement(fx, fy);
+        else if (pane != k3d && b == 0 && !io.KeyCtrl)
           state_.click(pane, fx, fy);
         else
           state_.drag(pane, d.x / size.x, d.y / size.y, static_cast<MouseButton>(b), io.KeyCtrl);
         dragging_ = true;
       }
     }
+  if (state_.measuring() && ImGui::IsMouseReleased(ImGuiMouseButton_Left)) state_.endMeasurement();
+  if (pane != k3d && !texture.empty()) {
+    drawMeasurements(pane, pos, size);
+    // The values under the cursor, both volumes with their units, by the cursor on its pane.
+    if (const auto c = state_.cursor(); c && c->first == pane) {
+      const glm::dvec4 clip = state_.paneCamera(pane).clipFromWorld * glm::dvec4(c->second, 1.0);
+      const ImVec2 at(pos.x + static_cast<float>((clip.x / clip.w + 1) * 0.5) * size.x,
+                      pos.y + static_cast<float>((1 - clip.y / clip.w) * 0.5) * size.y);
+      const std::string text = state_.readout(c->second);
+      const float w = ImGui::CalcTextSize(text.c_str()).x;
+      draw->PushClipRect(pos, ImVec2(pos.x + size.x, pos.y + size.y), true);
+      draw->AddCircle(at, 3.0f, IM_COL32(255, 255, 255, 220));
+      boxedText(draw, ImVec2(std::min(at.x + 10, pos.x + size.x - w - 6), at.y + 10),
+                IM_COL32(255, 255, 255, 255), text);
+      draw->PopClipRect();
+    }
+  }
   if (pane != k3d && !texture.empty()) {  // the linked crosshair
     const glm::dvec4 c =
         state_.paneCamera(pane).clipFromWorld * glm::dvec4(state_.crosshair(), 1.0);
@@ -168,6 +265,11 @@ void ViewerPanel::drawControls() {
     state_.setMprWindow(w, l);
   colormapCombo(state_, "MIP colours", ColorTarget::View3d);
   colormapCombo(state_, "MPR colours", ColorTarget::Mpr);
+  if (!state_.study().segmentation) {
+  } else if (bool outlines = state_.segmentOutlines();
+             ImGui::Checkbox("segment outlines", &outlines)) {
+    state_.setSegmentOutlines(outlines);
+  }
   // The rotating 3D view, as `mvw render --orbit` (keys O and K).
   const Orbit orbit = state_.orbit();
   if (ImGui::Button(orbit == Orbit::Spin ? "stop spin (O)" : "spin (O)"))
@@ -258,23 +360,44 @@ void ViewerPanel::drawControls() {
   ImGui::Separator();
   const glm::dvec3 c = state_.crosshair();
   ImGui::Text("crosshair %.1f, %.1f, %.1f mm (LPS)", c.x, c.y, c.z);
-  if (hoverValid_) {
-    const ViewerProbe probe = state_.probe(hoverWorld_);
-    const std::string value =
-        probe.anatomicalInside
-            ? std::to_string(static_cast<long long>(std::lround(probe.anatomical))) + " " +
-                  anatomical.metadata().unit
-            : "outside";
-    ImGui::Text("cursor %.1f, %.1f, %.1f: %s", hoverWorld_.x, hoverWorld_.y, hoverWorld_.z,
-                value.c_str());
-    if (functional && probe.functionalInside)
-      ImGui::Text("functional %.4g %s", probe.functional, functional->metadata().unit.c_str());
+  if (const auto cursor = state_.cursor()) {
+    const glm::dvec3& w = cursor->second;
+    ImGui::Text("cursor %.1f, %.1f, %.1f mm (LPS)", w.x, w.y, w.z);
+    ImGui::TextWrapped("%s", state_.readout(w).c_str());
   }
+  // Measurements on the MPR panes: the mouse tool, the spheres' statistics, the rulers.
+  ImGui::Separator();
+  int tool = static_cast<int>(state_.tool());
+  ImGui::Text("MPR mouse");
+  const char* tools[] = {"crosshair", "sphere ROI", "ruler"};
+  for (int t = 0; t < 3; ++t) {
+    ImGui::SameLine();
+    if (ImGui::RadioButton(tools[t], &tool, t)) state_.setTool(static_cast<MprTool>(tool));
+  }
+  const auto& spheres = state_.measurements().spheres;
+  const auto& stats = state_.sphereStatistics();
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const config::SphereMeasurement& s = spheres[i];
+    ImGui::TextColored(ImVec4(0.3f, 1.0f, 0.5f, 1.0f), "ROI %zu: r %.1f mm at %.1f, %.1f, %.1f",
+                       i + 1, s.radiusMm, s.centre[0], s.centre[1], s.centre[2]);
+    statsLine(ViewerState::volumeName(anatomical, "anatomical").c_str(), stats[i].anatomical,
+              stats[i].anatomicalProblem);
+    if (functional)
+      statsLine(ViewerState::volumeName(*functional, "functional").c_str(), stats[i].functional,
+                stats[i].functionalProblem);
+  }
+  const auto& rulers = state_.measurements().rulers;
+  for (std::size_t i = 0; i < rulers.size(); ++i)
+    ImGui::TextColored(ImVec4(1.0f, 0.86f, 0.25f, 1.0f), "ruler %zu: %.1f mm", i + 1,
+                       ViewerState::rulerLengthMm(rulers[i]));
+  if ((!spheres.empty() || !rulers.empty()) && ImGui::Button("clear measurements"))
+    state_.clearMeasurements();
   ImGui::Separator();
   ImGui::TextWrapped(
       "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom. MPR: left "
       "click/drag moves the crosshair, wheel scrolls slices, right-drag or Ctrl-drag "
-      "window/level. Double-click maximises a view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
+      "window/level, Shift-drag a sphere ROI, Alt-drag a ruler. Double-click maximises a "
+      "view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
       "fusion, P next preset, O spin, K rock, R reset, S screenshot, Ctrl+S save state as a "
       "study config.");
   if (!state_.status().empty()) ImGui::TextWrapped("%s", state_.status().c_str());
@@ -294,7 +417,6 @@ bool ViewerPanel::draw() {
   ImGui::EndChild();
   const ImVec2 origin(panel + 12.0f, 8.0f);
   const ImVec2 area(io.DisplaySize.x - origin.x - 8.0f, io.DisplaySize.y - 16.0f);
-  hoverValid_ = false;  // the panes drawn below say where the cursor is this frame
   if (state_.maximised() >= 0) {
     drawPane(state_.maximised(), origin, area);
   } else {

@@ -27,12 +27,11 @@ class ViewerPanel {
  private:
   void drawPane(int pane, ImVec2 pos, ImVec2 size);
   void drawControls();
+  void drawMeasurements(int pane, ImVec2 pos, ImVec2 size);  // spheres and rulers on an MPR pane
 
   ViewerState& state_;
   const PaneTextures& textures_;
   bool dragging_ = false;
-  bool hoverValid_ = false;
-  glm::dvec3 hoverWorld_{0.0};
 };
 
 }  // namespace mvw::app

@@ -163,6 +163,30 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
     c.kind = Kind::Register;
   } else if (cmd == "wait-registration") {
     c.kind = Kind::WaitRegistration;
+  } else if (cmd == "roi" || cmd == "ruler") {
+    c.kind = cmd == "roi" ? Kind::Roi : Kind::Ruler;
+    c.pane = in.pane();
+    if (c.pane == k3d) in.fail(cmd + ": draws on an MPR pane (axial, coronal, sagittal)");
+    c.x = in.number("x0");
+    c.y = in.number("y0");
+    c.x1 = in.number("x1");
+    c.y1 = in.number("y1");
+  } else if (cmd == "hover") {
+    c.kind = Kind::Hover;
+    c.pane = in.pane();
+    if (c.pane == k3d) in.fail("hover: reads values on an MPR pane (axial, coronal, sagittal)");
+    c.x = in.number("x");
+    c.y = in.number("y");
+  } else if (cmd == "sphere") {
+    c.kind = Kind::Sphere;
+    for (double& v : c.sphere.centre) v = in.number("centre (L P S mm)");
+    c.sphere.radiusMm = in.number("radius");
+    if (!(c.sphere.radiusMm > 0)) in.fail("sphere: the radius must be above 0 mm");
+  } else if (cmd == "roi-stats") {
+    c.kind = Kind::RoiStats;
+    c.file = in.word("file");
+  } else if (cmd == "clear-measurements") {
+    c.kind = Kind::ClearMeasurements;
   } else if (cmd == "quit") {
     c.kind = Kind::Quit;
   } else {
@@ -239,6 +263,26 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::WaitRegistration:
       if (state.registering()) --next_;  // stay on this line until the worker is done
+      break;
+    case Kind::Roi:
+    case Kind::Ruler:
+      state.beginMeasurement(c.pane, c.kind == Kind::Roi ? MprTool::Sphere : MprTool::Ruler, c.x,
+                             c.y);
+      state.moveMeasurement(c.x1, c.y1);
+      state.endMeasurement();
+      break;
+    case Kind::Hover:
+      state.setCursor(c.pane, c.x, c.y);
+      break;
+    case Kind::Sphere:
+      state.addSphere(c.sphere);
+      state.setCrosshair({c.sphere.centre[0], c.sphere.centre[1], c.sphere.centre[2]});
+      break;
+    case Kind::RoiStats:
+      state.writeSphereStatistics(c.file);
+      break;
+    case Kind::ClearMeasurements:
+      state.clearMeasurements();
       break;
     case Kind::Quit:
       state.requestQuit();

@@ -13,6 +13,14 @@
 //   orbit spin|rock|off                 the rotating 3D view (keys O and K toggle it)
 //   glyph-label N bumps|dimples|none    what label N of a label map gets (the panel's picker)
 //   register | wait-registration        re-run the registration in the background | wait for it
+//   roi PANE x0 y0 x1 y1                a sphere ROI drawn by a drag: centre at (x0, y0) on the
+//                                       pane's plane, radius the distance to (x1, y1), in mm
+//   ruler PANE x0 y0 x1 y1              a distance ruler from (x0, y0) to (x1, y1)
+//   hover PANE x y                      the cursor over a pane (the value readout)
+//   sphere L P S R                      a sphere ROI by its centre (LPS mm) and radius (mm); the
+//                                       crosshair goes to its centre
+//   roi-stats FILE                      every sphere's statistics, JSON (mvw stats's fields)
+//   clear-measurements                  no sphere, no ruler
 //   quit
 // PANE: 3d, axial, coronal, sagittal. Blank lines and lines starting with # are skipped (each
 // still takes a frame, as every line does). The whole script is checked when it is read, so a
@@ -44,6 +52,12 @@ class ViewerScript {
       GlyphLabel,
       Register,
       WaitRegistration,
+      Hover,
+      Roi,
+      Ruler,
+      Sphere,
+      RoiStats,
+      ClearMeasurements,
       Quit
     };
     Kind kind = Kind::Nothing;
@@ -51,7 +65,9 @@ class ViewerScript {
     char key = 0;  // upper case
     bool ctrl = false;
     int pane = k3d;
-    double x = 0.0, y = 0.0;  // drag: dx, dy; click: x, y; wheel: x = notches
+    double x = 0.0, y = 0.0;    // drag: dx, dy; click: x, y; wheel: x = notches
+    double x1 = 0.0, y1 = 0.0;  // roi, ruler: where the drag ends
+    config::SphereMeasurement sphere;
     MouseButton button = MouseButton::Left;
     int frames = 0;
     std::filesystem::path file;

@@ -26,6 +26,7 @@
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/RoiStatistics.h"
 
 namespace mvw::app {
 
@@ -46,12 +47,44 @@ struct ViewerScene {
   std::pair<double, double> valueRange{0.0, 1.0};
   std::pair<double, double> functionalRange{0.0, 1.0};
   std::string registration = "none";  // how the functional volume was placed, for the panel
+  // The placement the renderer draws the functional volume with (world LPS mm to world).
+  glm::dmat4 anatomicalFromFunctional{1.0};
 };
 
-// The volumes' values under a world point (the panel's cursor readout).
+// The volumes' values under a world point (the panel's cursor readout): the anatomical voxel
+// nearest the point, and the functional volume at that voxel's centre as the renderer samples
+// it (through the placement, trilinear between the functional voxels' centres, clamped at the
+// edge, inside its voxel box).
 struct ViewerProbe {
   bool anatomicalInside = false, functionalInside = false;
   double anatomical = 0.0, functional = 0.0;
+  glm::dvec3 at{0.0};  // the anatomical voxel's centre, LPS mm
+};
+
+// What the mouse does on an MPR pane: move the crosshair (the default), draw a sphere ROI
+// (press: the centre on the plane; the drag's length: the radius in mm) or a ruler (press: one
+// end, release: the other). Shift-drag draws a sphere and Alt-drag a ruler whatever the tool.
+enum class MprTool { Crosshair, Sphere, Ruler };
+
+// A sphere ROI's statistics in each volume, by study::roiStatistics (as `mvw stats --sphere`):
+// the anatomical one in its unit, the functional one (in SUV with SUVpeak for PET) at the
+// sphere's centre moved by the placement into the functional volume's world. An ROI that
+// holds no voxel centre of a volume says so instead.
+struct SphereStatistics {
+  std::optional<study::RoiStats> anatomical, functional;
+  std::string anatomicalProblem, functionalProblem;
+  glm::dvec3 functionalCentre{0.0};
+};
+
+// A sphere or a ruler as one pane shows it: in fractions of the pane (y down).
+struct PaneCircle {
+  glm::dvec2 centre{0.0};
+  glm::dvec2 radius{0.0};  // x and y radii in fractions of the pane's width and height
+  double radiusMm = 0.0;   // of the circle the plane cuts
+};
+struct PaneSegment {
+  glm::dvec2 from{0.0}, to{0.0};
+  bool inPlane = false;  // both ends lie on the pane's plane (within half a slice)
 };
 
 class ViewerState {
@@ -69,6 +102,8 @@ class ViewerState {
   static std::optional<int> paneNamed(const std::string& name);  // the inverse
   // The panel's line for the study's placement (placeFunctional's report).
   static std::string describePlacement(const std::string& method, const nlohmann::json& report);
+  // "CT", "PET" (DICOM's PT), "MR", ...: the volume's modality, `fallback` where none is named.
+  static std::string volumeName(const Volume& volume, const char* fallback);
   // The 3D pane's modes, in the order of the keys 1-5.
   static std::span<const render::RenderMode> modes3d();
 
@@ -158,6 +193,41 @@ class ViewerState {
   // The world point under (x, y) of an MPR pane, on its plane through the crosshair.
   glm::dvec3 onPlane(int pane, double x, double y) const;
   ViewerProbe probe(const glm::dvec3& world) const;
+  // The cursor over an MPR pane (the readout's point, on the pane's plane); the mouse moves it,
+  // and so does the script's hover.
+  void setCursor(int pane, double x, double y) { cursor_ = {pane, onPlane(pane, x, y)}; }
+  std::optional<std::pair<int, glm::dvec3>> cursor() const { return cursor_; }
+  // The readout at a point: "CT 45 HU | PET 3.21 SUVbw" (each volume by its modality, or
+  // "anatomical" / "functional"; "outside" where the point is outside a volume).
+  std::string readout(const glm::dvec3& world) const;
+
+  // Measurements (saved with the state as the study's "measurements", restored on opening).
+  // The crosshair to a point (the MPR panes then cut it), e.g. to an ROI's centre.
+  void setCrosshair(const glm::dvec3& world) { crosshair_ = world, markMprDirty(); }
+  void setSegmentOutlines(bool on) { segmentOutlines_ = on, markMprDirty(); }
+  bool segmentOutlines() const { return segmentOutlines_; }
+  void setTool(MprTool tool) { tool_ = tool; }
+  MprTool tool() const { return tool_; }
+  // A mouse gesture on an MPR pane with a tool other than the crosshair: press, moves (the
+  // pending sphere or ruler follows), release (it is added; a sphere of radius 0 is not).
+  void beginMeasurement(int pane, MprTool tool, double x, double y);
+  void moveMeasurement(double x, double y);
+  void endMeasurement();
+  bool measuring() const { return pending_.has_value(); }
+  // The pending gesture's sphere (radius so far) or ruler, for the panes to draw.
+  std::optional<config::SphereMeasurement> pendingSphere() const;
+  std::optional<config::RulerMeasurement> pendingRuler() const;
+  void addSphere(const config::SphereMeasurement& sphere);  // statistics computed at once
+  void addRuler(const config::RulerMeasurement& ruler);
+  void clearMeasurements();
+  const config::Measurements& measurements() const { return measurements_; }
+  const std::vector<SphereStatistics>& sphereStatistics() const { return sphereStats_; }
+  static double rulerLengthMm(const config::RulerMeasurement& ruler);
+  // Where a sphere cuts the pane's plane (nothing where it misses it), where a ruler lies.
+  std::optional<PaneCircle> paneCircle(int pane, const config::SphereMeasurement& sphere) const;
+  PaneSegment paneSegment(int pane, const config::RulerMeasurement& ruler) const;
+  // Every sphere's statistics as `mvw stats --json` names the fields (tests compare the two).
+  void writeSphereStatistics(const std::filesystem::path& file) const;
 
  private:
   struct PaneState {
@@ -171,6 +241,13 @@ class ViewerState {
   const PaneState& pane_(int pane) const { return panes_[static_cast<std::size_t>(pane)]; }
   void markMprDirty();
   config::ViewConfig viewConfigOf(int pane) const;
+  SphereStatistics computeStatistics(const config::SphereMeasurement& sphere) const;
+  glm::dvec2 toPane(int pane, const glm::dvec3& world) const;
+  struct Gesture {
+    int pane = kAxial;
+    MprTool tool = MprTool::Sphere;
+    glm::dvec3 from{0.0}, to{0.0};
+  };
 
   const config::StudyConfig& study_;
   const Volume& anatomical_;
@@ -182,6 +259,12 @@ class ViewerState {
   double mprWindow_ = 0, mprLevel_ = 0;
   std::map<int, std::string> labelNames_;
   std::optional<ColorTable> mprColors_;  // the MPR panes' anatomy; none: grey
+  bool segmentOutlines_ = true;          // the MPR panes outline the study's segmentation
+  MprTool tool_ = MprTool::Crosshair;
+  std::optional<Gesture> pending_;
+  std::optional<std::pair<int, glm::dvec3>> cursor_;
+  config::Measurements measurements_;
+  std::vector<SphereStatistics> sphereStats_;  // one per measurements_.spheres
   Orbit orbit_ = Orbit::Off;
   std::vector<double> orbitAzimuths_;
   std::size_t orbitStep_ = 0;

@@ -65,6 +65,7 @@ ViewConfig fullySet() {
   v.planeOffsetMm = 20;
   v.slabMm = 5;
   v.overlay = false;
+  v.segmentationOutlines = false;
   v.fusion = true;
   v.overlayOpacity = 0.7;
   v.overlayThreshold = 0.1;
@@ -130,6 +131,7 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.planeOffsetMm, a.planeOffsetMm);
   EXPECT_EQ(b.slabMm, a.slabMm);
   EXPECT_EQ(b.overlay, a.overlay);
+  EXPECT_EQ(b.segmentationOutlines, a.segmentationOutlines);
   EXPECT_EQ(b.fusion, a.fusion);
   EXPECT_EQ(b.overlayOpacity, a.overlayOpacity);
   EXPECT_EQ(b.overlayThreshold, a.overlayThreshold);

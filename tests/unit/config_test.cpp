@@ -154,6 +154,43 @@ TEST(StudyConfig, FrameChoosesWhatA4DVolumeGivesAndCropMmIsABoxInLpsMm) {
   }
 }
 
+// "measurements" (the viewer's sphere ROIs and rulers, LPS mm): read, written back the same,
+// not written when there are none, and refused with the key's path when malformed.
+TEST(StudyConfig, MeasurementsRoundTripAndBadOnesNameTheKey) {
+  const fs::path dir = test::scratchDir();
+  const StudyConfig c = loadStudyConfig(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"},
+      "measurements": {"spheres": [[1.5, -20, 300.25, 12], [0, 0, 0, 3]],
+                       "rulers": [[0, 0, 0, 30, 40, 0]]}})"));
+  ASSERT_EQ(c.measurements.spheres.size(), 2u);
+  EXPECT_EQ(c.measurements.spheres[0].centre, (std::array<double, 3>{1.5, -20, 300.25}));
+  EXPECT_EQ(c.measurements.spheres[0].radiusMm, 12);
+  ASSERT_EQ(c.measurements.rulers.size(), 1u);
+  EXPECT_EQ(c.measurements.rulers[0].to, (std::array<double, 3>{30, 40, 0}));
+  writeStudyConfig(c, dir / "written.json");
+  EXPECT_EQ(loadStudyConfig(dir / "written.json").measurements, c.measurements);
+  StudyConfig none = c;
+  none.measurements = {};
+  writeStudyConfig(none, dir / "none.json");
+  std::ifstream in(dir / "none.json");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}).find("measurements"),
+            std::string::npos);
+  for (const char* bad : {R"({"spheres": [[0, 0, 0]]})", R"({"spheres": [[0, 0, 0, 0]]})",
+                          R"({"spheres": [[0, 0, "x", 2]]})", R"({"spheres": [[0, 0, 1e9, 2]]})"})
+    EXPECT_NE(errorOf(writeConfig(dir, std::string(R"({"anatomical": {"path": "anat.nii"},
+        "measurements": )") + bad + "}"))
+                  .find("'measurements.spheres[0]' must be [L, P, S, radius]"),
+              std::string::npos)
+        << bad;
+  EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"},
+      "measurements": {"rulers": [[0, 0, 0, 1, 1]]}})"))
+                .find("'measurements.rulers[0]' must be [L0, P0, S0, L1, P1, S1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(writeConfig(dir, R"({"anatomical": {"path": "anat.nii"},
+      "measurements": {"circles": []}})"))
+                .find("unknown key 'measurements.circles'"),
+            std::string::npos);
+}
+
 TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   const fs::path dir = test::scratchDir();
   const auto p =

@@ -63,6 +63,7 @@ TEST(ViewPlan, DescribeViewIsTheInverseOfPlanViews) {
       {"plane_offset_mm", 20},
       {"slab_mm", 5},
       {"overlay", false},
+      {"segmentation_outlines", false},
       {"depth_cue", {{"brightness", 0.1}, {"amount", 0.66}, {"contrast", 0.33}}},
       {"glyphs",
        {{"method", "simple"},

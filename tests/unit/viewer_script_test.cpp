@@ -8,6 +8,7 @@
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "TestUtil.h"
 #include "mvw/config/StudyConfig.h"
@@ -213,6 +214,58 @@ TEST(ViewerScript, ColormapAndOrbitCommands) {
   EXPECT_EQ(problemOf("orbit"), "line 1: orbit: missing mode");
   EXPECT_EQ(problemOf("orbit tumble"), "line 1: orbit: unknown mode 'tumble' (spin, rock, off)");
   EXPECT_EQ(problemOf("orbit spin 36"), "line 1: orbit: unexpected '36'");
+}
+
+TEST(ViewerScript, MeasurementCommands) {
+  const ViewerScript s = ViewerScript::parse(
+      "roi axial 0.5 0.4 0.6 0.4\nruler coronal 0.1 0.2 0.3 0.4\nsphere -42.2 -224.2 -422.5 15\n"
+      "roi-stats out.json\nclear-measurements\nhover sagittal 0.5 0.5\n",
+      "t");
+  const auto& c = s.commands();
+  ASSERT_EQ(c.size(), 6u);
+  EXPECT_EQ(c[0].kind, Kind::Roi);
+  EXPECT_EQ(c[0].pane, kAxial);
+  EXPECT_EQ(c[0].x, 0.5);
+  EXPECT_EQ(c[0].x1, 0.6);
+  EXPECT_EQ(c[0].y1, 0.4);
+  EXPECT_EQ(c[1].kind, Kind::Ruler);
+  EXPECT_EQ(c[1].pane, kCoronal);
+  EXPECT_EQ(c[2].kind, Kind::Sphere);
+  EXPECT_EQ(c[2].sphere.centre[2], -422.5);
+  EXPECT_EQ(c[2].sphere.radiusMm, 15);
+  EXPECT_EQ(c[3].kind, Kind::RoiStats);
+  EXPECT_EQ(c[3].file, "out.json");
+  EXPECT_EQ(c[4].kind, Kind::ClearMeasurements);
+  EXPECT_EQ(c[5].kind, Kind::Hover);
+  EXPECT_EQ(c[5].pane, kSagittal);
+  EXPECT_EQ(problemOf("roi 3d 0 0 1 1"),
+            "line 1: roi: draws on an MPR pane (axial, coronal, sagittal)");
+  EXPECT_EQ(problemOf("ruler axial 0 0 1"), "line 1: ruler: missing y1");
+  EXPECT_EQ(problemOf("sphere 0 0 0 0"), "line 1: sphere: the radius must be above 0 mm");
+  EXPECT_EQ(problemOf("sphere 0 0 x 2"), "line 1: sphere: centre (L P S mm) 'x' is not a number");
+  EXPECT_EQ(problemOf("roi-stats"), "line 1: roi-stats: missing file");
+  EXPECT_EQ(problemOf("hover 3d 0.5 0.5"),
+            "line 1: hover: reads values on an MPR pane (axial, coronal, sagittal)");
+}
+
+TEST_F(ViewerScriptRun, SphereMovesTheCrosshairAndRoiStatsWritesItsStatistics) {
+  const auto dir = test::scratchDir();
+  ViewerState state(study, ct, nullptr, scene);
+  ViewerScript s = ViewerScript::parse(
+      "sphere 2 2 2 1.5\nroi-stats " + (dir / "stats.json").string() + "\nclear-measurements\n",
+      "t");
+  EXPECT_TRUE(s.step(state));
+  ASSERT_EQ(state.measurements().spheres.size(), 1u);
+  EXPECT_EQ(state.crosshair(), glm::dvec3(2.0, 2.0, 2.0));
+  EXPECT_TRUE(s.step(state));
+  std::ifstream in(dir / "stats.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j.size(), 1u);
+  EXPECT_EQ(j[0]["sphere"][3], 1.5);
+  // Centres within 1.5 mm: the centre, its 6 face and 12 edge neighbours.
+  EXPECT_EQ(j[0]["anatomical"]["voxels"], 19);
+  EXPECT_TRUE(s.step(state));
+  EXPECT_TRUE(state.measurements().spheres.empty());
 }
 
 TEST_F(ViewerScriptRun, ColormapAndOrbitActOnTheState) {

@@ -235,6 +235,7 @@ const FieldTable<ViewConfig>& viewTable() {
         .number("plane_offset_mm", &V::planeOffsetMm, -1e4, 1e4)
         .number("slab_mm", &V::slabMm, 0.0, 1e4)
         .boolean("overlay", &V::overlay)
+        .boolean("segmentation_outlines", &V::segmentationOutlines)
         .boolean("fusion", &V::fusion)
         .number("shells", &V::shells, 1, 256)
         .add(
@@ -439,6 +440,67 @@ const FieldTable<RenderConfig>& renderTable() {
   return t;
 }
 
+// An array of `n` finite numbers within +-1e6 (LPS mm), or the message `what`.
+std::vector<double> readMillimetres(const json& v, const Where& w, std::size_t n,
+                                    const std::string& what) {
+  if (!v.is_array() || v.size() != n) w.bad(what);
+  std::vector<double> out;
+  for (const auto& e : v) {
+    if (!e.is_number() || !(std::abs(e.get<double>()) <= 1e6)) w.bad(what);
+    out.push_back(e.get<double>());
+  }
+  return out;
+}
+
+const FieldTable<Measurements>& measurementsTable() {
+  static const FieldTable<Measurements> t = [] {
+    using M = Measurements;
+    FieldTable<M> m;
+    m.add(
+         "spheres",
+         [](const json& v, M& out, const Where& w) {
+           if (!v.is_array()) w.bad("must be an array of [L, P, S, radius] (LPS mm)");
+           out.spheres.clear();
+           for (std::size_t i = 0; i < v.size(); ++i) {
+             const Where item{w.file, w.key + "[" + std::to_string(i) + "]"};
+             const auto a = readMillimetres(
+                 v[i], item, 4, "must be [L, P, S, radius] in LPS mm with a radius above 0");
+             if (!(a[3] > 0.0))
+               item.bad("must be [L, P, S, radius] in LPS mm with a radius above 0");
+             out.spheres.push_back({{a[0], a[1], a[2]}, a[3]});
+           }
+         },
+         [](const M& in, json& j, const char* k) {
+           if (in.spheres.empty()) return;
+           json a = json::array();
+           for (const auto& s : in.spheres)
+             a.push_back({s.centre[0], s.centre[1], s.centre[2], s.radiusMm});
+           j[k] = a;
+         })
+        .add(
+            "rulers",
+            [](const json& v, M& out, const Where& w) {
+              if (!v.is_array()) w.bad("must be an array of [L0, P0, S0, L1, P1, S1] (LPS mm)");
+              out.rulers.clear();
+              for (std::size_t i = 0; i < v.size(); ++i) {
+                const Where item{w.file, w.key + "[" + std::to_string(i) + "]"};
+                const auto a =
+                    readMillimetres(v[i], item, 6, "must be [L0, P0, S0, L1, P1, S1] in LPS mm");
+                out.rulers.push_back({{a[0], a[1], a[2]}, {a[3], a[4], a[5]}});
+              }
+            },
+            [](const M& in, json& j, const char* k) {
+              if (in.rulers.empty()) return;
+              json a = json::array();
+              for (const auto& r : in.rulers)
+                a.push_back({r.from[0], r.from[1], r.from[2], r.to[0], r.to[1], r.to[2]});
+              j[k] = a;
+            });
+    return m;
+  }();
+  return t;
+}
+
 // The study object itself: every key delegates to the table of its own object.
 const FieldTable<StudyConfig>& studyTable() {
   static const FieldTable<StudyConfig> t = [] {
@@ -488,7 +550,16 @@ const FieldTable<StudyConfig>& studyTable() {
             [](const json& v, S& out, const Where& w) {
               renderTable().read(v, out.render, Where{w.file, "render."});
             },
-            [](const S& in, json& j, const char* k) { j[k] = renderTable().write(in.render); });
+            [](const S& in, json& j, const char* k) { j[k] = renderTable().write(in.render); })
+        .add(
+            "measurements",
+            [](const json& v, S& out, const Where& w) {
+              measurementsTable().read(v, out.measurements, Where{w.file, "measurements."});
+            },
+            [](const S& in, json& j, const char* k) {
+              if (in.measurements != Measurements{})
+                j[k] = measurementsTable().write(in.measurements);
+            });
     return s;
   }();
   return t;

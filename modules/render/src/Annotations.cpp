@@ -91,20 +91,26 @@ void drawBar(Image& image, double lo, double hi, const std::string& unit,
   cv::rectangle(m, {x0 - 1, top - 1}, {x1 + 1, bottom + 1}, cv::Scalar(200, 200, 200, 255), 1);
   const double textScale = 0.4 * scale;
   const int thick = std::max(1, static_cast<int>(std::lround(scale)));
+  // Each label on a dark box: readable on any background (white on an inverted-grey MIP, a
+  // bright lesion under it); the box ends at the image's right edge if the text is wider.
+  auto text = [&](const std::string& s, int y) {
+    int baseline = 0;
+    const cv::Size sz = cv::getTextSize(s, cv::FONT_HERSHEY_SIMPLEX, textScale, thick, &baseline);
+    const int x = std::max(0, std::min(x0 - 2, image.width - sz.width - 2));
+    const int pad = std::max(2, static_cast<int>(3 * scale));
+    cv::rectangle(m, {x - pad, y - sz.height - pad}, {x + sz.width + pad, y + baseline + pad / 2},
+                  cv::Scalar(0, 0, 0, 255), cv::FILLED);
+    cv::putText(m, s, {x, y}, cv::FONT_HERSHEY_SIMPLEX, textScale, cv::Scalar(255, 230, 60, 255),
+                thick, cv::LINE_AA);
+  };
   auto label = [&](double v, int y) {
     char buf[48];
     std::snprintf(buf, sizeof buf, "%.4g", v);
-    cv::putText(m, buf, {x0 - 2, y}, cv::FONT_HERSHEY_SIMPLEX, textScale, cv::Scalar(0, 0, 0, 255),
-                thick + 2, cv::LINE_AA);
-    cv::putText(m, buf, {x0 - 2, y}, cv::FONT_HERSHEY_SIMPLEX, textScale,
-                cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
+    text(buf, y);
   };
   label(hi, top - static_cast<int>(6 * scale));
   label(lo, bottom + static_cast<int>(16 * scale));
-  if (!unit.empty()) {
-    cv::putText(m, unit, {x0 - 2, bottom + static_cast<int>(32 * scale)}, cv::FONT_HERSHEY_SIMPLEX,
-                textScale, cv::Scalar(255, 230, 60, 255), thick, cv::LINE_AA);
-  }
+  if (!unit.empty()) text(unit, bottom + static_cast<int>(32 * scale));
 }
 
 }  // namespace

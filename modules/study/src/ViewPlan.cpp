@@ -323,6 +323,7 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.planeOffsetMm = v.planeOffsetMm;
     s.slabMm = v.slabMm;
     s.overlay = v.overlay;
+    s.segmentOutlines = v.segmentationOutlines;
     s.fusion = v.fusion;
     s.functionalClasses = v.functionalClasses;
     if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
@@ -440,6 +441,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.planeOffsetMm = s.planeOffsetMm;
   v.slabMm = s.slabMm;
   v.overlay = s.overlay;
+  v.segmentationOutlines = s.segmentOutlines;
   v.fusion = s.fusion;
   v.functionalClasses = s.functionalClasses;
   v.overlayOpacity = s.overlayOpacity;

@@ -138,6 +138,7 @@ struct ViewConfig {
   double planeOffsetMm = 0.0;             // mpr: plane moved along the line of sight
   double slabMm = 0.0;                    // mpr: thick-slab MIP thickness, 0 = single plane
   bool overlay = true;                    // mpr: show the functional volume when there is one
+  bool segmentationOutlines = true;       // mpr: outline the study's segmentation's segments
   bool fusion = false;                    // composite / isosurface: blend the functional colour in
   double overlayOpacity = 0.5;
   double overlayThreshold = 0.25;  // fraction of the functional value range
@@ -153,6 +154,24 @@ struct ViewConfig {
   OrbitMode orbitMode = OrbitMode::Spin;
   double orbitRangeDeg = 30.0;
   double orbitFps = 10.0;
+};
+
+// What a reader measured in `mvw view` ("measurements": {...}), saved with its state and drawn
+// again when the state is opened: spherical ROIs (centre in LPS mm, radius in mm) whose
+// statistics the viewer shows, and distance rulers between two points (LPS mm).
+struct SphereMeasurement {
+  std::array<double, 3> centre{0.0, 0.0, 0.0};
+  double radiusMm = 0.0;
+  bool operator==(const SphereMeasurement&) const = default;
+};
+struct RulerMeasurement {
+  std::array<double, 3> from{0.0, 0.0, 0.0}, to{0.0, 0.0, 0.0};
+  bool operator==(const RulerMeasurement&) const = default;
+};
+struct Measurements {
+  std::vector<SphereMeasurement> spheres;
+  std::vector<RulerMeasurement> rulers;
+  bool operator==(const Measurements&) const = default;
 };
 
 struct RenderConfig {
@@ -182,6 +201,7 @@ struct StudyConfig {
   std::optional<VolumeSource> segmentation;
   RegistrationConfig registration;
   RenderConfig render;
+  Measurements measurements;
 };
 
 StudyConfig loadStudyConfig(const std::filesystem::path& file);
