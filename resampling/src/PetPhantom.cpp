@@ -5,6 +5,7 @@
 #include <random>
 #include <utility>
 
+#include <glm/common.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "mvw/core/Check.h"
@@ -52,7 +53,7 @@ void blur(Volume& v, double sigmaMm) {
   }
 }
 
-Volume uptakeFromCt(const Volume& ct) {
+Volume uptakeFromCt(const Volume& ct, double fwhmMm) {
   Volume u(ct.dimensions(), 1, ScalarType::Float32, ct.worldFromIndex());
   const glm::ivec3 d = ct.dimensions();
   float* p = u.dataAs<float>();
@@ -82,13 +83,13 @@ Volume uptakeFromCt(const Volume& ct) {
           if (glm::length(ct.worldFromIndexPoint({i, j, k}) - centre) < radius)
             p[ct.linearIndex(i, j, k)] = 4.0f;
   }
-  blur(u, 6.0 / 2.3548);
+  blur(u, fwhmMm / 2.3548);
   return u;
 }
 
 }  // namespace
 
-PetPhantom::PetPhantom(const Volume& ct) : uptake_(uptakeFromCt(ct)) {
+PetPhantom::PetPhantom(const Volume& ct, double fwhmMm) : uptake_(uptakeFromCt(ct, fwhmMm)) {
   const glm::ivec3 d = ct.dimensions();
   centre_ = ct.worldFromIndexPoint(glm::dvec3(d - 1) * 0.5);
   for (int k = 0; k < d.z; k += 7)
@@ -97,11 +98,15 @@ PetPhantom::PetPhantom(const Volume& ct) : uptake_(uptakeFromCt(ct)) {
         if (ct.value(i, j, k) >= -300) lattice_.push_back(ct.worldFromIndexPoint({i, j, k}));
 }
 
-Volume PetPhantom::pet(const glm::dmat4& petFromCt, unsigned seed, bool followHead) const {
-  const glm::ivec3 dims(64, 64, 44);
-  const glm::dvec3 middle = followHead ? glm::dvec3(petFromCt * glm::dvec4(centre_, 1.0)) : centre_;
-  const glm::dvec3 origin = middle - 4.0 * glm::dvec3(dims - 1) * 0.5;
-  const Grid grid{dims, makeWorldFromIndex(origin, {4, 4, 4}, glm::dmat3(1.0))};
+Volume PetPhantom::pet(const glm::dmat4& petFromCt, unsigned seed,
+                       const PetGridOptions& options) const {
+  MVW_CHECK(options.voxelMm > 0.0 && options.noise >= 0.0);
+  const double v = options.voxelMm;
+  const glm::ivec3 dims(glm::round(glm::dvec3(256.0, 256.0, 176.0) / v));
+  const glm::dvec3 middle =
+      options.followHead ? glm::dvec3(petFromCt * glm::dvec4(centre_, 1.0)) : centre_;
+  const glm::dvec3 origin = middle - v * glm::dvec3(dims - 1) * 0.5;
+  const Grid grid{dims, makeWorldFromIndex(origin, {v, v, v}, glm::dmat3(1.0))};
   // resample reads the source (CT world) at fixedFromMoving^-1 = ctFromPet of each PET voxel:
   // with the PET as resample's "fixed" grid, petFromCt is its fixedFromMoving.
   ResampleOptions linear;
@@ -111,8 +116,9 @@ Volume PetPhantom::pet(const glm::dmat4& petFromCt, unsigned seed, bool followHe
   std::normal_distribution<double> gauss(0.0, 1.0);
   float* p = pet.dataAs<float>();
   for (std::size_t n = 0; n < pet.voxelCount(); ++n)
-    p[n] = static_cast<float>(std::max(
-        0.0, p[n] + 0.1 * std::sqrt(std::max<double>(p[n], 0.0)) * gauss(rng) + 0.01 * gauss(rng)));
+    p[n] = static_cast<float>(
+        std::max(0.0, p[n] + options.noise * std::sqrt(std::max<double>(p[n], 0.0)) * gauss(rng) +
+                          0.1 * options.noise * gauss(rng)));
   pet.metadata().modality = "PT";
   return pet;
 }

@@ -4,8 +4,9 @@
 // unit tests and `mvw bench register` so both measure the same thing.
 //
 // Uptake from HU (soft tissue and brain medium, bone low, air none) plus two hot spheres,
-// blurred to 6 mm FWHM, read onto a 4 mm grid under the known transform, with seeded
-// count-like noise (Poisson-like, sigma = 0.1 sqrt(value), plus a small floor).
+// blurred to a scanner's resolution (6 mm FWHM by default), read onto a grid of 4 mm voxels
+// (or any size) under the known transform, with seeded count-like noise (Poisson-like,
+// sigma = noise sqrt(value), plus a floor of noise / 10; noise 0.1 by default).
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -15,16 +16,29 @@
 
 namespace mvw::resampling {
 
+struct PetGridOptions {
+  // Isotropic voxel size; the field of view stays 256 x 256 x 176 mm (64 x 64 x 44 voxels of
+  // 4 mm, 51 x 51 x 35 of 5 mm).
+  double voxelMm = 4.0;
+  double noise = 0.1;  // sigma of the noise at uptake 1 (soft tissue)
+  // Centre the grid on where the head lands in the PET world, for shifts larger than a field
+  // of view; otherwise on the CT's centre.
+  bool followHead = false;
+};
+
 class PetPhantom {
  public:
-  // `ct`: a CT in HU (any scalar type, component 0 is used). Only its uptake map, centre and
-  // TRE lattice are kept.
-  explicit PetPhantom(const Volume& ct);
+  // `ct`: a CT in HU (any scalar type, component 0 is used). Only its uptake map (blurred to
+  // fwhmMm), centre and TRE lattice are kept.
+  explicit PetPhantom(const Volume& ct, double fwhmMm = 6.0);
 
   // The PET-like volume whose world relates to the CT's by petFromCt (movingFromFixed).
-  // The 64 x 64 x 44 grid of 4 mm voxels is centred on the CT's centre, or (followHead) on
-  // where the head lands in the PET world, for shifts larger than a field of view.
-  Volume pet(const glm::dmat4& petFromCt, unsigned seed, bool followHead = false) const;
+  Volume pet(const glm::dmat4& petFromCt, unsigned seed, const PetGridOptions& grid) const;
+  Volume pet(const glm::dmat4& petFromCt, unsigned seed, bool followHead = false) const {
+    PetGridOptions grid;
+    grid.followHead = followHead;
+    return pet(petFromCt, seed, grid);
+  }
 
   // Mean distance (mm) between the estimated and the true PET position of the lattice
   // points: every 10th voxel in i and j and every 7th in k of the CT, where it is above
