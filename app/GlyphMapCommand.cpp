@@ -45,7 +45,8 @@ void addGlyphMapCommand(CLI::App& app) {
   cmd->add_option("--size", g->settings.size, "Voxels per side")->check(CLI::Range(8, 512));
   cmd->add_option("--count", g->settings.count, "Number of glyphs")->check(CLI::Range(1, 255));
   cmd->add_option("--diameter", g->settings.diameter, "Glyph diameter in map voxels");
-  cmd->add_option("--seed", g->settings.seed, "Random seed of the positions");
+  cmd->add_option("--seed", g->settings.seed, "Random seed of the positions")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--voxel-mm", g->voxelMm, "Voxel size written to the file")
       ->check(CLI::PositiveNumber);
   cmd->callback([g] {

@@ -65,7 +65,7 @@ void addPhantomCommand(CLI::App& app) {
       ->check(CLI::Range(16, 512));
   cmd->add_option("--generations", ph->vessels.generations, "Branching generations")
       ->check(CLI::Range(1, 12));
-  cmd->add_option("--seed", ph->vessels.seed, "Random seed");
+  cmd->add_option("--seed", ph->vessels.seed, "Random seed")->check(CLI::NonNegativeNumber);
   cmd->add_option("--noise", ph->vessels.noiseSigma, "Noise sigma")->check(CLI::NonNegativeNumber);
   cmd->callback([ph] {
     ph->vessels.dimensions = glm::ivec3(ph->vessels.dimensions.x);
@@ -83,7 +83,7 @@ void addPhantomCommand(CLI::App& app) {
                    "Rotation about x, y, z in degrees (ITK Euler order)")
       ->expected(3);
   petCmd->add_option("--shift", pet->shiftMm, "Translation in mm")->expected(3);
-  petCmd->add_option("--seed", pet->seed, "Noise seed");
+  petCmd->add_option("--seed", pet->seed, "Noise seed")->check(CLI::NonNegativeNumber);
   petCmd->callback([pet] { runPetPhantom(*pet); });
 }
 

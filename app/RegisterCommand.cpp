@@ -225,7 +225,8 @@ void addRegisterCommand(CLI::App& app) {
                   "Initialisation: auto, world (headers as they are), centre (bounding boxes), "
                   "mass (centroids)")
       ->check(CLI::IsMember({"auto", "world", "centre", "mass"}));
-  cmd->add_option("--seed", opt->seed, "Seed of the sample points (same seed, same result)");
+  cmd->add_option("--seed", opt->seed, "Seed of the sample points (same seed, same result)")
+      ->check(CLI::NonNegativeNumber);  // CLI11 would wrap -3 into an unsigned seed
   cmd->add_flag(
       "--affine", opt->affine,
       "After the rigid stage, an affine one (12 degrees of freedom: scaling and shear too)");

@@ -117,7 +117,13 @@ std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& give
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
   return refuseOutOfMemory(path, [&]() -> std::vector<Volume> {
-    switch (detectFormat(path)) {
+    const FileFormat format = detectFormat(path);
+    // A series is chosen among a DICOM folder's; asked of any other file, it was a mistake.
+    if (format != FileFormat::Dicom && format != FileFormat::Unknown && !options.series.empty())
+      throw InputError(path, "a series ('" + options.series +
+                                 "') can be chosen only in DICOM, and this is a " +
+                                 (format == FileFormat::Nifti ? "NIfTI" : "MetaImage") + " file");
+    switch (format) {
       case FileFormat::Dicom:
         return finished(detail::readDicom(path, options, true), path);
       case FileFormat::Nifti: {
