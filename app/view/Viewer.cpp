@@ -1,5 +1,6 @@
 #include "Viewer.h"
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <optional>
@@ -8,6 +9,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <glm/common.hpp>
 
 #include "GlfwContext.h"
 #include "ViewerPanel.h"
@@ -48,6 +50,29 @@ class ImGuiSession {
   ImGuiSession& operator=(const ImGuiSession&) = delete;
 };
 
+// The colour bar `mvw render` burns in (app/RenderCommand.cpp, which this must follow:
+// tests/view/viewer-xvfb compares the panes as shown with annotated headless renders byte for
+// byte): the overlay's or fusion's map, else the image's own over its window; grey: none.
+void drawColourBar(Image& shown, const ViewerState& state, const render::VolumeRenderer& renderer,
+                   const render::RenderSettings& s) {
+  const Volume* functional = state.functional();
+  const bool overlayShown =
+      functional && (s.mode == render::RenderMode::Mpr ? s.overlay : s.fusion);
+  if (overlayShown) {
+    auto [flo, fhi] = renderer.functionalRange();
+    if (s.functionalHigh > s.functionalLow) flo = s.functionalLow, fhi = s.functionalHigh;
+    if (s.overlayColors)
+      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, *s.overlayColors);
+    else
+      render::drawColourBar(shown, flo, fhi, functional->metadata().unit);
+  } else if (render::showsImageColors(s)) {
+    const auto [lo, hi] = state.scene().valueRange;
+    const WindowLevel w = windowOrFullRange(s.window, s.level, lo, hi);
+    render::drawColourBar(shown, w.level - 0.5 * w.window, w.level + 0.5 * w.window,
+                          state.anatomical().metadata().unit, *s.imageColors);
+  }
+}
+
 void renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
                       ViewerPanel::PaneTextures& textures, bool interacting) {
   for (int p = 0; p < kPaneCount; ++p) {
@@ -57,27 +82,21 @@ void renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     Image shown = f.image;
     render::annotate(shown, f.camera, state.caption(p, s));
     render::drawGlyphLegend(shown, state.glyphLegend(p, s));
-    // The colour bar as `mvw render` draws it: the overlay's map where the functional volume
-    // is shown, else the image's own map over its window (a grey image has none).
-    const Volume* functional = state.functional();
-    const bool overlayShown =
-        functional && (s.mode == render::RenderMode::Mpr ? s.overlay : s.fusion);
-    if (overlayShown) {
-      auto [flo, fhi] = state.scene().functionalRange;
-      if (s.functionalHigh > s.functionalLow) flo = s.functionalLow, fhi = s.functionalHigh;
-      if (s.overlayColors)
-        render::drawColourBar(shown, flo, fhi, functional->metadata().unit, *s.overlayColors);
-      else
-        render::drawColourBar(shown, flo, fhi, functional->metadata().unit);
-    } else if (render::showsImageColors(s)) {
-      const auto [lo, hi] = state.scene().valueRange;
-      const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
-      render::drawColourBar(shown, wl.level - 0.5 * wl.window, wl.level + 0.5 * wl.window,
-                            state.anatomical().metadata().unit, *s.imageColors);
-    }
+    drawColourBar(shown, state, renderer, s);
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting);
   }
+}
+
+// The pane's rectangle of the window's image, clipped to the window.
+Image paneOf(const Image& window, glm::ivec2 origin, glm::ivec2 size) {
+  const glm::ivec2 lo = glm::clamp(origin, glm::ivec2(0), glm::ivec2(window.width, window.height));
+  const glm::ivec2 hi =
+      glm::clamp(origin + size, glm::ivec2(0), glm::ivec2(window.width, window.height));
+  Image pane(hi.x - lo.x, hi.y - lo.y);
+  for (int y = 0; y < pane.height; ++y)
+    std::copy_n(window.pixel(lo.x, lo.y + y), 4 * pane.width, pane.pixel(0, y));
+  return pane;
 }
 
 }  // namespace
@@ -146,6 +165,10 @@ int runViewer(ViewerOptions options) {
       io::writePng(framebuffer.read(), *file);
       state.setStatus("saved " + file->string());
     }
+    if (auto shot = state.takePaneScreenshotRequest())
+      io::writePng(
+          paneOf(framebuffer.read(), state.paneOrigin(shot->first), state.paneSize(shot->first)),
+          shot->second);
     glfwSwapBuffers(context.window());
     ++frames;
     if (!state.anyDirty() && script.empty() && !state.registering())

@@ -151,6 +151,7 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
   const render::DisplayTexture& texture = textures_[static_cast<std::size_t>(pane)];
   state_.setPaneSize(pane, glm::ivec2(std::max(8, static_cast<int>(size.x)),
                                       std::max(8, static_cast<int>(size.y))));
+  state_.setPaneOrigin(pane, glm::ivec2(static_cast<int>(pos.x), static_cast<int>(pos.y)));
   ImGui::SetCursorScreenPos(pos);
   ImGui::PushID(pane);
   ImGui::InvisibleButton("pane", size,

@@ -110,6 +110,10 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
   } else if (cmd == "screenshot" || cmd == "save-config") {
     c.kind = cmd == "screenshot" ? Kind::Screenshot : Kind::SaveConfig;
     c.file = in.word("file");
+  } else if (cmd == "screenshot-pane") {
+    c.kind = Kind::PaneScreenshot;
+    c.pane = in.pane();
+    c.file = in.word("file");
   } else if (cmd == "dump") {
     c.kind = Kind::Dump;
     c.pane = in.pane();
@@ -242,6 +246,9 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Screenshot:
       state.requestScreenshot(c.file);
+      break;
+    case Kind::PaneScreenshot:
+      state.requestPaneScreenshot(c.pane, c.file);
       break;
     case Kind::SaveConfig:
       state.saveConfig(c.file);

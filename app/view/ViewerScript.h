@@ -6,6 +6,7 @@
 //   wheel PANE n                        n wheel notches
 //   wait FRAMES                         let FRAMES frames pass
 //   screenshot FILE                     the whole window as drawn, PNG
+//   screenshot-pane PANE FILE           the pane's rectangle of the window as drawn, PNG
 //   save-config FILE                    the state as a study config (Ctrl+S)
 //   dump PANE FILE                      the pane's full-resolution render, without annotations
 //   colormap 3d|mpr|overlay NAME        a colour map chooser (grey, grey-inverted, hot-iron, pet,
@@ -45,6 +46,7 @@ class ViewerScript {
       Wheel,
       Wait,
       Screenshot,
+      PaneScreenshot,
       SaveConfig,
       Dump,
       Colormap,

@@ -143,6 +143,10 @@ class ViewerState {
   // Rendering: the window loop sets each pane's size, renders the panes that need it with
   // renderSettings(), and reports each frame back.
   void setPaneSize(int pane, glm::ivec2 size);  // marks the pane dirty when it changes
+  // Where the panel drew the pane this frame (window pixels, top left; size: setPaneSize).
+  void setPaneOrigin(int pane, glm::ivec2 topLeft) { pane_(pane).origin = topLeft; }
+  glm::ivec2 paneOrigin(int pane) const { return pane_(pane).origin; }
+  glm::ivec2 paneSize(int pane) const { return pane_(pane).size; }
   bool needsRender(int pane) const;
   // As rendered at the pane's size; while interacting the 3D pane renders coarse.
   render::RenderSettings renderSettings(int pane, bool interacting = false) const;
@@ -160,6 +164,14 @@ class ViewerState {
   // A screenshot is taken by the window once the frame is fully drawn.
   void requestScreenshot(std::filesystem::path file) { screenshot_ = std::move(file); }
   std::optional<std::filesystem::path> takeScreenshotRequest();
+  // The pane as the window shows it (its rectangle of the framebuffer: the render with its
+  // annotations, and the crosshair on an MPR pane), taken as the whole-window screenshot is.
+  void requestPaneScreenshot(int pane, std::filesystem::path file) {
+    paneScreenshot_ = {pane, std::move(file)};
+  }
+  std::optional<std::pair<int, std::filesystem::path>> takePaneScreenshotRequest() {
+    return std::exchange(paneScreenshot_, std::nullopt);
+  }
   void requestQuit() { quit_ = true; }
   bool quitRequested() const { return quit_; }
   void setStatus(std::string status) { status_ = std::move(status); }
@@ -234,6 +246,7 @@ class ViewerState {
     bool dirty = true;
     bool rendered = false;
     glm::ivec2 size{0};
+    glm::ivec2 origin{0};
     render::Camera camera;  // of the last frame: clicks and the wheel move along its axes
     Image raw;  // as rendered: what `mvw render --no-annotate` gives for the saved state
   };
@@ -273,6 +286,7 @@ class ViewerState {
   bool quit_ = false;
   std::string status_;
   std::optional<std::filesystem::path> screenshot_;
+  std::optional<std::pair<int, std::filesystem::path>> paneScreenshot_;
   std::string registration_;
   RegistrationWorker::Job job_;
   RegistrationWorker worker_;  // last: joined before anything its job reads goes away

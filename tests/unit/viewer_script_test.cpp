@@ -83,6 +83,18 @@ TEST(ViewerScript, ParsesEveryCommand) {
   EXPECT_EQ(c[14].line, 15);
 }
 
+// A pane as the window shows it: its rectangle of the framebuffer, taken after the frame.
+TEST(ViewerScript, ScreenshotPaneNamesThePaneAndTheFile) {
+  const ViewerScript s = ViewerScript::parse("screenshot-pane sagittal out/s.png\n", "t.script");
+  ASSERT_EQ(s.commands().size(), 1u);
+  EXPECT_EQ(s.commands()[0].kind, Kind::PaneScreenshot);
+  EXPECT_EQ(s.commands()[0].pane, kSagittal);
+  EXPECT_EQ(s.commands()[0].file, std::filesystem::path("out/s.png"));
+  EXPECT_EQ(problemOf("screenshot-pane axial"), "line 1: screenshot-pane: missing file");
+  EXPECT_EQ(problemOf("screenshot-pane top a.png"),
+            "line 1: unknown pane 'top' (3d, axial, coronal, sagittal)");
+}
+
 TEST(ViewerScript, BadLinesNameTheLineAndTheProblem) {
   EXPECT_EQ(problemOf("wait 1\nzoom 3d 2\n"), "line 2: unknown command 'zoom'");
   EXPECT_EQ(problemOf("click oblique 0.5 0.5"),
