@@ -412,6 +412,11 @@ config::ViewConfig ViewerState::viewConfigOf(int pane) const {
   config::ViewConfig v =
       mvw::study::describeView(renderSettings(pane), std::string("view-") + kPaneNames[pane],
                                pane == k3d ? presetName_ : "");
+  // Glyphs shown over the functional volume's full range (G on a view without a window): saved
+  // as that range, or `mvw render` would give the glyph view its default window instead.
+  if (pane == k3d && v.glyphs && !v.functionalWindow && v.functionalClasses == 0)
+    v.functionalWindow =
+        std::array<double, 2>{scene_.functionalRange.first, scene_.functionalRange.second};
   if (pane != k3d)
     v.view = *config::parseViewName(
         kPaneNames[pane]);  // axial, coronal, sagittal: the planes' own names
