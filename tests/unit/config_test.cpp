@@ -278,6 +278,8 @@ TEST(StudyConfig, FullySetStudyLoadsBackFieldByField) {
   c.functionalKind = FunctionalKind::Dose;
   c.segmentation = VolumeSource{dir / "seg.nii", "9", FrameChoice{false, 1}, 0.5};
   c.registration = {RegistrationMethod::File, dir / "t.tfm", 20.0};
+  c.measurements.spheres = {{{1.0, -2.0, 3.0}, 7.5}};
+  c.measurements.rulers = {{{0.0, 0.0, 0.0}, {10.0, 0.0, 5.0}}};
   ViewConfig v;
   v.name = "only";
   v.zoom = 2.0;
@@ -330,6 +332,23 @@ TEST(StudyConfig, FullySetStudyLoadsBackFieldByField) {
   for (const char* key : {"series", "frame", "slice_spacing_mm"})
     for (const char* source : {"anatomical", "functional", "segmentation"})
       EXPECT_TRUE(full[source].contains(key)) << source << "." << key << " is not written";
+  EXPECT_EQ(d.measurements, c.measurements);
+  // From the field tables, so a key added later is covered without touching this test: every
+  // key path is written, away from a default study's value (a new key fails here until the
+  // fully set study above sets it).
+  for (const std::string& path : studyConfigKeyPaths()) {
+    if (path == "render.views") continue;  // config_fields_test, from the view table
+    const auto dot = path.find('.');
+    const std::string key = path.substr(0, dot);
+    ASSERT_TRUE(full.contains(key)) << key << " is not written";
+    if (dot == std::string::npos) continue;
+    const std::string sub = path.substr(dot + 1);
+    EXPECT_TRUE(full[key].contains(sub)) << path << " is not written";
+    if (sub != "path" && full[key].contains(sub))
+      EXPECT_NE(full[key][sub],
+                def.value(key, nlohmann::json::object()).value(sub, nlohmann::json()))
+          << path << " left at its default";
+  }
 }
 
 }  // namespace

@@ -633,4 +633,26 @@ std::optional<Sampling> parseSampling(const std::string& name) {
 }
 std::string viewNameList() { return detail::namesOf(kViewNames); }
 
+std::vector<std::string> studyConfigKeyPaths() {
+  std::vector<std::string> out;
+  auto below = [&](const std::string& key, const std::vector<std::string>& keys) {
+    for (const std::string& k : keys) out.push_back(key + "." + k);
+  };
+  for (const std::string& key : studyTable().keys()) {
+    if (key == "anatomical" || key == "segmentation")
+      below(key, sourceTable(false).keys());
+    else if (key == "functional")
+      below(key, sourceTable(true).keys());
+    else if (key == "registration")
+      below(key, registrationTable().keys());
+    else if (key == "render")
+      below(key, renderTable().keys());
+    else if (key == "measurements")
+      below(key, measurementsTable().keys());
+    else
+      out.push_back(key);  // a value, or an object added later: checked whole
+  }
+  return out;
+}
+
 }  // namespace mvw::config

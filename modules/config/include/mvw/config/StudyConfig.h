@@ -221,6 +221,9 @@ ViewConfig parseViewConfig(const nlohmann::json& view, const std::filesystem::pa
 nlohmann::json viewConfigJson(const ViewConfig& view);
 // The keys of a view object, from its field table ("glyphs" and "depth_cue" are objects).
 std::vector<std::string> viewConfigKeys();
+// Every key of a study object below its top level, from the field tables ("anatomical.series",
+// "registration.method", "measurements.spheres", "render.views", ...; "name" at the top).
+std::vector<std::string> studyConfigKeyPaths();
 // The config's names of its enumerations, and their parsers (nullopt for an unknown name).
 std::string toString(FunctionalKind kind);
 std::string toString(ViewName view);
