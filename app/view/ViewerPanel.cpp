@@ -175,8 +175,10 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
       else
         state_.beginMeasurement(pane, tool, fx, fy);
     }
-    // A still mouse leaves the cursor where a script's hover put it.
-    if (pane != k3d && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || !state_.cursor()))
+    // Only a moving mouse sets the cursor: a still one leaves it where a script's hover put it,
+    // and a pointer that merely rests over a pane when the window opens shows no readout there
+    // (it would differ from the pane's headless render).
+    if (pane != k3d && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0))
       state_.setCursor(pane, fx, fy);
   }
   for (int b = 0; b < 3; ++b)
