@@ -35,6 +35,7 @@ struct BenchOptions {
   double stepMm = 0.0;
   bool noShading = false;
   std::string gl;
+  std::string gradient = "auto";
 };
 
 void runBench(const BenchOptions& o) {
@@ -49,14 +50,16 @@ void runBench(const BenchOptions& o) {
   auto context = makeHeadlessContext(o.gl);
   const Volume volume = mvw::study::readSource(study.anatomical);
   const auto t0 = std::chrono::steady_clock::now();
-  render::VolumeRenderer renderer(*context, volume);
+  render::VolumeRenderer renderer(*context, volume, render::parseGradientSource(o.gradient));
   const double uploadMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const glm::ivec3 d = volume.dimensions();
   std::printf("mvw bench render: %s, %s, %s, %d x %d x %d, %d x %d pixels, %d frames per mode\n",
               context->backend().c_str(), context->renderer().c_str(), context->version().c_str(),
               d.x, d.y, d.z, o.size, o.size, o.frames);
-  std::printf("  upload (volume, gradient, blocks): %.0f ms\n", uploadMs);
+  std::printf("  upload (volume, gradient, blocks): %.0f ms, gradient from the %s\n", uploadMs,
+              renderer.gradientSource() == render::GradientSource::Texture ? "texture"
+                                                                           : "shader (on the fly)");
   for (render::RenderMode mode : modes) {
     render::RenderSettings s;
     s.mode = mode;
@@ -101,6 +104,7 @@ void addBenchCommand(CLI::App& app) {
                   "Sample distance in mm (default: half the smallest spacing)");
   cmd->add_flag("--no-shading", o->noShading, "Composite without Phong shading");
   addGlOption(*cmd, o->gl);
+  addGradientOption(*cmd, o->gradient);
   cmd->callback([o] { runBench(*o); });
   addBenchRegisterCommand(*bench);
   addBenchFeaturesCommand(*bench);

@@ -14,6 +14,13 @@ void addGlOption(CLI::App& cmd, std::string& gl) {
       ->check(CLI::IsMember({"auto", "egl", "egl-device", "egl-surfaceless", "osmesa"}));
 }
 
+void addGradientOption(CLI::App& cmd, std::string& gradient) {
+  cmd.add_option("--gradient", gradient,
+                 "Shading gradient: texture (precomputed, 8 bytes a voxel), shader (on the fly, "
+                 "no memory) or auto (the texture up to 512 MiB of it; default)")
+      ->check(CLI::IsMember({"auto", "texture", "shader"}));
+}
+
 GlChoice resolveGl(const std::string& option) {
   if (!option.empty()) return {*render::parseGlRequest(option), "--gl " + option};
   const render::GlRequest request = render::glRequestFromEnvironment();

@@ -11,6 +11,9 @@
 namespace mvw::app {
 
 void addGlOption(CLI::App& cmd, std::string& gl);
+// --gradient auto|texture|shader: where shading takes the anatomy's gradient from
+// (render::GradientSource); empty means auto.
+void addGradientOption(CLI::App& cmd, std::string& gradient);
 
 // The request the option (empty: not given) and MVW_GL make, and where it came from
 // ("--gl egl", "MVW_GL=egl" or "auto"). Throws InputError for an unknown MVW_GL.

@@ -45,6 +45,7 @@ struct RenderOptions {
   std::string outDir;
   mvw::study::ViewOverrides overrides;
   std::string gl;  // --gl (empty: MVW_GL, else auto)
+  std::string gradient = "auto";
 };
 
 std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
@@ -105,7 +106,7 @@ void runRender(const RenderOptions& o) {
   const Volume& anatomy = volumes.anatomical;
   const std::optional<Volume>& functional = volumes.functional;
 
-  render::VolumeRenderer renderer(*context, anatomy);
+  render::VolumeRenderer renderer(*context, anatomy, render::parseGradientSource(o.gradient));
   // The study's "registration" places the functional volume (none: by world coordinates).
   std::optional<mvw::study::FunctionalPlacement> placement;
   if (functional) {
@@ -302,6 +303,7 @@ void runRender(const RenderOptions& o) {
   report["gl_backend"] = context->backend();
   report["gl_renderer"] = context->renderer();
   report["gl_version"] = context->version();
+  report["gradient"] = render::toString(renderer.gradientSource());
   report["mvw_version"] = kVersion;
   report["views"] = nlohmann::json::array();
   for (const auto& out : outputs) {
@@ -366,6 +368,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_flag("--no-annotate", o->overrides.noAnnotate,
                 "No orientation labels, scale bar or caption");
   addGlOption(*cmd, o->gl);
+  addGradientOption(*cmd, o->gradient);
   cmd->callback([o] {
     if (o->overrides.window.has_value() != o->overrides.level.has_value())
       throw InputError(o->study, "--window and --level go together");

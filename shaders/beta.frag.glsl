@@ -1,6 +1,7 @@
 // The functional attribute (0..1 through the view's window or classes) at the centres of one
 // slice of anatomical voxels: the renderer writes it into the gradient texture's alpha with
-// an alpha-only colour mask, so glyph shading reads beta with the gradient in the ray loop.
+// an alpha-only colour mask, so glyph shading reads beta with the gradient in the ray loop
+// (with the gradient taken on the fly, into the red of an attribute volume of its own).
 #include "common/functional.glsl"
 
 uniform mat4 uWorldFromIndex;  // anatomical voxel index -> world (LPS mm)
@@ -10,5 +11,6 @@ layout(location = 0) out vec4 fragColor;
 
 void main() {
   vec3 world = (uWorldFromIndex * vec4(gl_FragCoord.xy - 0.5, uSlice, 1.0)).xyz;
-  fragColor = vec4(0.0, 0.0, 0.0, functionalFraction(world));
+  float beta = functionalFraction(world);
+  fragColor = vec4(beta, 0.0, 0.0, beta);  // the colour mask keeps the target's channel
 }

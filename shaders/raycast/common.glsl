@@ -15,9 +15,11 @@ struct VolumeInfo {
 };
 
 uniform VolumeInfo uVolume;
-uniform sampler3D uIntensity;  // R32F, physical values (HU, SUV, ...)
+uniform sampler3D uIntensity;  // R16 (normalised) or R32F: texel * x + y of uValueMapping
+uniform vec2 uValueMapping;    // is the physical value (HU, SUV, ...)
 uniform sampler3D uGradient;   // RGBA16F: world-space gradient (unit/mm) in RGB; in A the functional
-                               // attribute mapped to 0..1 on this grid (glyph beta), 0 without one
+                               // attribute mapped to 0..1 on this grid (glyph beta), 0 without one.
+                               // MVW_GRADIENT_ON_THE_FLY: R16F, the attribute alone, in R
 uniform usampler3D uBlocks;    // R8UI per 8^3 voxel block: 1 if the transfer function can show it
 uniform sampler3D uBlockRange; // RG32F per block: min and max value (one-voxel apron included)
 uniform float uBlockVoxels;    // voxels per block side
@@ -90,8 +92,30 @@ float jitterOffset() {
 
 // Level 0 explicitly: the volumes have no mipmaps, and implicit derivatives inside the ray
 // loop cost a software rasteriser dearly.
-float sampleValue(vec3 tex) { return textureLod(uIntensity, tex, 0.0).r; }
+float sampleValue(vec3 tex) {
+  return textureLod(uIntensity, tex, 0.0).r * uValueMapping.x + uValueMapping.y;
+}
+#if defined(MVW_GRADIENT_ON_THE_FLY)
+// Central differences of the trilinear intensity one voxel either side along i, j, k, turned
+// into a world gradient (unit/mm): no gradient volume in memory, six samples per call.
+uniform vec3 uTexel;             // 1 / dimensions
+uniform mat3 uGradientFromDelta; // direction * diag(1 / (2 spacing))
+vec4 sampleGradient(vec3 tex) {
+  vec3 delta = vec3(sampleValue(tex + vec3(uTexel.x, 0.0, 0.0)) -
+                        sampleValue(tex - vec3(uTexel.x, 0.0, 0.0)),
+                    sampleValue(tex + vec3(0.0, uTexel.y, 0.0)) -
+                        sampleValue(tex - vec3(0.0, uTexel.y, 0.0)),
+                    sampleValue(tex + vec3(0.0, 0.0, uTexel.z)) -
+                        sampleValue(tex - vec3(0.0, 0.0, uTexel.z)));
+#if defined(MVW_GLYPHS)
+  return vec4(uGradientFromDelta * delta, textureLod(uGradient, tex, 0.0).r);
+#else
+  return vec4(uGradientFromDelta * delta, 0.0);
+#endif
+}
+#else
 vec4 sampleGradient(vec3 tex) { return textureLod(uGradient, tex, 0.0); }
+#endif
 
 ivec3 blockOf(vec3 tex) {
   return clamp(ivec3(floor(tex * uVolume.dimensions / uBlockVoxels)), ivec3(0),

@@ -9,6 +9,7 @@
 #include <glm/vec4.hpp>
 
 #include "GlObjects.h"
+#include "mvw/core/Volume.h"
 
 namespace mvw::render::detail {
 
@@ -16,8 +17,8 @@ class BlockGrid {
  public:
   static constexpr int kBlockVoxels = 8;
 
-  // `values` x fastest over `dims`. The context must be current.
-  BlockGrid(const std::vector<float>& values, glm::ivec3 dims);
+  // Of the volume's component 0, NaN ("no data") left out. The context must be current.
+  explicit BlockGrid(const Volume& volume);
 
   // Marks the blocks whose value range meets a non-transparent entry of `lut` (sampled over
   // lo..hi); with `skipEmpty` false (modes that see every sample) all blocks are visible.

@@ -40,8 +40,9 @@ void GlyphTextures::uploadMap(const GlyphMapSettings& g) {
 }
 
 // Beta sits in the gradient's alpha so that the ray loop reads it with the gradient instead of
-// sampling a second volume per step.
-void GlyphTextures::updateBeta(const VolumeTextures& volume, const FunctionalTextures& functional,
+// sampling a second volume per step (with the gradient taken on the fly, in an R16F volume of
+// its own: VolumeTextures::betaTarget).
+void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures& functional,
                                glm::vec2 window, int classes, const std::vector<LabelGlyph>& labels,
                                const ShaderProgram& p, GLuint vao) {
   // Chosen labels: a table over label numbers, 1 for a bump, just above 0 for a dimple (the
@@ -71,23 +72,26 @@ void GlyphTextures::updateBeta(const VolumeTextures& volume, const FunctionalTex
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_3D, functional.texture());
   glUniform1i(p.uniform("uFunctional"), 0);
+  const GLuint target = volume.betaTarget();
   Framebuffer fbo = makeFramebuffer();
   glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   const GLenum buffer = GL_COLOR_ATTACHMENT0;
   glDrawBuffers(1, &buffer);
-  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, volume.gradient(), 0, 0);
+  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, 0, 0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    throw Error("the GL cannot render into the gradient volume (RGBA16F) for glyph shading");
+    throw Error("the GL cannot render into the glyph attribute volume for glyph shading");
   }
   const glm::ivec3 dims = volume.dims();
   glViewport(0, 0, dims.x, dims.y);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);  // alpha only: keep the gradient
+  // Only the attribute's channel: the gradient texture keeps its gradient in RGB.
+  const int channel = volume.betaChannel();
+  glColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
   glBindVertexArray(vao);
   for (int k = 0; k < dims.z; ++k) {
-    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, volume.gradient(), 0, k);
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, 0, k);
     glUniform1f(p.uniform("uSlice"), float(k));
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }

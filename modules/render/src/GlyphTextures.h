@@ -26,8 +26,8 @@ class GlyphTextures {
   // volume's gradient texture with `betaProgram` (beta.frag.glsl) one slice at a time, unless
   // the gradient already holds it. Leaves the default framebuffer bound.
   // `labels` (when not empty) chooses which labels get glyphs, bumps or dimples.
-  void updateBeta(const VolumeTextures& volume, const FunctionalTextures& functional,
-                  glm::vec2 window, int classes, const std::vector<LabelGlyph>& labels,
+  void updateBeta(VolumeTextures& volume, const FunctionalTextures& functional, glm::vec2 window,
+                  int classes, const std::vector<LabelGlyph>& labels,
                   const ShaderProgram& betaProgram, GLuint vao);
 
   // The glyph centres' uniform block and the map's scale, for glyphs of diameterMm; the DVR

@@ -12,6 +12,9 @@ namespace mvw::render::detail {
 
 class RaycastPrograms {
  public:
+  // gradientOnTheFly: composite and isosurface take the gradient from the intensity
+  // (MVW_GRADIENT_ON_THE_FLY) instead of the gradient texture.
+  explicit RaycastPrograms(bool gradientOnTheFly) : gradientOnTheFly_(gradientOnTheFly) {}
   // The program for a ray-cast mode (not the shell modes) with the variants `settings` and
   // `fusion` (the functional colour blended in) ask for.
   const ShaderProgram& forMode(RenderMode mode, const RenderSettings& settings, bool fusion);
@@ -21,6 +24,7 @@ class RaycastPrograms {
  private:
   const ShaderProgram& cached(const std::string& key, const std::string& fragment,
                               const std::vector<std::string>& defines);
+  bool gradientOnTheFly_;
   std::map<std::string, ShaderProgram> programs_;
 };
 

@@ -57,13 +57,14 @@ struct VolumeRenderer::Impl {
   detail::Texture imageColormap;
   std::optional<ColorTable> imageTable;
 
-  Impl(GlContext& c, const Volume& v)
+  Impl(GlContext& c, const Volume& v, GradientSource gradient)
       : context(madeCurrent(c)),
-        volume(v),
+        volume(v, gradient),
         framing(framingSphere(v)),
         crop(v),
         defaultStep(defaultStepMm(v)),
-        blocks(volume.values(), volume.dims()),
+        blocks(v),
+        programs(volume.gradientSource() == GradientSource::OnTheFly),
         vao(detail::makeVertexArray()) {}
 
   Camera cameraFor(const RenderSettings& s) const;
@@ -176,6 +177,7 @@ void VolumeRenderer::Impl::setVolumeUniforms(const ShaderProgram& p) const {
   glUniform1f(p.uniform("uBlockVoxels"), float(detail::BlockGrid::kBlockVoxels));
   glUniform2f(p.uniform("uTransferRange"), float(1.0 / (hi - lo)), float(-lo / (hi - lo)));
   glUniform1f(p.uniform("uGradientScale"), float(transfer.gradientScale()));
+  volume.setUniforms(p);
 }
 
 // The rays: through which pixels, how far apart their samples, where they may go.
@@ -264,8 +266,8 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayCo
 
 bool showsImageColors(const RenderSettings& s) { return s.imageColors && takesImageColors(s.mode); }
 
-VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume)
-    : impl_(std::make_unique<Impl>(context, volume)) {}
+VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume, GradientSource gradient)
+    : impl_(std::make_unique<Impl>(context, volume, gradient)) {}
 
 VolumeRenderer::~VolumeRenderer() = default;
 
@@ -284,6 +286,26 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
 }
 
 std::pair<double, double> VolumeRenderer::valueRange() const { return impl_->volume.range(); }
+
+GradientSource VolumeRenderer::gradientSource() const { return impl_->volume.gradientSource(); }
+
+const char* toString(GradientSource source) {
+  switch (source) {
+    case GradientSource::Texture:
+      return "texture";
+    case GradientSource::OnTheFly:
+      return "shader";
+    case GradientSource::Auto:
+      break;
+  }
+  return "auto";
+}
+
+GradientSource parseGradientSource(const std::string& name) {
+  for (GradientSource g : {GradientSource::Auto, GradientSource::Texture, GradientSource::OnTheFly})
+    if (name == toString(g)) return g;
+  throw Error("unknown gradient source '" + name + "' (auto, texture or shader)");
+}
 
 glm::dvec3 VolumeRenderer::centre() const { return impl_->framing.centre; }
 

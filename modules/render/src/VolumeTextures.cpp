@@ -1,9 +1,13 @@
 #include "VolumeTextures.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <thread>
 
+#include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
@@ -14,22 +18,25 @@ namespace mvw::render::detail {
 
 namespace {
 
-// Central differences on the voxel grid with physical spacing (one-sided at the border),
-// turned into world (LPS) directions with the direction matrix: the seed's gradient volume.
-// The fourth component carries the functional attribute for glyph shading (see
-// GlyphTextures::updateBeta); shaders take the magnitude from the vector.
-std::vector<float> gradientOf(const std::vector<float>& v, glm::ivec3 d, const glm::dvec3& spacing,
-                              const glm::dmat3& direction) {
-  std::vector<float> g(v.size() * 4);
+// Slices per upload slab: what the CPU holds at a time while the volume and its gradient go
+// to the GL (a few MB for a 512 x 512 CT), instead of whole-volume float copies.
+constexpr int kSlabSlices = 16;
+
+// The Sobel gradient of slices k0..k1-1, from `v`: component 0 as float of slices
+// first..first+n-1, which holds k0-1..k1 where they exist. Central differences on the voxel
+// grid with physical spacing (one-sided at the border), each averaged over the 3 x 3
+// neighbours across it with weights 1 2 1, so that 8-bit data shade without contour terraces;
+// turned into world (LPS) directions with the direction matrix. The fourth component carries
+// the functional attribute for glyph shading (GlyphTextures::updateBeta), 0 here.
+void gradientSlab(const std::vector<float>& v, int first, glm::ivec3 d, int k0, int k1,
+                  const glm::dvec3& spacing, const glm::dmat3& direction, float* g) {
   auto at = [&](int i, int j, int k) {
-    return v[(static_cast<std::size_t>(k) * d.y + j) * d.x + i];
+    return v[(static_cast<std::size_t>(k - first) * d.y + j) * d.x + i];
   };
-  auto work = [&](int k0, int k1) {
+  auto work = [&](int j0, int j1) {
     for (int k = k0; k < k1; ++k)
-      for (int j = 0; j < d.y; ++j)
+      for (int j = j0; j < j1; ++j)
         for (int i = 0; i < d.x; ++i) {
-          // Central differences along each axis, averaged over the 3 x 3 neighbours across it
-          // with weights 1 2 1 (Sobel): 8-bit data then shade without contour terraces.
           glm::dvec3 local(0.0);
           const glm::ivec3 c(i, j, k);
           for (int a = 0; a < 3; ++a) {
@@ -51,40 +58,146 @@ std::vector<float> gradientOf(const std::vector<float>& v, glm::ivec3 d, const g
             local[a] = sum / weight / ((hi[a] - lo[a]) * spacing[a]);
           }
           const glm::dvec3 w = direction * local;
-          float* out = &g[((static_cast<std::size_t>(k) * d.y + j) * d.x + i) * 4];
+          float* out = &g[((static_cast<std::size_t>(k - k0) * d.y + j) * d.x + i) * 4];
           out[0] = static_cast<float>(w.x);
           out[1] = static_cast<float>(w.y);
           out[2] = static_cast<float>(w.z);
-          out[3] = 0.0f;  // the functional attribute (glyph beta), written on the GPU when needed
+          out[3] = 0.0f;
         }
   };
-  const int half = d.z / 2;
-  std::thread other(work, 0, half);
-  work(half, d.z);
+  std::thread other(work, 0, d.y / 2);
+  work(d.y / 2, d.y);
   other.join();
-  return g;
+}
+
+// How a scalar type goes to the GL: 8- and 16-bit integers exactly as 16-bit normalised texels
+// (signed ones shifted to unsigned: the normalised signed formats cannot tell -128 / -32768
+// from the next value up), everything else as 32-bit float. Not R8 for 8-bit voxels: llvmpipe
+// filters 8-bit texels with 8-bit weights, which moved isosurfaces of the 8-bit ch2better by
+// enough to flip glyph edge pixels (up to 169 grey levels on 0.06 % of the atlas golden).
+struct Layout {
+  GLenum internalFormat, type;
+  glm::dvec2 mapping;  // physical = texel (0..1 for normalised formats) * x + y
+};
+
+template <class T>
+Layout layoutOf() {
+  if constexpr (std::is_same_v<T, std::uint8_t>)
+    return {GL_R16, GL_UNSIGNED_SHORT, {65535.0, 0.0}};
+  else if constexpr (std::is_same_v<T, std::int8_t>)
+    return {GL_R16, GL_UNSIGNED_SHORT, {65535.0, -128.0}};
+  else if constexpr (std::is_same_v<T, std::uint16_t>)
+    return {GL_R16, GL_UNSIGNED_SHORT, {65535.0, 0.0}};
+  else if constexpr (std::is_same_v<T, std::int16_t>)
+    return {GL_R16, GL_UNSIGNED_SHORT, {65535.0, -32768.0}};
+  else
+    return {GL_R32F, GL_FLOAT, {1.0, 0.0}};
+}
+
+// The texel of one value in the layout above.
+template <class T>
+auto texelOf(T v) {
+  if constexpr (std::is_same_v<T, std::uint8_t> || std::is_same_v<T, std::uint16_t>)
+    return static_cast<std::uint16_t>(v);
+  else if constexpr (std::is_same_v<T, std::int8_t>)
+    return static_cast<std::uint16_t>(static_cast<int>(v) + 128);
+  else if constexpr (std::is_same_v<T, std::int16_t>)
+    return static_cast<std::uint16_t>(static_cast<int>(v) + 32768);
+  else
+    return static_cast<float>(v);
+}
+
+Texture allocate3D(glm::ivec3 dims, GLint internalFormat, GLenum format, GLenum type,
+                   const char* what) {
+  Texture texture = makeTexture();
+  glBindTexture(GL_TEXTURE_3D, texture.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, dims.x, dims.y, dims.z, 0, format, type, nullptr);
+  checkGl(what);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  setSampling(texture.id(), GL_TEXTURE_3D, true);
+  return texture;
 }
 
 }  // namespace
 
-VolumeTextures::VolumeTextures(const Volume& volume)
-    : dims_(volume.dimensions()), worldFromIndex_(volume.worldFromIndex()) {
-  const glm::dvec3 spacing = volume.spacing();
-  referenceStepMm_ = volume.smallestSpacing();
+VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
+    : dims_(volume.dimensions()),
+      worldFromIndex_(volume.worldFromIndex()),
+      spacing_(volume.spacing()),
+      direction_(volume.direction()),
+      referenceStepMm_(volume.smallestSpacing()) {
   GLint max3d = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
   if (dims_.x > max3d || dims_.y > max3d || dims_.z > max3d)
     throw Error("volume " + std::to_string(dims_.x) + " x " + std::to_string(dims_.y) + " x " +
                 std::to_string(dims_.z) + " exceeds the GL's largest 3D texture (" +
                 std::to_string(max3d) + ")");
-  values_ = valuesOf(volume);
-  const auto [lo, hi] = std::minmax_element(values_.begin(), values_.end());
-  range_ = {*lo, *hi};
-  // Sampling of the intensity (linear or nearest) is set per frame.
-  intensity_ = upload3D(dims_, GL_R32F, GL_RED, values_.data(), true, "uploading the volume");
-  const std::vector<float> gradient = gradientOf(values_, dims_, spacing, volume.direction());
-  gradient_ =
-      upload3D(dims_, GL_RGBA16F, GL_RGBA, gradient.data(), true, "uploading the gradient volume");
+  const std::size_t voxels = volume.voxelCount();
+  source_ = gradient != GradientSource::Auto ? gradient
+            : voxels * kGradientTextureBytesPerVoxel > kGradientTextureBudgetBytes
+                ? GradientSource::OnTheFly
+                : GradientSource::Texture;
+  const int nc = volume.components();
+  const std::size_t sliceVoxels = static_cast<std::size_t>(dims_.x) * dims_.y;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  // The intensity, slab by slab: component 0 converted to the layout's texels.
+  dispatchScalar(volume.scalarType(), [&](auto t) {
+    using T = decltype(t);
+    const Layout layout = layoutOf<T>();
+    internalFormat_ = layout.internalFormat;
+    mapping_ = layout.mapping;
+    intensity_ = allocate3D(dims_, GLint(layout.internalFormat), GL_RED, layout.type,
+                            "uploading the volume");
+    using Texel = decltype(texelOf(T{}));
+    std::vector<Texel> slab(sliceVoxels * kSlabSlices);
+    const T* p = reinterpret_cast<const T*>(volume.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int k0 = 0; k0 < dims_.z; k0 += kSlabSlices) {
+      const int n = std::min(kSlabSlices, dims_.z - k0);
+      const T* src = p + static_cast<std::size_t>(k0) * sliceVoxels * nc;
+      for (std::size_t i = 0; i < sliceVoxels * n; ++i) {
+        const T v = src[i * nc];
+        if constexpr (std::is_floating_point_v<T>) {
+          if (std::isfinite(v)) {
+            lo = std::min<double>(lo, v);
+            hi = std::max<double>(hi, v);
+          }
+        } else {
+          lo = std::min<double>(lo, v);
+          hi = std::max<double>(hi, v);
+        }
+        slab[i] = texelOf(v);
+      }
+      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, n, GL_RED, layout.type,
+                      slab.data());
+      checkGl("uploading the volume");
+    }
+    return 0;
+  });
+  range_ = lo <= hi ? std::pair{lo, hi} : std::pair{0.0, 0.0};
+
+  if (source_ == GradientSource::OnTheFly) return;
+  // The gradient, slab by slab from the values of the slab and one slice either side.
+  gradient_ = allocate3D(dims_, GL_RGBA16F, GL_RGBA, GL_FLOAT, "uploading the gradient volume");
+  std::vector<float> values(sliceVoxels * (kSlabSlices + 2));
+  std::vector<float> g(sliceVoxels * kSlabSlices * 4);
+  dispatchScalar(volume.scalarType(), [&](auto t) {
+    using T = decltype(t);
+    const T* p = reinterpret_cast<const T*>(volume.data());
+    for (int k0 = 0; k0 < dims_.z; k0 += kSlabSlices) {
+      const int k1 = std::min(k0 + kSlabSlices, dims_.z);
+      const int first = std::max(k0 - 1, 0), last = std::min(k1, dims_.z - 1);
+      const T* src = p + static_cast<std::size_t>(first) * sliceVoxels * nc;
+      const std::size_t count = sliceVoxels * (last - first + 1);
+      for (std::size_t i = 0; i < count; ++i) values[i] = static_cast<float>(src[i * nc]);
+      gradientSlab(values, first, dims_, k0, k1, spacing_, direction_, g.data());
+      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, k1 - k0, GL_RGBA, GL_FLOAT,
+                      g.data());
+      checkGl("uploading the gradient volume");
+    }
+    return 0;
+  });
 }
 
 void VolumeTextures::setLinear(bool linear) const {
@@ -97,6 +210,45 @@ glm::dmat4 VolumeTextures::textureFromWorld() const {
 
 std::pair<double, double> VolumeTextures::transferRange() const {
   return {range_.first, range_.second > range_.first ? range_.second : range_.first + 1.0};
+}
+
+std::vector<float> VolumeTextures::values() const {
+  const std::size_t n = static_cast<std::size_t>(dims_.x) * dims_.y * dims_.z;
+  std::vector<float> out(n);
+  glBindTexture(GL_TEXTURE_3D, intensity_.id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  auto readAs = [&](auto texel, GLenum type) {
+    std::vector<decltype(texel)> raw(n);
+    glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, type, raw.data());
+    // Integer texels map back exactly: (texel / max) * max is not exact in float.
+    const double offset = mapping_.y;
+    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<float>(double(raw[i]) + offset);
+  };
+  if (internalFormat_ == GL_R16)
+    readAs(std::uint16_t{}, GL_UNSIGNED_SHORT);
+  else
+    glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, out.data());
+  checkGl("reading the volume back");
+  return out;
+}
+
+GLuint VolumeTextures::betaTarget() {
+  if (!gradient_.id())
+    gradient_ = allocate3D(dims_, GL_R16F, GL_RED, GL_FLOAT, "making the glyph attribute volume");
+  return gradient_.id();
+}
+
+void VolumeTextures::setUniforms(const ShaderProgram& p) const {
+  glUniform2f(p.uniform("uValueMapping"), float(mapping_.x), float(mapping_.y));
+  if (source_ != GradientSource::OnTheFly) return;
+  glUniform3f(p.uniform("uTexel"), float(1.0 / dims_.x), float(1.0 / dims_.y),
+              float(1.0 / dims_.z));
+  // World gradient from the three central differences along i, j, k (texel +- 1).
+  glm::dmat3 scale(0.0);
+  for (int a = 0; a < 3; ++a) scale[a][a] = 1.0 / (2.0 * spacing_[a]);
+  const glm::mat3 gradientFromDelta(direction_ * scale);
+  glUniformMatrix3fv(p.uniform("uGradientFromDelta"), 1, GL_FALSE,
+                     glm::value_ptr(gradientFromDelta));
 }
 
 }  // namespace mvw::render::detail

@@ -1,22 +1,28 @@
 #pragma once
-// The anatomical volume on the GPU (internal to mvw_render): its values as an R32F texture and
-// its gradient as RGBA16F, plus the geometry the ray caster needs to sample them in world space.
-// The gradient's alpha is free for the functional attribute (GlyphTextures writes it).
+// The anatomical volume on the GPU (internal to mvw_render): its values in the narrowest
+// texture that holds them exactly (R16 for 8- and 16-bit voxels, R32F otherwise) with a
+// value mapping back to the physical unit, and its gradient, either precomputed (RGBA16F) or
+// taken by the shaders from the intensity (GradientSource), plus the geometry the ray caster
+// needs to sample them in world space. Nothing of the volume stays on the CPU: what is
+// computed there (the shells' meshes) reads the texture back.
 #include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "GlObjects.h"
 #include "mvw/core/Volume.h"
+#include "mvw/render/ShaderProgram.h"
+#include "mvw/render/VolumeRenderer.h"
 
 namespace mvw::render::detail {
 
 class VolumeTextures {
  public:
   // The context must be current. Throws mvw::Error if the GL cannot hold the volume.
-  explicit VolumeTextures(const Volume& volume);
+  VolumeTextures(const Volume& volume, GradientSource gradient);
 
   // Trilinear or nearest sampling of the intensity; the gradient is always trilinear.
   void setLinear(bool linear) const;
@@ -26,20 +32,36 @@ class VolumeTextures {
   glm::dmat4 textureFromWorld() const;
   // The smallest voxel spacing (mm): the step the transfer function's opacities refer to.
   double referenceStepMm() const { return referenceStepMm_; }
+  // Of component 0, finite values only.
   std::pair<double, double> range() const { return range_; }
   // The range the transfer table spans: the value range, one unit wide when it is flat.
   std::pair<double, double> transferRange() const;
-  // Component 0 as float, kept for what is computed on the CPU (block grid, shells).
-  const std::vector<float>& values() const { return values_; }
+  // Component 0 as float in the physical unit, read back from the GL (exactly the values
+  // uploaded): for what is computed on the CPU on demand (the shells' meshes).
+  std::vector<float> values() const;
   GLuint intensity() const { return intensity_.id(); }
+  // The precomputed gradient (RGBA16F, the attribute for glyphs in its alpha), or with the
+  // gradient taken on the fly the attribute alone (R16F, made by betaTarget), 0 before.
   GLuint gradient() const { return gradient_.id(); }
+  // The texture glyph shading's attribute is written into (GlyphTextures::updateBeta), made
+  // when first asked for; the colour channel it takes it in (3: alpha, 0: red).
+  GLuint betaTarget();
+  int betaChannel() const { return source_ == GradientSource::OnTheFly ? 0 : 3; }
+  // Texture or OnTheFly (never Auto): what the shaders are compiled for.
+  GradientSource gradientSource() const { return source_; }
+  // uValueMapping (texel to physical unit) and, on the fly, what the gradient needs.
+  void setUniforms(const ShaderProgram& p) const;
 
  private:
   glm::ivec3 dims_;
   glm::dmat4 worldFromIndex_;
+  glm::dvec3 spacing_;
+  glm::dmat3 direction_;
   double referenceStepMm_;
-  std::vector<float> values_;
   std::pair<double, double> range_;
+  GLenum internalFormat_ = 0;
+  glm::dvec2 mapping_{1.0, 0.0};  // physical = texel * x + y
+  GradientSource source_;
   Texture intensity_, gradient_;
 };
 

@@ -3,6 +3,7 @@
 // spacing, direction matrix). Modes: composite DVR (1D transfer function, Phong shading),
 // isosurface (bisection + Phong), MIP, MinIP, average intensity. The same shaders serve the
 // headless (OSMesa) and the windowed context.
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -120,6 +121,18 @@ struct RenderSettings {
 using mvw::takesImageColors;
 bool showsImageColors(const RenderSettings& settings);
 
+// Where shading takes the anatomy's gradient from. Texture: precomputed on the CPU (Sobel,
+// RGBA16F: 8 bytes a voxel on the GL), one sample per shaded step, the fastest on a software
+// rasteriser. OnTheFly: central differences of the intensity in the shaders (six more samples
+// per shaded step), no memory at all: what a clinical-size volume needs. Auto: the texture
+// while it stays within kGradientTextureBudgetBytes (a 512 x 512 x 256 volume), else on the fly.
+enum class GradientSource { Auto, Texture, OnTheFly };
+inline constexpr std::size_t kGradientTextureBytesPerVoxel = 8;
+inline constexpr std::size_t kGradientTextureBudgetBytes = std::size_t(512) << 20;
+// "auto", "texture", "shader"; parseGradientSource throws mvw::Error naming the choices.
+const char* toString(GradientSource source);
+GradientSource parseGradientSource(const std::string& name);
+
 struct Frame {
   Image image;  // with depth: the ray distance (mm) of the reported sample, -1 for none
   double milliseconds = 0.0;
@@ -128,15 +141,19 @@ struct Frame {
 
 class VolumeRenderer {
  public:
-  // Uploads the volume (first component), its gradient and its block min/max grid.
-  // The context must be current. Throws mvw::Error if the GL cannot hold the volume.
-  VolumeRenderer(GlContext& context, const Volume& volume);
+  // Uploads the volume (first component), its gradient (unless taken on the fly) and its
+  // block min/max grid; keeps no reference to `volume`. The context must be current. Throws
+  // mvw::Error if the GL cannot hold the volume.
+  VolumeRenderer(GlContext& context, const Volume& volume,
+                 GradientSource gradient = GradientSource::Auto);
   ~VolumeRenderer();
   VolumeRenderer(const VolumeRenderer&) = delete;
   VolumeRenderer& operator=(const VolumeRenderer&) = delete;
 
   Frame render(const RenderSettings& settings);
   std::pair<double, double> valueRange() const;
+  // Texture or OnTheFly: what Auto chose for this volume.
+  GradientSource gradientSource() const;
   // The sphere the camera frames: framingSphere(volume), the centre of the voxel box and half
   // its diagonal (mm).
   FramingSphere framing() const;
