@@ -66,50 +66,55 @@ def label_yellow(p):  # annotations' (255, 230, 60), antialiased against black
     return r > 150 and g > 0.8 * r and b < 0.45 * r
 
 
-if sys.argv[1] == "--differ":
-    a, b = read(sys.argv[2]), read(sys.argv[3])
-    sys.exit(0 if a[3] != b[3] else 1)
-if sys.argv[1] == "--changed":
-    print(len(changed(read(sys.argv[2]), read(sys.argv[3]))))
-    sys.exit(0)
-if sys.argv[1] == "--crosshair-only":
-    diff = changed(read(sys.argv[2]), read(sys.argv[3]))
-    print(len(diff))
-    if not diff:
+def main():
+    if sys.argv[1] == "--differ":
+        a, b = read(sys.argv[2]), read(sys.argv[3])
+        sys.exit(0 if a[3] != b[3] else 1)
+    if sys.argv[1] == "--changed":
+        print(len(changed(read(sys.argv[2]), read(sys.argv[3]))))
         sys.exit(0)
-    col = max(set(x for x, _ in diff), key=[x for x, _ in diff].count)
-    row = max(set(y for _, y in diff), key=[y for _, y in diff].count)
-    stray = [(x, y) for x, y in diff if abs(x - col) > 1 and abs(y - row) > 1]
-    if stray:
-        print("%d pixels differ off the crosshair (column %d, row %d), first at %s" %
-              (len(stray), col, row, stray[0]))
-        sys.exit(1)
-    sys.exit(0)
-if sys.argv[1] == "--labels":
-    shot, raw = read(sys.argv[2]), read(sys.argv[3])
-    if shot[:2] != raw[:2]:
-        print("sizes differ")
-        sys.exit(1)
-    w, h = shot[0], shot[1]
-    ps, pr = pixels(shot), pixels(raw)
-    # Where annotate() puts the labels: mid-left, mid-right, top centre, bottom centre; the
-    # caption (above the bottom label) and the scale bar (bottom right) stay outside.
-    s = max(0.4, min(w, h) / 600.0)
-    pad, lh = int(8 * s), int(30 * s)
-    boxes = [(0, h // 2 - lh, 4 * lh, h // 2 + lh), (w - 4 * lh, h // 2 - lh, w, h // 2 + lh),
-             (w // 2 - 2 * lh, 0, w // 2 + 2 * lh, pad + lh), (w // 2 - 2 * lh, h - pad - lh // 2,
-                                                                w // 2 + 2 * lh, h)]
-    counts = []
-    for x0, y0, x1, y1 in boxes:
-        counts.append(sum(1 for y in range(y0, y1) for x in range(x0, x1)
-                          if label_yellow(ps[y][x]) and not label_yellow(pr[y][x])))
-    print(*counts)
-    sys.exit(0)
-w, h, bpp, rows = read(sys.argv[1])
-colours, yellow = set(), 0
-for row in rows[::2]:
-    for x in range(0, w * bpp, bpp * 2):
-        r, g, b = row[x], row[x + 1], row[x + 2]
-        colours.add((r, g, b))
-        yellow += r > 200 and g > 180 and b < 120
-print(w, h, len(colours), yellow)
+    if sys.argv[1] == "--crosshair-only":
+        diff = changed(read(sys.argv[2]), read(sys.argv[3]))
+        print(len(diff))
+        if not diff:
+            sys.exit(0)
+        col = max(set(x for x, _ in diff), key=[x for x, _ in diff].count)
+        row = max(set(y for _, y in diff), key=[y for _, y in diff].count)
+        stray = [(x, y) for x, y in diff if abs(x - col) > 1 and abs(y - row) > 1]
+        if stray:
+            print("%d pixels differ off the crosshair (column %d, row %d), first at %s" %
+                  (len(stray), col, row, stray[0]))
+            sys.exit(1)
+        sys.exit(0)
+    if sys.argv[1] == "--labels":
+        shot, raw = read(sys.argv[2]), read(sys.argv[3])
+        if shot[:2] != raw[:2]:
+            print("sizes differ")
+            sys.exit(1)
+        w, h = shot[0], shot[1]
+        ps, pr = pixels(shot), pixels(raw)
+        # Where annotate() puts the labels: mid-left, mid-right, top centre, bottom centre; the
+        # caption (above the bottom label) and the scale bar (bottom right) stay outside.
+        s = max(0.4, min(w, h) / 600.0)
+        pad, lh = int(8 * s), int(30 * s)
+        boxes = [(0, h // 2 - lh, 4 * lh, h // 2 + lh), (w - 4 * lh, h // 2 - lh, w, h // 2 + lh),
+                 (w // 2 - 2 * lh, 0, w // 2 + 2 * lh, pad + lh), (w // 2 - 2 * lh, h - pad - lh // 2,
+                                                                    w // 2 + 2 * lh, h)]
+        counts = []
+        for x0, y0, x1, y1 in boxes:
+            counts.append(sum(1 for y in range(y0, y1) for x in range(x0, x1)
+                              if label_yellow(ps[y][x]) and not label_yellow(pr[y][x])))
+        print(*counts)
+        sys.exit(0)
+    w, h, bpp, rows = read(sys.argv[1])
+    colours, yellow = set(), 0
+    for row in rows[::2]:
+        for x in range(0, w * bpp, bpp * 2):
+            r, g, b = row[x], row[x + 1], row[x + 2]
+            colours.add((r, g, b))
+            yellow += r > 200 and g > 180 and b < 120
+    print(w, h, len(colours), yellow)
+
+
+if __name__ == "__main__":
+    main()
