@@ -84,7 +84,7 @@ void renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     render::drawGlyphLegend(shown, state.glyphLegend(p, s));
     drawColourBar(shown, state, renderer, s);
     textures[static_cast<std::size_t>(p)].upload(shown);
-    state.rendered(p, f.camera, std::move(f.image), interacting);
+    state.rendered(p, f.camera, std::move(f.image), interacting, f.milliseconds);
   }
 }
 

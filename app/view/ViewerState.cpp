@@ -378,8 +378,8 @@ render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) c
   }
   s.size = image.size;
   if (pane == k3d && interacting) {  // coarse while dragging
-    s.size = glm::max(image.size / 2, glm::ivec2(8));
-    s.stepMm = 2.0 * anatomical_.smallestSpacing();
+    s.size = glm::max(image.size / dragDivisor_, glm::ivec2(8));
+    s.stepMm = dragDivisor_ * anatomical_.smallestSpacing();
   }
   return s;
 }
@@ -396,8 +396,15 @@ render::GlyphLegend ViewerState::glyphLegend(int pane, const render::RenderSetti
   return mvw::study::glyphLegend(shown, functional_->metadata().unit, scene_.functionalRange);
 }
 
-void ViewerState::rendered(int pane, const render::Camera& camera, Image raw, bool interacting) {
+void ViewerState::rendered(int pane, const render::Camera& camera, Image raw, bool interacting,
+                           double milliseconds) {
   PaneState& p = pane_(pane);
+  if (interacting && pane == k3d) {
+    if (milliseconds > kDragFrameBudgetMs)
+      dragDivisor_ = std::min(dragDivisor_ + 1, kMaxDragDivisor);
+    else if (milliseconds < kDragFrameBudgetMs / 3.0)
+      dragDivisor_ = std::max(dragDivisor_ - 1, 2);
+  }
   p.camera = camera;
   p.raw = std::move(raw);
   p.rendered = true;

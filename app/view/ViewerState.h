@@ -148,12 +148,21 @@ class ViewerState {
   glm::ivec2 paneOrigin(int pane) const { return pane_(pane).origin; }
   glm::ivec2 paneSize(int pane) const { return pane_(pane).size; }
   bool needsRender(int pane) const;
-  // As rendered at the pane's size; while interacting the 3D pane renders coarse.
+  // As rendered at the pane's size; while interacting the 3D pane renders coarse: a
+  // dragDivisor()-th of its size a side, at that many times the smallest spacing per step.
   render::RenderSettings renderSettings(int pane, bool interacting = false) const;
+  // Adapted to the drag frames' time (rendered's milliseconds): from 2, one up while a frame
+  // takes longer than kDragFrameBudgetMs (at most kMaxDragDivisor), one down while it takes
+  // under a third of that, so a large volume stays above 10 frames/s while dragged.
+  int dragDivisor() const { return dragDivisor_; }
+  static constexpr double kDragFrameBudgetMs = 70.0;
+  static constexpr int kMaxDragDivisor = 6;
   std::string caption(int pane, const render::RenderSettings& settings) const;
   // What the pane's glyphs mean (empty without glyphs), as `mvw render` burns it in.
   render::GlyphLegend glyphLegend(int pane, const render::RenderSettings& settings) const;
-  void rendered(int pane, const render::Camera& camera, Image raw, bool interacting);
+  // `milliseconds`: what the render took (adapts dragDivisor on interactive 3D frames).
+  void rendered(int pane, const render::Camera& camera, Image raw, bool interacting,
+                double milliseconds = 0.0);
   bool anyDirty() const;
   void markDirty(int pane) { panes_[static_cast<std::size_t>(pane)].dirty = true; }
   void markAllDirty();
@@ -242,6 +251,7 @@ class ViewerState {
   void writeSphereStatistics(const std::filesystem::path& file) const;
 
  private:
+  int dragDivisor_ = 2;
   struct PaneState {
     bool dirty = true;
     bool rendered = false;

@@ -104,6 +104,32 @@ TEST_F(ViewerStateTest, DraggingRendersTheThreeDPaneCoarseThenRefines) {
   EXPECT_EQ(state.renderSettings(k3d).size, glm::ivec2(64, 48));
 }
 
+TEST_F(ViewerStateTest, DragResolutionFollowsTheDragFramesTime) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  state.drag(k3d, 0.1, 0.0, MouseButton::Left, false);
+  // Slow drag frames coarsen it one step a frame, up to a sixth of the pane a side.
+  for (int divisor : {3, 4, 5, 6, 6}) {
+    state.rendered(k3d, {}, Image(8, 8), true, 2.0 * ViewerState::kDragFrameBudgetMs);
+    EXPECT_EQ(state.dragDivisor(), divisor);
+    const render::RenderSettings s = state.renderSettings(k3d, true);
+    EXPECT_EQ(s.size, glm::max(glm::ivec2(64, 48) / divisor, glm::ivec2(8)));
+    EXPECT_DOUBLE_EQ(s.stepMm, divisor * 1.0);  // that many times the smallest spacing
+  }
+  // Frames within the budget keep it; fast ones refine it back to half size, no further.
+  state.rendered(k3d, {}, Image(8, 8), true, 0.9 * ViewerState::kDragFrameBudgetMs);
+  EXPECT_EQ(state.dragDivisor(), 6);
+  for (int divisor : {5, 4, 3, 2, 2}) {
+    state.rendered(k3d, {}, Image(8, 8), true, 0.2 * ViewerState::kDragFrameBudgetMs);
+    EXPECT_EQ(state.dragDivisor(), divisor);
+  }
+  // Full-resolution frames and MPR panes do not count.
+  state.rendered(k3d, {}, Image(64, 48), false, 1000.0);
+  state.rendered(kAxial, {}, Image(64, 48), true, 1000.0);
+  EXPECT_EQ(state.dragDivisor(), 2);
+  EXPECT_EQ(state.renderSettings(k3d).size, glm::ivec2(64, 48));
+}
+
 TEST_F(ViewerStateTest, ThreeDDragsRotateZoomAndPan) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
   renderAll(state);
