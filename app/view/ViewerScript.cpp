@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/GlyphDefaults.h"
 
 namespace mvw::app {
 
@@ -151,8 +152,9 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
   } else if (cmd == "glyph-label") {
     c.kind = Kind::GlyphLabel;
     const double label = in.number("label");
-    if (label < 1 || label != std::floor(label) || label > 16383)
-      in.fail("glyph-label: the label must be a whole number from 1 to 16383");
+    if (label < 1 || label != std::floor(label) || label > kMaxGlyphLabel)
+      in.fail("glyph-label: the label must be a whole number from 1 to " +
+              std::to_string(kMaxGlyphLabel));
     c.label = static_cast<int>(label);
     const std::string kind = in.word("kind");
     if (kind == "bumps")

@@ -39,10 +39,15 @@ void setSampling(GLuint texture, GLenum target, bool linear) {
 
 Texture upload3D(glm::ivec3 dims, GLint internalFormat, GLenum format, const float* data,
                  bool linear, const char* what) {
+  return upload3D(dims, internalFormat, format, GL_FLOAT, data, linear, what);
+}
+
+Texture upload3D(glm::ivec3 dims, GLint internalFormat, GLenum format, GLenum type,
+                 const void* data, bool linear, const char* what) {
   Texture texture = makeTexture();
   glBindTexture(GL_TEXTURE_3D, texture.id());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, dims.x, dims.y, dims.z, 0, format, GL_FLOAT, data);
+  glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, dims.x, dims.y, dims.z, 0, format, type, data);
   checkGl(what);
   for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
     glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);

@@ -26,6 +26,10 @@ void setSampling(GLuint texture, GLenum target, bool linear);
 // A 3D float texture, clamped at the edges: the volume, its gradient, the functional volume.
 Texture upload3D(glm::ivec3 dims, GLint internalFormat, GLenum format, const float* data,
                  bool linear, const char* what);
+// The same for texels of any `type`; data null allocates the texture (filled later, slab by
+// slab, with glTexSubImage3D).
+Texture upload3D(glm::ivec3 dims, GLint internalFormat, GLenum format, GLenum type,
+                 const void* data, bool linear, const char* what);
 
 // A colour map's 256 entries as a 1D RGBA8 texture, nearest, clamped (texelFetch or u in 0..1).
 void uploadColorTable(GLuint texture, const ColorTable& table);

@@ -107,18 +107,6 @@ auto texelOf(T v) {
     return static_cast<float>(v);
 }
 
-Texture allocate3D(glm::ivec3 dims, GLint internalFormat, GLenum format, GLenum type,
-                   const char* what) {
-  Texture texture = makeTexture();
-  glBindTexture(GL_TEXTURE_3D, texture.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, dims.x, dims.y, dims.z, 0, format, type, nullptr);
-  checkGl(what);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
-  setSampling(texture.id(), GL_TEXTURE_3D, true);
-  return texture;
-}
-
 }  // namespace
 
 VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
@@ -147,8 +135,8 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
     const Layout layout = layoutOf<T>();
     internalFormat_ = layout.internalFormat;
     mapping_ = layout.mapping;
-    intensity_ = allocate3D(dims_, GLint(layout.internalFormat), GL_RED, layout.type,
-                            "uploading the volume");
+    intensity_ = upload3D(dims_, GLint(layout.internalFormat), GL_RED, layout.type, nullptr, true,
+                          "uploading the volume");
     using Texel = decltype(texelOf(T{}));
     std::vector<Texel> slab(sliceVoxels * kSlabSlices);
     const T* p = reinterpret_cast<const T*>(volume.data());
@@ -179,7 +167,8 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
 
   if (source_ == GradientSource::OnTheFly) return;
   // The gradient, slab by slab from the values of the slab and one slice either side.
-  gradient_ = allocate3D(dims_, GL_RGBA16F, GL_RGBA, GL_FLOAT, "uploading the gradient volume");
+  gradient_ = upload3D(dims_, GL_RGBA16F, GL_RGBA, GL_FLOAT, nullptr, true,
+                       "uploading the gradient volume");
   std::vector<float> values(sliceVoxels * (kSlabSlices + 2));
   std::vector<float> g(sliceVoxels * kSlabSlices * 4);
   dispatchScalar(volume.scalarType(), [&](auto t) {
@@ -234,7 +223,8 @@ std::vector<float> VolumeTextures::values() const {
 
 GLuint VolumeTextures::betaTarget() {
   if (!gradient_.id())
-    gradient_ = allocate3D(dims_, GL_R16F, GL_RED, GL_FLOAT, "making the glyph attribute volume");
+    gradient_ = upload3D(dims_, GL_R16F, GL_RED, GL_FLOAT, nullptr, true,
+                         "making the glyph attribute volume");
   return gradient_.id();
 }
 

@@ -77,10 +77,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Chosen labels live in a table over label numbers (a 1D texture: GL_MAX_TEXTURE_SIZE is at
-// least 16384 in GL 4.x; llvmpipe has 16384).
-constexpr int kMaxGlyphLabel = 16383;
-
 // The blue-noise map of a view: its spacing (autoSpacingMm unless the config gives one; at
 // least what a diameter alone asks for) and diameter (a fraction of the spacing unless given).
 void setBlueNoiseMap(render::RenderSettings& s, const config::ViewConfig& v, double autoSpacingMm) {

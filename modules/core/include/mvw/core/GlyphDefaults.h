@@ -24,4 +24,8 @@ inline constexpr double kGlyphMinSize = 0.6;
 // surface and keeps its light-to-shadow contrast. 0 restores the paper's shading.
 inline constexpr double kGlyphDvrOpacityPerMm = 0.25;
 
+// The largest label number that can be chosen for glyphs: chosen labels live in a table over
+// label numbers (a 1D texture; GL_MAX_TEXTURE_SIZE is at least 16384 in GL 4.x).
+inline constexpr int kMaxGlyphLabel = 16383;
+
 }  // namespace mvw
