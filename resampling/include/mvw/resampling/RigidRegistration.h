@@ -1,7 +1,7 @@
 #pragma once
 // Rigid (6 degrees of freedom) registration of a moving volume to a fixed one by Mattes
 // mutual information: multi-resolution (Gaussian pyramid), a seeded random subset of fixed
-// points per level, regular-step gradient descent on the analytic gradient, with rotation
+// points per level, quasi-Newton (BFGS) ascent on the analytic gradient, with rotation
 // scaled to millimetres so one step moves a point near the head's surface about as far as
 // the same step of translation does.
 //
@@ -41,8 +41,8 @@ struct RegistrationOptions {
   int maxIterationsPerLevel = 300;
   double rotationScaleMm = 80.0;  // radians x this = mm: about a head's radius
   double maxStepMm = 4.0;         // first step of the coarsest level, halved per finer level
-  double minStepMm = 0.005;       // a level has converged when the step falls below this
-  double relaxation = 0.5;        // step factor when the gradient turns back
+  double minStepMm = 0.005;       // a level has converged when a step falls below this
+  double relaxation = 0.5;        // step factor when a trial step does not raise the metric
   std::uint64_t seed = 20261123;
   Initialisation initialisation = Initialisation::Automatic;
   // Coarse rotation search: every combination of angles -range, -range + step, ..., range
