@@ -135,21 +135,49 @@ std::string toString(Initialisation initialisation) {
 
 namespace {
 
-// One level's metric: off-grid sample points, uniform over the fixed image's continuous index
-// box, so no two levels (and no sample and voxel centre) line up and the histogram sees no
-// grid pattern. The moving image is copied in (it is the small one).
+// One level's metric: off-grid sample points over the fixed image's continuous index box, so
+// no two levels (and no sample and voxel centre) line up and the histogram sees no grid
+// pattern; stratified (one uniform point in each of nSamples cells, about cubic in mm, of a
+// grid of at least that many), so they cover the volume more evenly than independent draws.
+// The moving image is copied in (it is the small one).
 MattesMutualInformation levelMetric(const Volume& fixedLevel, const Volume& movingLevel,
                                     int nSamples, std::uint64_t seed,
                                     const RegistrationOptions& options) {
   std::mt19937_64 rng(seed);
-  const glm::ivec3 fd = fixedLevel.dimensions();
-  std::uniform_real_distribution<double> ux(0.0, fd.x - 1), uy(0.0, fd.y - 1), uz(0.0, fd.z - 1);
-  std::vector<glm::dvec3> points(static_cast<std::size_t>(nSamples));
+  const glm::dvec3 extent(fixedLevel.dimensions() - 1);
+  std::vector<glm::dvec3> indices;
+  indices.reserve(static_cast<std::size_t>(nSamples));
+  {
+    // Cells chosen at random when the grid has more than nSamples.
+    const glm::dvec3 mm = extent * fixedLevel.spacing();
+    const double k = std::cbrt(nSamples / std::max(mm.x * mm.y * mm.z, 1e-12));
+    const glm::ivec3 cells(glm::max(glm::dvec3(1.0), glm::ceil(mm * k)));
+    const std::size_t total = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
+    std::vector<std::size_t> order(total);
+    for (std::size_t c = 0; c < total; ++c) order[c] = c;
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const std::size_t n = std::min<std::size_t>(total, static_cast<std::size_t>(nSamples));
+    for (std::size_t c = 0; c < n; ++c) {
+      std::uniform_int_distribution<std::size_t> pick(c, total - 1);
+      std::swap(order[c], order[pick(rng)]);
+      const std::size_t cell = order[c];
+      const glm::dvec3 corner(static_cast<double>(cell % static_cast<std::size_t>(cells.x)),
+                              static_cast<double>(cell / static_cast<std::size_t>(cells.x) %
+                                                  static_cast<std::size_t>(cells.y)),
+                              static_cast<double>(cell / (static_cast<std::size_t>(cells.x) *
+                                                          static_cast<std::size_t>(cells.y))));
+      indices.push_back((corner + glm::dvec3(unit(rng), unit(rng), unit(rng))) * extent /
+                        glm::dvec3(cells));
+    }
+  }
+  std::uniform_real_distribution<double> ux(0.0, extent.x), uy(0.0, extent.y), uz(0.0, extent.z);
+  while (indices.size() < static_cast<std::size_t>(nSamples))
+    indices.push_back(glm::dvec3(ux(rng), uy(rng), uz(rng)));
+  std::vector<glm::dvec3> points(indices.size());
   std::vector<float> values(points.size());
-  for (auto i = 0u; i < points.size(); ++i) {
-    const glm::dvec3 index(ux(rng), uy(rng), uz(rng));
-    points[i] = fixedLevel.worldFromIndexPoint(index);
-    values[i] = static_cast<float>(sample(fixedLevel, index));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    points[i] = fixedLevel.worldFromIndexPoint(indices[i]);
+    values[i] = static_cast<float>(sample(fixedLevel, indices[i]));
   }
   return MattesMutualInformation(std::move(points), values, movingLevel, options.histogramBins,
                                  options.threads);
