@@ -364,15 +364,32 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
   // The pyramid, built once: level images smoothed from the full-resolution ones (not from
   // each other, so each level's sigma is exactly the one asked for).
   std::vector<Volume> fixedLevels, movingLevels;
+  // At a level of smoothing 0 the finer image is still smoothed to about the coarser one's
+  // resolution (see RegistrationOptions::resolutionMatching).
+  const double fixedVoxel = voxelSize(fixed), movingVoxel = voxelSize(moving);
+  auto matching = [&](double ownVoxel) {
+    const double coarse = std::max(fixedVoxel, movingVoxel);
+    if (options.resolutionMatching <= 0.0 || ownVoxel * 1.5 > coarse) return 0.0;
+    const double target = options.resolutionMatching * coarse,
+                 own = options.resolutionMatching * ownVoxel;
+    return std::sqrt(target * target - own * own);
+  };
+  std::vector<double> fixedSigma, movingSigma;
   for (double sigma : smoothing) {
-    fixedLevels.push_back(sigma > 0 ? detail::smoothAndShrink(fixed, sigma, pool) : Volume());
-    movingLevels.push_back(sigma > 0 ? detail::smoothAndShrink(moving, sigma, pool) : Volume());
+    fixedSigma.push_back(sigma > 0 ? sigma : matching(fixedVoxel));
+    movingSigma.push_back(sigma > 0 ? sigma : matching(movingVoxel));
+    fixedLevels.push_back(fixedSigma.back() > 0
+                              ? detail::smoothAndShrink(fixed, fixedSigma.back(), pool)
+                              : Volume());
+    movingLevels.push_back(movingSigma.back() > 0
+                               ? detail::smoothAndShrink(moving, movingSigma.back(), pool)
+                               : Volume());
   }
   auto fixedAt = [&](std::size_t l) -> const Volume& {
-    return smoothing[l] > 0 ? fixedLevels[l] : fixed;
+    return fixedSigma[l] > 0 ? fixedLevels[l] : fixed;
   };
   auto movingAt = [&](std::size_t l) -> const Volume& {
-    return smoothing[l] > 0 ? movingLevels[l] : moving;
+    return movingSigma[l] > 0 ? movingLevels[l] : moving;
   };
 
   RegistrationResult result;
