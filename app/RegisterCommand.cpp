@@ -141,7 +141,7 @@ void runRegister(const RegisterOptions& opt) {
   j["fixed"] = opt.fixed;
   j["moving"] = opt.moving;
   j["method"] = std::string(r.affine ? "rigid then affine" : "rigid") +
-                ", Mattes mutual information, regular-step gradient descent";
+                ", Mattes mutual information, quasi-Newton (BFGS) ascent";
   if (r.searchedRotations > 0)
     j["rotation_search"] = {{"range_deg", opt.rotationSearchDeg},
                             {"rotations_scored", r.searchedRotations},

@@ -24,47 +24,6 @@ std::vector<float> gaussianKernel(double sigmaVoxels) {
   return k;
 }
 
-// One separable pass along `axis`: out[.., o, ..] = sum_t k[t] in[.., clamp(s*o + t), ..].
-// Borders replicate the edge voxel, so a volume's outer intensity does not fade to zero.
-template <typename T>
-std::vector<float> pass(const T* in, glm::ivec3 dims, int axis, const std::vector<float>& kernel,
-                        int shrink, glm::ivec3& outDims, WorkerPool& pool) {
-  const int radius = static_cast<int>(kernel.size() / 2);
-  outDims = dims;
-  outDims[axis] = (dims[axis] - 1) / shrink + 1;
-  const long nx = dims.x, ny = dims.y;
-  const long ox = outDims.x, oy = outDims.y, oz = outDims.z;
-  std::vector<float> out(static_cast<std::size_t>(ox * oy * oz), 0.0f);
-  const int n = dims[axis];
-  auto clampIndex = [n](int i) { return std::clamp(i, 0, n - 1); };
-  pool.parallelFor(static_cast<std::size_t>(oz), [&](std::size_t slice) {
-    const long k = static_cast<long>(slice);
-    for (long j = 0; j < oy; ++j) {
-      float* o = out.data() + (k * oy + j) * ox;
-      if (axis == 0) {
-        const T* row = in + (k * ny + j) * nx;
-        for (long i = 0; i < ox; ++i) {
-          float sum = 0.0f;
-          for (int t = -radius; t <= radius; ++t)
-            sum += kernel[static_cast<std::size_t>(t + radius)] *
-                   static_cast<float>(row[clampIndex(static_cast<int>(i) * shrink + t)]);
-          o[i] = sum;
-        }
-      } else {
-        // Whole rows at a time along x: contiguous reads even for the y and z passes.
-        for (int t = -radius; t <= radius; ++t) {
-          const float w = kernel[static_cast<std::size_t>(t + radius)];
-          const long src = axis == 1 ? clampIndex(static_cast<int>(j) * shrink + t) : j;
-          const long srcK = axis == 2 ? clampIndex(static_cast<int>(k) * shrink + t) : k;
-          const T* row = in + (srcK * ny + src) * nx;
-          for (long i = 0; i < ox; ++i) o[i] += w * static_cast<float>(row[i]);
-        }
-      }
-    }
-  });
-  return out;
-}
-
 }  // namespace
 
 Volume firstComponentAsFloat(const Volume& volume) {
@@ -84,12 +43,10 @@ Volume firstComponentAsFloat(const Volume& volume) {
 Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool) {
   MVW_CHECK(image.components() == 1);
   const glm::dvec3 spacing = image.spacing();
-  glm::ivec3 dims = image.dimensions();
-  // The first pass reads the image in place (whatever its type): a full-resolution float
-  // copy of a CT would be the largest allocation of a registration.
-  std::vector<float> data;
-  bool first = true;
-  glm::ivec3 shrink(1);
+  const glm::ivec3 dims = image.dimensions();
+  glm::ivec3 shrink(1), outDims = dims;
+  std::vector<float> kernels[3];
+  bool any = false;
   for (int axis = 0; axis < 3; ++axis) {
     // Capped at a quarter of the axis: smoothing a slab of 3 slices with a sigma of 2 slices
     // would erase the only structure that axis has.
@@ -99,24 +56,86 @@ Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool) {
     // Keep at least 4 voxels along the axis where there were: a coarse level that is one
     // voxel thick would leave that axis undetermined.
     while (shrink[axis] > 1 && (dims[axis] - 1) / shrink[axis] + 1 < 4) --shrink[axis];
-    glm::ivec3 outDims;
-    const auto kernel = gaussianKernel(sigmaVoxels);
-    if (first)
-      data = dispatchScalar(image.scalarType(), [&](auto zero) {
-        using T = decltype(zero);
-        return pass(image.dataAs<T>(), dims, axis, kernel, shrink[axis], outDims, pool);
-      });
-    else
-      data = pass(data.data(), dims, axis, kernel, shrink[axis], outDims, pool);
-    first = false;
-    dims = outDims;
+    outDims[axis] = (dims[axis] - 1) / shrink[axis] + 1;
+    kernels[axis] = gaussianKernel(sigmaVoxels);
+    any = true;
   }
+  if (!any) return firstComponentAsFloat(image);  // nothing to smooth
   glm::dmat4 worldFromIndex = image.worldFromIndex();
   for (int axis = 0; axis < 3; ++axis) worldFromIndex[axis] *= static_cast<double>(shrink[axis]);
-  if (first) return firstComponentAsFloat(image);  // nothing to smooth
-  Volume out(dims, 1, ScalarType::Float32, worldFromIndex);
-  std::copy(data.begin(), data.end(), out.dataAs<float>());
+  Volume out(outDims, 1, ScalarType::Float32, worldFromIndex);
   out.metadata() = image.metadata();
+
+  // The x and y passes slice by slice (one slice of scratch per task), into the output when z
+  // is not shrunk (then smoothed there in place), else into a buffer of the xy-shrunk size:
+  // at most the output and that buffer exist at once, never a full-resolution float copy.
+  const long nx = dims.x, ny = dims.y, nz = dims.z, ox = outDims.x, oy = outDims.y;
+  const bool zInPlace = shrink.z == 1;
+  std::vector<float> xyBuffer(zInPlace ? 0 : static_cast<std::size_t>(ox * oy * nz));
+  float* xy = zInPlace ? out.dataAs<float>() : xyBuffer.data();
+  dispatchScalar(image.scalarType(), [&](auto zero) {
+    using T = decltype(zero);
+    const T* in = image.dataAs<T>();
+    pool.parallelFor(static_cast<std::size_t>(nz), [&](std::size_t slice) {
+      const long k = static_cast<long>(slice);
+      std::vector<float> xPassed(static_cast<std::size_t>(ox * ny));
+      for (long j = 0; j < ny; ++j) {
+        const T* row = in + (k * ny + j) * nx;
+        float* o = xPassed.data() + j * ox;
+        if (kernels[0].empty()) {
+          for (long i = 0; i < nx; ++i) o[i] = static_cast<float>(row[i]);
+          continue;
+        }
+        const int radius = static_cast<int>(kernels[0].size() / 2);
+        for (long i = 0; i < ox; ++i) {
+          float sum = 0.0f;
+          for (int t = -radius; t <= radius; ++t)
+            sum += kernels[0][static_cast<std::size_t>(t + radius)] *
+                   static_cast<float>(row[std::clamp(static_cast<int>(i) * shrink.x + t, 0,
+                                                     static_cast<int>(nx) - 1)]);
+          o[i] = sum;
+        }
+      }
+      float* dst = xy + k * oy * ox;
+      if (kernels[1].empty()) {
+        std::copy(xPassed.begin(), xPassed.end(), dst);
+        return;
+      }
+      const int radius = static_cast<int>(kernels[1].size() / 2);
+      for (long j = 0; j < oy; ++j) {
+        float* o = dst + j * ox;
+        std::fill(o, o + ox, 0.0f);
+        for (int t = -radius; t <= radius; ++t) {
+          const float w = kernels[1][static_cast<std::size_t>(t + radius)];
+          const long src = std::clamp(static_cast<int>(j) * shrink.y + t, 0, static_cast<int>(ny) - 1);
+          const float* row = xPassed.data() + src * ox;
+          for (long i = 0; i < ox; ++i) o[i] += w * row[i];
+        }
+      }
+    });
+  });
+  if (kernels[2].empty()) return out;
+
+  // The z pass, one xz plane at a time (a copy of the plane's input column by column).
+  const int radius = static_cast<int>(kernels[2].size() / 2);
+  const long oz = outDims.z;
+  float* result = out.dataAs<float>();
+  pool.parallelFor(static_cast<std::size_t>(oy), [&](std::size_t plane) {
+    const long j = static_cast<long>(plane);
+    std::vector<float> column(static_cast<std::size_t>(nz * ox));
+    for (long k = 0; k < nz; ++k)
+      std::copy(xy + (k * oy + j) * ox, xy + (k * oy + j + 1) * ox, column.data() + k * ox);
+    for (long k = 0; k < oz; ++k) {
+      float* o = result + (k * oy + j) * ox;
+      std::fill(o, o + ox, 0.0f);
+      for (int t = -radius; t <= radius; ++t) {
+        const float w = kernels[2][static_cast<std::size_t>(t + radius)];
+        const long src = std::clamp(static_cast<int>(k) * shrink.z + t, 0, static_cast<int>(nz) - 1);
+        const float* row = column.data() + src * ox;
+        for (long i = 0; i < ox; ++i) o[i] += w * row[i];
+      }
+    }
+  });
   return out;
 }
 

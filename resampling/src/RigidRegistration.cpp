@@ -135,21 +135,49 @@ std::string toString(Initialisation initialisation) {
 
 namespace {
 
-// One level's metric: off-grid sample points, uniform over the fixed image's continuous index
-// box, so no two levels (and no sample and voxel centre) line up and the histogram sees no
-// grid pattern. The moving image is copied in (it is the small one).
+// One level's metric: off-grid sample points over the fixed image's continuous index box, so
+// no two levels (and no sample and voxel centre) line up and the histogram sees no grid
+// pattern; stratified (one uniform point in each of nSamples cells, about cubic in mm, of a
+// grid of at least that many), so they cover the volume more evenly than independent draws.
+// The moving image is copied in (it is the small one).
 MattesMutualInformation levelMetric(const Volume& fixedLevel, const Volume& movingLevel,
                                     int nSamples, std::uint64_t seed,
                                     const RegistrationOptions& options) {
   std::mt19937_64 rng(seed);
-  const glm::ivec3 fd = fixedLevel.dimensions();
-  std::uniform_real_distribution<double> ux(0.0, fd.x - 1), uy(0.0, fd.y - 1), uz(0.0, fd.z - 1);
-  std::vector<glm::dvec3> points(static_cast<std::size_t>(nSamples));
+  const glm::dvec3 extent(fixedLevel.dimensions() - 1);
+  std::vector<glm::dvec3> indices;
+  indices.reserve(static_cast<std::size_t>(nSamples));
+  {
+    // Cells chosen at random when the grid has more than nSamples.
+    const glm::dvec3 mm = extent * fixedLevel.spacing();
+    const double k = std::cbrt(nSamples / std::max(mm.x * mm.y * mm.z, 1e-12));
+    const glm::ivec3 cells(glm::max(glm::dvec3(1.0), glm::ceil(mm * k)));
+    const std::size_t total = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
+    std::vector<std::size_t> order(total);
+    for (std::size_t c = 0; c < total; ++c) order[c] = c;
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const std::size_t n = std::min<std::size_t>(total, static_cast<std::size_t>(nSamples));
+    for (std::size_t c = 0; c < n; ++c) {
+      std::uniform_int_distribution<std::size_t> pick(c, total - 1);
+      std::swap(order[c], order[pick(rng)]);
+      const std::size_t cell = order[c];
+      const glm::dvec3 corner(static_cast<double>(cell % static_cast<std::size_t>(cells.x)),
+                              static_cast<double>(cell / static_cast<std::size_t>(cells.x) %
+                                                  static_cast<std::size_t>(cells.y)),
+                              static_cast<double>(cell / (static_cast<std::size_t>(cells.x) *
+                                                          static_cast<std::size_t>(cells.y))));
+      indices.push_back((corner + glm::dvec3(unit(rng), unit(rng), unit(rng))) * extent /
+                        glm::dvec3(cells));
+    }
+  }
+  std::uniform_real_distribution<double> ux(0.0, extent.x), uy(0.0, extent.y), uz(0.0, extent.z);
+  while (indices.size() < static_cast<std::size_t>(nSamples))
+    indices.push_back(glm::dvec3(ux(rng), uy(rng), uz(rng)));
+  std::vector<glm::dvec3> points(indices.size());
   std::vector<float> values(points.size());
-  for (auto i = 0u; i < points.size(); ++i) {
-    const glm::dvec3 index(ux(rng), uy(rng), uz(rng));
-    points[i] = fixedLevel.worldFromIndexPoint(index);
-    values[i] = static_cast<float>(sample(fixedLevel, index));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    points[i] = fixedLevel.worldFromIndexPoint(indices[i]);
+    values[i] = static_cast<float>(sample(fixedLevel, indices[i]));
   }
   return MattesMutualInformation(std::move(points), values, movingLevel, options.histogramBins,
                                  options.threads);
@@ -162,51 +190,121 @@ struct Evaluation {
 };
 using Objective = std::function<Evaluation(const std::vector<double>&)>;
 
-// Regular-step gradient ascent (ITK's RegularStepGradientDescent, maximising) on parameters x
-// in millimetre-like units: fixed-length steps along the gradient, shortened whenever the
-// gradient turns back. Unlike ITK, a step that lowers the metric (or leaves the moving
-// volume) is refused and the step shortened: the analytic gradient ignores samples entering
-// or leaving the overlap, and on a thin slab (a 3-slice fMRI) following it blindly walks out
-// of the volume. `current` is f(x) on entry and on return.
+double dot(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) s += a[k] * b[k];
+  return s;
+}
+
+// Quasi-Newton (BFGS) ascent with a backtracking line search, maximising, on parameters x in
+// millimetre-like units. A plain gradient method (ITK's regular-step descent, which this
+// replaced) zigzags across the narrow valleys of MI, where a rotation about the head's
+// centre and a shift trade off almost evenly, halves its step at each turn and stops short of
+// the peak, as far from it as half a degree; BFGS learns that coupling from the gradients.
+// Each step is at most firstStep long (mm at the head's surface for angles); a trial that
+// does not raise the metric by a sufficient amount (Armijo), or leaves the moving volume, is
+// refused and the step shortened by options.relaxation: the analytic gradient ignores
+// samples entering or leaving the overlap, and on a thin slab (a 3-slice fMRI) following it
+// blindly walks out of the volume. Converged when a step (taken or refused) is shorter than
+// options.minStepMm. `current` is f(x) on entry and on return.
 void ascend(std::vector<double>& x, Evaluation& current, const Objective& f, double firstStep,
             int minimumValid, const RegistrationOptions& options, LevelReport& report) {
-  double step = firstStep;
-  std::vector<double> previous(x.size(), 0.0);
-  bool havePrevious = false;
+  const std::size_t n = x.size();
+  // h approximates the inverse of the metric's negative Hessian: the ascent direction is h g.
+  std::vector<double> h(n * n, 0.0);
+  auto resetTo = [&](double scale) {
+    std::fill(h.begin(), h.end(), 0.0);
+    for (std::size_t k = 0; k < n; ++k) h[k * n + k] = scale;
+  };
+  bool curvatureKnown = false;
+  double lastStep = firstStep;
+  {
+    const double norm = std::sqrt(dot(current.gradient, current.gradient));
+    if (norm > 0.0) resetTo(firstStep / norm);
+  }
   while (report.iterations < options.maxIterationsPerLevel) {
     const std::vector<double>& g = current.gradient;
-    double norm = 0.0, dot = 0.0;
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      norm += g[k] * g[k];
-      dot += g[k] * previous[k];
-    }
-    norm = std::sqrt(norm);
-    if (norm == 0.0) {
+    const double gradientNorm = std::sqrt(dot(g, g));
+    if (gradientNorm == 0.0) {
       report.converged = true;
       break;
     }
-    if (havePrevious && dot < 0.0) step *= options.relaxation;
-    if (step < options.minStepMm) {
-      report.converged = true;
-      break;
+    std::vector<double> d(n, 0.0);
+    auto direction = [&] {
+      for (std::size_t i = 0; i < n; ++i) {
+        d[i] = 0.0;
+        for (std::size_t j = 0; j < n; ++j) d[i] += h[i * n + j] * g[j];
+      }
+      return dot(g, d);
+    };
+    double slope = direction();
+    if (!(slope > 0.0)) {  // the model lost its way: start again along the gradient
+      resetTo(std::max(lastStep, options.minStepMm) / gradientNorm);
+      curvatureKnown = false;
+      slope = direction();
     }
-    std::vector<double> trial = x;
-    for (std::size_t k = 0; k < x.size(); ++k) trial[k] += step * g[k] / norm;
-    ++report.iterations;
-    Evaluation next = f(trial);
-    if (next.validSamples < minimumValid || next.value < current.value) {
-      step *= options.relaxation;
+    double length = std::sqrt(dot(d, d));
+    if (length > firstStep) {
+      for (double& v : d) v *= firstStep / length;
+      slope *= firstStep / length;
+      length = firstStep;
+    }
+    double alpha = 1.0;
+    bool accepted = false;
+    std::vector<double> trial(n);
+    Evaluation next;
+    while (report.iterations < options.maxIterationsPerLevel && alpha * length >= options.minStepMm) {
+      for (std::size_t k = 0; k < n; ++k) trial[k] = x[k] + alpha * d[k];
+      ++report.iterations;
+      next = f(trial);
+      if (next.validSamples >= minimumValid &&
+          next.value >= current.value + 1e-4 * alpha * slope) {
+        accepted = true;
+        break;
+      }
       ++report.rejectedSteps;
+      alpha *= options.relaxation;
+    }
+    lastStep = alpha * length;
+    if (!accepted && curvatureKnown && report.iterations < options.maxIterationsPerLevel) {
+      // The model's direction led nowhere: try once more along the plain gradient.
+      resetTo(firstStep / gradientNorm);
+      curvatureKnown = false;
       continue;
     }
-    x = std::move(trial);
-    previous = g;
-    havePrevious = true;
+    if (!accepted) {
+      report.converged = lastStep < options.minStepMm;
+      break;
+    }
+    // BFGS update with s = the step and y = the fall of the gradient along it.
+    std::vector<double> step(n), y(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      step[k] = alpha * d[k];
+      y[k] = g[k] - next.gradient[k];
+    }
+    const double sy = dot(step, y);
+    if (sy > 1e-12 * std::sqrt(dot(step, step) * dot(y, y))) {
+      if (!curvatureKnown) resetTo(sy / dot(y, y));
+      curvatureKnown = true;
+      std::vector<double> hy(n, 0.0);
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j) hy[i] += h[i * n + j] * y[j];
+      const double rho = 1.0 / sy, yhy = dot(y, hy);
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j)
+          h[i * n + j] += -rho * (step[i] * hy[j] + hy[i] * step[j]) +
+                          (rho * rho * yhy + rho) * step[i] * step[j];
+    }
+    x = trial;
     current = std::move(next);
+    if (lastStep < options.minStepMm) {
+      report.converged = true;
+      break;
+    }
   }
   report.metricEnd = current.value;
   report.validSamples = current.validSamples;
-  report.finalStepMm = step;
+  report.finalStepMm = lastStep;
 }
 
 // Rigid parameters as optimiser coordinates: angles x scale (mm at the head's surface), mm.
@@ -266,15 +364,32 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
   // The pyramid, built once: level images smoothed from the full-resolution ones (not from
   // each other, so each level's sigma is exactly the one asked for).
   std::vector<Volume> fixedLevels, movingLevels;
+  // At a level of smoothing 0 the finer image is still smoothed to about the coarser one's
+  // resolution (see RegistrationOptions::resolutionMatching).
+  const double fixedVoxel = voxelSize(fixed), movingVoxel = voxelSize(moving);
+  auto matching = [&](double ownVoxel) {
+    const double coarse = std::max(fixedVoxel, movingVoxel);
+    if (options.resolutionMatching <= 0.0 || ownVoxel * 1.5 > coarse) return 0.0;
+    const double target = options.resolutionMatching * coarse,
+                 own = options.resolutionMatching * ownVoxel;
+    return std::sqrt(target * target - own * own);
+  };
+  std::vector<double> fixedSigma, movingSigma;
   for (double sigma : smoothing) {
-    fixedLevels.push_back(sigma > 0 ? detail::smoothAndShrink(fixed, sigma, pool) : Volume());
-    movingLevels.push_back(sigma > 0 ? detail::smoothAndShrink(moving, sigma, pool) : Volume());
+    fixedSigma.push_back(sigma > 0 ? sigma : matching(fixedVoxel));
+    movingSigma.push_back(sigma > 0 ? sigma : matching(movingVoxel));
+    fixedLevels.push_back(fixedSigma.back() > 0
+                              ? detail::smoothAndShrink(fixed, fixedSigma.back(), pool)
+                              : Volume());
+    movingLevels.push_back(movingSigma.back() > 0
+                               ? detail::smoothAndShrink(moving, movingSigma.back(), pool)
+                               : Volume());
   }
   auto fixedAt = [&](std::size_t l) -> const Volume& {
-    return smoothing[l] > 0 ? fixedLevels[l] : fixed;
+    return fixedSigma[l] > 0 ? fixedLevels[l] : fixed;
   };
   auto movingAt = [&](std::size_t l) -> const Volume& {
-    return smoothing[l] > 0 ? movingLevels[l] : moving;
+    return movingSigma[l] > 0 ? movingLevels[l] : moving;
   };
 
   RegistrationResult result;

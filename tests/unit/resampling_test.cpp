@@ -509,6 +509,44 @@ TEST_F(KnownTransform, RecoversRigidTransformsFromCtToPetLike) {
   RecordProperty("worst_tre_mm", std::to_string(worst));
 }
 
+// A PET on 5 mm voxels that resolves 1.5 voxels (7.5 mm FWHM), as `mvw bench register` makes
+// it, from the bench's four 5 mm transforms. Compared with the sharp CT at full resolution,
+// MI peaks about 0.3 degrees (nodding) off the truth and its sampled estimate wanders along a
+// flat ridge: mean TRE 0.54 mm with the former defaults (30000 samples, gradient steps),
+// 0.58 with the current optimiser and samples but no resolution matching, 0.38 with it.
+TEST_F(KnownTransform, ResolutionMatchingRemovesTheBiasOfACoarsePet) {
+  const PetPhantom coarse(*ct_, 7.5);
+  PetGridOptions grid;
+  grid.voxelMm = 5.0;
+  const std::vector<std::pair<glm::dvec3, glm::dvec3>> cases = {
+      {{-4.0, -2.4, 5.4}, {7.9, -2.8, -7.9}},
+      {{-0.4, -6.2, -4.7}, {-4.0, -10.0, 8.9}},
+      {{-6.0, -0.2, 6.0}, {-2.4, 3.8, -7.0}},
+      {{-4.0, 6.1, 1.5}, {5.8, -3.6, -1.0}},
+  };
+  RegistrationOptions unmatched;
+  unmatched.resolutionMatching = 0.0;
+  double matchedTre = 0.0, unmatchedTre = 0.0;
+  unsigned seed = 1200;
+  for (const auto& [degrees, mm] : cases) {
+    const glm::dmat4 truth = rigidMatrix({degrees * kDegree, mm}, coarse.centre());
+    const Volume pet = coarse.pet(truth, seed++, grid);
+    const auto r = registerRigid(*ct_, pet);
+    const double tre = coarse.meanTre(r.transform.movingFromFixed(), truth);
+    const double plain =
+        coarse.meanTre(registerRigid(*ct_, pet, unmatched).transform.movingFromFixed(), truth);
+    std::cout << "5 mm PET, rotation (" << degrees.x << ", " << degrees.y << ", " << degrees.z
+              << ") deg: TRE " << tre << " mm matched, " << plain << " mm unmatched, "
+              << r.seconds << " s\n";
+    EXPECT_TRUE(r.converged);
+    matchedTre += tre / static_cast<double>(cases.size());
+    unmatchedTre += plain / static_cast<double>(cases.size());
+  }
+  RecordProperty("mean_tre_mm", std::to_string(matchedTre));
+  EXPECT_LT(matchedTre, 0.45);
+  EXPECT_LT(matchedTre, 0.8 * unmatchedTre);
+}
+
 TEST_F(KnownTransform, DifferentFramesOfReferenceStartFromTheCentresOfMass) {
   // The PET's world is 300 mm away (another scanner's origin): no overlap in world
   // coordinates, so the automatic initialisation aligns the centroids first.
