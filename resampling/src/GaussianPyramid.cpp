@@ -107,7 +107,8 @@ Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool) {
         std::fill(o, o + ox, 0.0f);
         for (int t = -radius; t <= radius; ++t) {
           const float w = kernels[1][static_cast<std::size_t>(t + radius)];
-          const long src = std::clamp(static_cast<int>(j) * shrink.y + t, 0, static_cast<int>(ny) - 1);
+          const long src =
+              std::clamp(static_cast<int>(j) * shrink.y + t, 0, static_cast<int>(ny) - 1);
           const float* row = xPassed.data() + src * ox;
           for (long i = 0; i < ox; ++i) o[i] += w * row[i];
         }
@@ -130,7 +131,8 @@ Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool) {
       std::fill(o, o + ox, 0.0f);
       for (int t = -radius; t <= radius; ++t) {
         const float w = kernels[2][static_cast<std::size_t>(t + radius)];
-        const long src = std::clamp(static_cast<int>(k) * shrink.z + t, 0, static_cast<int>(nz) - 1);
+        const long src =
+            std::clamp(static_cast<int>(k) * shrink.z + t, 0, static_cast<int>(nz) - 1);
         const float* row = column.data() + src * ox;
         for (long i = 0; i < ox; ++i) o[i] += w * row[i];
       }

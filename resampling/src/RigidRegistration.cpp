@@ -253,12 +253,12 @@ void ascend(std::vector<double>& x, Evaluation& current, const Objective& f, dou
     bool accepted = false;
     std::vector<double> trial(n);
     Evaluation next;
-    while (report.iterations < options.maxIterationsPerLevel && alpha * length >= options.minStepMm) {
+    while (report.iterations < options.maxIterationsPerLevel &&
+           alpha * length >= options.minStepMm) {
       for (std::size_t k = 0; k < n; ++k) trial[k] = x[k] + alpha * d[k];
       ++report.iterations;
       next = f(trial);
-      if (next.validSamples >= minimumValid &&
-          next.value >= current.value + 1e-4 * alpha * slope) {
+      if (next.validSamples >= minimumValid && next.value >= current.value + 1e-4 * alpha * slope) {
         accepted = true;
         break;
       }
@@ -378,9 +378,8 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
   for (double sigma : smoothing) {
     fixedSigma.push_back(sigma > 0 ? sigma : matching(fixedVoxel));
     movingSigma.push_back(sigma > 0 ? sigma : matching(movingVoxel));
-    fixedLevels.push_back(fixedSigma.back() > 0
-                              ? detail::smoothAndShrink(fixed, fixedSigma.back(), pool)
-                              : Volume());
+    fixedLevels.push_back(
+        fixedSigma.back() > 0 ? detail::smoothAndShrink(fixed, fixedSigma.back(), pool) : Volume());
     movingLevels.push_back(movingSigma.back() > 0
                                ? detail::smoothAndShrink(moving, movingSigma.back(), pool)
                                : Volume());

@@ -13,8 +13,8 @@
 #include <string>
 #include <utility>
 
-#include <glm/gtc/matrix_inverse.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_inverse.hpp>
 
 #include "SharedData.h"
 #include "mvw/io/VolumeReader.h"

@@ -536,8 +536,8 @@ TEST_F(KnownTransform, ResolutionMatchingRemovesTheBiasOfACoarsePet) {
     const double plain =
         coarse.meanTre(registerRigid(*ct_, pet, unmatched).transform.movingFromFixed(), truth);
     std::cout << "5 mm PET, rotation (" << degrees.x << ", " << degrees.y << ", " << degrees.z
-              << ") deg: TRE " << tre << " mm matched, " << plain << " mm unmatched, "
-              << r.seconds << " s\n";
+              << ") deg: TRE " << tre << " mm matched, " << plain << " mm unmatched, " << r.seconds
+              << " s\n";
     EXPECT_TRUE(r.converged);
     matchedTre += tre / static_cast<double>(cases.size());
     unmatchedTre += plain / static_cast<double>(cases.size());
