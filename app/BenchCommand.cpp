@@ -58,8 +58,7 @@ void runBench(const BenchOptions& o) {
               context->backend().c_str(), context->renderer().c_str(), context->version().c_str(),
               d.x, d.y, d.z, o.size, o.size, o.frames);
   std::printf("  upload (volume, gradient, blocks): %.0f ms, gradient from the %s\n", uploadMs,
-              renderer.gradientSource() == render::GradientSource::Texture ? "texture"
-                                                                           : "shader (on the fly)");
+              render::toString(renderer.gradientSource()));
   for (render::RenderMode mode : modes) {
     render::RenderSettings s;
     s.mode = mode;

@@ -24,6 +24,19 @@ std::vector<float> gaussianKernel(double sigmaVoxels) {
   return k;
 }
 
+// One output row of a pass across rows (y or z): out[0..n) = sum over t of kernel[t] times
+// the input row at clamp(centre + t) of `count` rows, each n floats, in `rows`.
+void blendRows(float* out, long n, const std::vector<float>& kernel, int centre, int count,
+               const float* rows) {
+  const int radius = static_cast<int>(kernel.size() / 2);
+  std::fill(out, out + n, 0.0f);
+  for (int t = -radius; t <= radius; ++t) {
+    const float w = kernel[static_cast<std::size_t>(t + radius)];
+    const float* row = rows + static_cast<long>(std::clamp(centre + t, 0, count - 1)) * n;
+    for (long i = 0; i < n; ++i) out[i] += w * row[i];
+  }
+}
+
 }  // namespace
 
 Volume firstComponentAsFloat(const Volume& volume) {
@@ -101,24 +114,14 @@ Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool) {
         std::copy(xPassed.begin(), xPassed.end(), dst);
         return;
       }
-      const int radius = static_cast<int>(kernels[1].size() / 2);
-      for (long j = 0; j < oy; ++j) {
-        float* o = dst + j * ox;
-        std::fill(o, o + ox, 0.0f);
-        for (int t = -radius; t <= radius; ++t) {
-          const float w = kernels[1][static_cast<std::size_t>(t + radius)];
-          const long src =
-              std::clamp(static_cast<int>(j) * shrink.y + t, 0, static_cast<int>(ny) - 1);
-          const float* row = xPassed.data() + src * ox;
-          for (long i = 0; i < ox; ++i) o[i] += w * row[i];
-        }
-      }
+      for (long j = 0; j < oy; ++j)
+        blendRows(dst + j * ox, ox, kernels[1], static_cast<int>(j) * shrink.y,
+                  static_cast<int>(ny), xPassed.data());
     });
   });
   if (kernels[2].empty()) return out;
 
   // The z pass, one xz plane at a time (a copy of the plane's input column by column).
-  const int radius = static_cast<int>(kernels[2].size() / 2);
   const long oz = outDims.z;
   float* result = out.dataAs<float>();
   pool.parallelFor(static_cast<std::size_t>(oy), [&](std::size_t plane) {
@@ -126,17 +129,9 @@ Volume smoothAndShrink(const Volume& image, double sigmaMm, WorkerPool& pool) {
     std::vector<float> column(static_cast<std::size_t>(nz * ox));
     for (long k = 0; k < nz; ++k)
       std::copy(xy + (k * oy + j) * ox, xy + (k * oy + j + 1) * ox, column.data() + k * ox);
-    for (long k = 0; k < oz; ++k) {
-      float* o = result + (k * oy + j) * ox;
-      std::fill(o, o + ox, 0.0f);
-      for (int t = -radius; t <= radius; ++t) {
-        const float w = kernels[2][static_cast<std::size_t>(t + radius)];
-        const long src =
-            std::clamp(static_cast<int>(k) * shrink.z + t, 0, static_cast<int>(nz) - 1);
-        const float* row = column.data() + src * ox;
-        for (long i = 0; i < ox; ++i) o[i] += w * row[i];
-      }
-    }
+    for (long k = 0; k < oz; ++k)
+      blendRows(result + (k * oy + j) * ox, ox, kernels[2], static_cast<int>(k) * shrink.z,
+                static_cast<int>(nz), column.data());
   });
   return out;
 }

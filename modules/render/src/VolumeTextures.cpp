@@ -82,12 +82,10 @@ struct Layout {
 
 template <class T>
 Layout layoutOf() {
-  if constexpr (std::is_same_v<T, std::uint8_t>)
+  if constexpr (std::is_same_v<T, std::uint8_t> || std::is_same_v<T, std::uint16_t>)
     return {GL_R16, GL_UNSIGNED_SHORT, {65535.0, 0.0}};
   else if constexpr (std::is_same_v<T, std::int8_t>)
     return {GL_R16, GL_UNSIGNED_SHORT, {65535.0, -128.0}};
-  else if constexpr (std::is_same_v<T, std::uint16_t>)
-    return {GL_R16, GL_UNSIGNED_SHORT, {65535.0, 0.0}};
   else if constexpr (std::is_same_v<T, std::int16_t>)
     return {GL_R16, GL_UNSIGNED_SHORT, {65535.0, -32768.0}};
   else
