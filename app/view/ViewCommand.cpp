@@ -14,7 +14,7 @@ namespace mvw::app {
 namespace {
 
 struct ViewOptions {
-  std::string study, anatomical, functional, script;
+  std::string study, anatomical, functional, script, frameLog;
   int width = 1400, height = 900;
 };
 
@@ -32,6 +32,7 @@ void runView(const ViewOptions& o) {
   v.anatomical = mvw::study::readSource(v.study.anatomical);
   if (v.study.functional) v.functional = mvw::study::readSource(*v.study.functional);
   v.script = o.script;
+  v.frameLog = o.frameLog;
   v.width = o.width;
   v.height = o.height;
   runViewer(std::move(v));
@@ -58,6 +59,9 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--functional", o->functional, "Functional volume");
   cmd->add_option("--script", o->script,
                   "Scripted events, one per line (tests; see app/view/ViewerScript.h)");
+  cmd->add_option("--frame-log", o->frameLog,
+                  "Write one CSV line per drawn frame: its time, the 3D pane's render time and "
+                  "size, whether it was a drag frame (benchmarks of interactivity)");
   cmd->add_option("--width", o->width, "Window width")->check(CLI::Range(640, 8192));
   cmd->add_option("--height", o->height, "Window height")->check(CLI::Range(480, 8192));
   cmd->callback([o] { runView(*o); });

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <fstream>
 #include <memory>
 #include <optional>
 
@@ -15,6 +17,7 @@
 #include "ViewerPanel.h"
 #include "ViewerScript.h"
 #include "ViewerState.h"
+#include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/render/Annotations.h"
@@ -73,12 +76,20 @@ void drawColourBar(Image& shown, const ViewerState& state, const render::VolumeR
   }
 }
 
-void renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
-                      ViewerPanel::PaneTextures& textures, bool interacting) {
+// What the 3D pane's render of a frame took and at what size (frame log).
+struct Render3d {
+  double milliseconds = 0.0;
+  glm::ivec2 size{0};
+};
+
+Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
+                          ViewerPanel::PaneTextures& textures, bool interacting) {
+  Render3d rendered3d;
   for (int p = 0; p < kPaneCount; ++p) {
     if (!state.needsRender(p)) continue;
     const render::RenderSettings s = state.renderSettings(p, interacting);
     render::Frame f = renderer.render(s);
+    if (p == k3d) rendered3d = {f.milliseconds, s.size};
     Image shown = f.image;
     render::annotate(shown, f.camera, state.caption(p, s));
     render::drawGlyphLegend(shown, state.glyphLegend(p, s));
@@ -86,6 +97,7 @@ void renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting, f.milliseconds);
   }
+  return rendered3d;
 }
 
 // The pane's rectangle of the window's image, clipped to the window.
@@ -105,6 +117,14 @@ int runViewer(ViewerOptions options) {
   // Read and checked before the window opens: a typo in a script is bad input, not a crash.
   ViewerScript script;
   if (!options.script.empty()) script = ViewerScript::load(options.script);
+  // The frame log is opened before the window: a path that cannot be written is reported as
+  // bad input with nothing drawn.
+  std::ofstream frameLog;
+  if (!options.frameLog.empty()) {
+    frameLog.open(options.frameLog, std::ios::binary | std::ios::trunc);
+    if (!frameLog) throw InputError(options.frameLog, "cannot write the frame log");
+    frameLog << "frame,ms,render3d_ms,render3d_width,render3d_height,interactive,drag_divisor\n";
+  }
   const Volume* functional = options.functional ? &*options.functional : nullptr;
   // The study's segmentation, outlined on the MPR panes: read before the window opens too.
   std::optional<mvw::study::SegmentOverlay> segments;
@@ -143,6 +163,8 @@ int runViewer(ViewerOptions options) {
   ViewerState state(options.study, options.anatomical, functional, scene);
   ViewerPanel panel(state, textures);
 
+  auto lastSwap = std::chrono::steady_clock::now();
+
   int frames = 0;
   while (!glfwWindowShouldClose(context.window()) && !state.quitRequested()) {
     glfwPollEvents();
@@ -153,9 +175,10 @@ int runViewer(ViewerOptions options) {
       renderer.setFunctional(*functional, *anatomicalFromFunctional);
       placeSegments(renderer, *anatomicalFromFunctional);
     }
-    const bool dragging = panel.draw();
+    const bool dragging = panel.draw() || state.scriptedInteraction();
+    const int divisor = state.dragDivisor();  // the one this frame renders with
     state.advanceOrbit();  // one step per drawn frame while the 3D view spins or rocks
-    renderDirtyPanes(state, renderer, textures, dragging);
+    const Render3d rendered3d = renderDirtyPanes(state, renderer, textures, dragging);
     ImGui::Render();
     framebuffer.clear({0.08f, 0.08f, 0.1f, 1.0f});
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -170,6 +193,13 @@ int runViewer(ViewerOptions options) {
           paneOf(framebuffer.read(), state.paneOrigin(shot->first), state.paneSize(shot->first)),
           shot->second);
     glfwSwapBuffers(context.window());
+    if (frameLog.is_open()) {
+      const auto now = std::chrono::steady_clock::now();
+      frameLog << frames << ',' << std::chrono::duration<double, std::milli>(now - lastSwap).count()
+               << ',' << rendered3d.milliseconds << ',' << rendered3d.size.x << ','
+               << rendered3d.size.y << ',' << (dragging ? 1 : 0) << ',' << divisor << '\n';
+      lastSwap = now;
+    }
     ++frames;
     if (!state.anyDirty() && script.empty() && !state.registering())
       glfwWaitEventsTimeout(0.05);  // idle: no busy loop

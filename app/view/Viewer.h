@@ -15,6 +15,9 @@ struct ViewerOptions {
   Volume anatomical;
   std::optional<Volume> functional;
   std::filesystem::path script;  // scripted events, for tests (see ViewerScript.h)
+  // One CSV line per drawn frame (frame, ms since the previous frame's swap, the 3D pane's
+  // render ms and size where it rendered, interactive, drag divisor); empty: none.
+  std::filesystem::path frameLog;
   int width = 1400, height = 900;
 };
 

@@ -77,11 +77,17 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       if (mod != "ctrl") in.fail("key: unknown modifier '" + mod + "' (ctrl)");
       c.ctrl = true;
     }
-  } else if (cmd == "drag") {
-    c.kind = Kind::Drag;
+  } else if (cmd == "drag" || cmd == "drag-frames") {
+    c.kind = cmd == "drag" ? Kind::Drag : Kind::DragFrames;
     c.pane = in.pane();
     c.x = in.number("dx");
     c.y = in.number("dy");
+    if (c.kind == Kind::DragFrames) {
+      const double frames = in.number("frame count");
+      if (frames < 1 || frames != std::floor(frames) || frames > 1e5)
+        in.fail("drag-frames: the frame count must be a whole number from 1 to 100000");
+      c.frames = static_cast<int>(frames);
+    }
     if (in.more()) {
       const std::string b = in.word("button");
       if (b == "left")
@@ -91,7 +97,7 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       else if (b == "middle")
         c.button = MouseButton::Middle;
       else
-        in.fail("drag: unknown button '" + b + "' (left, right, middle)");
+        in.fail(cmd + ": unknown button '" + b + "' (left, right, middle)");
     }
   } else if (cmd == "click") {
     c.kind = Kind::Click;
@@ -222,6 +228,19 @@ ViewerScript ViewerScript::load(const std::filesystem::path& file) {
 }
 
 bool ViewerScript::step(ViewerState& state) {
+  if (dragging_) {
+    // One increment per drawn frame, every frame of it interactive; the frame after the last
+    // increment's is not, so the pane refines at full resolution as after a real drag.
+    if (dragFramesLeft_ > 0) {
+      const Command& d = commands_[*dragging_];
+      --dragFramesLeft_;
+      state.drag(d.pane, d.x / d.frames, d.y / d.frames, d.button, false);
+      state.setScriptedInteraction(true);
+      return true;
+    }
+    dragging_.reset();
+    state.setScriptedInteraction(false);
+  }
   if (wait_ > 0) {
     --wait_;
     return true;
@@ -236,6 +255,12 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Drag:
       state.drag(c.pane, c.x, c.y, c.button, false);
+      break;
+    case Kind::DragFrames:
+      dragging_ = next_ - 1;
+      dragFramesLeft_ = c.frames - 1;
+      state.drag(c.pane, c.x / c.frames, c.y / c.frames, c.button, false);
+      state.setScriptedInteraction(true);
       break;
     case Kind::Click:
       state.click(c.pane, c.x, c.y);

@@ -2,6 +2,9 @@
 // The viewer's --script (tests under Xvfb drive the window with it). One command per line:
 //   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k)
 //   drag PANE dx dy [left|right|middle] a drag by fractions of the pane (default left)
+//   drag-frames PANE dx dy N [BUTTON]   the same drag spread over N frames, each one a frame of
+//                                       an interactive drag (the 3D pane renders coarse, as
+//                                       under the mouse), then the frame that refines
 //   click PANE x y                      a click at fractions of the pane (y down)
 //   wheel PANE n                        n wheel notches
 //   wait FRAMES                         let FRAMES frames pass
@@ -28,6 +31,7 @@
 // typo is reported before the window opens, naming the file and the line.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +46,7 @@ class ViewerScript {
       Nothing,  // blank line or comment
       Key,
       Drag,
+      DragFrames,
       Click,
       Wheel,
       Wait,
@@ -96,6 +101,9 @@ class ViewerScript {
   std::vector<Command> commands_;
   std::size_t next_ = 0;
   int wait_ = 0;
+  // A drag-frames command in progress (its index in commands_) and the frames it has left.
+  std::optional<std::size_t> dragging_;
+  int dragFramesLeft_ = 0;
 };
 
 }  // namespace mvw::app

@@ -181,6 +181,10 @@ class ViewerState {
   std::optional<std::pair<int, std::filesystem::path>> takePaneScreenshotRequest() {
     return std::exchange(paneScreenshot_, std::nullopt);
   }
+  // A scripted drag in progress (ViewerScript's drag-frames): its frames are interactive, as
+  // the frames of a mouse drag are.
+  void setScriptedInteraction(bool on) { scriptedInteraction_ = on; }
+  bool scriptedInteraction() const { return scriptedInteraction_; }
   void requestQuit() { quit_ = true; }
   bool quitRequested() const { return quit_; }
   void setStatus(std::string status) { status_ = std::move(status); }
@@ -252,6 +256,7 @@ class ViewerState {
 
  private:
   int dragDivisor_ = 2;
+  bool scriptedInteraction_ = false;
   struct PaneState {
     bool dirty = true;
     bool rendered = false;

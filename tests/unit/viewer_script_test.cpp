@@ -117,6 +117,13 @@ TEST(ViewerScript, BadLinesNameTheLineAndTheProblem) {
   EXPECT_EQ(problemOf("quit now"), "line 1: quit: unexpected 'now'");
   EXPECT_EQ(problemOf("click axial nan 0.5"), "line 1: click: x 'nan' is not a number");
   EXPECT_EQ(problemOf("  # indented comment\n\t\nquit"), "");
+  EXPECT_EQ(problemOf("drag-frames 3d 0.5 0"), "line 1: drag-frames: missing frame count");
+  EXPECT_EQ(problemOf("drag-frames 3d 0.5 0 0"),
+            "line 1: drag-frames: the frame count must be a whole number from 1 to 100000");
+  EXPECT_EQ(problemOf("drag-frames 3d 0.5 0 2.5"),
+            "line 1: drag-frames: the frame count must be a whole number from 1 to 100000");
+  EXPECT_EQ(problemOf("drag-frames 3d 0.5 0 4 up"),
+            "line 1: drag-frames: unknown button 'up' (left, right, middle)");
 }
 
 TEST(ViewerScript, MissingFileIsBadInput) {
@@ -164,6 +171,31 @@ TEST_F(ViewerScriptRun, OneLinePerFrameAndWaitsCountFrames) {
   EXPECT_TRUE(s.step(state));
   EXPECT_TRUE(state.quitRequested());
   EXPECT_FALSE(s.step(state));  // the end
+}
+
+// A drag spread over N frames: the same rotation in all as one `drag`, one increment per frame,
+// every one of those frames interactive, and the frame after the last one not (it refines).
+TEST_F(ViewerScriptRun, DragFramesSpreadsTheDragAndMarksItsFramesInteractive) {
+  ViewerState state(study, ct, nullptr, scene);
+  const double start = state.view3d().camera.azimuthDeg;
+  ViewerScript s = ViewerScript::parse("drag-frames 3d 0.5 0 4\nkey 3\n", "t");
+  for (int frame = 1; frame <= 4; ++frame) {
+    EXPECT_TRUE(s.step(state));
+    EXPECT_TRUE(state.scriptedInteraction()) << "frame " << frame;
+    EXPECT_NEAR(state.view3d().camera.azimuthDeg - start, 0.5 * 180.0 * frame / 4.0, 1e-9);
+    EXPECT_EQ(state.view3d().mode, render::RenderMode::Composite);  // not yet the next line
+  }
+  EXPECT_TRUE(s.step(state));  // the drag ends, and the next line runs in the same step
+  EXPECT_FALSE(state.scriptedInteraction());
+  EXPECT_NEAR(state.view3d().camera.azimuthDeg - start, 90.0, 1e-9);
+  EXPECT_EQ(state.view3d().mode, render::RenderMode::Mip);
+  EXPECT_FALSE(s.step(state));
+
+  ViewerState plain(study, ct, nullptr, scene);
+  ViewerScript one = ViewerScript::parse("drag 3d 0.5 0\n", "t");
+  one.step(plain);
+  EXPECT_FALSE(plain.scriptedInteraction());
+  EXPECT_NEAR(plain.view3d().camera.azimuthDeg - start, 90.0, 1e-9);
 }
 
 TEST_F(ViewerScriptRun, WaitRegistrationHoldsUntilTheWorkerEnds) {
