@@ -227,15 +227,19 @@ ViewerScript ViewerScript::load(const std::filesystem::path& file) {
   return parse(text.str(), file);
 }
 
+void ViewerScript::dragIncrement(ViewerState& state) {
+  const Command& d = commands_[*dragging_];
+  --dragFramesLeft_;
+  state.drag(d.pane, d.x / d.frames, d.y / d.frames, d.button, false);
+  state.setScriptedInteraction(true);
+}
+
 bool ViewerScript::step(ViewerState& state) {
   if (dragging_) {
     // One increment per drawn frame, every frame of it interactive; the frame after the last
     // increment's is not, so the pane refines at full resolution as after a real drag.
     if (dragFramesLeft_ > 0) {
-      const Command& d = commands_[*dragging_];
-      --dragFramesLeft_;
-      state.drag(d.pane, d.x / d.frames, d.y / d.frames, d.button, false);
-      state.setScriptedInteraction(true);
+      dragIncrement(state);
       return true;
     }
     dragging_.reset();
@@ -258,9 +262,8 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::DragFrames:
       dragging_ = next_ - 1;
-      dragFramesLeft_ = c.frames - 1;
-      state.drag(c.pane, c.x / c.frames, c.y / c.frames, c.button, false);
-      state.setScriptedInteraction(true);
+      dragFramesLeft_ = c.frames;
+      dragIncrement(state);
       break;
     case Kind::Click:
       state.click(c.pane, c.x, c.y);

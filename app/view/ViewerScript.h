@@ -101,6 +101,8 @@ class ViewerScript {
   std::vector<Command> commands_;
   std::size_t next_ = 0;
   int wait_ = 0;
+  // The next 1/N of the drag-frames command in progress, as an interactive frame.
+  void dragIncrement(ViewerState& state);
   // A drag-frames command in progress (its index in commands_) and the frames it has left.
   std::optional<std::size_t> dragging_;
   int dragFramesLeft_ = 0;
