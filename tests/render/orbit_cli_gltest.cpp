@@ -40,6 +40,13 @@ CliRun mvw(const std::string& args, const fs::path& dir) {
   return r;
 }
 
+// mvw with `args` exits 0; otherwise the failure names the command, its exit code and stderr.
+testing::AssertionResult ran(const std::string& args, const fs::path& dir) {
+  const CliRun r = mvw(args, dir);
+  if (r.rc == 0) return testing::AssertionSuccess();
+  return testing::AssertionFailure() << "mvw " << args << " exited " << r.rc << ":\n" << r.err;
+}
+
 // A MIP study of the Cranium CT at an odd size (the movie pads it to even).
 fs::path writeStudy(const fs::path& dir, const std::string& view) {
   const fs::path file = dir / "study.json";
@@ -78,14 +85,12 @@ TEST(OrbitCli, SpinFramesMovieAndRecord) {
   }
   EXPECT_FALSE(fs::exists(dir / "spin" / "mip" / "frame-008.png"));
   // The first frame is the still at the view's azimuth; frame N/2 the still at azimuth + 180.
-  ASSERT_EQ(mvw("render " + study.string() + " -o " + (dir / "still").string(), dir).rc, 0);
+  ASSERT_TRUE(ran("render " + study.string() + " -o " + (dir / "still").string(), dir));
   EXPECT_TRUE(
       samePixels(png(dir / "spin" / "mip" / "frame-000.png"), png(dir / "still" / "mip.png")));
   EXPECT_TRUE(samePixels(png(dir / "spin" / "mip.png"), png(dir / "still" / "mip.png")));
-  ASSERT_EQ(
-      mvw("render " + study.string() + " -o " + (dir / "turned").string() + " --azimuth 200", dir)
-          .rc,
-      0);
+  ASSERT_TRUE(
+      ran("render " + study.string() + " -o " + (dir / "turned").string() + " --azimuth 200", dir));
   EXPECT_TRUE(
       samePixels(png(dir / "spin" / "mip" / "frame-004.png"), png(dir / "turned" / "mip.png")));
   EXPECT_FALSE(
@@ -117,14 +122,13 @@ TEST(OrbitCli, RockSwingsOverItsRangeWithDepthCue) {
                "colormap": "hot-iron", "orbit": 8, "orbit_mode": "rock", "orbit_range": 20 })");
   // Into folders that do not exist yet: created, with nothing staged left on the way.
   const fs::path rock = dir / "deep" / "er" / "rock";
-  ASSERT_EQ(mvw("render " + study.string() + " -o " + rock.string(), dir).rc, 0);
+  ASSERT_TRUE(ran("render " + study.string() + " -o " + rock.string(), dir));
   for (const fs::path& d : {dir, dir / "deep", dir / "deep" / "er"})
     for (const auto& e : fs::directory_iterator(d))
       EXPECT_EQ(e.path().filename().string().find(".mvw-render-"), std::string::npos) << e.path();
   // Frame 2 of 8 is the top of the swing: azimuth + 20 exactly (sin(pi/2) = 1).
-  ASSERT_EQ(
-      mvw("render " + study.string() + " -o " + (dir / "top").string() + " --azimuth 20", dir).rc,
-      0);
+  ASSERT_TRUE(
+      ran("render " + study.string() + " -o " + (dir / "top").string() + " --azimuth 20", dir));
   // --azimuth keeps the orbit, so the top run's own first frame is the still at azimuth 20.
   EXPECT_TRUE(samePixels(png(rock / "cued" / "frame-002.png"),
                          png(dir / "top" / "cued" / "frame-000.png")));
@@ -154,11 +158,9 @@ TEST(OrbitCli, FusionOrbitsWithItsOverlayColourMap) {
   ASSERT_EQ(back.rc, 0) << back.err;
   EXPECT_TRUE(
       samePixels(png(dir / "spin" / "fused" / "frame-002.png"), png(dir / "back" / "fused.png")));
-  ASSERT_EQ(mvw("render " + study.string() + " -o " + (dir / "hot").string() +
-                    " --overlay-colormap hot-metal",
-                dir)
-                .rc,
-            0);
+  ASSERT_TRUE(ran("render " + study.string() + " -o " + (dir / "hot").string() +
+                      " --overlay-colormap hot-metal",
+                  dir));
   EXPECT_FALSE(samePixels(png(dir / "spin" / "fused.png"), png(dir / "hot" / "fused.png")))
       << "the overlay colour map changed nothing";
   const nlohmann::json record =
@@ -172,10 +174,10 @@ TEST(OrbitCli, ColourMapsReachThePixels) {
   const fs::path dir = test::scratchDir();
   const fs::path study = writeStudy(dir, kMip);
   const std::string base = "render " + study.string() + " --no-annotate --zoom 0.6 -o ";
-  ASSERT_EQ(mvw(base + (dir / "grey").string(), dir).rc, 0);
+  ASSERT_TRUE(ran(base + (dir / "grey").string(), dir));
   const cv::Mat grey = png(dir / "grey" / "mip.png");
   for (const char* name : {"grey-inverted", "hot-iron", "pet", "hot-metal-blue", "pet-20-step"}) {
-    ASSERT_EQ(mvw(base + (dir / name).string() + " --colormap " + name, dir).rc, 0) << name;
+    ASSERT_TRUE(ran(base + (dir / name).string() + " --colormap " + name, dir)) << name;
     const cv::Mat img = png(dir / name / "mip.png");
     const ColorTable table = io::standardColorTable(*parseColorMap(name));
     ASSERT_EQ(img.size(), grey.size());
