@@ -91,6 +91,31 @@ class Staging {
   bool made_ = false;
 };
 
+// Everything about the output folder that can be known before rendering is said then, so a
+// name the file system cannot take costs no render and creates nothing: the nearest folder
+// that exists must be a writable folder, and each folder still to be made a name it can hold.
+void checkOutputFolder(const fs::path& outDir) {
+  const fs::path out = fs::absolute(outDir).lexically_normal();
+  std::error_code ec;
+  fs::path existing = out;
+  std::vector<std::string> toMake;
+  while (!existing.empty() && existing != existing.root_path() && !fs::exists(existing, ec)) {
+    if (!existing.filename().empty()) toMake.push_back(existing.filename().string());
+    existing = existing.parent_path();
+  }
+  if (!fs::is_directory(existing, ec))
+    throw InputError(outDir, existing.string() + " is not a folder");
+  if (::access(existing.c_str(), W_OK | X_OK) != 0)
+    throw InputError(outDir, "the folder " + existing.string() + " is not writable");
+  const long nameMax = ::pathconf(existing.c_str(), _PC_NAME_MAX);
+  for (const std::string& name : toMake)
+    if (nameMax > 0 && static_cast<long>(name.size()) > nameMax)
+      throw InputError(outDir, "the folder name '" + name.substr(0, 40) + "...' is " +
+                                   std::to_string(name.size()) +
+                                   " characters, more than the file system's " +
+                                   std::to_string(nameMax));
+}
+
 std::string frameName(int k) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "frame-%03d.png", k);
@@ -99,6 +124,7 @@ std::string frameName(int k) {
 
 void runRender(const RenderOptions& o) {
   const config::StudyConfig study = config::loadStudyConfig(o.study);
+  checkOutputFolder(o.outDir);
   std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, o.overrides);
   // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
   auto context = makeHeadlessContext(o.gl);
