@@ -1,7 +1,8 @@
 // The functional attribute (0..1 through the view's window or classes) at the centres of one
 // slice of anatomical voxels: the renderer writes it into the gradient texture's alpha with
 // an alpha-only colour mask, so glyph shading reads beta with the gradient in the ray loop
-// (with the gradient taken on the fly, into the red of an attribute volume of its own).
+// (where that alpha holds the intensity or there is no gradient texture, into the red of an
+// attribute volume of its own).
 #include "common/functional.glsl"
 
 uniform mat4 uWorldFromIndex;  // anatomical voxel index -> world (LPS mm)

@@ -34,7 +34,7 @@ int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, c
   // Variants are compile-time (#define from C++): as uniform branches the unused features
   // cost this loop half its speed on llvmpipe.
 #if defined(MVW_TF2D)
-  g = sampleGradient(tex);
+  g = sampleGradientOfValue(tex);
   c = textureLod(uTransfer, vec2(u, clamp(length(g.xyz) * uGradientScale, 0.0, 1.0)), 0.0);
 #else
   c = textureLod(uTransfer, vec2(u, 0.5), 0.0);
@@ -47,7 +47,7 @@ int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, c
 #endif
   if (uShading) {
 #if !defined(MVW_TF2D)
-    g = sampleGradient(tex);
+    g = sampleGradientOfValue(tex);
 #endif
     float magnitude2 = dot(g.xyz, g.xyz);
     if (magnitude2 > 1e-12) {

@@ -1,6 +1,8 @@
-// Where shading takes the gradient from (GradientSource): the precomputed texture and the
-// shaders' central differences both light a sphere as Lambert says, glyphs work on either,
-// and voxels of every integer type reach the shaders with their values at the type's ends.
+// Where shading takes the gradient from (GradientSource): the precomputed texture (float, or
+// packed with 16-bit intensities) and the shaders' central differences all light a sphere as
+// Lambert says, composite reads the same values from the packed texture as from the intensity,
+// glyphs work on each from their first frame, and voxels of every integer type reach the
+// shaders with their values at the type's ends.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -23,6 +25,29 @@ Volume sphere(double R, glm::ivec3 dims, glm::dvec3 origin, glm::dvec3 spacing) 
   return makeVolume(dims, makeWorldFromIndex(origin, spacing, glm::dmat3(1.0)),
                     [R](glm::dvec3 p) { return static_cast<float>(R - glm::length(p)); });
 }
+
+// The same in int16 hundredths of a mm: 16-bit intensities, so the gradient texture is packed
+// with them (RGBA16) instead of float (RGBA16F).
+Volume sphere16(double R, glm::ivec3 dims, glm::dvec3 origin, glm::dvec3 spacing) {
+  Volume v(dims, 1, ScalarType::Int16, makeWorldFromIndex(origin, spacing, glm::dmat3(1.0)));
+  auto* p = v.dataAs<std::int16_t>();
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i)
+        *p++ = static_cast<std::int16_t>(
+            std::lround(100.0 * (R - glm::length(v.worldFromIndexPoint({i, j, k})))));
+  return v;
+}
+
+struct Source {
+  const char* name;
+  bool int16;
+  GradientSource gradient;
+};
+const Source kSources[] = {{"float texture", false, GradientSource::Texture},
+                           {"packed texture (int16)", true, GradientSource::Texture},
+                           {"shader (float)", false, GradientSource::OnTheFly},
+                           {"shader (int16)", true, GradientSource::OnTheFly}};
 
 // The worst |pixel - Lambert| (grey levels) over the rays that hit the sphere well inside its
 // outline, for an isosurface lit by a headlight with ambient 0.2 and diffuse 0.8.
@@ -57,24 +82,55 @@ double worstLambertError(VolumeRenderer& renderer, double R, const glm::dvec3& c
   return worst;
 }
 
-TEST(GradientSource, BothSourcesLightASphereAsLambertSays) {
+TEST(GradientSource, EverySourceLightsASphereAsLambertSays) {
   const double R = 20.0;
   const Volume v = sphere(R, {65, 65, 33}, {-32, -32, -24}, {1.0, 1.0, 1.5});
+  const Volume v16 = sphere16(R, {65, 65, 33}, {-32, -32, -24}, {1.0, 1.0, 1.5});
   auto ctx = createHeadlessContext({16, 16});
-  double worst[2];
-  int n = 0;
-  for (GradientSource g : {GradientSource::Texture, GradientSource::OnTheFly}) {
-    VolumeRenderer renderer(*ctx, v, g);
-    EXPECT_EQ(renderer.gradientSource(), g);
-    worst[n] = worstLambertError(renderer, R, glm::dvec3(0.0));
-    std::cout << "gradient from the " << toString(g) << ": worst Lambert error " << worst[n]
+  for (const Source& source : kSources) {
+    VolumeRenderer renderer(*ctx, source.int16 ? v16 : v, source.gradient);
+    EXPECT_EQ(renderer.gradientSource(), source.gradient);
+    const double worst = worstLambertError(renderer, R, glm::dvec3(0.0));
+    std::cout << "gradient from the " << source.name << ": worst Lambert error " << worst
               << " grey levels\n";
-    ++n;
+    // Measured: 1.9 (texture) and 1.8 (shader) grey levels, the normal within about half a
+    // degree, for float and int16 alike. A gradient axis scaled by the wrong spacing, a flipped
+    // axis or a wrong packed decoding costs tens of levels.
+    EXPECT_LT(worst, 3.0) << source.name;
   }
-  // Measured: 1.9 (texture) and 1.8 (shader) grey levels: the normal within about half a
-  // degree. A gradient axis scaled by the wrong spacing or a flipped axis costs tens of levels.
-  EXPECT_LT(worst[0], 3.0);
-  EXPECT_LT(worst[1], 3.0);
+}
+
+// Shaded composite of the int16 sphere: with the packed texture its samples take value and
+// gradient from one fetch (the intensity's texel in A); on the fly, from the R16 intensity.
+// The same values and nearly the same normals must give the same image.
+TEST(GradientSource, PackedCompositeSeesTheIntensitysValues) {
+  const Volume v16 = sphere16(20.0, {65, 65, 33}, {-32, -32, -24}, {1.0, 1.0, 1.5});
+  auto ctx = createHeadlessContext({16, 16});
+  RenderSettings s;
+  s.mode = RenderMode::Composite;
+  // Values in hundredths of a mm: a 2 mm translucent rind over an opaque core.
+  s.transfer = TransferFunction{
+      "rind",
+      false,
+      {TfPoint{-100.0, {1, 0.8f, 0.6f, 0.0f}}, TfPoint{100.0, {1, 0.8f, 0.6f, 0.05f}},
+       TfPoint{400.0, {0.6f, 0.7f, 1, 0.05f}}, TfPoint{500.0, {0.6f, 0.7f, 1, 1.0f}}}};
+  s.size = {97, 97};
+  s.jitter = false;
+  s.camera.azimuthDeg = 20;
+  s.camera.elevationDeg = 15;
+  const Image packed = VolumeRenderer(*ctx, v16, GradientSource::Texture).render(s).image;
+  const Image shader = VolumeRenderer(*ctx, v16, GradientSource::OnTheFly).render(s).image;
+  int worst = 0, lit = 0;
+  for (std::size_t i = 0; i < packed.rgba.size(); ++i) {
+    worst = std::max(worst, std::abs(int(packed.rgba[i]) - int(shader.rgba[i])));
+    if (i % 4 == 0 && packed.rgba[i] > 60) ++lit;
+  }
+  std::cout << "packed against on the fly: worst " << worst << " grey levels, " << lit
+            << " lit pixels\n";
+  EXPECT_GT(lit, 500);
+  // The two gradients differ (Sobel-averaged against plain central differences): a few levels.
+  // A value read from the wrong channel or mapped wrongly moves the rind by tens.
+  EXPECT_LE(worst, 8);
 }
 
 TEST(GradientSource, AutoKeepsTheTextureForSmallVolumesAndNamesTheChoices) {
@@ -87,47 +143,56 @@ TEST(GradientSource, AutoKeepsTheTextureForSmallVolumesAndNamesTheChoices) {
   EXPECT_THROW(parseGradientSource("sobel"), Error);
 }
 
-// Glyphs (their attribute in a volume of its own when the gradient is taken on the fly): no
-// attribute is plain shading bit for bit, and glyphs appear only where the attribute is.
-TEST(GradientSource, GlyphsWorkWithTheGradientTakenOnTheFly) {
+// Glyphs, with their attribute in the float gradient's A or in a volume of its own (packed,
+// on the fly): no attribute is plain shading bit for bit, and glyphs appear only where the
+// attribute is, from the renderer's first glyph frame on (the attribute volume, made by that
+// frame, once took the functional volume's texture unit, and that frame had no attribute).
+TEST(GradientSource, GlyphsWorkWithEverySourceFromTheFirstFrame) {
   const Volume anatomy = sphere(25.0, {61, 61, 61}, {-30, -30, -30}, {1, 1, 1});
+  const Volume anatomy16 = sphere16(25.0, {61, 61, 61}, {-30, -30, -30}, {1, 1, 1});
   auto attribute = [](float level) {
     return makeVolume({16, 16, 16}, makeWorldFromIndex({-30, -30, -30}, {4, 4, 4}, glm::dmat3(1.0)),
                       [level](glm::dvec3 p) { return p.x > 2.0 ? level : 0.0f; });
   };
   auto ctx = createHeadlessContext({16, 16});
-  for (RenderMode mode : {RenderMode::Isosurface, RenderMode::Composite}) {
-    VolumeRenderer renderer(*ctx, anatomy, GradientSource::OnTheFly);
-    RenderSettings s;
-    s.mode = mode;
-    s.isoValue = 0.0;
-    s.transfer = TransferFunction{"shell",
-                                  false,
-                                  {TfPoint{-1.0, {1, 1, 1, 0.0f}}, TfPoint{0.0, {1, 1, 1, 1.0f}},
-                                   TfPoint{30.0, {1, 1, 1, 1.0f}}}};
-    s.size = {241, 241};
-    s.jitter = false;
-    s.camera.view = StandardView::Anterior;
-    s.glyphDiameterMm = 4.0;
-    s.functionalLow = 0.0;
-    s.functionalHigh = 1.0;
-    const Frame plain = renderer.render(s);
-    renderer.setFunctional(attribute(0.0f), glm::dmat4(1.0));
-    s.glyphs = true;
-    EXPECT_EQ(renderer.render(s).image.rgba, plain.image.rgba) << toString(mode);
-    renderer.setFunctional(attribute(0.8f), glm::dmat4(1.0));
-    const Image bumped = renderer.render(s).image;
-    int changed = 0, wrongSide = 0;
-    for (int y = 0; y < bumped.height; ++y)
-      for (int x = 0; x < bumped.width; ++x)
-        if (std::memcmp(bumped.pixel(x, y), plain.image.pixel(x, y), 3) != 0) {
-          ++changed;
-          if (x < bumped.width / 2 - 1) ++wrongSide;
-        }
-    std::cout << toString(mode) << ": " << changed << " pixels changed by glyphs\n";
-    EXPECT_GT(changed, 150) << toString(mode);
-    EXPECT_EQ(wrongSide, 0) << toString(mode);
-  }
+  for (const Source& source : kSources)
+    for (RenderMode mode : {RenderMode::Isosurface, RenderMode::Composite}) {
+      const Volume& volume = source.int16 ? anatomy16 : anatomy;
+      const double unit = source.int16 ? 100.0 : 1.0;
+      const std::string what = std::string(source.name) + ", " + toString(mode);
+      RenderSettings s;
+      s.mode = mode;
+      s.isoValue = 0.0;
+      s.transfer =
+          TransferFunction{"shell",
+                           false,
+                           {TfPoint{-1.0 * unit, {1, 1, 1, 0.0f}}, TfPoint{0.0, {1, 1, 1, 1.0f}},
+                            TfPoint{30.0 * unit, {1, 1, 1, 1.0f}}}};
+      s.size = {241, 241};
+      s.jitter = false;
+      s.camera.view = StandardView::Anterior;
+      s.glyphDiameterMm = 4.0;
+      s.functionalLow = 0.0;
+      s.functionalHigh = 1.0;
+      VolumeRenderer renderer(*ctx, volume, source.gradient);
+      const Frame plain = renderer.render(s);
+      s.glyphs = true;
+      VolumeRenderer first(*ctx, volume, source.gradient);
+      first.setFunctional(attribute(0.8f), glm::dmat4(1.0));
+      const Image bumped = first.render(s).image;
+      int changed = 0, wrongSide = 0;
+      for (int y = 0; y < bumped.height; ++y)
+        for (int x = 0; x < bumped.width; ++x)
+          if (std::memcmp(bumped.pixel(x, y), plain.image.pixel(x, y), 3) != 0) {
+            ++changed;
+            if (x < bumped.width / 2 - 1) ++wrongSide;
+          }
+      std::cout << what << ": " << changed << " pixels changed by glyphs\n";
+      EXPECT_GT(changed, 150) << what;
+      EXPECT_EQ(wrongSide, 0) << what;
+      renderer.setFunctional(attribute(0.0f), glm::dmat4(1.0));
+      EXPECT_EQ(renderer.render(s).image.rgba, plain.image.rgba) << what;
+    }
 }
 
 // Three slabs at the type's lowest value, its middle and its highest, seen by a MIP through

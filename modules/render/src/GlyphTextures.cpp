@@ -40,8 +40,9 @@ void GlyphTextures::uploadMap(const GlyphMapSettings& g) {
 }
 
 // Beta sits in the gradient's alpha so that the ray loop reads it with the gradient instead of
-// sampling a second volume per step (with the gradient taken on the fly, in an R16F volume of
-// its own: VolumeTextures::betaTarget).
+// sampling a second volume per step, where that alpha is free (a float gradient texture);
+// packed with 16-bit intensities or with the gradient taken on the fly, in an R16F volume of
+// its own (VolumeTextures::betaTarget).
 void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures& functional,
                                glm::vec2 window, int classes, const std::vector<LabelGlyph>& labels,
                                const ShaderProgram& p, GLuint vao) {
@@ -54,6 +55,10 @@ void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures&
     if (l.label > 0) table[std::size_t(l.label)] = l.dimple ? 1e-3f : 1.0f;
   const BetaKey key{functional.generation(), window.x, window.y, classes, table};
   if (betaKey_ == key) return;
+  // First: made on first use, the target binds itself to the active unit, which must not
+  // replace the functional volume bound below (it did, and glyphs had no attribute wherever
+  // it lives in a volume of its own).
+  const GLuint target = volume.betaTarget();
   p.use();
   functional.setUniforms(p, window, classes);
   if (!table.empty()) {
@@ -72,7 +77,6 @@ void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures&
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_3D, functional.texture());
   glUniform1i(p.uniform("uFunctional"), 0);
-  const GLuint target = volume.betaTarget();
   Framebuffer fbo = makeFramebuffer();
   glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   const GLenum buffer = GL_COLOR_ATTACHMENT0;

@@ -48,6 +48,11 @@ const ShaderProgram& RaycastPrograms::forMode(RenderMode mode, const RenderSetti
   if (s.imageColors && takesImageColors(mode)) defines.push_back("MVW_IMAGE_COLORMAP 1");
   if (gradientOnTheFly_ && (mode == RenderMode::Composite || mode == RenderMode::Isosurface))
     defines.push_back("MVW_GRADIENT_ON_THE_FLY 1");
+  if (packedGradient_ && (mode == RenderMode::Composite || mode == RenderMode::Isosurface)) {
+    defines.push_back("MVW_PACKED_GRADIENT 1");
+    // The packed texture is always trilinear: nearest-neighbour values keep the intensity's.
+    if (mode == RenderMode::Composite && s.linear) defines.push_back("MVW_PACKED_VALUE 1");
+  }
   std::string key = toString(mode);
   for (const auto& d : defines) key += "+" + d;
   return cached(key, file, defines);

@@ -13,8 +13,11 @@ namespace mvw::render::detail {
 class RaycastPrograms {
  public:
   // gradientOnTheFly: composite and isosurface take the gradient from the intensity
-  // (MVW_GRADIENT_ON_THE_FLY) instead of the gradient texture.
-  explicit RaycastPrograms(bool gradientOnTheFly) : gradientOnTheFly_(gradientOnTheFly) {}
+  // (MVW_GRADIENT_ON_THE_FLY) instead of the gradient texture; packedGradient: the texture
+  // holds the intensity too (VolumeTextures::packed), and composite's trilinear samples read
+  // value and gradient in one fetch.
+  RaycastPrograms(bool gradientOnTheFly, bool packedGradient)
+      : gradientOnTheFly_(gradientOnTheFly), packedGradient_(packedGradient) {}
   // The program for a ray-cast mode (not the shell modes) with the variants `settings` and
   // `fusion` (the functional colour blended in) ask for.
   const ShaderProgram& forMode(RenderMode mode, const RenderSettings& settings, bool fusion);
@@ -25,6 +28,7 @@ class RaycastPrograms {
   const ShaderProgram& cached(const std::string& key, const std::string& fragment,
                               const std::vector<std::string>& defines);
   bool gradientOnTheFly_;
+  bool packedGradient_;
   std::map<std::string, ShaderProgram> programs_;
 };
 

@@ -64,7 +64,7 @@ struct VolumeRenderer::Impl {
         crop(v),
         defaultStep(defaultStepMm(v)),
         blocks(v),
-        programs(volume.gradientSource() == GradientSource::OnTheFly),
+        programs(volume.gradientSource() == GradientSource::OnTheFly, volume.packed()),
         vao(detail::makeVertexArray()) {}
 
   Camera cameraFor(const RenderSettings& s) const;
@@ -130,7 +130,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   const double step = s.stepMm > 0 ? s.stepMm : defaultStep;
 
   // What this frame's settings derive: the transfer table and the blocks it leaves visible,
-  // and for glyphs the map and the attribute in the gradient's alpha (both cached).
+  // and for glyphs the map and the attribute volume (both cached).
   const auto [lo, hi] = volume.transferRange();
   transfer.update(s.transfer, lo, hi, step, volume.referenceStepMm(), s.gradientOpacityLow,
                   s.gradientOpacityHigh);
@@ -248,6 +248,7 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayCo
     GLuint id;
   } units[] = {{"uIntensity", GL_TEXTURE_3D, volume.intensity()},
                {"uGradient", GL_TEXTURE_3D, volume.gradient()},
+               {"uAttribute", GL_TEXTURE_3D, volume.attribute()},
                {"uBlocks", GL_TEXTURE_3D, blocks.visibility()},
                {"uTransfer", GL_TEXTURE_2D, transfer.texture()},
                {"uBlockRange", GL_TEXTURE_3D, blocks.minMax()},

@@ -70,6 +70,37 @@ void gradientSlab(const std::vector<float>& v, int first, glm::ivec3 d, int k0, 
   other.join();
 }
 
+// A bound on every world component of gradientSlab's gradient: its Sobel-averaged central
+// differences are weighted means of differences between neighbours along the axis, so no
+// local component exceeds the largest neighbour difference over the spacing, and no world
+// component exceeds the local vector's length. One cheap pass over component 0 (two threads
+// over k), instead of the gradient computed twice.
+template <class T>
+double gradientBound(const T* p, int nc, glm::ivec3 d, const glm::dvec3& spacing) {
+  const std::size_t sx = nc, sy = sx * d.x, sz = sy * d.y;
+  auto work = [&](int k0, int k1, glm::dvec3& out) {
+    glm::dvec3 m(0.0);
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < d.y; ++j) {
+        const T* row = p + k * sz + j * sy;
+        for (int i = 0; i < d.x; ++i) {
+          const double v = static_cast<double>(row[i * sx]);
+          if (i + 1 < d.x) m.x = std::max(m.x, std::abs(double(row[(i + 1) * sx]) - v));
+          if (j + 1 < d.y) m.y = std::max(m.y, std::abs(double(row[i * sx + sy]) - v));
+          if (k + 1 < d.z) m.z = std::max(m.z, std::abs(double(row[i * sx + sz]) - v));
+        }
+      }
+    out = m;
+  };
+  glm::dvec3 a, b;
+  std::thread other(work, 0, d.z / 2, std::ref(a));
+  work(d.z / 2, d.z, b);
+  other.join();
+  const glm::dvec3 local = glm::max(a, b) / spacing;
+  const double bound = std::sqrt(glm::dot(local, local));
+  return bound > 0.0 ? bound : 1.0;
+}
+
 // How a scalar type goes to the GL: 8- and 16-bit integers exactly as 16-bit normalised texels
 // (signed ones shifted to unsigned: the normalised signed formats cannot tell -128 / -32768
 // from the next value up), everything else as 32-bit float. Not R8 for 8-bit voxels: llvmpipe
@@ -164,14 +195,22 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
   range_ = lo <= hi ? std::pair{lo, hi} : std::pair{0.0, 0.0};
 
   if (source_ == GradientSource::OnTheFly) return;
-  // The gradient, slab by slab from the values of the slab and one slice either side.
-  gradient_ = upload3D(dims_, GL_RGBA16F, GL_RGBA, GL_FLOAT, nullptr, true,
-                       "uploading the gradient volume");
+  // The gradient, slab by slab from the values of the slab and one slice either side; packed
+  // with the intensity's texels where those are 16-bit (the RGBA16 encoding needs the bound
+  // first), else RGBA16F.
+  packed_ = internalFormat_ == GL_R16;
+  gradient_ = packed_ ? upload3D(dims_, GL_RGBA16, GL_RGBA, GL_UNSIGNED_SHORT, nullptr, true,
+                                 "uploading the gradient volume")
+                      : upload3D(dims_, GL_RGBA16F, GL_RGBA, GL_FLOAT, nullptr, true,
+                                 "uploading the gradient volume");
   std::vector<float> values(sliceVoxels * (kSlabSlices + 2));
   std::vector<float> g(sliceVoxels * kSlabSlices * 4);
+  std::vector<std::uint16_t> packedSlab(packed_ ? g.size() : 0);
   dispatchScalar(volume.scalarType(), [&](auto t) {
     using T = decltype(t);
     const T* p = reinterpret_cast<const T*>(volume.data());
+    if (packed_) gradientBound_ = gradientBound(p, nc, dims_, spacing_);
+    const double encode = 0.5 / gradientBound_;  // -bound..+bound to 0..1
     for (int k0 = 0; k0 < dims_.z; k0 += kSlabSlices) {
       const int k1 = std::min(k0 + kSlabSlices, dims_.z);
       const int first = std::max(k0 - 1, 0), last = std::min(k1, dims_.z - 1);
@@ -179,8 +218,22 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
       const std::size_t count = sliceVoxels * (last - first + 1);
       for (std::size_t i = 0; i < count; ++i) values[i] = static_cast<float>(src[i * nc]);
       gradientSlab(values, first, dims_, k0, k1, spacing_, direction_, g.data());
-      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, k1 - k0, GL_RGBA, GL_FLOAT,
-                      g.data());
+      if (!packed_) {
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, k1 - k0, GL_RGBA, GL_FLOAT,
+                        g.data());
+      } else {
+        const T* slab = p + static_cast<std::size_t>(k0) * sliceVoxels * nc;
+        const std::size_t n = sliceVoxels * (k1 - k0);
+        for (std::size_t i = 0; i < n; ++i) {
+          for (int c = 0; c < 3; ++c) {
+            const double x = std::clamp(g[i * 4 + c] * encode + 0.5, 0.0, 1.0);
+            packedSlab[i * 4 + c] = static_cast<std::uint16_t>(std::lround(x * 65535.0));
+          }
+          packedSlab[i * 4 + 3] = static_cast<std::uint16_t>(texelOf(slab[i * nc]));
+        }
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, k1 - k0, GL_RGBA,
+                        GL_UNSIGNED_SHORT, packedSlab.data());
+      }
       checkGl("uploading the gradient volume");
     }
     return 0;
@@ -220,14 +273,17 @@ std::vector<float> VolumeTextures::values() const {
 }
 
 GLuint VolumeTextures::betaTarget() {
-  if (!gradient_.id())
-    gradient_ = upload3D(dims_, GL_R16F, GL_RED, GL_FLOAT, nullptr, true,
-                         "making the glyph attribute volume");
-  return gradient_.id();
+  if (!attributeApart()) return gradient_.id();
+  if (!attribute_.id())
+    attribute_ = upload3D(dims_, GL_R16F, GL_RED, GL_FLOAT, nullptr, true,
+                          "making the glyph attribute volume");
+  return attribute_.id();
 }
 
 void VolumeTextures::setUniforms(const ShaderProgram& p) const {
   glUniform2f(p.uniform("uValueMapping"), float(mapping_.x), float(mapping_.y));
+  if (packed_)
+    glUniform2f(p.uniform("uGradientDecode"), float(2.0 * gradientBound_), float(-gradientBound_));
   if (source_ != GradientSource::OnTheFly) return;
   glUniform3f(p.uniform("uTexel"), float(1.0 / dims_.x), float(1.0 / dims_.y),
               float(1.0 / dims_.z));

@@ -40,16 +40,21 @@ class VolumeTextures {
   // uploaded): for what is computed on the CPU on demand (the shells' meshes).
   std::vector<float> values() const;
   GLuint intensity() const { return intensity_.id(); }
-  // The precomputed gradient (RGBA16F, the attribute for glyphs in its alpha), or with the
-  // gradient taken on the fly the attribute alone (R16F, made by betaTarget), 0 before.
+  // The precomputed gradient, 0 with the gradient taken on the fly. For 8- and 16-bit values
+  // (the R16 intensity) packed: RGBA16, the gradient in RGB (gradientDecode) and the
+  // intensity's texel in A; otherwise RGBA16F, the gradient in RGB and the glyph attribute in A.
   GLuint gradient() const { return gradient_.id(); }
+  bool packed() const { return packed_; }
+  // The glyph attribute's own R16F volume where the gradient's A does not hold it (packed, or
+  // on the fly), made by betaTarget; 0 otherwise or before.
+  GLuint attribute() const { return attribute_.id(); }
   // The texture glyph shading's attribute is written into (GlyphTextures::updateBeta), made
   // when first asked for; the colour channel it takes it in (3: alpha, 0: red).
   GLuint betaTarget();
-  int betaChannel() const { return source_ == GradientSource::OnTheFly ? 0 : 3; }
+  int betaChannel() const { return attributeApart() ? 0 : 3; }
   // Texture or OnTheFly (never Auto): what the shaders are compiled for.
   GradientSource gradientSource() const { return source_; }
-  // uValueMapping (texel to physical unit) and, on the fly, what the gradient needs.
+  // uValueMapping (texel to physical unit) and what the gradient needs (on the fly, packed).
   void setUniforms(const ShaderProgram& p) const;
 
  private:
@@ -61,8 +66,11 @@ class VolumeTextures {
   std::pair<double, double> range_;
   GLenum internalFormat_ = 0;
   glm::dvec2 mapping_{1.0, 0.0};  // physical = texel * x + y
+  bool attributeApart() const { return source_ == GradientSource::OnTheFly || packed_; }
   GradientSource source_;
-  Texture intensity_, gradient_;
+  bool packed_ = false;
+  double gradientBound_ = 1.0;  // packed: the gradient texel's 0..1 spans -bound..+bound
+  Texture intensity_, gradient_, attribute_;
 };
 
 }  // namespace mvw::render::detail
