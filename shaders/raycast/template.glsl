@@ -13,6 +13,7 @@
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
 void main() {
   Ray ray = makeRay();
+  setupRayConstants(ray);
   vec2 span = intersectBox(ray);
   gRayEntry = span.x;
   RayState s;
