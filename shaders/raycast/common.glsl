@@ -59,21 +59,36 @@ Ray makeRay() {
 
 vec3 toTexture(vec3 world) { return (uVolume.textureFromWorld * vec4(world, 1.0)).xyz; }
 
+// Per ray (setupRayConstants, from the template): the ray and the block grid in texture
+// space, so that the loop multiplies where it divided. llvmpipe runs every branch of the loop
+// body on every iteration, the skip's arithmetic included (6 % of a composite frame).
+vec3 gTexOrigin, gTexDir, gTexInvDir, gBlockScale, gBlockSize;
+bvec3 gParallel;  // the ray is parallel to that axis's face pair (its direction 0.0 or -0.0)
+ivec3 gBlockMax;
+float gInvStep;
+void setupRayConstants(Ray r) {
+  gTexOrigin = toTexture(r.origin);
+  gTexDir = (uVolume.textureFromWorld * vec4(r.dir, 0.0)).xyz;
+  gParallel = lessThan(abs(gTexDir), vec3(1e-30));
+  gTexInvDir = 1.0 / mix(gTexDir, vec3(1.0), gParallel);
+  gBlockScale = uVolume.dimensions / uBlockVoxels;
+  gBlockSize = uBlockVoxels / uVolume.dimensions;
+  gBlockMax = ivec3(ceil(gBlockScale)) - 1;
+  gInvStep = 1.0 / uStep;
+}
+
 // Entry and exit distances (world mm) of the ray through the crop box; empty if x >= y.
+// After setupRayConstants.
 vec2 intersectBox(Ray r) {
-  vec3 o = toTexture(r.origin);
-  vec3 d = (uVolume.textureFromWorld * vec4(r.dir, 0.0)).xyz;
-  vec3 inv = 1.0 / d;
-  vec3 t0 = (uBoxMin - o) * inv;
-  vec3 t1 = (uBoxMax - o) * inv;
+  vec3 t0 = (uBoxMin - gTexOrigin) * gTexInvDir;
+  vec3 t1 = (uBoxMax - gTexOrigin) * gTexInvDir;
   vec3 lo = min(t0, t1);
   vec3 hi = max(t0, t1);
-  // A ray parallel to a face pair is inside that slab everywhere or nowhere: not left to
-  // 0 * inf (NaN where the ray runs in the face's plane) and the min/max above.
-  bvec3 parallel = lessThan(abs(d), vec3(1e-30));
-  bvec3 inside = bvec3(uvec3(greaterThanEqual(o, uBoxMin)) & uvec3(lessThanEqual(o, uBoxMax)));
-  lo = mix(lo, mix(vec3(1e30), vec3(-1e30), inside), parallel);
-  hi = mix(hi, mix(vec3(-1e30), vec3(1e30), inside), parallel);
+  // A ray parallel to a face pair is inside that slab everywhere or nowhere.
+  bvec3 inside = bvec3(uvec3(greaterThanEqual(gTexOrigin, uBoxMin)) &
+                       uvec3(lessThanEqual(gTexOrigin, uBoxMax)));
+  lo = mix(lo, mix(vec3(1e30), vec3(-1e30), inside), gParallel);
+  hi = mix(hi, mix(vec3(-1e30), vec3(1e30), inside), gParallel);
   float tNear = max(max(lo.x, lo.y), max(lo.z, 0.0));
   float tFar = min(min(hi.x, hi.y), hi.z);
   vec3 invWorld = 1.0 / r.dir;
@@ -153,24 +168,6 @@ vec4 sampleGradientOfValue(vec3 tex) { return decodeGradient(gPackedTexel, tex);
 vec4 sampleGradientOfValue(vec3 tex) { return sampleGradient(tex); }
 #endif
 
-// Per ray (setupRayConstants, from the template): the ray and the block grid in texture
-// space, so that the loop multiplies where it divided. llvmpipe runs every branch of the loop
-// body on every iteration, the skip's arithmetic included (6 % of a composite frame).
-vec3 gTexOrigin, gTexDir, gTexInvDir, gBlockScale, gBlockSize;
-bvec3 gParallel;  // the ray is parallel to that axis's face pair (its direction 0.0 or -0.0)
-ivec3 gBlockMax;
-float gInvStep;
-void setupRayConstants(Ray r) {
-  gTexOrigin = toTexture(r.origin);
-  gTexDir = (uVolume.textureFromWorld * vec4(r.dir, 0.0)).xyz;
-  gParallel = lessThan(abs(gTexDir), vec3(1e-30));
-  gTexInvDir = 1.0 / mix(gTexDir, vec3(1.0), gParallel);
-  gBlockScale = uVolume.dimensions / uBlockVoxels;
-  gBlockSize = uBlockVoxels / uVolume.dimensions;
-  gBlockMax = ivec3(ceil(gBlockScale)) - 1;
-  gInvStep = 1.0 / uStep;
-}
-
 ivec3 blockOf(vec3 tex) { return clamp(ivec3(floor(tex * gBlockScale)), ivec3(0), gBlockMax); }
 bool blockVisible(vec3 tex) { return texelFetch(uBlocks, blockOf(tex), 0).r != 0u; }
 vec2 blockRange(vec3 tex) { return texelFetch(uBlockRange, blockOf(tex), 0).rg; }
@@ -181,7 +178,7 @@ vec2 blockRange(vec3 tex) { return texelFetch(uBlockRange, blockOf(tex), 0).rg; 
 // component the matrix product makes -0.0 (which axis, for which directions, follows the
 // signs in the volume's storage order) picked the far face and divided to -inf, and the ray
 // then crept through empty space one sample per iteration (2.7x the frame at some azimuths).
-float skipBlock(Ray r, float t, vec3 tex) {
+float skipBlock(float t, vec3 tex) {
   vec3 faces = (vec3(blockOf(tex)) + step(vec3(0.0), gTexDir)) * gBlockSize;
   vec3 tFaces = mix((faces - gTexOrigin) * gTexInvDir, vec3(1e30), gParallel);
   float tExit = min(min(tFaces.x, tFaces.y), tFaces.z);

@@ -28,7 +28,7 @@ void main() {
     for (; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
       vec3 tex = toTexture(ray.origin + t * ray.dir);
       if (skipHook(s, tex)) {
-        t = skipBlock(ray, t, tex);
+        t = skipBlock(t, tex);
         continue;
       }
       int next = plainSampleHook(s, t, tex, sampleValue(tex), ray);
@@ -41,7 +41,7 @@ void main() {
       // Tested per sample: caching the test once per block entered left ring artefacts on
       // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
       if (skipHook(s, tex)) {
-        t = skipBlock(ray, t, tex);
+        t = skipBlock(t, tex);
         continue;
       }
       if (!sampleHook(s, t, tex, sampleValue(tex), ray)) break;

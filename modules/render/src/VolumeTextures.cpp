@@ -200,10 +200,9 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
   // with the intensity's texels where those are 16-bit (the RGBA16 encoding needs the bound
   // first), else RGBA16F.
   packed_ = internalFormat_ == GL_R16;
-  gradient_ = packed_ ? upload3D(dims_, GL_RGBA16, GL_RGBA, GL_UNSIGNED_SHORT, nullptr, true,
-                                 "uploading the gradient volume")
-                      : upload3D(dims_, GL_RGBA16F, GL_RGBA, GL_FLOAT, nullptr, true,
-                                 "uploading the gradient volume");
+  gradient_ = upload3D(dims_, packed_ ? GL_RGBA16 : GL_RGBA16F, GL_RGBA,
+                       packed_ ? GL_UNSIGNED_SHORT : GL_FLOAT, nullptr, true,
+                       "uploading the gradient volume");
   std::vector<float> values(sliceVoxels * (kSlabSlices + 2));
   std::vector<float> g(sliceVoxels * kSlabSlices * 4);
   std::vector<std::uint16_t> packedSlab(packed_ ? g.size() : 0);
