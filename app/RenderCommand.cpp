@@ -56,6 +56,18 @@ std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
   return buf;
 }
 
+// The nearest of `path` and its parents that exists (an absolute, normalised path); the names
+// of the folders still to be made on the way down to `path`, outermost last, into `missing`.
+fs::path nearestExisting(const fs::path& path, std::vector<std::string>* missing = nullptr) {
+  std::error_code ec;
+  fs::path existing = path;
+  while (!existing.empty() && existing != existing.root_path() && !fs::exists(existing, ec)) {
+    if (missing && !existing.filename().empty()) missing->push_back(existing.filename().string());
+    existing = existing.parent_path();
+  }
+  return existing;
+}
+
 // Orbit frames and movies are written into a staging folder near the output folder while they are
 // rendered, and moved into place with everything else once every view has rendered, so a
 // failure leaves no partial output. Removed with whatever is left in it.
@@ -66,11 +78,9 @@ class Staging {
     if (out.filename().empty()) out = out.parent_path();
     // In the nearest folder that exists (the same file system, so the moves are renames), so
     // a failure creates no folder on the way to the output either.
-    fs::path existing = out.parent_path();
-    std::error_code ec;
-    while (!existing.empty() && existing != existing.root_path() && !fs::is_directory(existing, ec))
-      existing = existing.parent_path();
-    dir_ = existing / (".mvw-render-" + std::to_string(::getpid()) + "-" + out.filename().string());
+    // checkOutputFolder has made sure that this is a writable folder.
+    dir_ = nearestExisting(out.parent_path()) /
+           (".mvw-render-" + std::to_string(::getpid()) + "-" + out.filename().string());
   }
   ~Staging() {
     std::error_code ec;
@@ -96,13 +106,9 @@ class Staging {
 // that exists must be a writable folder, and each folder still to be made a name it can hold.
 void checkOutputFolder(const fs::path& outDir) {
   const fs::path out = fs::absolute(outDir).lexically_normal();
-  std::error_code ec;
-  fs::path existing = out;
   std::vector<std::string> toMake;
-  while (!existing.empty() && existing != existing.root_path() && !fs::exists(existing, ec)) {
-    if (!existing.filename().empty()) toMake.push_back(existing.filename().string());
-    existing = existing.parent_path();
-  }
+  const fs::path existing = nearestExisting(out, &toMake);
+  std::error_code ec;
   if (!fs::is_directory(existing, ec))
     throw InputError(outDir, existing.string() + " is not a folder");
   if (::access(existing.c_str(), W_OK | X_OK) != 0)

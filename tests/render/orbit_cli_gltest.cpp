@@ -73,9 +73,8 @@ const char* kMip =
 TEST(OrbitCli, SpinFramesMovieAndRecord) {
   const fs::path dir = test::scratchDir();
   const fs::path study = writeStudy(dir, kMip);
-  const CliRun r =
-      mvw("render " + study.string() + " -o " + (dir / "spin").string() + " --orbit 8", dir);
-  ASSERT_EQ(r.rc, 0) << r.err;
+  ASSERT_TRUE(
+      ran("render " + study.string() + " -o " + (dir / "spin").string() + " --orbit 8", dir));
   for (int k = 0; k < 8; ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "frame-%03d.png", k);
@@ -150,12 +149,10 @@ TEST(OrbitCli, FusionOrbitsWithItsOverlayColourMap) {
                        << test::sampleData("derived/pet_like.nii.gz").string() << R"(" },
       "render": { "views": [ { "name": "fused", "mode": "composite", "preset": "ct-skin",
         "fusion": true, "overlay_colormap": "pet", "width": 48, "height": 48 } ] } })";
-  const CliRun spin =
-      mvw("render " + study.string() + " -o " + (dir / "spin").string() + " --orbit 4", dir);
-  ASSERT_EQ(spin.rc, 0) << spin.err;
-  const CliRun back =
-      mvw("render " + study.string() + " -o " + (dir / "back").string() + " --azimuth 180", dir);
-  ASSERT_EQ(back.rc, 0) << back.err;
+  ASSERT_TRUE(
+      ran("render " + study.string() + " -o " + (dir / "spin").string() + " --orbit 4", dir));
+  ASSERT_TRUE(
+      ran("render " + study.string() + " -o " + (dir / "back").string() + " --azimuth 180", dir));
   EXPECT_TRUE(
       samePixels(png(dir / "spin" / "fused" / "frame-002.png"), png(dir / "back" / "fused.png")));
   ASSERT_TRUE(ran("render " + study.string() + " -o " + (dir / "hot").string() +
