@@ -22,9 +22,11 @@ void addValidateCommand(CLI::App& app) {
       ->required();
   cmd->add_flag("--update", o->update,
                 "Rewrite the reference images with the new renders (review them!)");
-  cmd->add_option("-j,--jobs", o->jobs, "Cases rendered in parallel processes")
+  cmd->add_option("-j,--jobs", o->jobs,
+                  "Render processes at once (each study's cases are shared among at most N)")
       ->check(CLI::Range(1, 64));
-  cmd->add_option("--timeout", o->timeoutS, "Seconds one render may take")
+  cmd->add_option("--timeout", o->timeoutS,
+                  "Seconds one render process (its share of a study's cases) may take")
       ->check(CLI::PositiveNumber);
   addGlOption(*cmd, o->gl);
   cmd->callback([o] {

@@ -4,7 +4,8 @@
 namespace mvw::app {
 
 // `mvw validate SUITE.json -o REPORT_DIR [--update] [--jobs N]`: renders every case of a
-// validation suite headless through `mvw render` (one child process per case, N at a time),
+// validation suite headless through `mvw render` (child processes, N at a time, each rendering
+// a share of one study's cases so that the study loads once per process, not once per case),
 // compares each with its reference image under the case's tolerances (max per-pixel delta
 // with an allowed fraction, mean delta, PSNR, SSIM), runs the case's analytic checks, and
 // writes REPORT_DIR/index.html + report.json. Exit 0 only when every case passes, 1 when a

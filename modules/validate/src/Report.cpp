@@ -53,7 +53,7 @@ std::string caseLine(const CaseSpec& c, const CaseResult& r) {
          "  PSNR " + fmt(r.metrics->psnr, 2) + " dB  SSIM " + fmt(r.metrics->ssim, 4);
   for (const auto& ch : r.checks) s += std::string("  check ") + (ch.pass ? "ok" : "FAILED");
   if (!r.comparison.empty()) s += "  [" + r.comparison + "]";
-  s += "  (" + fmt(r.seconds, 1) + " s)";
+  if (r.renderMs > 0) s += "  (render " + fmt(r.renderMs, 0) + " ms)";
   if (!r.updateNote.empty()) s += "\n          " + r.updateNote;
   for (const auto& p : r.problems) s += "\n          " + p;
   return s;
@@ -82,7 +82,7 @@ json reportJson(const Suite& suite, const std::vector<CaseResult>& results, cons
     cj["view"] = c.viewLabel;
     cj["pass"] = r.pass;
     cj["updated"] = r.updated;
-    cj["seconds"] = r.seconds;
+    cj["render_ms"] = r.renderMs;
     cj["problems"] = r.problems;
     if (!r.comparison.empty()) cj["comparison"] = r.comparison;
     if (!r.updateNote.empty()) cj["update"] = r.updateNote;
@@ -162,7 +162,8 @@ void caseSection(std::ostream& h, const CaseSpec& c, const CaseResult& r) {
   h << "<p>study " << html(c.study.string()) << ", view " << html(c.viewLabel);
   if (c.reference) h << ", reference " << html(c.reference->string());
   if (!r.comparison.empty()) h << ", compared " << html(r.comparison);
-  h << " (" << fmt(r.seconds, 1) << " s)</p>\n";
+  if (r.renderMs > 0) h << " (render " << fmt(r.renderMs, 0) << " ms)";
+  h << "</p>\n";
   if (!r.updateNote.empty()) h << "<p>" << html(r.updateNote) << "</p>\n";
   for (const auto& p : r.problems) h << "<p class=\"fail\">" << html(p) << "</p>\n";
   if (c.reference) {

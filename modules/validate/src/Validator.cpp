@@ -34,14 +34,20 @@ namespace fs = std::filesystem;
 using detail::fmt;
 using nlohmann::json;
 
-// One `mvw render` of a case: its image (check < 0) or one of its analytic checks.
-struct Job {
+// One image a render job makes: a case's render (check < 0) or one of its analytic checks.
+struct Render {
   std::size_t caseIndex = 0;
   int check = -1;
+  std::string view;  // the view's name in the job's study, so its image is out/<view>.png
+};
+
+// One `mvw render` process: some of the renders of one study. A study's renders are spread
+// over at most --jobs processes, so the volumes load once per process, not once per case.
+struct Job {
+  std::vector<Render> renders;
   fs::path study, out, log;
   ProcessResult result;
 };
-
 // The private folder the job studies and renders live in; removed on every way out.
 struct WorkDir {
   fs::path dir;
@@ -95,9 +101,10 @@ void progressBar(std::size_t done, std::size_t total, bool tty) {
 // Everything the suite asks for, checked and turned into render jobs before anything renders.
 class Plan {
  public:
-  Plan(const Suite& suite, const fs::path& work) : suite_(suite), work_(work) {
+  Plan(const Suite& suite, const fs::path& work, int jobsPerStudy) : suite_(suite), work_(work) {
     plans_.resize(suite.cases.size());
     for (std::size_t ci = 0; ci < suite.cases.size(); ++ci) addCase(ci);
+    makeJobs(std::max(1, jobsPerStudy));
   }
 
   std::vector<Job> jobs;
@@ -110,6 +117,11 @@ class Plan {
   }
 
  private:
+  struct Wanted {
+    Render render;
+    config::ViewConfig view;
+  };
+
   [[noreturn]] void bad(const std::string& problem) const {
     throw InputError(suite_.file, problem);
   }
@@ -121,34 +133,53 @@ class Plan {
       } catch (const InputError& e) {
         bad(where + ": study config " + e.what());
       }
+      studyOrder_.push_back(file);
     }
     return studies_.at(file);
   }
 
-  // The study with `view` as its only view, named "render", written for `mvw render`.
-  void addJob(std::size_t ci, int check, const config::StudyConfig& study, const json& view,
-              const std::string& where) {
+  // `view` checked now (a bad view is the suite's error), named after the case and check.
+  void want(std::size_t ci, int check, const fs::path& studyFile, const json& view,
+            const std::string& where) {
     const CaseSpec& c = suite_.cases[ci];
-    Job j;
-    j.caseIndex = ci;
-    j.check = check;
-    const fs::path dir =
-        work_ / (c.name + (check < 0 ? std::string() : "-check" + std::to_string(check)));
-    fs::create_directories(dir);
-    config::StudyConfig s = study;
+    Wanted w;
+    w.render.caseIndex = ci;
+    w.render.check = check;
+    w.render.view =
+        "case" + std::to_string(ci) + (check < 0 ? "" : "-check" + std::to_string(check + 1));
     try {
-      config::ViewConfig v = config::parseViewConfig(view, study.file, "view", 0);
-      v.name = "render";
-      s.render.views = {v};
+      w.view = config::parseViewConfig(view, studies_.at(studyFile).file, "view", 0);
     } catch (const InputError& e) {
       bad(where + ": view " + (check < 0 ? c.viewLabel : "of check " + std::to_string(check + 1)) +
           ": " + e.problem());
     }
-    j.study = dir / "study.json";
-    j.out = dir / "out";
-    j.log = dir / "render.log";
-    config::writeStudyConfig(s, j.study);
-    jobs.push_back(j);
+    w.view.name = w.render.view;
+    wanted_[studyFile].push_back(std::move(w));
+  }
+
+  // Each study's renders dealt round-robin to at most `perStudy` jobs; each job is the study
+  // with those views only, written for `mvw render`.
+  void makeJobs(int perStudy) {
+    for (const fs::path& file : studyOrder_) {
+      const std::vector<Wanted>& all = wanted_[file];
+      const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(perStudy), all.size());
+      for (std::size_t b = 0; b < n; ++b) {
+        Job j;
+        config::StudyConfig s = studies_.at(file);
+        s.render.views.clear();
+        for (std::size_t k = b; k < all.size(); k += n) {
+          j.renders.push_back(all[k].render);
+          s.render.views.push_back(all[k].view);
+        }
+        const fs::path dir = work_ / ("job" + std::to_string(jobs.size()));
+        fs::create_directories(dir);
+        j.study = dir / "study.json";
+        j.out = dir / "out";
+        j.log = dir / "render.log";
+        config::writeStudyConfig(s, j.study);
+        jobs.push_back(std::move(j));
+      }
+    }
   }
 
   // A view of the study by name, as its JSON (so the case renders exactly what the study says).
@@ -168,8 +199,8 @@ class Plan {
     const std::string where = "case '" + c.name + "'";
     const config::StudyConfig& study = loadStudy(c.study, where);
     if (c.reference)
-      addJob(
-          ci, -1, study,
+      want(
+          ci, -1, c.study,
           c.view.is_string() ? namedView(study, c.view.get<std::string>(), c.study, where) : c.view,
           where);
     for (std::size_t k = 0; k < c.checks.size(); ++k) {
@@ -178,13 +209,15 @@ class Plan {
         volumes_.emplace(anatomical, study::readSource(study.anatomical));
       plans_[ci].push_back(planMip(volumes_.at(anatomical), c.checks[k], suite_.file,
                                    where + " check " + std::to_string(k + 1)));
-      addJob(ci, static_cast<int>(k), study, plans_[ci].back().view, where);
+      want(ci, static_cast<int>(k), c.study, plans_[ci].back().view, where);
     }
   }
 
   const Suite& suite_;
   fs::path work_;
   std::map<fs::path, config::StudyConfig> studies_;
+  std::vector<fs::path> studyOrder_;  // as the suite first names them
+  std::map<fs::path, std::vector<Wanted>> wanted_;
   std::map<fs::path, Volume> volumes_;
   std::vector<std::vector<MipPlan>> plans_;
 };
@@ -205,78 +238,94 @@ class CaseJudge {
   CaseResult judge(std::size_t ci, const fs::path& dir) {
     CaseResult r;
     fs::create_directories(dir);
-    for (const Job& j : plan_.jobs) {
-      if (j.caseIndex != ci) continue;
-      r.seconds += j.result.seconds;
-      const std::string tag = j.check < 0 ? "" : "check" + std::to_string(j.check + 1) + "-";
-      io::copyFileAtomically(j.log, dir / (tag + "render.log"));
-      const fs::path png = j.out / "render.png";
-      if (j.result.status != 0 || !fs::exists(png)) {
-        renderFailed(r, j);
-        continue;
-      }
-      noteEnvironment(j.out / "render.json");
-      const cv::Mat rendered = cv::imread(png.string(), cv::IMREAD_COLOR);
-      if (rendered.empty()) {
-        r.pass = false;
-        r.problems.push_back("the render " + png.string() + " cannot be read");
-        continue;
-      }
-      if (j.check >= 0)
-        judgeCheck(r, ci, j, rendered, dir, tag);
-      else
-        judgeImage(r, suite_.cases[ci], rendered, png, dir, glOf(j.out / "render.json"));
-    }
+    for (const Job& j : plan_.jobs)
+      for (const Render& one : j.renders)
+        if (one.caseIndex == ci) judgeRender(r, j, one, dir);
     return r;
   }
 
  private:
-  void renderFailed(CaseResult& r, const Job& j) const {
-    r.pass = false;
-    const std::string why = j.result.status == kTimedOut
-                                ? "timed out after " + fmt(o_.timeoutS, 0) + " s"
-                                : "mvw render exited with " + std::to_string(j.result.status);
-    r.problems.push_back(
-        (j.check < 0 ? "render: " : "check " + std::to_string(j.check + 1) + " render: ") + why +
-        ": " + lastLine(readText(j.log)));
-    if (j.check >= 0) r.checks.push_back(CheckResult{false, "not rendered", 0, 0, 0, 0});
+  void judgeRender(CaseResult& r, const Job& j, const Render& one, const fs::path& dir) {
+    const std::size_t ci = one.caseIndex;
+    const std::string tag = one.check < 0 ? "" : "check" + std::to_string(one.check + 1) + "-";
+    io::copyFileAtomically(j.log, dir / (tag + "render.log"));
+    const fs::path png = j.out / (one.view + ".png");
+    if (j.result.status != 0 || !fs::exists(png)) {
+      renderFailed(r, j, one);
+      return;
+    }
+    const json renderJson = readRenderJson(j.out / "render.json");
+    noteEnvironment(renderJson);
+    r.renderMs += renderMsOf(renderJson, one.view);
+    const cv::Mat rendered = cv::imread(png.string(), cv::IMREAD_COLOR);
+    if (rendered.empty()) {
+      r.pass = false;
+      r.problems.push_back("the render " + png.string() + " cannot be read");
+      return;
+    }
+    if (one.check >= 0)
+      judgeCheck(r, ci, one.check, png, rendered, dir, tag);
+    else
+      judgeImage(r, suite_.cases[ci], rendered, png, dir, glOf(renderJson));
   }
 
-  void noteEnvironment(const fs::path& renderJson) {
-    if (!environment_["gl_renderer"].is_null()) return;
+ private:
+  void renderFailed(CaseResult& r, const Job& j, const Render& one) const {
+    r.pass = false;
+    const std::string why =
+        j.result.status == kTimedOut ? "timed out after " + fmt(o_.timeoutS, 0) + " s"
+        : j.result.status != 0       ? "mvw render exited with " + std::to_string(j.result.status)
+                                     : "mvw render wrote no " + one.view + ".png";
+    r.problems.push_back(
+        (one.check < 0 ? "render: " : "check " + std::to_string(one.check + 1) + " render: ") +
+        why + ": " + lastLine(readText(j.log)));
+    if (one.check >= 0) r.checks.push_back(CheckResult{false, "not rendered", 0, 0, 0, 0});
+  }
+
+  static json readRenderJson(const fs::path& file) {
     try {
-      const json rj = json::parse(std::ifstream(renderJson));
-      environment_["gl_backend"] = rj.value("gl_backend", "");
-      environment_["gl_renderer"] = rj.value("gl_renderer", "");
-      environment_["gl_version"] = rj.value("gl_version", "");
-      environment_["mvw_version"] = rj.value("mvw_version", "");
+      return json::parse(std::ifstream(file));
     } catch (const json::exception&) {
+      return json::object();
     }
+  }
+
+  void noteEnvironment(const json& rj) {
+    if (!environment_["gl_renderer"].is_null() || !rj.is_object()) return;
+    environment_["gl_backend"] = rj.value("gl_backend", "");
+    environment_["gl_renderer"] = rj.value("gl_renderer", "");
+    environment_["gl_version"] = rj.value("gl_version", "");
+    environment_["mvw_version"] = rj.value("mvw_version", "");
+  }
+
+  // The milliseconds `mvw render` took for one view (render.json's ms_per_frame).
+  static double renderMsOf(const json& rj, const std::string& view) {
+    if (!rj.contains("views") || !rj["views"].is_array()) return 0.0;
+    for (const json& v : rj["views"])
+      if (v.is_object() && v.value("file", "") == view + ".png")
+        return v.value("ms_per_frame", 0.0);
+    return 0.0;
   }
 
   // The GL renderer and version string a render was made with (render.json).
-  static std::pair<std::string, std::string> glOf(const fs::path& renderJson) {
-    try {
-      const json rj = json::parse(std::ifstream(renderJson));
-      return {rj.value("gl_renderer", ""), rj.value("gl_version", "")};
-    } catch (const json::exception&) {
-      return {};
-    }
+  static std::pair<std::string, std::string> glOf(const json& rj) {
+    if (!rj.is_object()) return {};
+    return {rj.value("gl_renderer", ""), rj.value("gl_version", "")};
   }
 
-  void judgeCheck(CaseResult& r, std::size_t ci, const Job& j, const cv::Mat& rendered,
-                  const fs::path& dir, const std::string& tag) const {
+  void judgeCheck(CaseResult& r, std::size_t ci, int check, const fs::path& png,
+                  const cv::Mat& rendered, const fs::path& dir, const std::string& tag) const {
     const CaseSpec& c = suite_.cases[ci];
-    const CheckSpec& spec = c.checks[static_cast<std::size_t>(j.check)];
+    const CheckSpec& spec = c.checks[static_cast<std::size_t>(check)];
     cv::Mat expected, heat;
-    CheckResult cr = evaluateMip(plan_.anatomy(c.study), spec, plan_.mipPlan(ci, j.check), rendered,
+    CheckResult cr = evaluateMip(plan_.anatomy(c.study), spec, plan_.mipPlan(ci, check), rendered,
                                  expected, heat);
     writeMatPng(expected, dir / (tag + "expected.png"));
-    io::copyFileAtomically(j.out / "render.png", dir / (tag + "render.png"));
+    io::copyFileAtomically(png, dir / (tag + "render.png"));
     writeMatPng(heat, dir / (tag + "diff.png"));
     if (!cr.pass) {
       r.pass = false;
-      r.problems.push_back("check " + std::to_string(j.check + 1) + ": " + cr.message);
+      r.problems.push_back("check " + std::to_string(check + 1) + ": " + cr.message);
     }
     r.checks.push_back(cr);
   }
@@ -404,7 +453,7 @@ bool runValidate(const ValidateOptions& o) {
     }
   }
   const WorkDir work;
-  Plan plan(suite, work.dir);
+  Plan plan(suite, work.dir, o.jobs);
 
   const fs::path exe =
       o.executable.empty() ? fs::read_symlink("/proc/self/exe") : fs::path(o.executable);
@@ -421,7 +470,8 @@ bool runValidate(const ValidateOptions& o) {
     processes.push_back({argv, j.log});
   }
   std::vector<int> pending(suite.cases.size(), 0);
-  for (const Job& j : plan.jobs) ++pending[j.caseIndex];
+  for (const Job& j : plan.jobs)
+    for (const Render& one : j.renders) ++pending[one.caseIndex];
 
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   json environment = {{"mvw_version", nullptr},
@@ -435,13 +485,15 @@ bool runValidate(const ValidateOptions& o) {
   progressBar(0, suite.cases.size(), tty);
   runProcesses(processes, o.jobs, o.timeoutS, [&](std::size_t job, const ProcessResult& result) {
     plan.jobs[job].result = result;
-    const std::size_t ci = plan.jobs[job].caseIndex;
-    if (--pending[ci] != 0) return;
-    results[ci] = judge.judge(ci, report / "cases" / suite.cases[ci].name);
-    ++casesDone;
-    if (tty) std::cerr << "\r\033[K";
-    std::cout << caseLine(suite.cases[ci], results[ci]) << std::endl;
-    progressBar(casesDone, suite.cases.size(), tty);
+    for (const Render& one : plan.jobs[job].renders) {
+      const std::size_t ci = one.caseIndex;
+      if (--pending[ci] != 0) continue;
+      results[ci] = judge.judge(ci, report / "cases" / suite.cases[ci].name);
+      ++casesDone;
+      if (tty) std::cerr << "\r\033[K";
+      std::cout << caseLine(suite.cases[ci], results[ci]) << std::endl;
+      progressBar(casesDone, suite.cases.size(), tty);
+    }
   });
   if (tty) std::cerr << "\n";
 

@@ -20,7 +20,7 @@ struct CaseResult {
   std::vector<std::string> problems;
   std::optional<Metrics> metrics;
   std::vector<CheckResult> checks;
-  double seconds = 0;
+  double renderMs = 0;  // the case's views as `mvw render` timed them (render.json)
   bool hasRender = false, hasReference = false, hasDiff = false;
   // How the image was judged: "exact" (checksum and tolerances: the goldens' GL renderer),
   // "tolerance only" (another renderer, or no checksums), empty for check-only cases.
