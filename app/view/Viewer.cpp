@@ -197,7 +197,8 @@ int runViewer(ViewerOptions options) {
       const auto now = std::chrono::steady_clock::now();
       frameLog << frames << ',' << std::chrono::duration<double, std::milli>(now - lastSwap).count()
                << ',' << rendered3d.milliseconds << ',' << rendered3d.size.x << ','
-               << rendered3d.size.y << ',' << (dragging ? 1 : 0) << ',' << divisor << '\n';
+               << rendered3d.size.y << ',' << (dragging ? 1 : 0) << ',' << divisor << '\n'
+               << std::flush;  // a line per frame as it ends: a watcher sees the viewer live
       lastSwap = now;
     }
     ++frames;
