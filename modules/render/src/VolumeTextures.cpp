@@ -34,12 +34,37 @@ void gradientSlab(const std::vector<float>& v, int first, glm::ivec3 d, int k0, 
   auto at = [&](int i, int j, int k) {
     return v[(static_cast<std::size_t>(k - first) * d.y + j) * d.x + i];
   };
+  // Away from the border no index clamps: the same sums in the same order (so the same bits)
+  // from fixed offsets, about ten times faster than the general form below.
+  const std::ptrdiff_t stride[3] = {1, d.x, static_cast<std::ptrdiff_t>(d.x) * d.y};
+  auto inner = [&](const float* c, int a) {
+    const int b = (a + 1) % 3, e = (a + 2) % 3;
+    double sum = 0.0;
+    for (int db = -1; db <= 1; ++db)
+      for (int de = -1; de <= 1; ++de) {
+        const float* n = c + db * stride[b] + de * stride[e];
+        const double w = (db == 0 ? 2.0 : 1.0) * (de == 0 ? 2.0 : 1.0);
+        sum += w * (n[stride[a]] - n[-stride[a]]);
+      }
+    return sum / 16.0 / (2 * spacing[a]);
+  };
   auto work = [&](int j0, int j1) {
     for (int k = k0; k < k1; ++k)
       for (int j = j0; j < j1; ++j)
         for (int i = 0; i < d.x; ++i) {
           glm::dvec3 local(0.0);
           const glm::ivec3 c(i, j, k);
+          if (i > 0 && i + 1 < d.x && j > 0 && j + 1 < d.y && k > 0 && k + 1 < d.z) {
+            const float* centre = &v[(static_cast<std::size_t>(k - first) * d.y + j) * d.x + i];
+            local = glm::dvec3(inner(centre, 0), inner(centre, 1), inner(centre, 2));
+            const glm::dvec3 w = direction * local;
+            float* out = &g[((static_cast<std::size_t>(k - k0) * d.y + j) * d.x + i) * 4];
+            out[0] = static_cast<float>(w.x);
+            out[1] = static_cast<float>(w.y);
+            out[2] = static_cast<float>(w.z);
+            out[3] = 0.0f;
+            continue;
+          }
           for (int a = 0; a < 3; ++a) {
             const int b = (a + 1) % 3, e = (a + 2) % 3;
             glm::ivec3 lo = c, hi = c;
