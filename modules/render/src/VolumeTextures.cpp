@@ -35,7 +35,7 @@ void gradientSlab(const std::vector<float>& v, int first, glm::ivec3 d, int k0, 
     return v[(static_cast<std::size_t>(k - first) * d.y + j) * d.x + i];
   };
   // Away from the border no index clamps: the same sums in the same order (so the same bits)
-  // from fixed offsets, about ten times faster than the general form below.
+  // from fixed offsets, about ten times faster than `border`'s clamped form.
   const std::ptrdiff_t stride[3] = {1, d.x, static_cast<std::ptrdiff_t>(d.x) * d.y};
   auto inner = [&](const float* c, int a) {
     const int b = (a + 1) % 3, e = (a + 2) % 3;
@@ -48,40 +48,39 @@ void gradientSlab(const std::vector<float>& v, int first, glm::ivec3 d, int k0, 
       }
     return sum / 16.0 / (2 * spacing[a]);
   };
+  // At the border: the neighbours clamped to the volume, one-sided differences.
+  auto border = [&](const glm::ivec3& c) {
+    glm::dvec3 local(0.0);
+    for (int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, e = (a + 2) % 3;
+      glm::ivec3 lo = c, hi = c;
+      lo[a] = std::max(c[a] - 1, 0);
+      hi[a] = std::min(c[a] + 1, d[a] - 1);
+      if (hi[a] == lo[a]) continue;
+      double sum = 0.0, weight = 0.0;
+      for (int db = -1; db <= 1; ++db)
+        for (int de = -1; de <= 1; ++de) {
+          glm::ivec3 p = lo, q = hi;
+          p[b] = q[b] = std::clamp(c[b] + db, 0, d[b] - 1);
+          p[e] = q[e] = std::clamp(c[e] + de, 0, d[e] - 1);
+          const double w = (db == 0 ? 2.0 : 1.0) * (de == 0 ? 2.0 : 1.0);
+          sum += w * (at(q.x, q.y, q.z) - at(p.x, p.y, p.z));
+          weight += w;
+        }
+      local[a] = sum / weight / ((hi[a] - lo[a]) * spacing[a]);
+    }
+    return local;
+  };
   auto work = [&](int j0, int j1) {
     for (int k = k0; k < k1; ++k)
       for (int j = j0; j < j1; ++j)
         for (int i = 0; i < d.x; ++i) {
-          glm::dvec3 local(0.0);
-          const glm::ivec3 c(i, j, k);
+          glm::dvec3 local;
           if (i > 0 && i + 1 < d.x && j > 0 && j + 1 < d.y && k > 0 && k + 1 < d.z) {
-            const float* centre = &v[(static_cast<std::size_t>(k - first) * d.y + j) * d.x + i];
-            local = glm::dvec3(inner(centre, 0), inner(centre, 1), inner(centre, 2));
-            const glm::dvec3 w = direction * local;
-            float* out = &g[((static_cast<std::size_t>(k - k0) * d.y + j) * d.x + i) * 4];
-            out[0] = static_cast<float>(w.x);
-            out[1] = static_cast<float>(w.y);
-            out[2] = static_cast<float>(w.z);
-            out[3] = 0.0f;
-            continue;
-          }
-          for (int a = 0; a < 3; ++a) {
-            const int b = (a + 1) % 3, e = (a + 2) % 3;
-            glm::ivec3 lo = c, hi = c;
-            lo[a] = std::max(c[a] - 1, 0);
-            hi[a] = std::min(c[a] + 1, d[a] - 1);
-            if (hi[a] == lo[a]) continue;
-            double sum = 0.0, weight = 0.0;
-            for (int db = -1; db <= 1; ++db)
-              for (int de = -1; de <= 1; ++de) {
-                glm::ivec3 p = lo, q = hi;
-                p[b] = q[b] = std::clamp(c[b] + db, 0, d[b] - 1);
-                p[e] = q[e] = std::clamp(c[e] + de, 0, d[e] - 1);
-                const double w = (db == 0 ? 2.0 : 1.0) * (de == 0 ? 2.0 : 1.0);
-                sum += w * (at(q.x, q.y, q.z) - at(p.x, p.y, p.z));
-                weight += w;
-              }
-            local[a] = sum / weight / ((hi[a] - lo[a]) * spacing[a]);
+            const float* c = &v[(static_cast<std::size_t>(k - first) * d.y + j) * d.x + i];
+            local = glm::dvec3(inner(c, 0), inner(c, 1), inner(c, 2));
+          } else {
+            local = border(glm::ivec3(i, j, k));
           }
           const glm::dvec3 w = direction * local;
           float* out = &g[((static_cast<std::size_t>(k - k0) * d.y + j) * d.x + i) * 4];
