@@ -68,11 +68,18 @@ std::string readText(const fs::path& p) {
   return s.str();
 }
 
-std::string lastLine(const std::string& text) {
-  std::string t = text;
-  while (!t.empty() && (t.back() == '\n' || t.back() == '\r')) t.pop_back();
-  const auto nl = t.rfind('\n');
-  return nl == std::string::npos ? t : t.substr(nl + 1);
+// What a failed render said: its last "mvw: " line (its own error message), else its last line
+// (a sanitizer's or the runtime's report can follow the message, or replace it).
+std::string whatItSaid(const std::string& text) {
+  std::istringstream in(text);
+  std::string line, own, last;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    last = line;
+    if (line.rfind("mvw: ", 0) == 0) own = line;
+  }
+  return own.empty() ? last : own;
 }
 
 std::string utcNow() {
@@ -278,7 +285,7 @@ class CaseJudge {
                                      : "mvw render wrote no " + one.view + ".png";
     r.problems.push_back(
         (one.check < 0 ? "render: " : "check " + std::to_string(one.check + 1) + " render: ") +
-        why + ": " + lastLine(readText(j.log)));
+        why + ": " + whatItSaid(readText(j.log)));
     if (one.check >= 0) r.checks.push_back(CheckResult{false, "not rendered", 0, 0, 0, 0});
   }
 
