@@ -47,7 +47,9 @@ struct Job {
   std::vector<Render> renders;
   fs::path study, out, log;
   ProcessResult result;
+  json renderJson;  // out/render.json, read once when the process ends
 };
+
 // The private folder the job studies and renders live in; removed on every way out.
 struct WorkDir {
   fs::path dir;
@@ -80,6 +82,15 @@ std::string whatItSaid(const std::string& text) {
     if (line.rfind("mvw: ", 0) == 0) own = line;
   }
   return own.empty() ? last : own;
+}
+
+// render.json as `mvw render` wrote it; an empty object when it is missing or unreadable.
+json readRenderJson(const fs::path& file) {
+  try {
+    return json::parse(std::ifstream(file));
+  } catch (const json::exception&) {
+    return json::object();
+  }
 }
 
 std::string utcNow() {
@@ -261,9 +272,8 @@ class CaseJudge {
       renderFailed(r, j, one);
       return;
     }
-    const json renderJson = readRenderJson(j.out / "render.json");
-    noteEnvironment(renderJson);
-    r.renderMs += renderMsOf(renderJson, one.view);
+    noteEnvironment(j.renderJson);
+    r.renderMs += renderMsOf(j.renderJson, one.view);
     const cv::Mat rendered = cv::imread(png.string(), cv::IMREAD_COLOR);
     if (rendered.empty()) {
       r.pass = false;
@@ -273,10 +283,9 @@ class CaseJudge {
     if (one.check >= 0)
       judgeCheck(r, ci, one.check, png, rendered, dir, tag);
     else
-      judgeImage(r, suite_.cases[ci], rendered, png, dir, glOf(renderJson));
+      judgeImage(r, suite_.cases[ci], rendered, png, dir, glOf(j.renderJson));
   }
 
- private:
   void renderFailed(CaseResult& r, const Job& j, const Render& one) const {
     r.pass = false;
     const std::string why =
@@ -287,14 +296,6 @@ class CaseJudge {
         (one.check < 0 ? "render: " : "check " + std::to_string(one.check + 1) + " render: ") +
         why + ": " + whatItSaid(readText(j.log)));
     if (one.check >= 0) r.checks.push_back(CheckResult{false, "not rendered", 0, 0, 0, 0});
-  }
-
-  static json readRenderJson(const fs::path& file) {
-    try {
-      return json::parse(std::ifstream(file));
-    } catch (const json::exception&) {
-      return json::object();
-    }
   }
 
   void noteEnvironment(const json& rj) {
@@ -492,6 +493,7 @@ bool runValidate(const ValidateOptions& o) {
   progressBar(0, suite.cases.size(), tty);
   runProcesses(processes, o.jobs, o.timeoutS, [&](std::size_t job, const ProcessResult& result) {
     plan.jobs[job].result = result;
+    plan.jobs[job].renderJson = readRenderJson(plan.jobs[job].out / "render.json");
     for (const Render& one : plan.jobs[job].renders) {
       const std::size_t ci = one.caseIndex;
       if (--pending[ci] != 0) continue;
