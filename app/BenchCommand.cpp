@@ -57,8 +57,13 @@ void runBench(const BenchOptions& o) {
   std::printf("mvw bench render: %s, %s, %s, %d x %d x %d, %d x %d pixels, %d frames per mode\n",
               context->backend().c_str(), context->renderer().c_str(), context->version().c_str(),
               d.x, d.y, d.z, o.size, o.size, o.frames);
-  std::printf("  upload (volume, gradient, blocks): %.0f ms, gradient from the %s\n", uploadMs,
-              render::toString(renderer.gradientSource()));
+  std::printf("  upload (volume, gradient, blocks): %.0f ms, gradient from the %s%s\n", uploadMs,
+              render::toString(renderer.gradientSource()),
+              renderer.textureRuns() > 1
+                  ? (", slices folded into " + std::to_string(renderer.textureRuns()) +
+                     " runs (more than the GL's largest 3D texture)")
+                        .c_str()
+                  : "");
   for (render::RenderMode mode : modes) {
     render::RenderSettings s;
     s.mode = mode;

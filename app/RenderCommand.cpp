@@ -336,6 +336,7 @@ void runRender(const RenderOptions& o) {
   report["gl_renderer"] = context->renderer();
   report["gl_version"] = context->version();
   report["gradient"] = render::toString(renderer.gradientSource());
+  report["texture_runs"] = renderer.textureRuns();  // > 1: folded past the GL's 3D texture size
   report["mvw_version"] = kVersion;
   report["views"] = nlohmann::json::array();
   for (const auto& out : outputs) {

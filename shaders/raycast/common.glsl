@@ -116,6 +116,23 @@ float jitterOffset() {
   return float(h & 0xffffffu) / 16777216.0;
 }
 
+#if defined(MVW_FOLDED)
+// A volume with more slices than the GL's largest 3D texture, folded (VolumeTextures): runs
+// of uFold.x + 1 slices side by side along x, neighbouring runs sharing a slice. A sample
+// reads the run that holds its slice position, its x clamped to that run's own columns as
+// clamping to the edge does unfolded: the same voxels and weights as an unfolded texture.
+uniform vec4 uFold;        // slices per run, runs - 1, the volume's width (voxels), 1 / texture width
+uniform float uFoldDepth;  // 1 / the texture's depth (slices per run + 1)
+vec3 storedTexture(vec3 tex) {
+  float k = tex.z * uVolume.dimensions.z - 0.5;
+  float run = clamp(floor(k / uFold.x), 0.0, uFold.y);
+  float x = clamp(tex.x * uFold.z, 0.5, uFold.z - 0.5);
+  return vec3((x + run * uFold.z) * uFold.w, tex.y, (k - run * uFold.x + 0.5) * uFoldDepth);
+}
+#else
+vec3 storedTexture(vec3 tex) { return tex; }
+#endif
+
 // Level 0 explicitly: the volumes have no mipmaps, and implicit derivatives inside the ray
 // loop cost a software rasteriser dearly.
 #if defined(MVW_PACKED_VALUE)
@@ -130,11 +147,11 @@ float sampleValue(vec3 tex) {
 }
 #else
 float sampleValue(vec3 tex) {
-  return textureLod(uIntensity, tex, 0.0).r * uValueMapping.x + uValueMapping.y;
+  return textureLod(uIntensity, storedTexture(tex), 0.0).r * uValueMapping.x + uValueMapping.y;
 }
 #endif
 #if defined(MVW_GLYPHS)
-float sampleAttribute(vec3 tex) { return textureLod(uAttribute, tex, 0.0).r; }
+float sampleAttribute(vec3 tex) { return textureLod(uAttribute, storedTexture(tex), 0.0).r; }
 #else
 float sampleAttribute(vec3 tex) { return 0.0; }
 #endif

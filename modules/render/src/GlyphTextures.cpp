@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "TextureUpload.h"
@@ -87,17 +88,29 @@ void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures&
     throw Error("the GL cannot render into the glyph attribute volume for glyph shading");
   }
   const glm::ivec3 dims = volume.dims();
-  glViewport(0, 0, dims.x, dims.y);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   // Only the attribute's channel: the gradient texture keeps its gradient in RGB.
   const int channel = volume.betaChannel();
   glColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
   glBindVertexArray(vao);
-  for (int k = 0; k < dims.z; ++k) {
-    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, 0, k);
-    glUniform1f(p.uniform("uSlice"), float(k));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+  // Layer by layer of the texture; a folded volume's runs of slices lie side by side along x
+  // (VolumeTextures::foldBricks), each drawn in its own columns with its voxels' positions.
+  const int runs = volume.foldBricks();
+  const int layers = runs == 1 ? dims.z : volume.foldSlices() + 1;
+  for (int layer = 0; layer < layers; ++layer) {
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, 0, layer);
+    for (int run = 0; run < runs; ++run) {
+      const int column = run * dims.x;
+      const glm::mat4 runWorldFromIndex(
+          volume.worldFromIndex() * glm::translate(glm::dmat4(1.0), glm::dvec3(-column, 0.0, 0.0)));
+      glUniformMatrix4fv(p.uniform("uWorldFromIndex"), 1, GL_FALSE,
+                         glm::value_ptr(runWorldFromIndex));
+      glViewport(column, 0, dims.x, dims.y);
+      const int k = std::min(run * volume.foldSlices() + layer, dims.z - 1);
+      glUniform1f(p.uniform("uSlice"), float(runs == 1 ? layer : k));
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
   }
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

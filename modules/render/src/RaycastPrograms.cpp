@@ -46,6 +46,7 @@ const ShaderProgram& RaycastPrograms::forMode(RenderMode mode, const RenderSetti
       break;  // drawn by detail::ShellRenderer
   }
   if (s.imageColors && takesImageColors(mode)) defines.push_back("MVW_IMAGE_COLORMAP 1");
+  if (folded_) defines.push_back("MVW_FOLDED 1");
   if (gradientOnTheFly_ && (mode == RenderMode::Composite || mode == RenderMode::Isosurface))
     defines.push_back("MVW_GRADIENT_ON_THE_FLY 1");
   if (packedGradient_ && (mode == RenderMode::Composite || mode == RenderMode::Isosurface)) {

@@ -15,9 +15,10 @@ class RaycastPrograms {
   // gradientOnTheFly: composite and isosurface take the gradient from the intensity
   // (MVW_GRADIENT_ON_THE_FLY) instead of the gradient texture; packedGradient: the texture
   // holds the intensity too (VolumeTextures::packed), and composite's trilinear samples read
-  // value and gradient in one fetch.
-  RaycastPrograms(bool gradientOnTheFly, bool packedGradient)
-      : gradientOnTheFly_(gradientOnTheFly), packedGradient_(packedGradient) {}
+  // value and gradient in one fetch; folded: the volume's slices are folded into its texture
+  // (VolumeTextures::foldBricks, MVW_FOLDED).
+  RaycastPrograms(bool gradientOnTheFly, bool packedGradient, bool folded)
+      : gradientOnTheFly_(gradientOnTheFly), packedGradient_(packedGradient), folded_(folded) {}
   // The program for a ray-cast mode (not the shell modes) with the variants `settings` and
   // `fusion` (the functional colour blended in) ask for.
   const ShaderProgram& forMode(RenderMode mode, const RenderSettings& settings, bool fusion);
@@ -29,6 +30,7 @@ class RaycastPrograms {
                               const std::vector<std::string>& defines);
   bool gradientOnTheFly_;
   bool packedGradient_;
+  bool folded_;
   std::map<std::string, ShaderProgram> programs_;
 };
 

@@ -64,7 +64,8 @@ struct VolumeRenderer::Impl {
         crop(v),
         defaultStep(defaultStepMm(v)),
         blocks(v),
-        programs(volume.gradientSource() == GradientSource::OnTheFly, volume.packed()),
+        programs(volume.gradientSource() == GradientSource::OnTheFly, volume.packed(),
+                 volume.foldBricks() > 1),
         vao(detail::makeVertexArray()) {}
 
   Camera cameraFor(const RenderSettings& s) const;
@@ -289,6 +290,7 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
 std::pair<double, double> VolumeRenderer::valueRange() const { return impl_->volume.range(); }
 
 GradientSource VolumeRenderer::gradientSource() const { return impl_->volume.gradientSource(); }
+int VolumeRenderer::textureRuns() const { return impl_->volume.foldBricks(); }
 
 const char* toString(GradientSource source) {
   switch (source) {

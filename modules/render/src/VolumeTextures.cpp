@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <string>
@@ -161,6 +162,22 @@ auto texelOf(T v) {
     return static_cast<float>(v);
 }
 
+// The largest 3D texture side the renderer uses: the GL's, or MVW_MAX_3D_TEXTURE_SIZE where
+// that is smaller (to try folding, and the GL limits of other machines, on this one).
+int largestTextureSide() {
+  GLint max3d = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+  const char* limit = std::getenv("MVW_MAX_3D_TEXTURE_SIZE");
+  if (!limit || !*limit) return max3d;
+  char* end = nullptr;
+  const long n = std::strtol(limit, &end, 10);
+  if (*end != '\0' || n < 4 || n > 1 << 20)
+    throw InputError("MVW_MAX_3D_TEXTURE_SIZE", std::string("'") + limit +
+                                                    "' is not a whole number of texels from 4 "
+                                                    "to 1048576");
+  return std::min<int>(max3d, static_cast<int>(n));
+}
+
 }  // namespace
 
 VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
@@ -169,17 +186,39 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
       spacing_(volume.spacing()),
       direction_(volume.direction()),
       referenceStepMm_(volume.smallestSpacing()) {
-  GLint max3d = 0;
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
-  if (dims_.x > max3d || dims_.y > max3d || dims_.z > max3d)
-    throw Error("volume " + std::to_string(dims_.x) + " x " + std::to_string(dims_.y) + " x " +
-                std::to_string(dims_.z) + " exceeds the GL's largest 3D texture (" +
-                std::to_string(max3d) + ")");
+  const int max3d = largestTextureSide();
+  // Too large for this GL: bad input for this machine, named by the volume's file.
+  const std::filesystem::path name = volume.metadata().sourcePath.empty()
+                                         ? std::filesystem::path("the anatomical volume")
+                                         : std::filesystem::path(volume.metadata().sourcePath);
+  const std::string size = std::to_string(dims_.x) + " x " + std::to_string(dims_.y) + " x " +
+                           std::to_string(dims_.z) + " voxels";
+  if (dims_.x > max3d || dims_.y > max3d)
+    throw InputError(name, size + " exceed the GL's largest 3D texture (" + std::to_string(max3d) +
+                               ") across the slices (only the slice axis can be folded)");
+  textureDims_ = dims_;
+  if (dims_.z > max3d) {
+    // Runs of foldSlices_ + 1 slices (neighbours share one), as few as fit.
+    foldBricks_ = (dims_.z - 1 + max3d - 2) / (max3d - 1);
+    foldSlices_ = (dims_.z - 1 + foldBricks_ - 1) / foldBricks_;
+    textureDims_ = {dims_.x * foldBricks_, dims_.y, foldSlices_ + 1};
+    if (textureDims_.x > max3d)
+      throw InputError(name, size + " exceed the GL's largest 3D texture (" +
+                                 std::to_string(max3d) + "): folded into " +
+                                 std::to_string(foldBricks_) + " runs of slices it would be " +
+                                 std::to_string(textureDims_.x) + " texels wide");
+    if (gradient == GradientSource::Texture)
+      throw InputError(name, size + ": more slices than the GL's largest 3D texture (" +
+                                 std::to_string(max3d) +
+                                 "), so the volume is folded, and a folded volume takes its "
+                                 "gradient in the shader: use --gradient shader or auto");
+  }
   const std::size_t voxels = volume.voxelCount();
-  source_ = gradient != GradientSource::Auto ? gradient
-            : voxels * kGradientTextureBytesPerVoxel > kGradientTextureBudgetBytes
-                ? GradientSource::OnTheFly
-                : GradientSource::Texture;
+  source_ =
+      gradient != GradientSource::Auto ? gradient
+      : foldBricks_ > 1 || voxels * kGradientTextureBytesPerVoxel > kGradientTextureBudgetBytes
+          ? GradientSource::OnTheFly
+          : GradientSource::Texture;
   const int nc = volume.components();
   const std::size_t sliceVoxels = static_cast<std::size_t>(dims_.x) * dims_.y;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -189,8 +228,8 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
     const Layout layout = layoutOf<T>();
     internalFormat_ = layout.internalFormat;
     mapping_ = layout.mapping;
-    intensity_ = upload3D(dims_, GLint(layout.internalFormat), GL_RED, layout.type, nullptr, true,
-                          "uploading the volume");
+    intensity_ = upload3D(textureDims_, GLint(layout.internalFormat), GL_RED, layout.type, nullptr,
+                          true, "uploading the volume");
     using Texel = decltype(texelOf(T{}));
     std::vector<Texel> slab(sliceVoxels * kSlabSlices);
     const T* p = reinterpret_cast<const T*>(volume.data());
@@ -211,8 +250,12 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
         }
         slab[i] = texelOf(v);
       }
-      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, n, GL_RED, layout.type,
-                      slab.data());
+      if (foldBricks_ == 1)
+        glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, n, GL_RED, layout.type,
+                        slab.data());
+      else
+        for (int k = k0; k < k0 + n; ++k)
+          uploadSlice(GL_RED, layout.type, slab.data() + (k - k0) * sliceVoxels, k);
       checkGl("uploading the volume");
     }
     return 0;
@@ -264,6 +307,18 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
   });
 }
 
+void VolumeTextures::uploadSlice(GLenum format, GLenum type, const void* texels, int k) const {
+  for (int b = 0; b < foldBricks_; ++b) {
+    const int local = k - b * foldSlices_;
+    if (local < 0 || local > foldSlices_) continue;
+    // The last run's spare slices repeat the last slice, as clamping to the edge would.
+    const int last = k == dims_.z - 1 ? foldSlices_ : local;
+    for (int l = local; l <= last; ++l)
+      glTexSubImage3D(GL_TEXTURE_3D, 0, b * dims_.x, 0, l, dims_.x, dims_.y, 1, format, type,
+                      texels);
+  }
+}
+
 void VolumeTextures::setLinear(bool linear) const {
   setSampling(intensity_.id(), GL_TEXTURE_3D, linear);
 }
@@ -278,20 +333,36 @@ std::pair<double, double> VolumeTextures::transferRange() const {
 
 std::vector<float> VolumeTextures::values() const {
   const std::size_t n = static_cast<std::size_t>(dims_.x) * dims_.y * dims_.z;
+  const std::size_t stored =
+      static_cast<std::size_t>(textureDims_.x) * textureDims_.y * textureDims_.z;
   std::vector<float> out(n);
   glBindTexture(GL_TEXTURE_3D, intensity_.id());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  auto readAs = [&](auto texel, GLenum type) {
-    std::vector<decltype(texel)> raw(n);
-    glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, type, raw.data());
-    // Integer texels map back exactly: (texel / max) * max is not exact in float.
-    const double offset = mapping_.y;
-    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<float>(double(raw[i]) + offset);
+  // The texel of voxel v (linear index) in the texture: itself, or where the fold put it.
+  auto texelIndex = [&](std::size_t v) {
+    if (foldBricks_ == 1) return v;
+    const std::size_t row = static_cast<std::size_t>(dims_.x);
+    const std::size_t i = v % row, j = v / row % static_cast<std::size_t>(dims_.y),
+                      k = v / (row * static_cast<std::size_t>(dims_.y));
+    const std::size_t b =
+        std::min(k / static_cast<std::size_t>(foldSlices_), std::size_t(foldBricks_ - 1));
+    const std::size_t local = k - b * static_cast<std::size_t>(foldSlices_);
+    return (local * static_cast<std::size_t>(textureDims_.y) + j) *
+               static_cast<std::size_t>(textureDims_.x) +
+           b * row + i;
   };
+  auto readAs = [&](auto texel, GLenum type, auto toValue) {
+    std::vector<decltype(texel)> raw(stored);
+    glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, type, raw.data());
+    for (std::size_t v = 0; v < n; ++v) out[v] = toValue(raw[texelIndex(v)]);
+  };
+  // Integer texels map back exactly: (texel / max) * max is not exact in float.
+  const double offset = mapping_.y;
   if (internalFormat_ == GL_R16)
-    readAs(std::uint16_t{}, GL_UNSIGNED_SHORT);
+    readAs(std::uint16_t{}, GL_UNSIGNED_SHORT,
+           [offset](std::uint16_t t) { return static_cast<float>(double(t) + offset); });
   else
-    glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, out.data());
+    readAs(float{}, GL_FLOAT, [](float t) { return t; });
   checkGl("reading the volume back");
   return out;
 }
@@ -299,7 +370,7 @@ std::vector<float> VolumeTextures::values() const {
 GLuint VolumeTextures::betaTarget() {
   if (!attributeApart()) return gradient_.id();
   if (!attribute_.id())
-    attribute_ = upload3D(dims_, GL_R16F, GL_RED, GL_FLOAT, nullptr, true,
+    attribute_ = upload3D(textureDims_, GL_R16F, GL_RED, GL_FLOAT, nullptr, true,
                           "making the glyph attribute volume");
   return attribute_.id();
 }
@@ -308,6 +379,11 @@ void VolumeTextures::setUniforms(const ShaderProgram& p) const {
   glUniform2f(p.uniform("uValueMapping"), float(mapping_.x), float(mapping_.y));
   if (packed_)
     glUniform2f(p.uniform("uGradientDecode"), float(2.0 * gradientBound_), float(-gradientBound_));
+  if (foldBricks_ > 1) {
+    glUniform4f(p.uniform("uFold"), float(foldSlices_), float(foldBricks_ - 1), float(dims_.x),
+                float(1.0 / textureDims_.x));
+    glUniform1f(p.uniform("uFoldDepth"), float(1.0 / textureDims_.z));
+  }
   if (source_ != GradientSource::OnTheFly) return;
   glUniform3f(p.uniform("uTexel"), float(1.0 / dims_.x), float(1.0 / dims_.y),
               float(1.0 / dims_.z));

@@ -28,6 +28,15 @@ class VolumeTextures {
   void setLinear(bool linear) const;
 
   glm::ivec3 dims() const { return dims_; }
+  // Folding: a volume with more slices than the GL's largest 3D texture
+  // (GL_MAX_3D_TEXTURE_SIZE, or MVW_MAX_3D_TEXTURE_SIZE where that is smaller) is stored as
+  // foldBricks() runs of foldSlices() + 1 slices side by side along x in one texture of
+  // textureDims(); neighbouring runs share a slice, so trilinear sampling within a run reads
+  // exactly the voxels it would unfolded. The shaders (MVW_FOLDED, common.glsl foldedTexture)
+  // map the volume's texture coordinates into it; its gradient is then always taken on the fly.
+  int foldBricks() const { return foldBricks_; }
+  int foldSlices() const { return foldSlices_; }
+  glm::ivec3 textureDims() const { return textureDims_; }
   const glm::dmat4& worldFromIndex() const { return worldFromIndex_; }
   glm::dmat4 textureFromWorld() const;
   // The smallest voxel spacing (mm): the step the transfer function's opacities refer to.
@@ -59,6 +68,10 @@ class VolumeTextures {
 
  private:
   glm::ivec3 dims_;
+  int foldBricks_ = 1, foldSlices_ = 0;
+  glm::ivec3 textureDims_;
+  // Uploads slice k (w x h texels of `type`) wherever the folded layout holds it.
+  void uploadSlice(GLenum format, GLenum type, const void* texels, int k) const;
   glm::dmat4 worldFromIndex_;
   glm::dvec3 spacing_;
   glm::dmat3 direction_;

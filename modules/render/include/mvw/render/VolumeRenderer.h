@@ -154,6 +154,9 @@ class VolumeRenderer {
   std::pair<double, double> valueRange() const;
   // Texture or OnTheFly: what Auto chose for this volume.
   GradientSource gradientSource() const;
+  // 1, or how many runs of slices the volume was folded into because it has more slices than
+  // the GL's largest 3D texture (side by side in one texture; the gradient then on the fly).
+  int textureRuns() const;
   // The sphere the camera frames: framingSphere(volume), the centre of the voxel box and half
   // its diagonal (mm).
   FramingSphere framing() const;
