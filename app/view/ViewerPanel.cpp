@@ -364,9 +364,9 @@ void ViewerPanel::drawControls() {
   const glm::dvec3 c = state_.crosshair();
   ImGui::Text("crosshair %.1f, %.1f, %.1f mm (LPS)", c.x, c.y, c.z);
   if (const auto cursor = state_.cursor()) {
-    const glm::dvec3& w = cursor->second;
-    ImGui::Text("cursor %.1f, %.1f, %.1f mm (LPS)", w.x, w.y, w.z);
-    ImGui::TextWrapped("%s", state_.readout(w).c_str());
+    const glm::dvec3& at = cursor->second;
+    ImGui::Text("cursor %.1f, %.1f, %.1f mm (LPS)", at.x, at.y, at.z);
+    ImGui::TextWrapped("%s", state_.readout(at).c_str());
   }
   // Measurements on the MPR panes: the mouse tool, the spheres' statistics, the rulers.
   ImGui::Separator();

@@ -1,4 +1,4 @@
-// Folded volumes (VolumeTextures::foldBricks): a volume with more slices than the GL's largest
+// Folded volumes (VolumeTextures::foldRuns): a volume with more slices than the GL's largest
 // 3D texture is stored as runs of slices side by side along x. Every mode must render it as it
 // renders the same volume unfolded: the fold is forced here with MVW_MAX_3D_TEXTURE_SIZE on a
 // volume whose structures cross the runs' seams, and each view is compared with the unfolded

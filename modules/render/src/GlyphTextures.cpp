@@ -95,8 +95,8 @@ void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures&
   glColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
   glBindVertexArray(vao);
   // Layer by layer of the texture; a folded volume's runs of slices lie side by side along x
-  // (VolumeTextures::foldBricks), each drawn in its own columns with its voxels' positions.
-  const int runs = volume.foldBricks();
+  // (VolumeTextures::foldRuns), each drawn in its own columns with its voxels' positions.
+  const int runs = volume.foldRuns();
   const int layers = runs == 1 ? dims.z : volume.foldSlices() + 1;
   for (int layer = 0; layer < layers; ++layer) {
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, 0, layer);

@@ -16,7 +16,7 @@ class RaycastPrograms {
   // (MVW_GRADIENT_ON_THE_FLY) instead of the gradient texture; packedGradient: the texture
   // holds the intensity too (VolumeTextures::packed), and composite's trilinear samples read
   // value and gradient in one fetch; folded: the volume's slices are folded into its texture
-  // (VolumeTextures::foldBricks, MVW_FOLDED).
+  // (VolumeTextures::foldRuns, MVW_FOLDED).
   RaycastPrograms(bool gradientOnTheFly, bool packedGradient, bool folded)
       : gradientOnTheFly_(gradientOnTheFly), packedGradient_(packedGradient), folded_(folded) {}
   // The program for a ray-cast mode (not the shell modes) with the variants `settings` and

@@ -65,7 +65,7 @@ struct VolumeRenderer::Impl {
         defaultStep(defaultStepMm(v)),
         blocks(v),
         programs(volume.gradientSource() == GradientSource::OnTheFly, volume.packed(),
-                 volume.foldBricks() > 1),
+                 volume.foldRuns() > 1),
         vao(detail::makeVertexArray()) {}
 
   Camera cameraFor(const RenderSettings& s) const;
@@ -290,7 +290,7 @@ Frame VolumeRenderer::render(const RenderSettings& s) {
 std::pair<double, double> VolumeRenderer::valueRange() const { return impl_->volume.range(); }
 
 GradientSource VolumeRenderer::gradientSource() const { return impl_->volume.gradientSource(); }
-int VolumeRenderer::textureRuns() const { return impl_->volume.foldBricks(); }
+int VolumeRenderer::textureRuns() const { return impl_->volume.foldRuns(); }
 
 const char* toString(GradientSource source) {
   switch (source) {

@@ -199,13 +199,13 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
   textureDims_ = dims_;
   if (dims_.z > max3d) {
     // Runs of foldSlices_ + 1 slices (neighbours share one), as few as fit.
-    foldBricks_ = (dims_.z - 1 + max3d - 2) / (max3d - 1);
-    foldSlices_ = (dims_.z - 1 + foldBricks_ - 1) / foldBricks_;
-    textureDims_ = {dims_.x * foldBricks_, dims_.y, foldSlices_ + 1};
+    foldRuns_ = (dims_.z - 1 + max3d - 2) / (max3d - 1);
+    foldSlices_ = (dims_.z - 1 + foldRuns_ - 1) / foldRuns_;
+    textureDims_ = {dims_.x * foldRuns_, dims_.y, foldSlices_ + 1};
     if (textureDims_.x > max3d)
       throw InputError(name, size + " exceed the GL's largest 3D texture (" +
                                  std::to_string(max3d) + "): folded into " +
-                                 std::to_string(foldBricks_) + " runs of slices it would be " +
+                                 std::to_string(foldRuns_) + " runs of slices it would be " +
                                  std::to_string(textureDims_.x) + " texels wide");
     if (gradient == GradientSource::Texture)
       throw InputError(name, size + ": more slices than the GL's largest 3D texture (" +
@@ -214,11 +214,10 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
                                  "gradient in the shader: use --gradient shader or auto");
   }
   const std::size_t voxels = volume.voxelCount();
-  source_ =
-      gradient != GradientSource::Auto ? gradient
-      : foldBricks_ > 1 || voxels * kGradientTextureBytesPerVoxel > kGradientTextureBudgetBytes
-          ? GradientSource::OnTheFly
-          : GradientSource::Texture;
+  source_ = gradient != GradientSource::Auto ? gradient
+            : foldRuns_ > 1 || voxels * kGradientTextureBytesPerVoxel > kGradientTextureBudgetBytes
+                ? GradientSource::OnTheFly
+                : GradientSource::Texture;
   const int nc = volume.components();
   const std::size_t sliceVoxels = static_cast<std::size_t>(dims_.x) * dims_.y;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -250,7 +249,7 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
         }
         slab[i] = texelOf(v);
       }
-      if (foldBricks_ == 1)
+      if (foldRuns_ == 1)
         glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, n, GL_RED, layout.type,
                         slab.data());
       else
@@ -308,7 +307,7 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
 }
 
 void VolumeTextures::uploadSlice(GLenum format, GLenum type, const void* texels, int k) const {
-  for (int b = 0; b < foldBricks_; ++b) {
+  for (int b = 0; b < foldRuns_; ++b) {
     const int local = k - b * foldSlices_;
     if (local < 0 || local > foldSlices_) continue;
     // The last run's spare slices repeat the last slice, as clamping to the edge would.
@@ -340,12 +339,12 @@ std::vector<float> VolumeTextures::values() const {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   // The texel of voxel v (linear index) in the texture: itself, or where the fold put it.
   auto texelIndex = [&](std::size_t v) {
-    if (foldBricks_ == 1) return v;
+    if (foldRuns_ == 1) return v;
     const std::size_t row = static_cast<std::size_t>(dims_.x);
     const std::size_t i = v % row, j = v / row % static_cast<std::size_t>(dims_.y),
                       k = v / (row * static_cast<std::size_t>(dims_.y));
     const std::size_t b =
-        std::min(k / static_cast<std::size_t>(foldSlices_), std::size_t(foldBricks_ - 1));
+        std::min(k / static_cast<std::size_t>(foldSlices_), std::size_t(foldRuns_ - 1));
     const std::size_t local = k - b * static_cast<std::size_t>(foldSlices_);
     return (local * static_cast<std::size_t>(textureDims_.y) + j) *
                static_cast<std::size_t>(textureDims_.x) +
@@ -379,8 +378,8 @@ void VolumeTextures::setUniforms(const ShaderProgram& p) const {
   glUniform2f(p.uniform("uValueMapping"), float(mapping_.x), float(mapping_.y));
   if (packed_)
     glUniform2f(p.uniform("uGradientDecode"), float(2.0 * gradientBound_), float(-gradientBound_));
-  if (foldBricks_ > 1) {
-    glUniform4f(p.uniform("uFold"), float(foldSlices_), float(foldBricks_ - 1), float(dims_.x),
+  if (foldRuns_ > 1) {
+    glUniform4f(p.uniform("uFold"), float(foldSlices_), float(foldRuns_ - 1), float(dims_.x),
                 float(1.0 / textureDims_.x));
     glUniform1f(p.uniform("uFoldDepth"), float(1.0 / textureDims_.z));
   }

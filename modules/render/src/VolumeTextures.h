@@ -30,11 +30,11 @@ class VolumeTextures {
   glm::ivec3 dims() const { return dims_; }
   // Folding: a volume with more slices than the GL's largest 3D texture
   // (GL_MAX_3D_TEXTURE_SIZE, or MVW_MAX_3D_TEXTURE_SIZE where that is smaller) is stored as
-  // foldBricks() runs of foldSlices() + 1 slices side by side along x in one texture of
+  // foldRuns() runs of foldSlices() + 1 slices side by side along x in one texture of
   // textureDims(); neighbouring runs share a slice, so trilinear sampling within a run reads
   // exactly the voxels it would unfolded. The shaders (MVW_FOLDED, common.glsl foldedTexture)
   // map the volume's texture coordinates into it; its gradient is then always taken on the fly.
-  int foldBricks() const { return foldBricks_; }
+  int foldRuns() const { return foldRuns_; }
   int foldSlices() const { return foldSlices_; }
   glm::ivec3 textureDims() const { return textureDims_; }
   const glm::dmat4& worldFromIndex() const { return worldFromIndex_; }
@@ -68,7 +68,7 @@ class VolumeTextures {
 
  private:
   glm::ivec3 dims_;
-  int foldBricks_ = 1, foldSlices_ = 0;
+  int foldRuns_ = 1, foldSlices_ = 0;
   glm::ivec3 textureDims_;
   // Uploads slice k (w x h texels of `type`) wherever the folded layout holds it.
   void uploadSlice(GLenum format, GLenum type, const void* texels, int k) const;
