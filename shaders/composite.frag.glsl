@@ -22,7 +22,7 @@ void setupHook(inout RayState s, Ray ray) {
   s.depth = -1.0;
 }
 
-bool skipHook(RayState s, vec3 tex) { return !blockVisible(tex); }
+bool skipHook(RayState s, float t, vec3 tex) { return !blockVisible(tex); }
 
 // One sample: 0 the ray goes on, 1 it ends (early termination), 2 (only with glyphs = false)
 // this sample needs the glyph code: nothing is composited, and the ray goes on from this

@@ -15,7 +15,7 @@ void setupHook(inout RayState s, Ray ray) { s.hitT = -1.0; }
 
 // A block whose values all lie below the isovalue holds no crossing: skip it. The grid point
 // one step back is then a skipped sample, and below the surface too.
-bool skipHook(RayState s, vec3 tex) { return blockRange(tex).y < uIsoValue; }
+bool skipHook(RayState s, float t, vec3 tex) { return blockRange(tex).y < uIsoValue; }
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   if (value < uIsoValue) return true;

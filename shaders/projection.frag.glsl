@@ -1,7 +1,6 @@
 // Projections with window/level: MIP (maximum; ties keep the sample nearest the viewer),
 // MinIP (minimum) and average intensity (X-ray-like). Chosen by MVW_MIP, MVW_MINIP or
-// MVW_AVERAGE. No empty-space skipping: measured on llvmpipe, a per-sample block test for
-// "this block cannot beat the current maximum" made MIP 3x slower (82 -> 256 ms/frame).
+// MVW_AVERAGE.
 #include "raycast/common.glsl"
 #include "common/colormap.glsl"
 
@@ -57,7 +56,23 @@ void setupHook(inout RayState s, Ray ray) {
   s.count = 0;
 }
 
-bool skipHook(RayState s, vec3 tex) { return false; }
+// Empty-space skipping by the block min/max grid (one-voxel apron, so no trilinear sample in a
+// block leaves its range): a block whose maximum cannot beat the ray's maximum so far (MIP; with
+// the depth cue, that maximum's emission under the cue at this sample, which only falls along
+// the ray), or whose minimum cannot go below its minimum (MinIP), holds no sample that changes
+// the result; ties keep the first sample, so none is lost. Average reads every sample.
+#if defined(MVW_MIP) && defined(MVW_DEPTH_CUE)
+bool skipHook(RayState s, float t, vec3 tex) {
+  return max(s.cue0 - s.cue1 * t, 0.0) * clamp(blockRange(tex).y * s.scale + s.offset, 0.0, 1.0) <=
+         s.value;
+}
+#elif defined(MVW_MIP)
+bool skipHook(RayState s, float t, vec3 tex) { return blockRange(tex).y <= s.value; }
+#elif defined(MVW_MINIP)
+bool skipHook(RayState s, float t, vec3 tex) { return blockRange(tex).x >= s.value; }
+#else
+bool skipHook(RayState s, float t, vec3 tex) { return false; }
+#endif
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 #if defined(MVW_MIP)

@@ -4,7 +4,7 @@
 //                                                          per sample; false ends the ray
 //                                                          (early termination)
 //   void finishHook(inout RayState s, Ray ray, vec2 span)  writes fragColor and fragDepth
-//   bool skipHook(RayState s, vec3 tex)                    true: nothing in this block can
+//   bool skipHook(RayState s, float t, vec3 tex)           true: nothing in this block can
 //                                                          change the result (skip to its exit)
 //   int plainSampleHook(...)  (only where the mode defines MVW_SPLIT_LOOP) like sampleHook
 //                             without its costly part: 0 go on, 1 end the ray, 2 hand this
@@ -27,7 +27,7 @@ void main() {
 #if defined(MVW_SPLIT_LOOP)
     for (; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
       vec3 tex = toTexture(ray.origin + t * ray.dir);
-      if (skipHook(s, tex)) {
+      if (skipHook(s, t, tex)) {
         t = skipBlock(t, tex);
         continue;
       }
@@ -40,7 +40,7 @@ void main() {
       vec3 tex = toTexture(ray.origin + t * ray.dir);
       // Tested per sample: caching the test once per block entered left ring artefacts on
       // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
-      if (skipHook(s, tex)) {
+      if (skipHook(s, t, tex)) {
         t = skipBlock(t, tex);
         continue;
       }
