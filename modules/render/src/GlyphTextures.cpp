@@ -73,8 +73,6 @@ void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures&
   }
   glUniform1i(p.uniform("uLabelGlyphs"), 1);  // never unit 0, the 3D functional volume's
   glUniform1i(p.uniform("uLabelGlyphCount"), GLint(table.size()));
-  const glm::mat4 worldFromIndex(volume.worldFromIndex());
-  glUniformMatrix4fv(p.uniform("uWorldFromIndex"), 1, GL_FALSE, glm::value_ptr(worldFromIndex));
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_3D, functional.texture());
   glUniform1i(p.uniform("uFunctional"), 0);
@@ -95,10 +93,10 @@ void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures&
   glColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
   glBindVertexArray(vao);
   // Layer by layer of the texture; a folded volume's runs of slices lie side by side along x
-  // (VolumeTextures::foldRuns), each drawn in its own columns with its voxels' positions.
+  // (VolumeTextures::foldRuns), each drawn in its own columns with its voxels' positions (the
+  // last run's spare layers repeat the last slice, as its upload does).
   const int runs = volume.foldRuns();
-  const int layers = runs == 1 ? dims.z : volume.foldSlices() + 1;
-  for (int layer = 0; layer < layers; ++layer) {
+  for (int layer = 0; layer < volume.textureDims().z; ++layer) {
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, 0, layer);
     for (int run = 0; run < runs; ++run) {
       const int column = run * dims.x;
@@ -107,8 +105,8 @@ void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures&
       glUniformMatrix4fv(p.uniform("uWorldFromIndex"), 1, GL_FALSE,
                          glm::value_ptr(runWorldFromIndex));
       glViewport(column, 0, dims.x, dims.y);
-      const int k = std::min(run * volume.foldSlices() + layer, dims.z - 1);
-      glUniform1f(p.uniform("uSlice"), float(runs == 1 ? layer : k));
+      glUniform1f(p.uniform("uSlice"),
+                  float(std::min(run * volume.foldSlices() + layer, dims.z - 1)));
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }

@@ -337,23 +337,22 @@ std::vector<float> VolumeTextures::values() const {
   std::vector<float> out(n);
   glBindTexture(GL_TEXTURE_3D, intensity_.id());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  // The texel of voxel v (linear index) in the texture: itself, or where the fold put it.
-  auto texelIndex = [&](std::size_t v) {
-    if (foldRuns_ == 1) return v;
-    const std::size_t row = static_cast<std::size_t>(dims_.x);
-    const std::size_t i = v % row, j = v / row % static_cast<std::size_t>(dims_.y),
-                      k = v / (row * static_cast<std::size_t>(dims_.y));
-    const std::size_t b =
-        std::min(k / static_cast<std::size_t>(foldSlices_), std::size_t(foldRuns_ - 1));
-    const std::size_t local = k - b * static_cast<std::size_t>(foldSlices_);
-    return (local * static_cast<std::size_t>(textureDims_.y) + j) *
-               static_cast<std::size_t>(textureDims_.x) +
-           b * row + i;
-  };
+  // Row by row: slice k lies in run b at layer k - b * foldSlices_ (unfolded: run 0, layer k).
   auto readAs = [&](auto texel, GLenum type, auto toValue) {
     std::vector<decltype(texel)> raw(stored);
     glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, type, raw.data());
-    for (std::size_t v = 0; v < n; ++v) out[v] = toValue(raw[texelIndex(v)]);
+    const std::size_t w = static_cast<std::size_t>(dims_.x);
+    for (int k = 0; k < dims_.z; ++k) {
+      const int b = foldRuns_ == 1 ? 0 : std::min(k / foldSlices_, foldRuns_ - 1);
+      const int layer = k - b * foldSlices_;
+      for (int j = 0; j < dims_.y; ++j) {
+        const auto* src = raw.data() +
+                          (static_cast<std::size_t>(layer) * textureDims_.y + j) * textureDims_.x +
+                          static_cast<std::size_t>(b) * w;
+        float* dst = out.data() + (static_cast<std::size_t>(k) * dims_.y + j) * w;
+        for (std::size_t i = 0; i < w; ++i) dst[i] = toValue(src[i]);
+      }
+    }
   };
   // Integer texels map back exactly: (texel / max) * max is not exact in float.
   const double offset = mapping_.y;

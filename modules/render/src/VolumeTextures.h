@@ -32,7 +32,7 @@ class VolumeTextures {
   // (GL_MAX_3D_TEXTURE_SIZE, or MVW_MAX_3D_TEXTURE_SIZE where that is smaller) is stored as
   // foldRuns() runs of foldSlices() + 1 slices side by side along x in one texture of
   // textureDims(); neighbouring runs share a slice, so trilinear sampling within a run reads
-  // exactly the voxels it would unfolded. The shaders (MVW_FOLDED, common.glsl foldedTexture)
+  // exactly the voxels it would unfolded. The shaders (MVW_FOLDED, common.glsl storedTexture)
   // map the volume's texture coordinates into it; its gradient is then always taken on the fly.
   int foldRuns() const { return foldRuns_; }
   int foldSlices() const { return foldSlices_; }
