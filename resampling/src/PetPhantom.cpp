@@ -70,7 +70,7 @@ Volume uptakeFromCt(const Volume& ct, double fwhmMm) {
           v = 1.0;
         else if (hu >= -500)
           v = 0.8 * (hu + 500) / 400;
-        p[ct.linearIndex(i, j, k)] = static_cast<float>(v);
+        p[u.linearIndex(i, j, k)] = static_cast<float>(v);
       }
   // Hot lesions near the middle of the head, where the CT's brain is.
   const glm::dvec3 mid = ct.worldFromIndexPoint(glm::dvec3(d - 1) * 0.5);
@@ -81,7 +81,7 @@ Volume uptakeFromCt(const Volume& ct, double fwhmMm) {
       for (int j = 0; j < d.y; ++j)
         for (int i = 0; i < d.x; ++i)
           if (glm::length(ct.worldFromIndexPoint({i, j, k}) - centre) < radius)
-            p[ct.linearIndex(i, j, k)] = 4.0f;
+            p[u.linearIndex(i, j, k)] = 4.0f;
   }
   blur(u, fwhmMm / 2.3548);
   return u;
