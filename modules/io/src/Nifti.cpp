@@ -305,9 +305,36 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   }
   glm::dmat4 rasFromData(1.0);
   auto& notes = volume.metadata().notes;
-  if (header->GetSFormCode() > 0 && reader->GetSFormMatrix()) {
+  // A matrix that maps the voxel axes to three independent finite directions: an sform of
+  // zeros, NaN or two equal rows (a broken writer) is no geometry.
+  auto usable = [](const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 3; ++r)
+        if (!std::isfinite(m[c][r])) return false;
+    const glm::dmat3 a(m);
+    const double lengths = glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]);
+    return lengths > 0 && std::abs(glm::determinant(a)) > 1e-6 * lengths;
+  };
+  const bool hasSform = header->GetSFormCode() > 0 && reader->GetSFormMatrix();
+  const bool hasQform = header->GetQFormCode() > 0 && reader->GetQFormMatrix();
+  bool sformBroken = false;
+  if (hasSform && !usable(fromVtk(reader->GetSFormMatrix()))) {
+    if (!hasQform || !usable(fromVtk(reader->GetQFormMatrix())))
+      throw InputError(path, std::string("the sform (srow_x, srow_y, srow_z) is not a usable "
+                                         "geometry (non-finite or singular)") +
+                                 (hasQform ? ", nor is the qform" : " and there is no qform"));
+    sformBroken = true;
+    notes.push_back(
+        "the sform is not a usable geometry (non-finite or singular): the qform is "
+        "used instead");
+  }
+  if (hasSform && !sformBroken) {
     rasFromData = fromVtk(reader->GetSFormMatrix());
-  } else if (header->GetQFormCode() > 0 && reader->GetQFormMatrix()) {
+  } else if (hasQform) {
+    if (!usable(fromVtk(reader->GetQFormMatrix())))
+      throw InputError(path,
+                       "the qform (quatern_b/c/d, qoffset_x/y/z) is not a usable geometry "
+                       "(non-finite or singular)");
     // The qform takes its voxel size from pixdim (VTK would quietly put 1 for a zero).
     for (int a = 1; a <= 3; ++a)
       if (!(std::abs(header->GetPixDim(a)) > 0) || !std::isfinite(header->GetPixDim(a)))
@@ -320,7 +347,7 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   // A zero pixdim is no voxel size: say which one was used instead (VTK puts 1 for a zero).
   for (int a = 1; a <= 3; ++a) {
     if (std::abs(header->GetPixDim(a)) > 0 || std::isnan(header->GetPixDim(a))) continue;
-    const bool fromSform = header->GetSFormCode() > 0 && reader->GetSFormMatrix();
+    const bool fromSform = hasSform && !sformBroken;
     const double used =
         fromSform ? glm::length(glm::dvec3(rasFromData[a - 1])) * spacing[a - 1] : spacing[a - 1];
     char size[32];

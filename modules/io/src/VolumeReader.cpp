@@ -10,6 +10,8 @@
 
 #include <unistd.h>
 
+#include <glm/matrix.hpp>
+
 #include "FileChecks.h"
 #include "Formats.h"
 #include "mvw/core/Error.h"
@@ -104,8 +106,57 @@ void clampInfinities(Volume& volume, const fs::path& path) {
   });
 }
 
+// Every reader's geometry, checked once: finite, three independent axes, voxel sizes and a
+// position a scanner can have. Beyond these the grid arithmetic downstream (sample grids,
+// ray steps, glyph spacing) would divide by nothing or allocate without bound.
+void checkGeometry(const Volume& volume, const fs::path& path) {
+  const glm::dmat4& m = volume.worldFromIndex();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r)
+      if (!std::isfinite(m[c][r]))
+        throw InputError(path, "its geometry (voxel axes and origin) is not finite");
+  auto g = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return std::string(buf);
+  };
+  const glm::dvec3 spacing = volume.spacing();
+  for (int a = 0; a < 3; ++a)
+    if (!(spacing[a] >= 1e-6 && spacing[a] <= 1e6))
+      throw InputError(path, "voxel size " + g(spacing[a]) + " mm along axis " +
+                                 std::to_string(a + 1) + " is not a voxel size (1e-6 .. 1e6 mm)");
+  const glm::dmat3 axes(m);
+  if (std::abs(glm::determinant(axes)) <= 1e-6 * spacing.x * spacing.y * spacing.z)
+    throw InputError(path, "its voxel axes are parallel (a singular orientation)");
+  const glm::dvec3 origin(m[3]);
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(origin[a]) > 1e6)
+      throw InputError(path, "its origin " + g(origin[a]) + " mm along " + "xyz"[a] +
+                                 " lies beyond 1 km: not a position in a scanner");
+}
+
+// Float volumes without a single finite value (all NaN) hold no image: refused like all-inf.
+void checkSomeFiniteValue(const Volume& volume, const fs::path& path) {
+  if (volume.scalarType() != ScalarType::Float32 && volume.scalarType() != ScalarType::Float64)
+    return;
+  dispatchScalar(volume.scalarType(), [&](auto t) {
+    using T = decltype(t);
+    if constexpr (std::is_floating_point_v<T>) {
+      const T* p = volume.dataAs<T>();
+      const std::size_t n = volume.valueCount();
+      for (std::size_t i = 0; i < n; ++i)
+        if (std::isfinite(p[i])) return;
+      throw InputError(path, "no finite voxel value: every voxel is infinite or NaN");
+    }
+  });
+}
+
 std::vector<Volume> finished(std::vector<Volume> volumes, const fs::path& path) {
-  for (auto& v : volumes) clampInfinities(v, path);
+  for (auto& v : volumes) {
+    checkGeometry(v, path);
+    checkSomeFiniteValue(v, path);
+    clampInfinities(v, path);
+  }
   return volumes;
 }
 
