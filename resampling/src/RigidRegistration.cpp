@@ -149,9 +149,31 @@ MattesMutualInformation levelMetric(const Volume& fixedLevel, const Volume& movi
   indices.reserve(static_cast<std::size_t>(nSamples));
   {
     // Cells chosen at random when the grid has more than nSamples.
+    // Cells per mm k from nSamples over the box's volume; an axis too thin for one cell at
+    // that density (a slab, a very anisotropic grid) gets one, and k is taken again over the
+    // other axes, so that the grid never holds far more cells than samples.
     const glm::dvec3 mm = extent * fixedLevel.spacing();
-    const double k = std::cbrt(nSamples / std::max(mm.x * mm.y * mm.z, 1e-12));
-    const glm::ivec3 cells(glm::max(glm::dvec3(1.0), glm::ceil(mm * k)));
+    glm::bvec3 single(false);
+    double k = 0.0;
+    for (int pass = 0; pass < 3; ++pass) {
+      double volume = 1.0;
+      int free = 0;
+      for (int a = 0; a < 3; ++a)
+        if (!single[a]) {
+          volume *= std::max(mm[a], 1e-12);
+          ++free;
+        }
+      k = free == 3   ? std::cbrt(nSamples / volume)
+          : free == 0 ? 0.0
+                      : std::pow(nSamples / volume, 1.0 / free);
+      glm::bvec3 next = single;
+      for (int a = 0; a < 3; ++a) next[a] = next[a] || mm[a] * k < 1.0;
+      if (next == single) break;
+      single = next;
+    }
+    glm::ivec3 cells(1);
+    for (int a = 0; a < 3; ++a)
+      if (!single[a]) cells[a] = static_cast<int>(std::clamp(std::ceil(mm[a] * k), 1.0, 1e6));
     const std::size_t total = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
     std::vector<std::size_t> order(total);
     for (std::size_t c = 0; c < total; ++c) order[c] = c;
