@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <exception>
 #include <string>
 
 #include <vtkDICOMDictHash.h>
@@ -24,6 +26,8 @@
 #include <vtkNew.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
+
+#include <glm/geometric.hpp>
 
 #include "DecoderGuard.h"
 #include "DeflatedDicom.h"
@@ -328,8 +332,41 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   md.seriesDescription = ref.description;
   md.seriesNumber = ref.number;
   md.frameOfReferenceUid = meta->Get(0, DC::FrameOfReferenceUID).AsString();
-  if (meta->Get(0, DC::ImageOrientationPatient).GetNumberOfValues() != 6)
+  const vtkDICOMValue& iop = meta->Get(0, 0, DC::ImageOrientationPatient);
+  if (iop.GetNumberOfValues() != 6) {
     md.notes.push_back("no ImageOrientationPatient: patient orientation unknown, axes assumed LPS");
+  } else {
+    // Two unit directions, at right angles; anything else was replaced by the reader.
+    glm::dvec3 row, column;
+    for (int a = 0; a < 3; ++a) {
+      row[a] = iop.GetDouble(static_cast<unsigned int>(a));
+      column[a] = iop.GetDouble(static_cast<unsigned int>(a + 3));
+    }
+    const bool usable = std::isfinite(glm::dot(row, row) + glm::dot(column, column)) &&
+                        std::abs(glm::length(row) - 1.0) < 0.01 &&
+                        std::abs(glm::length(column) - 1.0) < 0.01 &&
+                        std::abs(glm::dot(row, column)) < 0.01;
+    if (!usable)
+      md.notes.push_back("ImageOrientationPatient '" + iop.AsString() +
+                         "' is not two perpendicular unit directions: axes assumed LPS");
+  }
+  // In-plane voxel size: a missing, zero, negative or non-numeric PixelSpacing was replaced.
+  const vtkDICOMValue& ps = meta->Get(0, 0, DC::PixelSpacing);
+  const bool spacingUsable = ps.GetNumberOfValues() == 2 && ps.GetDouble(0) > 0 &&
+                             ps.GetDouble(1) > 0 && std::isfinite(ps.GetDouble(0)) &&
+                             std::isfinite(ps.GetDouble(1));
+  if (!spacingUsable) {
+    char text[200];
+    std::snprintf(text, sizeof text, "%s: in-plane voxel size %g x %g mm assumed",
+                  ps.IsValid() ? ("PixelSpacing '" + ps.AsString() + "' is not usable").c_str()
+                               : "no PixelSpacing",
+                  volume.spacing().x, volume.spacing().y);
+    md.notes.push_back(text);
+  }
+  const vtkDICOMValue& slope = meta->Get(0, 0, DC::RescaleSlope);
+  if (slope.IsValid() && !(std::isfinite(slope.GetDouble(0)) && slope.GetDouble(0) != 0.0))
+    md.notes.push_back("RescaleSlope '" + slope.AsString() +
+                       "' is not a usable factor: the stored values were not rescaled by it");
   if (reader->GetStackIDs() && reader->GetStackIDs()->GetNumberOfValues() > 1)
     md.notes.push_back("series holds several stacks; the first was read");
   if (reader->GetTimeDimension() > 1)
@@ -431,14 +468,27 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
     throw InputError(path, std::to_string(chosen.size()) +
                                " series here; choose one by UID, number or description:" + list);
   }
+  // Every series asked for; among several, one that cannot be read is said in a note of the
+  // first that can (a folder is still usable when one of its series is not), and its error is
+  // the folder's only when none can be read.
   std::vector<Volume> volumes;
+  std::vector<std::string> unread;
+  std::exception_ptr firstFailure;
   for (const auto& s : chosen) {
     vtkStringArray* files = dir->GetFileNamesForSeries(s.index);
-    if (s.modality == "SEG" && files->GetNumberOfValues() == 1)  // DicomSeg.cpp
-      volumes.push_back(labelVolume(readDicomSegmentation(files->GetValue(0).c_str(), options)));
-    else
-      volumes.push_back(readSeries(path, files, s, options));
+    try {
+      if (s.modality == "SEG" && files->GetNumberOfValues() == 1)  // DicomSeg.cpp
+        volumes.push_back(labelVolume(readDicomSegmentation(files->GetValue(0).c_str(), options)));
+      else
+        volumes.push_back(readSeries(path, files, s, options));
+    } catch (const InputError& e) {
+      if (chosen.size() == 1) throw;
+      if (!firstFailure) firstFailure = std::current_exception();
+      unread.push_back("series " + describe(s) + " not read: " + e.what());
+    }
   }
+  if (volumes.empty() && firstFailure) std::rethrow_exception(firstFailure);
+  for (const std::string& note : unread) volumes.front().metadata().notes.push_back(note);
   return volumes;
 }
 

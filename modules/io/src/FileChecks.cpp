@@ -23,8 +23,11 @@ std::uintmax_t regularFileSize(const std::filesystem::path& path) {
 std::uintmax_t companionFileSize(const std::filesystem::path& header,
                                  const std::filesystem::path& data) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(data, ec))
+  if (!std::filesystem::exists(data, ec))
     throw InputError(header, "its data file " + data.string() + " is missing");
+  if (!std::filesystem::is_regular_file(data, ec))
+    throw InputError(
+        header, "its data file " + data.string() + " is not a regular file (a folder or a device)");
   return regularFileSize(data);
 }
 
