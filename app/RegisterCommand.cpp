@@ -82,7 +82,8 @@ class Staging {
     dir_ = parent / (".mvw-register-" + std::to_string(::getpid()));
     fs::remove_all(dir_, ec);
     if (!fs::create_directory(dir_, ec))
-      throw Error(dir_.string() + ": cannot create a staging folder");
+      throw InputError(output_, "cannot write in its folder " + parent.string() + ": " +
+                                    (ec ? ec.message() : std::string("cannot create a folder")));
   }
   ~Staging() {
     std::error_code ec;
@@ -92,10 +93,10 @@ class Staging {
   void commit(const std::vector<std::string>& names) {
     std::error_code ec;
     fs::create_directories(output_, ec);
-    if (ec) throw Error(output_.string() + ": cannot create the output folder: " + ec.message());
+    if (ec) throw InputError(output_, "cannot create the output folder: " + ec.message());
     for (const auto& n : names) {
       fs::rename(dir_ / n, output_ / n, ec);
-      if (ec) throw Error((output_ / n).string() + ": cannot write: " + ec.message());
+      if (ec) throw InputError(output_ / n, "cannot write: " + ec.message());
     }
   }
 

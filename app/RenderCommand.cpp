@@ -319,8 +319,8 @@ void runRender(const RenderOptions& o) {
               << config::toString(v.config.view) << ") in " << static_cast<int>(frame.milliseconds)
               << " ms\n";
   }
-  // All frames exist before anything is written: a failure leaves no partial output.
-  fs::create_directories(o.outDir);
+  // All frames exist before anything is written, and everything is written into the staging
+  // folder before anything moves into place: a failure (a full disk) leaves no partial output.
   nlohmann::json report;
   report["study"] = study.file.string();
   report["anatomical"] = anatomy.metadata().sourcePath;
@@ -339,17 +339,27 @@ void runRender(const RenderOptions& o) {
   report["texture_runs"] = renderer.textureRuns();  // > 1: folded past the GL's 3D texture size
   report["mvw_version"] = kVersion;
   report["views"] = nlohmann::json::array();
-  for (const auto& out : outputs) {
-    io::writePng(out.image, fs::path(o.outDir) / out.file);
-    report["views"].push_back(out.record);
+  try {
+    for (const auto& out : outputs) {
+      io::writePng(out.image, staging.dir() / out.file);
+      report["views"].push_back(out.record);
+    }
+    io::writeTextAtomically(staging.dir() / "render.json", report.dump(2) + "\n");
+  } catch (const Error& e) {
+    throw InputError(o.outDir,
+                     std::string("cannot write the renders (is the disk full?): ") + e.what());
   }
+  // Renames within one file system.
+  fs::create_directories(o.outDir);
+  for (const auto& out : outputs)
+    fs::rename(staging.dir() / out.file, fs::path(o.outDir) / out.file);
   for (const std::string& name : orbits) {
     const fs::path folder = fs::path(o.outDir) / name;
     fs::remove_all(folder);  // an earlier run's frames
     fs::rename(staging.dir() / name, folder);
     fs::rename(staging.dir() / (name + ".mp4"), fs::path(o.outDir) / (name + ".mp4"));
   }
-  io::writeTextAtomically(fs::path(o.outDir) / "render.json", report.dump(2) + "\n");
+  fs::rename(staging.dir() / "render.json", fs::path(o.outDir) / "render.json");
   std::cout << "wrote " << outputs.size() << " view(s) and render.json to " << o.outDir << "\n";
 }
 

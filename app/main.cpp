@@ -1,6 +1,10 @@
 // mvw: multimodal volume workstation. One CLI, one subcommand per job.
 // Exit codes: 0 success, 1 internal fault, 2 bad input (file, config or command line).
+#include <cmath>
+#include <cstdlib>
 #include <exception>
+#include <filesystem>
+#include <functional>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -33,6 +37,21 @@ int main(int argc, char** argv) {
   mvw::app::addBenchCommand(app);
   mvw::app::addViewCommand(app);
   mvw::app::addValidateCommand(app);
+  // Every number option is finite: NaN passes any range check (comparisons with it are false)
+  // and inf overflows what it scales.
+  const CLI::Validator finite(
+      [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        return std::isfinite(v) ? std::string() : "must be a finite number, not '" + text + "'";
+      },
+      "");
+  std::function<void(CLI::App*)> requireFinite = [&](CLI::App* a) {
+    for (CLI::Option* option : a->get_options())
+      if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(finite);
+    for (CLI::App* sub : a->get_subcommands({})) requireFinite(sub);
+  };
+  requireFinite(&app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -44,6 +63,10 @@ int main(int argc, char** argv) {
   } catch (const mvw::Error& e) {
     std::cerr << "mvw: internal error: " << e.what() << "\n";
     return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the user gave that the file system refused (permissions, a full disk).
+    std::cerr << "mvw: error: " << e.path1().string() << ": " << e.code().message() << "\n";
+    return 2;
   } catch (const std::bad_alloc&) {
     std::cerr << "mvw: internal error: out of memory\n";
     return 1;

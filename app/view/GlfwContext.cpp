@@ -24,7 +24,10 @@ GlfwContext::GlfwContext(glm::ivec2 size, const std::string& title) {
        {"libGL.so.1", "libGLX_mesa.so.0", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so"})
     ::dlopen(lib, RTLD_LAZY | RTLD_NODELETE);
   if (!glfwInit())
-    throw Error("cannot start GLFW (no display? run under Xvfb or set DISPLAY): " + glfwReason());
+    throw InputError("mvw view",
+                     "cannot open a window: no display (set DISPLAY, or run under Xvfb; mvw "
+                     "render draws the same views headless): " +
+                         glfwReason());
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

@@ -28,8 +28,8 @@ void writeTextAtomically(const fs::path& path, std::string_view text) {
   writeAtomically(path, [&](const fs::path& tmp) {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     f.write(text.data(), static_cast<std::streamsize>(text.size()));
-    f.flush();
-    if (!f) throw Error("cannot write " + path.string());
+    f.close();  // a full disk may only say so when the last buffer goes out
+    if (!f) throw InputError(path, "cannot write (disk full or not writable?)");
   });
 }
 
@@ -37,8 +37,7 @@ void copyFileAtomically(const fs::path& from, const fs::path& to) {
   writeAtomically(to, [&](const fs::path& tmp) {
     std::error_code ec;
     fs::copy_file(from, tmp, fs::copy_options::overwrite_existing, ec);
-    if (ec)
-      throw Error("cannot copy " + from.string() + " to " + to.string() + ": " + ec.message());
+    if (ec) throw InputError(to, "cannot copy " + from.string() + " here: " + ec.message());
   });
 }
 

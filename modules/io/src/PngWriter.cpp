@@ -19,7 +19,13 @@ void writePng(const Image& image, const std::filesystem::path& path) {
   cv::cvtColor(rgba, bgra, cv::COLOR_RGBA2BGRA);
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     // The temporary keeps the .png ending: imwrite chooses the codec by extension.
-    if (!cv::imwrite(tmp.string(), bgra)) throw Error(path.string() + ": PNG write failed");
+    bool written = false;
+    try {
+      written = cv::imwrite(tmp.string(), bgra);
+    } catch (const cv::Exception& e) {
+      throw InputError(path, std::string("cannot write the PNG: ") + e.err);
+    }
+    if (!written) throw InputError(path, "cannot write the PNG (disk full or not writable?)");
   });
 }
 
