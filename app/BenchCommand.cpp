@@ -104,8 +104,8 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--frames", o->frames, "Azimuth steps per mode")->check(CLI::Range(1, 3600));
   cmd->add_option("--modes", o->modes, "Comma-separated modes");
   cmd->add_option("--preset", o->preset, "Transfer function for composite");
-  cmd->add_option("--step", o->stepMm,
-                  "Sample distance in mm (default: half the smallest spacing)");
+  cmd->add_option("--step", o->stepMm, "Sample distance in mm (default: half the smallest spacing)")
+      ->check(CLI::Range(1e-3, 1e3));
   cmd->add_flag("--no-shading", o->noShading, "Composite without Phong shading");
   addGlOption(*cmd, o->gl);
   addGradientOption(*cmd, o->gradient);

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -58,6 +59,18 @@ void checkOutput(const fs::path& output, const fs::path& sidecar) {
     throw InputError(output, "its folder " + parent.string() + " is not writable");
   if (fs::is_directory(sidecar, ec))
     throw InputError(sidecar, "the sidecar's name is taken by a folder");
+  // OUT.json is replaced only when an earlier `mvw convert` wrote it: the name is also what a
+  // study config or another tool's file is called.
+  if (fs::exists(sidecar, ec)) {
+    std::ifstream in(sidecar);
+    const nlohmann::json old = nlohmann::json::parse(in, nullptr, false);
+    const bool ours = old.is_object() && old.contains("written_by") &&
+                      old["written_by"].is_string() && old["written_by"] == "mvw convert";
+    if (!ours)
+      throw InputError(sidecar,
+                       "the sidecar's name is taken by a file mvw convert did not write; move it "
+                       "or choose another output name");
+  }
 }
 
 // What dcm2niix's BIDS sidecar says, in mvw's words: what the values are and where they came

@@ -48,7 +48,7 @@ void addGlyphMapCommand(CLI::App& app) {
   cmd->add_option("--seed", g->settings.seed, "Random seed of the positions")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--voxel-mm", g->voxelMm, "Voxel size written to the file")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-3, 1e3));
   cmd->callback([g] {
     try {
       runGlyphMap(*g);

@@ -66,7 +66,7 @@ void addPhantomCommand(CLI::App& app) {
   cmd->add_option("--generations", ph->vessels.generations, "Branching generations")
       ->check(CLI::Range(1, 12));
   cmd->add_option("--seed", ph->vessels.seed, "Random seed")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--noise", ph->vessels.noiseSigma, "Noise sigma")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--noise", ph->vessels.noiseSigma, "Noise sigma")->check(CLI::Range(0.0, 1e6));
   cmd->callback([ph] {
     ph->vessels.dimensions = glm::ivec3(ph->vessels.dimensions.x);
     runVesselPhantom(*ph);
@@ -82,7 +82,9 @@ void addPhantomCommand(CLI::App& app) {
       ->add_option("--rotate", pet->rotateDeg,
                    "Rotation about x, y, z in degrees (ITK Euler order)")
       ->expected(3);
-  petCmd->add_option("--shift", pet->shiftMm, "Translation in mm")->expected(3);
+  petCmd->add_option("--shift", pet->shiftMm, "Translation in mm")
+      ->expected(3)
+      ->check(CLI::Range(-1e4, 1e4));
   petCmd->add_option("--seed", pet->seed, "Noise seed")->check(CLI::NonNegativeNumber);
   petCmd->callback([pet] { runPetPhantom(*pet); });
 }

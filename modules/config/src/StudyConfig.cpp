@@ -1,6 +1,9 @@
 #include "mvw/config/StudyConfig.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 
@@ -284,6 +287,13 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
   if (v.name.empty()) v.name = "view" + std::to_string(index);
   if (v.name.find_first_of("/\\") != std::string::npos || v.name == "." || v.name == "..")
     throw InputError(file, "'" + w + "name' must be a plain file name");
+  // It names files (NAME.png, an orbit's NAME/ and NAME.mp4): printable, and short enough
+  // for any file system's 255-byte names.
+  if (v.name.size() > 120)
+    throw InputError(
+        file, "'" + w + "name' is " + std::to_string(v.name.size()) + " characters; at most 120");
+  for (unsigned char c : v.name)
+    if (c < 0x20 || c == 0x7f) throw InputError(file, "'" + w + "name' holds a control character");
   if (v.window.has_value() != v.level.has_value())
     throw InputError(file, "'" + w + "window' and '" + w + "level' go together");
   for (int a = 0; a < 3; ++a)
@@ -600,6 +610,16 @@ StudyConfig loadStudyConfig(const fs::path& file) {
   try {
     j = json::parse(in);
   } catch (const json::exception& e) {  // parse errors, and numbers too large for a double (406)
+    std::string name = file.filename().string();
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const char* volume : {".nii", ".nii.gz", ".hdr", ".mha", ".mhd", ".dcm"})
+      if (name.size() >= std::strlen(volume) &&
+          name.compare(name.size() - std::strlen(volume), std::string::npos, volume) == 0)
+        throw InputError(file,
+                         "is a volume, not a study config (JSON): `mvw view` takes a "
+                         "volume as --anatomical (and --functional), `mvw render` a "
+                         "study config");
     throw InputError(file, std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(file, "a study config must be a JSON object");

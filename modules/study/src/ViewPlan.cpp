@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <map>
 
 #include "mvw/core/Error.h"
@@ -208,6 +209,23 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
       if (!sampling) throw InputError(study.file, "--sampling must be linear or nearest");
       v.sampling = *sampling;
     }
+    // The command line's numbers within the config's own ranges (NaN is in none).
+    auto ranged = [&](const std::optional<double>& x, const char* flag, double lo, double hi) {
+      if (!x || (*x >= lo && *x <= hi)) return;
+      char text[160];
+      std::snprintf(text, sizeof text, "%s %g is outside %g .. %g", flag, *x, lo, hi);
+      throw InputError(study.file, text);
+    };
+    ranged(o.azimuth, "--azimuth", -3600, 3600);
+    ranged(o.elevation, "--elevation", -3600, 3600);
+    ranged(o.roll, "--roll", -3600, 3600);
+    ranged(o.zoom, "--zoom", 1e-3, 1e3);
+    ranged(o.window, "--window", 1e-9, 1e12);
+    ranged(o.level, "--level", -1e12, 1e12);
+    ranged(o.iso, "--iso", -1e12, 1e12);
+    ranged(o.cueBrightness, "--cue-brightness", 0.0, 10.0);
+    ranged(o.cueAmount, "--cue-amount", -10.0, 10.0);
+    ranged(o.cueContrast, "--cue-contrast", 0.0, 10.0);
     if (o.size) v.width = v.height = *o.size;
     if (o.azimuth) v.azimuth = *o.azimuth;
     if (o.elevation) v.elevation = *o.elevation;
