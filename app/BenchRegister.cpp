@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "CliChecks.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
@@ -296,8 +297,7 @@ void addBenchRegisterCommand(CLI::App& bench) {
       ->check(CLI::Range(1.0, 12.0));
   cmd->add_option("--noise", o->noise, "Noise sigma at uptake 1 (soft tissue; 0.1 by default)")
       ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--seed", o->seed, "Seed of the transforms and the noise")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", o->seed, "Seed of the transforms and the noise")->check(nonNegative());
   cmd->add_option("--max-degrees", o->maxDegrees, "Random rotations up to this, per axis")
       ->check(CLI::Range(0.0, 45.0));
   cmd->add_option("--max-mm", o->maxMm, "Random shifts up to this, per axis")

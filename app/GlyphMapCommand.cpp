@@ -1,5 +1,6 @@
 #include "GlyphMapCommand.h"
 
+#include <algorithm>
 #include <cstring>
 #include <iostream>
 #include <memory>
@@ -7,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "CliChecks.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Volume.h"
 #include "mvw/io/VolumeWriter.h"
@@ -44,12 +46,18 @@ void addGlyphMapCommand(CLI::App& app) {
   cmd->add_option("-o,--output", g->output, "Output file (.nii, .nii.gz, .mha, .mhd)")->required();
   cmd->add_option("--size", g->settings.size, "Voxels per side")->check(CLI::Range(8, 512));
   cmd->add_option("--count", g->settings.count, "Number of glyphs")->check(CLI::Range(1, 255));
-  cmd->add_option("--diameter", g->settings.diameter, "Glyph diameter in map voxels");
-  cmd->add_option("--seed", g->settings.seed, "Random seed of the positions")
-      ->check(CLI::NonNegativeNumber);
+  CLI::Option* diameter =
+      cmd->add_option("--diameter", g->settings.diameter,
+                      "Glyph diameter in map voxels (default: a quarter of the map size, at "
+                      "most the renderer's 32)");
+  cmd->add_option("--seed", g->settings.seed, "Random seed of the positions")->check(nonNegative());
   cmd->add_option("--voxel-mm", g->voxelMm, "Voxel size written to the file")
       ->check(CLI::Range(1e-3, 1e3));
-  cmd->callback([g] {
+  cmd->callback([g, diameter] {
+    // Another map size scales the default glyph with it (32 voxels in the default 128^3 map):
+    // the same 16 glyphs then fill the same fraction of any map.
+    if (diameter->count() == 0)
+      g->settings.diameter = std::min(g->settings.diameter, g->settings.size / 4.0);
     try {
       runGlyphMap(*g);
     } catch (const InputError&) {

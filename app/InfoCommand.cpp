@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "CliChecks.h"
 #include "VolumeReport.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/io/VolumeReader.h"
@@ -83,7 +84,7 @@ void addInfoCommand(CLI::App& app) {
          "Refuse a volume larger than this in memory, checked on the header before anything is "
          "allocated (e.g. 512M, 4G; default: a quarter of physical RAM)")
       ->transform(CLI::AsSizeValue(false))
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->callback([opt] { runInfo(*opt); });
 }
 

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "CliChecks.h"
 #include "mvw/core/VesselPhantom.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
@@ -65,7 +66,7 @@ void addPhantomCommand(CLI::App& app) {
       ->check(CLI::Range(16, 512));
   cmd->add_option("--generations", ph->vessels.generations, "Branching generations")
       ->check(CLI::Range(1, 12));
-  cmd->add_option("--seed", ph->vessels.seed, "Random seed")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", ph->vessels.seed, "Random seed")->check(nonNegative());
   cmd->add_option("--noise", ph->vessels.noiseSigma, "Noise sigma")->check(CLI::Range(0.0, 1e6));
   cmd->callback([ph] {
     ph->vessels.dimensions = glm::ivec3(ph->vessels.dimensions.x);
@@ -85,7 +86,7 @@ void addPhantomCommand(CLI::App& app) {
   petCmd->add_option("--shift", pet->shiftMm, "Translation in mm")
       ->expected(3)
       ->check(CLI::Range(-1e4, 1e4));
-  petCmd->add_option("--seed", pet->seed, "Noise seed")->check(CLI::NonNegativeNumber);
+  petCmd->add_option("--seed", pet->seed, "Noise seed")->check(nonNegative());
   petCmd->callback([pet] { runPetPhantom(*pet); });
 }
 

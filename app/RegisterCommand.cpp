@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "CliChecks.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/io/VolumeReader.h"
@@ -227,7 +228,7 @@ void addRegisterCommand(CLI::App& app) {
                   "mass (centroids)")
       ->check(CLI::IsMember({"auto", "world", "centre", "mass"}));
   cmd->add_option("--seed", opt->seed, "Seed of the sample points (same seed, same result)")
-      ->check(CLI::NonNegativeNumber);  // CLI11 would wrap -3 into an unsigned seed
+      ->check(nonNegative());  // CLI11 would wrap -3 into an unsigned seed
   cmd->add_flag(
       "--affine", opt->affine,
       "After the rigid stage, an affine one (12 degrees of freedom: scaling and shear too)");

@@ -1,5 +1,6 @@
 #include "RenderCommand.h"
 
+#include "CliChecks.h"
 #include "HeadlessGl.h"
 
 #include <cstdio>
@@ -385,9 +386,9 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--elevation", o->overrides.elevation, "Degrees about the view's right axis");
   cmd->add_option("--roll", o->overrides.roll, "Degrees about the line of sight");
   cmd->add_option("--zoom", o->overrides.zoom, "Magnification (1 fits the volume)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--window", o->overrides.window, "Window width for projections")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--level", o->overrides.level, "Window centre for projections");
   cmd->add_option("--iso", o->overrides.iso, "Isosurface value");
   cmd->add_option("--sampling", o->overrides.sampling, "linear | nearest");

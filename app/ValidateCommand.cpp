@@ -1,5 +1,6 @@
 #include "ValidateCommand.h"
 
+#include "CliChecks.h"
 #include "HeadlessGl.h"
 
 #include <cstdlib>
@@ -27,7 +28,7 @@ void addValidateCommand(CLI::App& app) {
       ->check(CLI::Range(1, 64));
   cmd->add_option("--timeout", o->timeoutS,
                   "Seconds one render process (its share of a study's cases) may take")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   addGlOption(*cmd, o->gl);
   cmd->callback([o] {
     // A backend the user named must exist here (exit 2 now, not one failure per case). The

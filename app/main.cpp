@@ -55,8 +55,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // A command line mvw cannot use: one message in mvw's own form, exit 2.
+    std::cerr << "mvw: error: " << e.what() << " (mvw COMMAND --help lists the options)\n";
+    return 2;
   } catch (const mvw::InputError& e) {
     std::cerr << "mvw: error: " << e.what() << "\n";
     return 2;

@@ -1,0 +1,29 @@
+#pragma once
+// Sign checks for number options whose messages state the rule: CLI11's PositiveNumber and
+// NonNegativeNumber are ranges up to DBL_MAX, which their messages print in 309 digits.
+#include <cstdlib>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace mvw::app {
+
+inline CLI::Validator positive() {
+  return CLI::Validator(
+      [](std::string& text) {
+        return std::strtod(text.c_str(), nullptr) > 0 ? std::string()
+                                                      : "must be positive, not '" + text + "'";
+      },
+      "POSITIVE");
+}
+
+inline CLI::Validator nonNegative() {
+  return CLI::Validator(
+      [](std::string& text) {
+        return std::strtod(text.c_str(), nullptr) >= 0 ? std::string()
+                                                       : "must be 0 or more, not '" + text + "'";
+      },
+      "NONNEGATIVE");
+}
+
+}  // namespace mvw::app
