@@ -41,9 +41,9 @@ int main(int argc, char** argv) {
   // and inf overflows what it scales.
   const CLI::Validator finite(
       [](std::string& text) {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        return std::isfinite(v) ? std::string() : "must be a finite number, not '" + text + "'";
+        return std::isfinite(std::strtod(text.c_str(), nullptr))
+                   ? std::string()
+                   : "must be a finite number, not '" + text + "'";
       },
       "");
   std::function<void(CLI::App*)> requireFinite = [&](CLI::App* a) {

@@ -356,12 +356,11 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
                              ps.GetDouble(1) > 0 && std::isfinite(ps.GetDouble(0)) &&
                              std::isfinite(ps.GetDouble(1));
   if (!spacingUsable) {
-    char text[200];
-    std::snprintf(text, sizeof text, "%s: in-plane voxel size %g x %g mm assumed",
-                  ps.IsValid() ? ("PixelSpacing '" + ps.AsString() + "' is not usable").c_str()
-                               : "no PixelSpacing",
-                  volume.spacing().x, volume.spacing().y);
-    md.notes.push_back(text);
+    char size[64];
+    std::snprintf(size, sizeof size, "%g x %g mm", volume.spacing().x, volume.spacing().y);
+    md.notes.push_back(
+        (ps.IsValid() ? "PixelSpacing '" + ps.AsString() + "' is not usable" : "no PixelSpacing") +
+        ": in-plane voxel size " + size + " assumed");
   }
   const vtkDICOMValue& slope = meta->Get(0, 0, DC::RescaleSlope);
   if (slope.IsValid() && !(std::isfinite(slope.GetDouble(0)) && slope.GetDouble(0) != 0.0))

@@ -62,10 +62,11 @@ auto refuseOutOfMemory(const fs::path& path, F&& read) {
   }
 }
 
-// +-inf voxels are clamped to the finite range of the others, with a note, rather than the
-// file refused: a few infinite voxels (a ratio map divided by zero, a failed fit) should not
-// make a whole scan unreadable, and left in they break every window, transfer function and
-// histogram downstream. They are not made NaN: NaN means "no data", which an overflow is not.
+// A float volume without one finite voxel is refused. +-inf voxels are clamped to the finite range
+// of the others, with a note, rather than the file refused: a few infinite voxels (a ratio map
+// divided by zero, a failed fit) should not make a whole scan unreadable, and left in they break
+// every window, transfer function and histogram downstream. They are not made NaN: NaN means "no
+// data", which an overflow is not.
 void clampInfinities(Volume& volume, const fs::path& path) {
   if (volume.scalarType() != ScalarType::Float32 && volume.scalarType() != ScalarType::Float64)
     return;
@@ -84,8 +85,9 @@ void clampInfinities(Volume& volume, const fs::path& path) {
           hi = std::max(hi, p[i]);
         }
       }
-      if (plus + minus == 0) return;
+      // Without one finite voxel (all NaN, all infinite) the file holds no image.
       if (lo > hi) throw InputError(path, "no finite voxel value: every voxel is infinite or NaN");
+      if (plus + minus == 0) return;
       for (std::size_t i = 0; i < n; ++i)
         if (std::isinf(p[i])) p[i] = p[i] > 0 ? hi : lo;
       auto g = [](double v) {
@@ -135,26 +137,9 @@ void checkGeometry(const Volume& volume, const fs::path& path) {
                                  " lies beyond 1 km: not a position in a scanner");
 }
 
-// Float volumes without a single finite value (all NaN) hold no image: refused like all-inf.
-void checkSomeFiniteValue(const Volume& volume, const fs::path& path) {
-  if (volume.scalarType() != ScalarType::Float32 && volume.scalarType() != ScalarType::Float64)
-    return;
-  dispatchScalar(volume.scalarType(), [&](auto t) {
-    using T = decltype(t);
-    if constexpr (std::is_floating_point_v<T>) {
-      const T* p = volume.dataAs<T>();
-      const std::size_t n = volume.valueCount();
-      for (std::size_t i = 0; i < n; ++i)
-        if (std::isfinite(p[i])) return;
-      throw InputError(path, "no finite voxel value: every voxel is infinite or NaN");
-    }
-  });
-}
-
 std::vector<Volume> finished(std::vector<Volume> volumes, const fs::path& path) {
   for (auto& v : volumes) {
     checkGeometry(v, path);
-    checkSomeFiniteValue(v, path);
     clampInfinities(v, path);
   }
   return volumes;
