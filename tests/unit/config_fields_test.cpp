@@ -1,6 +1,10 @@
 // The view config's field table: every key is read, written and read back; unknown keys and
 // bad values are refused with the key's full path. (The table drives all three, so a key the
 // writer dropped would fail FullySetViewSurvivesTheRoundTrip on its own field.)
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -229,6 +233,33 @@ TEST(ConfigFields, EnumNamesRoundTrip) {
   EXPECT_EQ(toString(GlyphConvexity::Dimples), "concave");
   EXPECT_EQ(toString(RegistrationMethod::Affine), "affine");
   EXPECT_EQ(parseSampling("nearest"), Sampling::Nearest);
+}
+
+// viewNumberRange gives the range the table itself enforces: the value at each end is read,
+// and one just beyond is refused (mvw render's overrides are checked against these ranges).
+TEST(ConfigFields, ViewNumberRangeIsTheTablesOwn) {
+  for (const std::string key : {"azimuth", "elevation", "roll", "zoom", "window", "level", "iso",
+                                "depth_cue.brightness", "depth_cue.amount", "depth_cue.contrast"}) {
+    const auto [lo, hi] = viewNumberRange(key);
+    ASSERT_LT(lo, hi) << key;
+    auto view = [&](double x) {
+      json v = json::object();
+      const auto dot = key.find('.');
+      if (dot == std::string::npos)
+        v[key] = x;
+      else
+        v[key.substr(0, dot)][key.substr(dot + 1)] = x;
+      if (key == "window") v["level"] = 0;  // window and level go together
+      if (key == "level") v["window"] = 100;
+      return v;
+    };
+    for (double x : {lo, hi})
+      EXPECT_NO_THROW(parseViewConfig(view(x), "study.json", "view", 0)) << key << " " << x;
+    for (double x :
+         {lo - 1e-6 * std::max(1.0, std::abs(lo)), hi + 1e-6 * std::max(1.0, std::abs(hi))})
+      EXPECT_THROW(parseViewConfig(view(x), "study.json", "view", 0), InputError)
+          << key << " " << x;
+  }
 }
 
 }  // namespace

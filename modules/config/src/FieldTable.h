@@ -75,23 +75,25 @@ class FieldTable {
   using Writer = std::function<void(const T& in, json& object, const char* key)>;
 
   FieldTable& add(const char* key, Reader read, Writer write) {
-    fields_.push_back({key, std::move(read), std::move(write)});
+    fields_.push_back({key, std::move(read), std::move(write), std::nullopt});
     return *this;
   }
 
   template <class M>
   FieldTable& number(const char* key, M T::*member, double lo, double hi) {
-    return add(
+    add(
         key,
         [member, lo, hi](const json& v, T& out, const Where& w) {
           out.*member = static_cast<M>(readNumber(v, w, lo, hi));
         },
         [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
+    fields_.back().range = std::pair{lo, hi};
+    return *this;
   }
 
   FieldTable& optionalNumber(const char* key, std::optional<double> T::*member, double lo,
                              double hi) {
-    return add(
+    add(
         key,
         [member, lo, hi](const json& v, T& out, const Where& w) {
           out.*member = readNumber(v, w, lo, hi);
@@ -99,6 +101,8 @@ class FieldTable {
         [member](const T& in, json& j, const char* k) {
           if (in.*member) j[k] = *(in.*member);
         });
+    fields_.back().range = std::pair{lo, hi};
+    return *this;
   }
 
   FieldTable& boolean(const char* key, bool T::*member) {
@@ -186,6 +190,12 @@ class FieldTable {
     return j;
   }
 
+  // The allowed range of a number field (number or optionalNumber); nullopt for another key.
+  std::optional<std::pair<double, double>> range(const std::string& key) const {
+    const Field* f = find(key);
+    return f ? f->range : std::nullopt;
+  }
+
   std::vector<std::string> keys() const {
     std::vector<std::string> keys;
     for (const Field& f : fields_) keys.push_back(f.key);
@@ -205,6 +215,7 @@ class FieldTable {
     const char* key;
     Reader read;
     Writer write;
+    std::optional<std::pair<double, double>> range;
   };
   const Field* find(const std::string& key) const {
     for (const Field& f : fields_)

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "FieldTable.h"
+#include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
 
@@ -652,6 +653,14 @@ std::optional<Sampling> parseSampling(const std::string& name) {
   return detail::parseName(kSamplings, name);
 }
 std::string viewNameList() { return detail::namesOf(kViewNames); }
+
+std::pair<double, double> viewNumberRange(const std::string& key) {
+  const std::string cue = "depth_cue.";
+  const auto range = key.rfind(cue, 0) == 0 ? depthCueTable().range(key.substr(cue.size()))
+                                            : viewTable().range(key);
+  MVW_CHECK(range.has_value());
+  return *range;
+}
 
 std::vector<std::string> studyConfigKeyPaths() {
   std::vector<std::string> out;

@@ -210,22 +210,23 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
       v.sampling = *sampling;
     }
     // The command line's numbers within the config's own ranges (NaN is in none).
-    auto ranged = [&](const std::optional<double>& x, const char* flag, double lo, double hi) {
+    auto ranged = [&](const std::optional<double>& x, const char* flag, const char* key) {
+      const auto [lo, hi] = config::viewNumberRange(key);
       if (!x || (*x >= lo && *x <= hi)) return;
       char text[160];
       std::snprintf(text, sizeof text, "%s %g is outside %g .. %g", flag, *x, lo, hi);
       throw InputError(study.file, text);
     };
-    ranged(o.azimuth, "--azimuth", -3600, 3600);
-    ranged(o.elevation, "--elevation", -3600, 3600);
-    ranged(o.roll, "--roll", -3600, 3600);
-    ranged(o.zoom, "--zoom", 1e-3, 1e3);
-    ranged(o.window, "--window", 1e-9, 1e12);
-    ranged(o.level, "--level", -1e12, 1e12);
-    ranged(o.iso, "--iso", -1e12, 1e12);
-    ranged(o.cueBrightness, "--cue-brightness", 0.0, 10.0);
-    ranged(o.cueAmount, "--cue-amount", -10.0, 10.0);
-    ranged(o.cueContrast, "--cue-contrast", 0.0, 10.0);
+    ranged(o.azimuth, "--azimuth", "azimuth");
+    ranged(o.elevation, "--elevation", "elevation");
+    ranged(o.roll, "--roll", "roll");
+    ranged(o.zoom, "--zoom", "zoom");
+    ranged(o.window, "--window", "window");
+    ranged(o.level, "--level", "level");
+    ranged(o.iso, "--iso", "iso");
+    ranged(o.cueBrightness, "--cue-brightness", "depth_cue.brightness");
+    ranged(o.cueAmount, "--cue-amount", "depth_cue.amount");
+    ranged(o.cueContrast, "--cue-contrast", "depth_cue.contrast");
     if (o.size) v.width = v.height = *o.size;
     if (o.azimuth) v.azimuth = *o.azimuth;
     if (o.elevation) v.elevation = *o.elevation;

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -240,6 +241,10 @@ std::optional<ViewName> parseViewName(const std::string& name);
 std::optional<Sampling> parseSampling(const std::string& name);
 // "view names: a, b, c" lists for messages.
 std::string viewNameList();
+// The range a view's number field takes in a config ("zoom", "depth_cue.amount"), for checking
+// the same value given another way (a command-line override). A key that is not a number
+// field of a view is a programming error.
+std::pair<double, double> viewNumberRange(const std::string& key);
 
 // The inverse of loadStudyConfig: every field written out, paths absolute, the file replaced
 // atomically (temp + rename). loadStudyConfig of the result gives the same config.
