@@ -1,10 +1,14 @@
 #include "FileChecks.h"
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <system_error>
 
 #include <unistd.h>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "mvw/core/Error.h"
 
@@ -52,6 +56,16 @@ std::size_t checkedVolumeBytes(const std::filesystem::path& file, glm::ivec3 dim
                             : std::to_string(bytes >> 20) + " MiB") +
                   "), more than the limit of " + std::to_string(maxBytes >> 20) + " MiB");
   return static_cast<std::size_t>(bytes);
+}
+
+GeometryProblem geometryProblem(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r)
+      if (!std::isfinite(m[c][r])) return GeometryProblem::NotFinite;
+  const glm::dmat3 a(m);
+  const double lengths = glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]);
+  return lengths > 0 && std::abs(glm::determinant(a)) > 1e-6 * lengths ? GeometryProblem::None
+                                                                       : GeometryProblem::Singular;
 }
 
 }  // namespace mvw::io::detail

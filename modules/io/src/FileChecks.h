@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <functional>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 namespace mvw::io::detail {
@@ -20,5 +21,12 @@ std::uintmax_t companionFileSize(const std::filesystem::path& header,
 std::size_t checkedVolumeBytes(const std::filesystem::path& file, glm::ivec3 dims,
                                long long components, std::size_t bytesPerValue,
                                std::size_t maxBytes);
+
+// What keeps an index-to-world matrix from being a geometry: an entry of its axes or origin
+// that is not finite, or axes that are not independent (|det| at most 1e-6 of the product of
+// their lengths). The NIfTI reader asks it of the sform and qform before choosing one; every
+// reader's volume is asked it again (VolumeReader).
+enum class GeometryProblem { None, NotFinite, Singular };
+GeometryProblem geometryProblem(const glm::dmat4& worldFromIndex);
 
 }  // namespace mvw::io::detail

@@ -308,12 +308,7 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   // A matrix that maps the voxel axes to three independent finite directions: an sform of
   // zeros, NaN or two equal rows (a broken writer) is no geometry.
   auto usable = [](const glm::dmat4& m) {
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 3; ++r)
-        if (!std::isfinite(m[c][r])) return false;
-    const glm::dmat3 a(m);
-    const double lengths = glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]);
-    return lengths > 0 && std::abs(glm::determinant(a)) > 1e-6 * lengths;
+    return detail::geometryProblem(m) == detail::GeometryProblem::None;
   };
   const bool hasSform = header->GetSFormCode() > 0 && reader->GetSFormMatrix();
   const bool hasQform = header->GetQFormCode() > 0 && reader->GetQFormMatrix();

@@ -10,7 +10,8 @@
 
 #include <unistd.h>
 
-#include <glm/matrix.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
 
 #include "FileChecks.h"
 #include "Formats.h"
@@ -113,10 +114,9 @@ void clampInfinities(Volume& volume, const fs::path& path) {
 // ray steps, glyph spacing) would divide by nothing or allocate without bound.
 void checkGeometry(const Volume& volume, const fs::path& path) {
   const glm::dmat4& m = volume.worldFromIndex();
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 3; ++r)
-      if (!std::isfinite(m[c][r]))
-        throw InputError(path, "its geometry (voxel axes and origin) is not finite");
+  const detail::GeometryProblem problem = detail::geometryProblem(m);
+  if (problem == detail::GeometryProblem::NotFinite)
+    throw InputError(path, "its geometry (voxel axes and origin) is not finite");
   auto g = [](double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", v);
@@ -127,8 +127,7 @@ void checkGeometry(const Volume& volume, const fs::path& path) {
     if (!(spacing[a] >= 1e-6 && spacing[a] <= 1e6))
       throw InputError(path, "voxel size " + g(spacing[a]) + " mm along axis " +
                                  std::to_string(a + 1) + " is not a voxel size (1e-6 .. 1e6 mm)");
-  const glm::dmat3 axes(m);
-  if (std::abs(glm::determinant(axes)) <= 1e-6 * spacing.x * spacing.y * spacing.z)
+  if (problem == detail::GeometryProblem::Singular)
     throw InputError(path, "its voxel axes are parallel (a singular orientation)");
   const glm::dvec3 origin(m[3]);
   for (int a = 0; a < 3; ++a)
