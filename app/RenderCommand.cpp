@@ -137,6 +137,7 @@ void runRender(const RenderOptions& o) {
   auto context = makeHeadlessContext(o.gl);
   const Study volumes = mvw::study::loadStudy(study);
   const Volume& anatomy = volumes.anatomical;
+  mvw::study::checkViewsAgainstAnatomy(views, anatomy, study.file);
   const std::optional<Volume>& functional = volumes.functional;
 
   render::VolumeRenderer renderer(*context, anatomy, render::parseGradientSource(o.gradient));

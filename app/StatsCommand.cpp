@@ -10,6 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "CliChecks.h"
+
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/DicomSeg.h"
@@ -177,6 +179,12 @@ void runStats(const StatsOptions& opt) {
       throw InputError(file, "no label " + std::to_string(opt.label) + " (labels: " + known + ")");
   }
 
+  // A PET left in Bq/ml says why (a threshold of 2.5 would otherwise be read as SUV 2.5).
+  if (volume.metadata().modality == "PT" && !study::isSuvUnit(volume.metadata().unit))
+    for (const std::string& note : volume.metadata().notes)
+      if (note.find("SUV") != std::string::npos)
+        std::cerr << "mvw stats: note: " << opt.source << ": " << note << "\n";
+
   study::StatsOptions so;
   so.peak = study::isSuvUnit(volume.metadata().unit);
   if (!std::isnan(opt.threshold))
@@ -184,10 +192,18 @@ void runStats(const StatsOptions& opt) {
   else if (!std::isnan(opt.thresholdFraction))
     so.threshold = {study::Threshold::Kind::FractionOfMax, opt.thresholdFraction};
 
+  // Every ROI's numbers before any is printed: one that holds only NaN (no data) is refused
+  // like one that holds no voxel, with nothing on stdout.
+  std::vector<study::RoiStats> stats;
+  for (const auto& roi : list) {
+    stats.push_back(study::roiStatistics(volume, roi.voxels, so));
+    if (stats.back().voxels == 0)
+      throw InputError(source, "the " + roi.what + " holds no voxel with data (its " +
+                                   std::to_string(stats.back().noData) + " voxels are NaN)");
+  }
   if (opt.json) {
     nlohmann::json out = nlohmann::json::array();
-    for (const auto& roi : list)
-      out.push_back(toJson(roi, study::roiStatistics(volume, roi.voxels, so)));
+    for (std::size_t i = 0; i < list.size(); ++i) out.push_back(toJson(list[i], stats[i]));
     std::cout << out.dump(2) << "\n";
     return;
   }
@@ -197,8 +213,7 @@ void runStats(const StatsOptions& opt) {
   std::cout << "  (" << (md.modality.empty() ? "modality not stated" : md.modality)
             << (md.unit.empty() ? ", no unit" : ", values in " + md.unit) << ")\n";
   if (!placementNote.empty()) std::cout << "  " << placementNote << "\n";
-  for (const auto& roi : list)
-    printText(std::cout, roi, study::roiStatistics(volume, roi.voxels, so), opt);
+  for (std::size_t i = 0; i < list.size(); ++i) printText(std::cout, list[i], stats[i], opt);
 }
 
 }  // namespace
@@ -234,7 +249,8 @@ void addStatsCommand(CLI::App& app) {
       ->check(finite);
   cmd->add_option("--labels", opt->labels,
                   "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value)");
-  cmd->add_option("--label", opt->label, "Only this label (segment number)");
+  cmd->add_option("--label", opt->label, "Only this label (segment number; 0 is no label)")
+      ->check(positive());
   cmd->add_option("--threshold", opt->threshold,
                   "Metabolic volume: voxels at or above this value (e.g. 2.5 for SUV 2.5)")
       ->check(finite);

@@ -92,6 +92,24 @@ TEST(Suv, ScanAfterMidnightAndAdminAndNone) {
   EXPECT_NE(why.find("PatientWeight"), std::string::npos);
 }
 
+// Tags that would make an SUV off by orders of magnitude give none, with the reason.
+TEST(Suv, ImplausibleTagsGiveNoSuv) {
+  std::string why;
+  // Injection at 23:59 and series at 13:02 the same day reads as 13 h after midnight's wrap.
+  PetDose late{370e6, 6586.2, 75.0, (23 * 60 + 59) * 60.0, (13 * 60 + 2) * 60.0, "START"};
+  EXPECT_FALSE(suvbwFactor(late, &why).has_value());
+  EXPECT_NE(why.find("12 h"), std::string::npos);
+  PetDose heavy{370e6, 6586.2, 1e30, 0, 0, "ADMIN"};
+  EXPECT_FALSE(suvbwFactor(heavy, &why).has_value());
+  EXPECT_NE(why.find("PatientWeight"), std::string::npos);
+  PetDose hot{1e15, 6586.2, 75.0, 0, 0, "ADMIN"};
+  EXPECT_FALSE(suvbwFactor(hot, &why).has_value());
+  EXPECT_NE(why.find("RadionuclideTotalDose"), std::string::npos);
+  // At the limits: a 1000 kg and 11.9 h case still converts.
+  PetDose edge{370e6, 6586.2, 1000.0, 0, 11.9 * 3600.0, "START"};
+  EXPECT_TRUE(suvbwFactor(edge).has_value());
+}
+
 TEST(Suv, ParsesDicomTimes) {
   EXPECT_DOUBLE_EQ(*parseDicomTime("101530.5"), 36930.5);
   EXPECT_DOUBLE_EQ(*parseDicomTime("10:15:30"), 36930.0);

@@ -11,12 +11,24 @@ std::optional<double> suvbwFactor(const PetDose& dose, std::string* why) {
     return std::nullopt;
   };
   if (!(dose.injectedDoseBq > 0)) return fail("RadionuclideTotalDose missing or not positive");
+  // Beyond these the tags are wrong, not the patient: an SUV from them would be off by orders
+  // of magnitude and look like a finding.
+  if (!(dose.injectedDoseBq <= kMaxInjectedDoseBq))
+    return fail("RadionuclideTotalDose is above 100 GBq: not a diagnostic dose");
   if (!(dose.patientWeightKg > 0)) return fail("PatientWeight missing or not positive");
+  if (!(dose.patientWeightKg <= kMaxPatientWeightKg))
+    return fail("PatientWeight is above 1000 kg: not a patient's weight");
   double doseAtReference = dose.injectedDoseBq;
   if (dose.decayCorrection == "START") {
     if (!(dose.halfLifeSeconds > 0)) return fail("RadionuclideHalfLife missing or not positive");
     double dt = dose.referenceTimeSeconds - dose.injectionTimeSeconds;
     if (dt < 0) dt += 24.0 * 3600.0;  // the scan started after midnight, the injection before
+    // Times of day alone: a wrap past midnight is believable for a short uptake, not for half a
+    // day (an injection time after the series time on the same day reads as 23 h of decay).
+    if (dt > kMaxUptakeSeconds)
+      return fail(
+          "the series starts more than 12 h after the injection by their times of day "
+          "(RadiopharmaceuticalStartTime, SeriesTime): inconsistent times");
     doseAtReference = dose.injectedDoseBq * std::exp2(-dt / dose.halfLifeSeconds);
   } else if (dose.decayCorrection != "ADMIN") {
     return fail("DecayCorrection is neither START nor ADMIN");

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <map>
+
+#include <glm/geometric.hpp>
 
 #include "mvw/core/Error.h"
 #include "mvw/core/GlyphDefaults.h"
@@ -370,6 +373,40 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
                      "--orbit turns views about the patient's long axis, and every view of the "
                      "study looks along it (superior, inferior or axial)");
   return out;
+}
+
+void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volume& anatomy,
+                              const std::filesystem::path& file) {
+  auto g = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return std::string(text);
+  };
+  const glm::dvec3 spacing = anatomy.spacing();
+  const double finest = std::min({spacing.x, spacing.y, spacing.z}) / 100.0;
+  const render::PatientCrop box(anatomy);
+  const glm::dvec3 lo = box.boxMin(), hi = box.boxMax();
+  const double radius = 0.5 * glm::length(hi - lo);
+  for (const PlannedView& v : views) {
+    const render::RenderSettings& s = v.settings;
+    const std::string view = "view '" + v.config.name + "': ";
+    if (s.stepMm > 0.0 && s.stepMm < finest)
+      throw InputError(file, view + "step_mm " + g(s.stepMm) +
+                                 " is below 1/100 of the smallest voxel spacing (" +
+                                 g(100.0 * finest) +
+                                 " mm): no ray can take so many samples (0: half the spacing)");
+    if (s.cropMinMm && s.cropMaxMm)
+      for (int a = 0; a < 3; ++a)
+        if ((*s.cropMaxMm)[a] < lo[a] || (*s.cropMinMm)[a] > hi[a])
+          throw InputError(file, view + "crop_mm misses the volume along " + "LPS"[a] + " (" +
+                                     g((*s.cropMinMm)[a]) + " .. " + g((*s.cropMaxMm)[a]) +
+                                     " mm; the volume spans " + g(lo[a]) + " .. " + g(hi[a]) +
+                                     " mm)");
+    if (s.mode == render::RenderMode::Mpr && std::abs(s.planeOffsetMm) > radius)
+      throw InputError(file, view + "plane_offset_mm " + g(s.planeOffsetMm) +
+                                 " puts the plane outside the volume (at most " + g(radius) +
+                                 " mm either side of its centre)");
+  }
 }
 
 void applyDefaultPreset(PlannedView& view, const Volume& anatomy) {

@@ -20,6 +20,12 @@ struct PetDose {
   std::string decayCorrection;        // DecayCorrection (0054,1102): START, ADMIN, NONE
 };
 
+// Tags beyond these give no SUV (suvbwFactor says which): 100 GBq, 1000 kg, and 12 h between
+// injection and series start read from times of day.
+inline constexpr double kMaxInjectedDoseBq = 1e11;
+inline constexpr double kMaxPatientWeightKg = 1000.0;
+inline constexpr double kMaxUptakeSeconds = 12.0 * 3600.0;
+
 // Multiply Bq/ml by this to get SUVbw; nullopt with `why` filled when it cannot be computed.
 std::optional<double> suvbwFactor(const PetDose& dose, std::string* why = nullptr);
 

@@ -1,6 +1,7 @@
 #pragma once
 // A study's render views turned into renderer settings, validated before any volume is read
 // or GL context exists; shared by `mvw render` and `mvw bench features`.
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,13 @@ void applyColorMaps(render::RenderSettings& settings, ColorMap image, ColorMap o
 
 // Views without a preset get the one that suits the anatomy's modality.
 void applyDefaultPreset(PlannedView& view, const Volume& anatomy);
+
+// Refuses (InputError naming `file`, the study config) what a view asks of this anatomy that
+// would render nothing, before anything is rendered: a sample step too fine for a ray to carry
+// (below 1/100 of the smallest voxel spacing: the steps would overflow the ray's count and its
+// float distance), a crop box in mm that misses the volume, an MPR plane offset beyond it.
+void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volume& anatomy,
+                              const std::filesystem::path& file);
 
 // Glyph views without an attribute window (functional_window) or label classes get the one
 // that suits the functional volume (defaultAttributeWindow); range: its value range.
