@@ -3,6 +3,7 @@
 // writer dropped would fail FullySetViewSurvivesTheRoundTrip on its own field.)
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -211,6 +212,14 @@ TEST(ConfigFields, BadKeysAndValuesNameTheKey) {
             std::string::npos);
   EXPECT_NE(problemOf({{"zoom", 0}}).find("'render.views[0].zoom' = "), std::string::npos);
   EXPECT_NE(problemOf({{"width", "wide"}}).find("must be a number"), std::string::npos);
+  EXPECT_NE(problemOf({{"width", 48.5}}).find("48.5 must be a whole number"), std::string::npos);
+  EXPECT_NE(problemOf({{"seed", 1.5}}).find("whole number"), std::string::npos);
+  // Numbers in messages as %g: not "0.000000" for 1e-300, nor 300 digits for 1e300.
+  EXPECT_NE(
+      problemOf({{"window", 1e-300}, {"level", 0}}).find("= 1e-300 is outside 1e-09 .. 1e+12"),
+      std::string::npos);
+  EXPECT_NE(problemOf({{"azimuth", 1e300}}).find("= 1e+300 is outside -3600 .. 3600"),
+            std::string::npos);
   EXPECT_NE(problemOf({{"window", 100}}).find("go together"), std::string::npos);
   EXPECT_NE(problemOf({{"crop_min", {0, 0, 0.5}}, {"crop_max", {1, 1, 0.5}}}).find("below"),
             std::string::npos);
@@ -260,6 +269,24 @@ TEST(ConfigFields, ViewNumberRangeIsTheTablesOwn) {
       EXPECT_THROW(parseViewConfig(view(x), "study.json", "view", 0), InputError)
           << key << " " << x;
   }
+}
+
+// A key twice in one object is refused with its path; the same key in sibling objects is not.
+TEST(ConfigFields, ParseJsonRefusesDuplicateKeys) {
+  auto parse = [](const std::string& text) {
+    std::istringstream in(text);
+    return parseJson(in, "study.json");
+  };
+  EXPECT_NO_THROW(parse(R"({"views": [{"width": 1}, {"width": 2}], "width": 3})"));
+  try {
+    parse(R"({"render": {"views": [{"width": 64, "width": 512}]}})");
+    ADD_FAILURE() << "a duplicate key was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'render.views.width' appears twice"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(parse(R"({"a": 1, "a": 1})"), InputError);
+  EXPECT_THROW(parse(R"({"a": )"), nlohmann::json::parse_error);
 }
 
 }  // namespace

@@ -5,10 +5,13 @@
 // a key cannot be parsed without being written or written without being known.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -54,12 +57,18 @@ std::string nameOf(const EnumNames<E>& names, E e) {
   return "?";
 }
 
+// A number as a message shows it: 1e-300 and 1e+300, not 0.000000 and 300 digits.
+inline std::string shortNumber(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
 inline double readNumber(const json& v, const Where& w, double lo, double hi) {
   if (!v.is_number()) w.bad("must be a number");
   const double d = v.get<double>();
   if (!(d >= lo && d <= hi))
-    w.bad("= " + std::to_string(d) + " is outside " + std::to_string(lo) + " .. " +
-          std::to_string(hi));
+    w.bad("= " + shortNumber(d) + " is outside " + shortNumber(lo) + " .. " + shortNumber(hi));
   return d;
 }
 
@@ -84,7 +93,11 @@ class FieldTable {
     add(
         key,
         [member, lo, hi](const json& v, T& out, const Where& w) {
-          out.*member = static_cast<M>(readNumber(v, w, lo, hi));
+          const double d = readNumber(v, w, lo, hi);
+          // A count, a size or a seed: 48.5 is a mistake, not 48.
+          if constexpr (std::is_integral_v<M>)
+            if (d != std::floor(d)) w.bad("= " + shortNumber(d) + " must be a whole number");
+          out.*member = static_cast<M>(d);
         },
         [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
     fields_.back().range = std::pair{lo, hi};
@@ -145,7 +158,7 @@ class FieldTable {
             if (!v[i].is_number()) w.bad(what);
             a[i] = v[i].get<double>();
             if (!(a[i] >= lo && a[i] <= hi))
-              w.bad("values must lie in " + std::to_string(lo) + " .. " + std::to_string(hi));
+              w.bad("values must lie in " + shortNumber(lo) + " .. " + shortNumber(hi));
           }
           out.*member = a;
         },

@@ -604,12 +604,48 @@ void checkStudy(const json& j, StudyConfig& config) {
 
 }  // namespace
 
+json parseJson(std::istream& in, const fs::path& file) {
+  // One set of keys per object being read, and the key path to it, for the message.
+  std::vector<std::vector<std::string>> keys;
+  std::vector<std::string> path;
+  const json::parser_callback_t strict = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        keys.emplace_back();
+        break;
+      case json::parse_event_t::object_end:
+        keys.pop_back();
+        break;
+      case json::parse_event_t::key: {
+        const std::string key = parsed.get<std::string>();
+        auto& seen = keys.back();
+        if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
+          std::string where;
+          for (std::size_t d = 0; d + 1 < keys.size() && d < path.size(); ++d)
+            where += path[d] + ".";
+          throw InputError(file, "the key '" + where + key +
+                                     "' appears twice in one object (JSON would keep only the "
+                                     "last)");
+        }
+        seen.push_back(key);
+        path.resize(keys.size());
+        path.back() = key;
+        break;
+      }
+      default:
+        break;
+    }
+    return true;
+  };
+  return json::parse(in, strict);
+}
+
 StudyConfig loadStudyConfig(const fs::path& file) {
   std::ifstream in(file);
   if (!in) throw InputError(file, "cannot open the study config");
   json j;
   try {
-    j = json::parse(in);
+    j = parseJson(in, file);
   } catch (const json::exception& e) {  // parse errors, and numbers too large for a double (406)
     std::string name = file.filename().string();
     std::transform(name.begin(), name.end(), name.begin(),

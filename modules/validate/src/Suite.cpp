@@ -8,6 +8,7 @@
 #include <limits>
 #include <set>
 
+#include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 
 namespace mvw::validate {
@@ -139,7 +140,7 @@ Suite loadSuite(const fs::path& file) {
   if (!in) bad(file, "cannot be opened");
   json root;
   try {
-    root = json::parse(in);
+    root = config::parseJson(in, file);
   } catch (const json::parse_error& e) {
     bad(file, std::string("not valid JSON: ") + e.what());
   }

@@ -31,6 +31,17 @@ namespace mvw::validate {
 namespace {
 
 namespace fs = std::filesystem;
+
+// An image file as 8-bit BGR, empty when it cannot be read: OpenCV throws (rather than
+// returning empty) for a header claiming more pixels than it will decode, e.g. 100000^2.
+cv::Mat readImage(const fs::path& file) {
+  try {
+    return cv::imread(file.string(), cv::IMREAD_COLOR);
+  } catch (const cv::Exception&) {
+    return cv::Mat();
+  }
+}
+
 using detail::fmt;
 using nlohmann::json;
 
@@ -274,7 +285,7 @@ class CaseJudge {
     }
     noteEnvironment(j.renderJson);
     r.renderMs += renderMsOf(j.renderJson, one.view);
-    const cv::Mat rendered = cv::imread(png.string(), cv::IMREAD_COLOR);
+    const cv::Mat rendered = readImage(png);
     if (rendered.empty()) {
       r.pass = false;
       r.problems.push_back("the render " + png.string() + " cannot be read");
@@ -345,7 +356,7 @@ class CaseJudge {
     const fs::path& ref = *c.reference;
     const bool refExists = fs::exists(ref);
     cv::Mat reference;
-    if (refExists) reference = cv::imread(ref.string(), cv::IMREAD_COLOR);
+    if (refExists) reference = readImage(ref);
     if (refExists && !reference.empty() && reference.size() == rendered.size()) {
       r.metrics = compareImages(rendered, reference, c.tolerance.maxDelta);
       writeMatPng(r.metrics->heat, dir / "diff.png");

@@ -12,6 +12,7 @@
 // Relative paths are relative to the config file's folder.
 #include <array>
 #include <filesystem>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <utility>
@@ -245,6 +246,12 @@ std::string viewNameList();
 // the same value given another way (a command-line override). A key that is not a number
 // field of a view is a programming error.
 std::pair<double, double> viewNumberRange(const std::string& key);
+
+// A JSON document from `in` (the file `file`, for messages) as mvw reads its config files:
+// syntax errors throw nlohmann's parse_error (callers word them), and a key that appears twice
+// in one object throws InputError naming it: nlohmann would keep the last silently, so a
+// config's "width": 64 could lose to a later "width": 512 without a word.
+nlohmann::json parseJson(std::istream& in, const std::filesystem::path& file);
 
 // The inverse of loadStudyConfig: every field written out, paths absolute, the file replaced
 // atomically (temp + rename). loadStudyConfig of the result gives the same config.
