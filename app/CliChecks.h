@@ -26,4 +26,12 @@ inline CLI::Validator nonNegative() {
       "NONNEGATIVE");
 }
 
+// A text option given as "" (e.g. --series "" would match every series, --frame "" read as no
+// choice): refused rather than taken as the option left out.
+inline CLI::Validator nonEmpty() {
+  return CLI::Validator(
+      [](std::string& text) { return text.empty() ? std::string("must not be empty") : ""; },
+      "TEXT");
+}
+
 }  // namespace mvw::app

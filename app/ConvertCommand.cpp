@@ -8,7 +8,9 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+
 #include <nlohmann/json.hpp>
+#include "CliChecks.h"
 
 #include "VolumeReport.h"
 #include "mvw/core/Error.h"
@@ -150,9 +152,11 @@ void addConvertCommand(CLI::App& app) {
   cmd->add_option("-o,--output", opt->output, "Output file: .nii.gz, .nii or .mha")->required();
   cmd->add_option("--series", opt->series,
                   "DICOM series, where the folder holds several: UID, number or part of the "
-                  "description");
+                  "description")
+      ->check(nonEmpty());
   cmd->add_option("--frame", opt->frame,
-                  "Of a 4D volume, write frame N (from 0) or 'mean' (default: every frame)");
+                  "Of a 4D volume, write frame N (from 0) or 'mean' (default: every frame)")
+      ->check(nonEmpty());
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
   cmd->callback([opt] { runConvert(*opt); });
 }

@@ -76,7 +76,8 @@ void addInfoCommand(CLI::App& app) {
       "Describe volumes: DICOM folders or files, NIfTI, MetaImage, or a study config (.json)");
   cmd->add_option("paths", opt->paths, "Files, DICOM folders or study configs")->required();
   cmd->add_option("--series", opt->series,
-                  "DICOM series to show: UID, number or part of the description");
+                  "DICOM series to show: UID, number or part of the description")
+      ->check(nonEmpty());
   cmd->add_flag("--json", opt->json, "Print JSON instead of text");
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
   cmd->add_option(

@@ -82,7 +82,8 @@ void addPhantomCommand(CLI::App& app) {
   petCmd
       ->add_option("--rotate", pet->rotateDeg,
                    "Rotation about x, y, z in degrees (ITK Euler order)")
-      ->expected(3);
+      ->expected(3)
+      ->check(CLI::Range(-3600.0, 3600.0));
   petCmd->add_option("--shift", pet->shiftMm, "Translation in mm")
       ->expected(3)
       ->check(CLI::Range(-1e4, 1e4));

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -26,6 +27,10 @@
 namespace mvw::app {
 
 namespace {
+
+// Below this final MI (nats) a registration is reported as undetermined (a warning): the
+// CT / PET-like pairs of the tests end near 0.9, the real T1 / CBF pair near 0.2.
+constexpr double kWeakMutualInformation = 0.01;
 
 namespace fs = std::filesystem;
 using namespace mvw::resampling;
@@ -154,6 +159,20 @@ void runRegister(const RegisterOptions& opt) {
   j["converged"] = r.converged;
   j["iterations"] = r.iterations;
   j["seconds"] = r.seconds;
+  // A final mutual information near 0: the volumes share next to no structure (one of them
+  // nearly constant, or not the same anatomy), and any transform scores about the same. The
+  // registration "converges" there all the same, so it is said, not left to the QA image.
+  std::vector<std::string> warnings;
+  if (!r.levels.empty() && r.levels.back().metricEnd < kWeakMutualInformation) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "the mutual information at the end is %.2g (below %g): the volumes share "
+                  "almost no structure, so the transform is not determined by them; check "
+                  "registration_qa.png",
+                  r.levels.back().metricEnd, kWeakMutualInformation);
+    warnings.push_back(text);
+  }
+  j["warnings"] = warnings;
   j["levels"] = nlohmann::json::array();
   for (const auto& l : r.levels)
     j["levels"].push_back({{"stage", l.stage},
@@ -202,6 +221,7 @@ void runRegister(const RegisterOptions& opt) {
             << (fs::path(opt.output) / "functional_on_anatomical.nii.gz").string() << " ("
             << name(used) << "), " << (fs::path(opt.output) / "registration_qa.png").string()
             << ", " << (fs::path(opt.output) / "registration.json").string() << "\n";
+  for (const std::string& w : warnings) std::cerr << "mvw register: warning: " << w << "\n";
 }
 
 }  // namespace

@@ -238,7 +238,8 @@ void addStatsCommand(CLI::App& app) {
       "SUVpeak and the metabolic volume for PET in SUV");
   cmd->add_option("source", opt->source, "Volume (file or DICOM folder) or study config (.json)")
       ->required();
-  cmd->add_option("--series", opt->series, "DICOM series: UID, number or part of the description");
+  cmd->add_option("--series", opt->series, "DICOM series: UID, number or part of the description")
+      ->check(nonEmpty());
   cmd->add_option("--of", opt->of, "With a study config: which volume (default functional)")
       ->check(CLI::IsMember({"anatomical", "functional"}));
   cmd->add_option("--sphere", opt->sphere, "Sphere X Y Z R: centre in LPS mm, radius in mm")

@@ -229,9 +229,19 @@ LabelPlacement placeLabelVolume(const Volume& volume, const Volume& labels) {
   std::map<long long, std::size_t> slot;
   for (double v : values) {
     if (std::isnan(v) || v == 0.0) continue;
-    if (v != std::floor(v) || std::abs(v) > 1e9)
+    if (v != std::floor(v)) {
+      char text[48];
+      std::snprintf(text, sizeof text, "%.6g", v);
       throw InputError(labels.metadata().sourcePath,
-                       "not a label map: it holds the non-integer value " + std::to_string(v));
+                       std::string("not a label map: it holds the non-integer value ") + text);
+    }
+    if (std::abs(v) > 1e9) {
+      char text[48];
+      std::snprintf(text, sizeof text, "%.0f", v);
+      throw InputError(labels.metadata().sourcePath,
+                       std::string("not a label map: its label ") + text +
+                           " is beyond 1e9 (label numbers are small integers)");
+    }
     if (slot.emplace(static_cast<long long>(v), 0).second && slot.size() > 65535)
       throw InputError(labels.metadata().sourcePath,
                        "not a label map: more than 65535 distinct values");

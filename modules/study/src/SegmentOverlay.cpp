@@ -4,6 +4,7 @@
 #include <map>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/Frame.h"
 #include "mvw/io/DicomSeg.h"
 
 namespace mvw::study {
@@ -23,6 +24,15 @@ SegmentOverlay readSegmentOverlay(const config::VolumeSource& source,
   options.series = source.series;
   SegmentOverlay out;
   if (io::isDicomSegmentation(source.path)) {
+    // A SEG file is one segmentation, its frames its segments' slices: neither key applies.
+    if (!source.series.empty())
+      throw InputError(source.path,
+                       "'segmentation.series' does not apply: a DICOM SEG file is one "
+                       "segmentation");
+    if (source.frame)
+      throw InputError(source.path,
+                       "'segmentation.frame' does not apply: a DICOM SEG's frames are its "
+                       "segments' slices");
     io::Segmentation seg = io::readDicomSegmentation(source.path, options);
     for (std::size_t s = 0; s < seg.segments.size(); ++s) {
       const auto& segment = seg.segments[s];
@@ -36,7 +46,13 @@ SegmentOverlay readSegmentOverlay(const config::VolumeSource& source,
     out.masks = std::move(seg.masks);
     return out;
   }
-  const Volume labels = io::readVolume(source.path, options);
+  Volume labels = io::readVolume(source.path, options);
+  if (source.frame) {
+    if (source.frame->mean)
+      throw InputError(source.path,
+                       "'segmentation.frame' cannot be \"mean\": label numbers are not averaged");
+    labels = selectFrame(labels, *source.frame);
+  }
   std::map<long long, int> component;
   const glm::ivec3 d = labels.dimensions();
   for (int k = 0; k < d.z; ++k)
