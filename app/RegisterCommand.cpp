@@ -188,13 +188,18 @@ void runRegister(const RegisterOptions& opt) {
                            {"final_step_mm", l.finalStepMm},
                            {"converged", l.converged},
                            {"seconds", l.seconds}});
-  const glm::dvec3 degrees = r.parameters.angles * (180.0 / std::numbers::pi);
+  // The angles in ITK's own decomposition (x within +-90 degrees): the optimiser's may be an
+  // equivalent triple such as (-180, -180, 180) for no rotation at all (after a rotation
+  // search), which reads as a large rotation. The same matrix; the translation is unchanged.
+  const resampling::RigidParameters shown = resampling::rigidParameters(
+      resampling::rigidMatrix(r.parameters, r.transform.centre()), r.transform.centre());
+  const glm::dvec3 degrees = shown.angles * (180.0 / std::numbers::pi);
   // The parameters describe movingFromFixed (ITK's direction), about the centre; with
   // --affine they are the rigid stage's, and the matrices below the final affine map.
   j["affine"] = r.affine;
   j["parameters"] = {
       {"convention", "moving = R (fixed - centre) + centre + translation, R = Rz Rx Ry"},
-      {"angles_rad", vec(r.parameters.angles)},
+      {"angles_rad", vec(shown.angles)},
       {"angles_deg", vec(degrees)},
       {"translation_mm", vec(r.parameters.translation)},
       {"centre_mm", vec(r.transform.centre())}};

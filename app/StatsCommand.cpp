@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/DicomSeg.h"
+#include "mvw/io/LabelTable.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/study/RoiStatistics.h"
 #include "mvw/study/StudyLoader.h"
@@ -158,10 +161,16 @@ void runStats(const StatsOptions& opt) {
   } else {
     const fs::path file(opt.labels);
     io::ReadOptions labelRead;
-    const study::LabelPlacement placed =
-        io::isDicomSegmentation(file)
-            ? study::placeSegmentation(volume, io::readDicomSegmentation(file, labelRead))
+    const bool seg = io::isDicomSegmentation(file);
+    study::LabelPlacement placed =
+        seg ? study::placeSegmentation(volume, io::readDicomSegmentation(file, labelRead))
             : study::placeLabelVolume(volume, io::readVolume(file, labelRead));
+    // A label volume's names from the table beside it (aal.nii.txt), as glyph views read them.
+    if (const auto table = seg ? std::nullopt : io::labelTableBeside(file)) {
+      const std::map<int, std::string> names = io::readLabelTable(*table);
+      for (auto& l : placed.labels)
+        if (const auto it = names.find(l.number); it != names.end()) l.name = it->second;
+    }
     placementNote = placed.note;
     bool found = false;
     std::string known;

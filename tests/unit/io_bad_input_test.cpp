@@ -5,6 +5,7 @@
 
 #include "TestUtil.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/LabelTable.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 
@@ -68,6 +69,35 @@ TEST(BadInput, MetaImageWithTooLittleData) {
          "ElementDataFile = LOCAL\n"
       << std::string(100, '\0');
   EXPECT_NE(refusal(dir / "short.mha").find("truncated"), std::string::npos);
+}
+
+// Label tables: any line ending; a bad line quoted with control characters shown; a name with
+// a control character, or given to two labels, refused (glyph views choose labels by name).
+TEST(BadInput, LabelTables) {
+  const fs::path dir = test::scratchDir();
+  auto table = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    return dir / name;
+  };
+  auto problem = [](const fs::path& p) -> std::string {
+    try {
+      readLabelTable(p);
+    } catch (const InputError& e) {
+      return e.problem();
+    }
+    return "accepted";
+  };
+  const auto crlf =
+      readLabelTable(table("crlf.txt", "1 Precentral_L 2001\r\r\n2 Precentral_R\r\n\r\r\n"));
+  ASSERT_EQ(crlf.size(), 2u);
+  EXPECT_EQ(crlf.at(1), "Precentral_L");
+  EXPECT_EQ(crlf.at(2), "Precentral_R");
+  EXPECT_NE(problem(table("bad.txt", "1 A\nx\x01y\n")).find("line 2 is not \"NUMBER NAME\": 'x?y'"),
+            std::string::npos);
+  EXPECT_NE(problem(table("twice.txt", "1 A\n200 A\n")).find("'A' is given to labels 1 and 200"),
+            std::string::npos);
+  EXPECT_NE(problem(table("nul.txt", std::string("1 A\0B\n", 6))).find("control character"),
+            std::string::npos);
 }
 
 }  // namespace

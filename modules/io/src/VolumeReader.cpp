@@ -136,6 +136,17 @@ void checkGeometry(const Volume& volume, const fs::path& path) {
                                  " lies beyond 1 km: not a position in a scanner");
 }
 
+// A path with nothing to read behind it, said as what it is.
+void refuseMissing(const fs::path& path) {
+  std::error_code ec;
+  if (fs::exists(path, ec)) return;
+  if (fs::is_symlink(fs::symlink_status(path, ec)))
+    throw InputError(path,
+                     "is a symbolic link that leads to nothing (its target is missing, or the "
+                     "links form a loop)");
+  throw InputError(path, "no such file or directory");
+}
+
 std::vector<Volume> finished(std::vector<Volume> volumes, const fs::path& path) {
   for (auto& v : volumes) {
     checkGeometry(v, path);
@@ -149,8 +160,7 @@ std::vector<Volume> finished(std::vector<Volume> volumes, const fs::path& path) 
 std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& given) {
   ReadOptions options = given;
   if (options.maxBytes == 0) options.maxBytes = defaultMaxBytes();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
+  refuseMissing(path);
   return refuseOutOfMemory(path, [&]() -> std::vector<Volume> {
     const FileFormat format = detectFormat(path);
     // A series is chosen among a DICOM folder's; asked of any other file, it was a mistake.
@@ -184,8 +194,7 @@ Volume readVolume(const fs::path& path, const ReadOptions& given) {
   ReadOptions options = given;
   if (options.maxBytes == 0) options.maxBytes = defaultMaxBytes();
   if (detectFormat(path) == FileFormat::Dicom) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(path, "no such file or directory");
+    refuseMissing(path);
     auto volumes = refuseOutOfMemory(
         path, [&] { return finished(detail::readDicom(path, options, false), path); });
     return std::move(volumes.front());
