@@ -168,6 +168,12 @@ std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& give
       throw InputError(path, "a series ('" + options.series +
                                  "') can be chosen only in DICOM, and this is a " +
                                  (format == FileFormat::Nifti ? "NIfTI" : "MetaImage") + " file");
+    // Likewise the regridding of unevenly spaced slices: a NIfTI or MetaImage is a grid already.
+    if (format != FileFormat::Dicom && format != FileFormat::Unknown && options.sliceSpacing > 0)
+      throw InputError(path, std::string("a slice spacing for uneven slices applies only to a "
+                                         "DICOM series, and this is a ") +
+                                 (format == FileFormat::Nifti ? "NIfTI" : "MetaImage") +
+                                 " file (a regular grid already)");
     switch (format) {
       case FileFormat::Dicom:
         return finished(detail::readDicom(path, options, true), path);

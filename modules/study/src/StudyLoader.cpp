@@ -1,5 +1,10 @@
 #include "mvw/study/StudyLoader.h"
 
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <type_traits>
+
 #include "mvw/core/Error.h"
 #include "mvw/core/Frame.h"
 
@@ -26,6 +31,25 @@ Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& option
   s.name = config.name;
   s.anatomical = readSource(config.anatomical, options);
   if (config.functional) s.functional = readSource(*config.functional, options);
+  // Labels are whole numbers: a PET or a probability map given as "labels" would be read as
+  // thousands of one-voxel labels, its glyph classes meaningless.
+  if (s.functional && config.functionalKind == config::FunctionalKind::Labels)
+    dispatchScalar(s.functional->scalarType(), [&](auto zero) {
+      using T = decltype(zero);
+      if constexpr (std::is_floating_point_v<T>) {
+        const T* p = s.functional->dataAs<T>();
+        for (std::size_t i = 0; i < s.functional->voxelCount(); ++i)
+          if (!std::isnan(p[i]) && p[i] != std::floor(p[i])) {
+            char text[48];
+            std::snprintf(text, sizeof text, "%.6g", static_cast<double>(p[i]));
+            throw InputError(config.functional->path,
+                             std::string("its kind is \"labels\", but it holds the value ") + text +
+                                 ": labels are whole numbers (is its kind \"pet\", "
+                                 "\"perfusion\" or \"fmri\"?)");
+          }
+      }
+      return 0;
+    });
   return s;
 }
 
