@@ -269,6 +269,15 @@ void runRender(const RenderOptions& o) {
     r["window"] = shown.window;
     r["level"] = shown.level;
     r["iso"] = v.settings.isoValue;
+    // An isovalue no voxel reaches draws an empty image: legitimate to ask, but said.
+    if (v.settings.mode == render::RenderMode::Isosurface && v.settings.isoValue > hi) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "iso %g lies above the volume's maximum %g: the isosurface is empty",
+                    v.settings.isoValue, hi);
+      r["notes"] = {text};
+      std::cerr << "mvw render: note: view '" << v.config.name << "': " << text << "\n";
+    }
     if (v.settings.glyphs)
       r["glyphs"] = {
           {"method", config::toString(v.config.glyphMethod)},
