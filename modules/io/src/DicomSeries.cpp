@@ -10,6 +10,7 @@
 #include <cstring>
 #include <exception>
 #include <string>
+#include <utility>
 
 #include <vtkDICOMDictHash.h>
 #include <vtkDICOMDirectory.h>
@@ -155,6 +156,19 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   dose.injectedDoseBq = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadionuclideTotalDose)).AsDouble();
   dose.halfLifeSeconds = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadionuclideHalfLife)).AsDouble();
   dose.patientWeightKg = meta->Get(0, DC::PatientWeight).AsDouble();
+  // The first file's tags serve the whole series; a series whose files disagree on them (edited
+  // or merged) is said to, with the range, since its SUV then rests on one file's values.
+  for (const auto& [tag, name] :
+       {std::pair{DC::PatientWeight, "PatientWeight"}, std::pair{DC::SeriesTime, "SeriesTime"}}) {
+    const std::string first = meta->Get(0, tag).AsString();
+    for (int f = 1; f < meta->GetNumberOfInstances(); ++f)
+      if (meta->Get(f, tag).AsString() != first) {
+        md.notes.push_back(std::string(name) + " differs between the files of the series ('" +
+                           first + "' in the first, '" + meta->Get(f, tag).AsString() +
+                           "' in file " + std::to_string(f + 1) + "): the first file's is used");
+        break;
+      }
+  }
   dose.decayCorrection = meta->Get(0, DC::DecayCorrection).AsString();
   std::string start =
       meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartTime)).AsString();
@@ -185,10 +199,11 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   volume.metadata() = keep;
   volume.metadata().unit = "SUVbw";
   volume.metadata().suvFactor = *factor;
-  volume.metadata().notes.push_back("SUVbw = Bq/ml x " + std::to_string(*factor) + " (weight " +
-                                    std::to_string(dose.patientWeightKg) + " kg, dose " +
-                                    std::to_string(dose.injectedDoseBq) + " Bq, decay correction " +
-                                    dose.decayCorrection + ")");
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "SUVbw = Bq/ml x %.6g (weight %g kg, dose %.6g Bq, decay correction %s)", *factor,
+                dose.patientWeightKg, dose.injectedDoseBq, dose.decayCorrection.c_str());
+  volume.metadata().notes.push_back(text);
 }
 
 // Each output slice's ImagePositionPatient (vtk-dicom maps output slice -> file and frame);
