@@ -49,6 +49,7 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, overrides);
   auto context = makeHeadlessContext(o.gl);
   const Volume anatomy = mvw::study::readSource(study.anatomical);
+  mvw::study::checkViewsAgainstAnatomy(views, anatomy, study.file);
   std::optional<Volume> functional;
   if (study.functional) functional = mvw::study::readSource(*study.functional);
   render::VolumeRenderer renderer(*context, anatomy);

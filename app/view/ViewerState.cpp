@@ -120,6 +120,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   // render it (glyphs, attribute window, crop, light, ...); an MPR view sets the MPR panes'
   // window and the overlay.
   std::vector<mvw::study::PlannedView> planned = mvw::study::planViews(study_);
+  mvw::study::checkViewsAgainstAnatomy(planned, anatomical_, study_.file);
   for (mvw::study::PlannedView& v : planned) {
     if (!is3dMode(v.settings.mode)) continue;
     mvw::study::applyDefaultPreset(v, anatomical_);
