@@ -51,7 +51,7 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   const Volume anatomy = mvw::study::readSource(study.anatomical);
   mvw::study::checkViewsAgainstAnatomy(views, anatomy, study.file);
   std::optional<Volume> functional;
-  if (study.functional) functional = mvw::study::readSource(*study.functional);
+  if (study.functional) functional = mvw::study::readFunctional(study);
   render::VolumeRenderer renderer(*context, anatomy);
   if (functional)
     renderer.setFunctional(

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -166,10 +167,17 @@ void runStats(const StatsOptions& opt) {
         seg ? study::placeSegmentation(volume, io::readDicomSegmentation(file, labelRead))
             : study::placeLabelVolume(volume, io::readVolume(file, labelRead));
     // A label volume's names from the table beside it (aal.nii.txt), as glyph views read them.
+    // A table in another format (SPM's ROI_MNI_V4.txt: abbreviation, name, number) leaves the
+    // labels numbered, with a note: the statistics do not depend on it.
     if (const auto table = seg ? std::nullopt : io::labelTableBeside(file)) {
-      const std::map<int, std::string> names = io::readLabelTable(*table);
-      for (auto& l : placed.labels)
-        if (const auto it = names.find(l.number); it != names.end()) l.name = it->second;
+      try {
+        const std::map<int, std::string> names = io::readLabelTable(*table);
+        for (auto& l : placed.labels)
+          if (const auto it = names.find(l.number); it != names.end()) l.name = it->second;
+      } catch (const InputError& e) {
+        std::cerr << "mvw stats: note: the label table beside the labels is not used: " << e.what()
+                  << "\n";
+      }
     }
     placementNote = placed.note;
     bool found = false;
@@ -201,12 +209,13 @@ void runStats(const StatsOptions& opt) {
   else if (!std::isnan(opt.thresholdFraction))
     so.threshold = {study::Threshold::Kind::FractionOfMax, opt.thresholdFraction};
 
-  // Every ROI's numbers before any is printed: one that holds only NaN (no data) is refused
-  // like one that holds no voxel, with nothing on stdout.
+  // Every ROI's numbers before any is printed. The one ROI asked for (a sphere, a box, one
+  // label) holding only NaN (no data) is refused like one holding no voxel, with nothing on
+  // stdout; among all the labels of a map, such a label is listed with its count of NaN voxels.
   std::vector<study::RoiStats> stats;
   for (const auto& roi : list) {
     stats.push_back(study::roiStatistics(volume, roi.voxels, so));
-    if (stats.back().voxels == 0)
+    if (stats.back().voxels == 0 && list.size() == 1)
       throw InputError(source, "the " + roi.what + " holds no voxel with data (its " +
                                    std::to_string(stats.back().noData) + " voxels are NaN)");
   }
@@ -260,7 +269,13 @@ void addStatsCommand(CLI::App& app) {
   cmd->add_option("--labels", opt->labels,
                   "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value)");
   cmd->add_option("--label", opt->label, "Only this label (segment number; 0 is no label)")
-      ->check(positive());
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            return std::strtol(text.c_str(), nullptr, 10) != 0
+                       ? std::string()
+                       : "0 is no label (the background), not '" + text + "'";
+          },
+          "LABEL"));
   cmd->add_option("--threshold", opt->threshold,
                   "Metabolic volume: voxels at or above this value (e.g. 2.5 for SUV 2.5)")
       ->check(finite);

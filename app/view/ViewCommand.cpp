@@ -30,7 +30,7 @@ void runView(const ViewOptions& o) {
           config::VolumeSource{o.functional, "", config::defaultFrame(v.study.functionalKind)};
   }
   v.anatomical = mvw::study::readSource(v.study.anatomical);
-  if (v.study.functional) v.functional = mvw::study::readSource(*v.study.functional);
+  if (v.study.functional) v.functional = mvw::study::readFunctional(v.study);
   v.script = o.script;
   v.frameLog = o.frameLog;
   v.width = o.width;

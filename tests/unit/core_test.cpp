@@ -92,22 +92,51 @@ TEST(Suv, ScanAfterMidnightAndAdminAndNone) {
   EXPECT_NE(why.find("PatientWeight"), std::string::npos);
 }
 
-// Tags that would make an SUV off by orders of magnitude give none, with the reason.
+// Tags that would make an SUV off by orders of magnitude give none, with the reason; real
+// protocols with long or negative intervals keep theirs.
 TEST(Suv, ImplausibleTagsGiveNoSuv) {
   std::string why;
-  // Injection at 23:59 and series at 13:02 the same day reads as 13 h after midnight's wrap.
-  PetDose late{370e6, 6586.2, 75.0, (23 * 60 + 59) * 60.0, (13 * 60 + 2) * 60.0, "START"};
+  const double f18 = 6586.2, cu64 = 45720.0, h = 3600.0, day = 86400.0;
+  // Times of day only: injection 23:59, series 13:02 reads as 13 h later (7.1 F-18 half-lives
+  // past midnight): refused. A Cu-64 scan the next morning (20 h, 1.6 half-lives): kept.
+  PetDose late{370e6, f18, 75.0, (23 * 60 + 59) * 60.0, (13 * 60 + 2) * 60.0, "START"};
   EXPECT_FALSE(suvbwFactor(late, &why).has_value());
-  EXPECT_NE(why.find("12 h"), std::string::npos);
-  PetDose heavy{370e6, 6586.2, 1e30, 0, 0, "ADMIN"};
+  EXPECT_NE(why.find("half-lives) after the injection, reading its earlier time of day as the "
+                     "next day"),
+            std::string::npos)
+      << why;
+  PetDose copper{370e6, cu64, 75.0, 14 * h, 10 * h, "START"};
+  ASSERT_TRUE(suvbwFactor(copper).has_value());
+  EXPECT_NEAR(*suvbwFactor(copper), 75000.0 / (370e6 * std::exp2(-20 * h / cu64)), 1e-15);
+  // A dynamic series starting 30 s before the injection: a negative interval, not 23.99 h.
+  PetDose dynamic{370e6, f18, 75.0, 10 * h + 30, 10 * h, "START"};
+  ASSERT_TRUE(suvbwFactor(dynamic).has_value());
+  EXPECT_NEAR(*suvbwFactor(dynamic), 75000.0 / (370e6 * std::exp2(30 / f18)), 1e-15);
+  // With dates: the same times on the same day are 11 h the wrong way round; on consecutive
+  // days (Cu-64) 23 h, kept.
+  PetDose dated{370e6, f18, 75.0, 100 * day + 23.98 * h, 100 * day + 13.03 * h, "START"};
+  dated.timesHaveDates = true;
+  EXPECT_FALSE(suvbwFactor(dated, &why).has_value());
+  EXPECT_NE(why.find("h before the injection"), std::string::npos) << why;
+  PetDose nextDay{370e6, cu64, 75.0, 100 * day + 14 * h, 101 * day + 13 * h, "START"};
+  nextDay.timesHaveDates = true;
+  EXPECT_TRUE(suvbwFactor(nextDay).has_value());
+  PetDose heavy{370e6, f18, 1e30, 0, 0, "ADMIN"};
   EXPECT_FALSE(suvbwFactor(heavy, &why).has_value());
   EXPECT_NE(why.find("PatientWeight"), std::string::npos);
-  PetDose hot{1e15, 6586.2, 75.0, 0, 0, "ADMIN"};
+  PetDose hot{1e15, f18, 75.0, 0, 0, "ADMIN"};
   EXPECT_FALSE(suvbwFactor(hot, &why).has_value());
   EXPECT_NE(why.find("RadionuclideTotalDose"), std::string::npos);
-  // At the limits: a 1000 kg and 11.9 h case still converts.
-  PetDose edge{370e6, 6586.2, 1000.0, 0, 11.9 * 3600.0, "START"};
+  PetDose edge{370e6, f18, 1000.0, 0, 11.9 * h, "START"};  // 1000 kg, 6.5 half-lives: kept
   EXPECT_TRUE(suvbwFactor(edge).has_value());
+}
+
+TEST(Suv, ParsesDicomDates) {
+  EXPECT_DOUBLE_EQ(*parseDicomDate("19700102"), 86400.0);
+  EXPECT_DOUBLE_EQ(*parseDicomDate("19860810") - *parseDicomDate("19860809"), 86400.0);
+  EXPECT_FALSE(parseDicomDate("19861310").has_value());
+  EXPECT_FALSE(parseDicomDate("1986").has_value());
+  EXPECT_FALSE(parseDicomDate("").has_value());
 }
 
 TEST(Suv, ParsesDicomTimes) {

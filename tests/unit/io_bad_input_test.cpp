@@ -71,8 +71,9 @@ TEST(BadInput, MetaImageWithTooLittleData) {
   EXPECT_NE(refusal(dir / "short.mha").find("truncated"), std::string::npos);
 }
 
-// Label tables: any line ending; a bad line quoted with control characters shown; a name with
-// a control character, or given to two labels, refused (glyph views choose labels by name).
+// Label tables: any line ending (LF, CR LF, CR CR LF, CR alone); a bad line quoted with control
+// characters shown; a name with a control character refused. A name given to two labels is
+// read (atlases have them); only a glyph view choosing that name refuses it (ViewPlan).
 TEST(BadInput, LabelTables) {
   const fs::path dir = test::scratchDir();
   auto table = [&](const std::string& name, const std::string& text) {
@@ -94,8 +95,12 @@ TEST(BadInput, LabelTables) {
   EXPECT_EQ(crlf.at(2), "Precentral_R");
   EXPECT_NE(problem(table("bad.txt", "1 A\nx\x01y\n")).find("line 2 is not \"NUMBER NAME\": 'x?y'"),
             std::string::npos);
-  EXPECT_NE(problem(table("twice.txt", "1 A\n200 A\n")).find("'A' is given to labels 1 and 200"),
+  const auto cr = readLabelTable(table("cr.txt", "# header\r1 A\r2 B\r3 C\r"));
+  EXPECT_EQ(cr.size(), 3u);
+  EXPECT_EQ(cr.at(3), "C");
+  EXPECT_NE(problem(table("line3.txt", "1 A\r\n2 B\r\nbad\r\n")).find("line 3 is not"),
             std::string::npos);
+  EXPECT_EQ(readLabelTable(table("twice.txt", "1 A\n200 A\n")).size(), 2u);
   EXPECT_NE(problem(table("nul.txt", std::string("1 A\0B\n", 6))).find("control character"),
             std::string::npos);
 }

@@ -1,5 +1,8 @@
 // modules/study without GL or files: view planning and its inverse, overrides, captions,
 // defaults by modality; and the study loader on the fetched nipy fMRI.
+#include <filesystem>
+#include <fstream>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -253,6 +256,22 @@ TEST(GlyphLabels, ChosenByNumberOrAtlasName) {
     FAIL() << "an unknown label name was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no label named 'Hippocampus_X' in"), std::string::npos)
+        << e.what();
+  }
+  // A table that gives one name to two labels is read, but that name cannot choose one.
+  const std::filesystem::path dir = test::scratchDir();
+  std::ofstream(dir / "twins.nii.txt") << "1 Twin\n2 Other\n3 Twin\n";
+  std::filesystem::copy_file(test::sampleData("mricron/aal.nii.gz"), dir / "twins.nii.gz",
+                             std::filesystem::copy_options::overwrite_existing);
+  study.functional->path = dir / "twins.nii.gz";
+  study.render.views[0].glyphLabels = {{"2", config::LabelGlyphKind::Bumps}};
+  EXPECT_EQ(planViews(study).at(0).settings.glyphLabels.at(0).name, "Other");
+  study.render.views[0].glyphLabels = {{"Twin", config::LabelGlyphKind::Bumps}};
+  try {
+    planViews(study);
+    FAIL() << "a name given to two labels chose one";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'Twin' names labels 1 and 3"), std::string::npos)
         << e.what();
   }
   study.functional->path = "/nonexistent/labels.nii.gz";

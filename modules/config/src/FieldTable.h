@@ -57,10 +57,11 @@ std::string nameOf(const EnumNames<E>& names, E e) {
   return "?";
 }
 
-// A number as a message shows it: 1e-300 and 1e+300, not 0.000000 and 300 digits.
+// A number as a message shows it: 1e-300 and 1e+300, not 0.000000 and 300 digits, and enough
+// digits that a value just beyond a limit does not print as the limit (4294967296, not 4.29e9).
 inline std::string shortNumber(double x) {
   char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
+  std::snprintf(text, sizeof text, "%.10g", x);
   return text;
 }
 

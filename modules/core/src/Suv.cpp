@@ -1,12 +1,14 @@
 #include "mvw/core/Suv.h"
 
 #include <cctype>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
 namespace mvw {
 
 std::optional<double> suvbwFactor(const PetDose& dose, std::string* why) {
-  auto fail = [&](const char* reason) -> std::optional<double> {
+  auto fail = [&](const std::string& reason) -> std::optional<double> {
     if (why) *why = reason;
     return std::nullopt;
   };
@@ -22,13 +24,28 @@ std::optional<double> suvbwFactor(const PetDose& dose, std::string* why) {
   if (dose.decayCorrection == "START") {
     if (!(dose.halfLifeSeconds > 0)) return fail("RadionuclideHalfLife missing or not positive");
     double dt = dose.referenceTimeSeconds - dose.injectionTimeSeconds;
-    if (dt < 0) dt += 24.0 * 3600.0;  // the scan started after midnight, the injection before
-    // Times of day alone: a wrap past midnight is believable for a short uptake, not for half a
-    // day (an injection time after the series time on the same day reads as 23 h of decay).
-    if (dt > kMaxUptakeSeconds)
-      return fail(
-          "the series starts more than 12 h after the injection by their times of day "
-          "(RadiopharmaceuticalStartTime, SeriesTime): inconsistent times");
+    bool wrapped = false;
+    if (!dose.timesHaveDates && dt < -kMaxEarlySeriesSeconds) {
+      dt += 24.0 * 3600.0;  // the scan started after midnight, the injection before
+      wrapped = true;
+    }
+    char text[240];
+    if (dt < -kMaxEarlySeriesSeconds) {
+      std::snprintf(text, sizeof text,
+                    "the series starts %.1f h before the injection "
+                    "(RadiopharmaceuticalStartDateTime, SeriesDate/Time): inconsistent times",
+                    -dt / 3600.0);
+      return fail(text);
+    }
+    const double halfLives = dt / dose.halfLifeSeconds;
+    if (halfLives > (wrapped ? kMaxHalfLivesAfterMidnight : kMaxHalfLives)) {
+      std::snprintf(text, sizeof text,
+                    "the series starts %.1f h (%.1f half-lives) after the injection%s: the "
+                    "injection and series times are inconsistent",
+                    dt / 3600.0, halfLives,
+                    wrapped ? ", reading its earlier time of day as the next day" : "");
+      return fail(text);
+    }
     doseAtReference = dose.injectedDoseBq * std::exp2(-dt / dose.halfLifeSeconds);
   } else if (dose.decayCorrection != "ADMIN") {
     return fail("DecayCorrection is neither START nor ADMIN");
@@ -54,6 +71,17 @@ std::optional<double> parseDicomTime(const std::string& tm) {
   for (++i; i < tm.size() && std::isdigit(static_cast<unsigned char>(tm[i])); ++i, scale /= 10)
     fraction += (tm[i] - '0') * scale;
   return h * 3600.0 + m * 60.0 + s + fraction;
+}
+
+std::optional<double> parseDicomDate(const std::string& da) {
+  if (da.size() < 8) return std::nullopt;
+  for (std::size_t i = 0; i < 8; ++i)
+    if (!std::isdigit(static_cast<unsigned char>(da[i]))) return std::nullopt;
+  const std::chrono::year_month_day day{std::chrono::year(std::stoi(da.substr(0, 4))),
+                                        std::chrono::month(std::stoul(da.substr(4, 2))),
+                                        std::chrono::day(std::stoul(da.substr(6, 2)))};
+  if (!day.ok()) return std::nullopt;
+  return 86400.0 * std::chrono::sys_days(day).time_since_epoch().count();
 }
 
 }  // namespace mvw

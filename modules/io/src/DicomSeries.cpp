@@ -172,15 +172,21 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   dose.decayCorrection = meta->Get(0, DC::DecayCorrection).AsString();
   std::string start =
       meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartTime)).AsString();
-  if (start.empty()) {
-    const std::string dt =
-        meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartDateTime)).AsString();
-    if (dt.size() > 8) start = dt.substr(8);
-  }
+  const std::string startDateTime =
+      meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadiopharmaceuticalStartDateTime)).AsString();
+  if (start.empty() && startDateTime.size() > 8) start = startDateTime.substr(8);
   std::string reference = meta->Get(0, DC::SeriesTime).AsString();
-  if (reference.empty()) reference = meta->Get(0, DC::AcquisitionTime).AsString();
+  std::string referenceDate = meta->Get(0, DC::SeriesDate).AsString();
+  if (reference.empty()) {
+    reference = meta->Get(0, DC::AcquisitionTime).AsString();
+    referenceDate = meta->Get(0, DC::AcquisitionDate).AsString();
+  }
   const auto injection = parseDicomTime(start);
   const auto ref = parseDicomTime(reference);
+  // With both dates the interval is exact (a next-day scan of a long-lived isotope, or a series
+  // time before the injection, tell themselves apart); else times of day.
+  const auto injectionDay = parseDicomDate(startDateTime);
+  const auto referenceDay = parseDicomDate(referenceDate);
   std::string why;
   std::optional<double> factor;
   if (dose.decayCorrection == "START" && (!injection || !ref)) {
@@ -188,6 +194,11 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   } else {
     dose.injectionTimeSeconds = injection.value_or(0.0);
     dose.referenceTimeSeconds = ref.value_or(0.0);
+    if (injectionDay && referenceDay) {
+      dose.injectionTimeSeconds += *injectionDay;
+      dose.referenceTimeSeconds += *referenceDay;
+      dose.timesHaveDates = true;
+    }
     factor = suvbwFactor(dose, &why);
   }
   if (!factor) {

@@ -1,6 +1,7 @@
 #include "mvw/io/LabelTable.h"
 
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -17,14 +18,28 @@ std::map<int, std::string> readLabelTable(const fs::path& path) {
   constexpr std::uintmax_t kMaxBytes = 16u << 20;
   if (regularFileSize(path) > kMaxBytes)
     throw InputError(path, "label table larger than 16 MiB: not a label table");
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open the label table");
+  // Lines end in LF, CR LF, CR alone (old Mac) or CR CR LF (CR LF converted once more): CRs
+  // before an LF are dropped, a lone CR ends a line.
+  const std::string raw{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::string text;
+  text.reserve(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (raw[i] != '\r') {
+      text += raw[i];
+      continue;
+    }
+    std::size_t j = i;
+    while (j < raw.size() && raw[j] == '\r') ++j;
+    if (j == raw.size() || raw[j] != '\n') text += '\n';
+    i = j - 1;
+  }
+  std::istringstream lines(text);
   std::map<int, std::string> out;
-  std::map<std::string, int> numberOf;  // names are how glyph views choose labels: one each
   std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    // Line ends of any system (CR LF, and the CR CR LF of a CR LF file converted once more).
-    line.erase(line.find_last_not_of(" \t\r") + 1);
+  for (int n = 1; std::getline(lines, line); ++n) {
+    line.erase(line.find_last_not_of(" \t") + 1);
     const auto first = line.find_first_not_of(" \t");
     if (first == std::string::npos || line[first] == '#') continue;
     std::istringstream fields(line);
@@ -32,12 +47,13 @@ std::map<int, std::string> readLabelTable(const fs::path& path) {
     std::string name;
     if (!(fields >> number) || !(fields >> name)) {
       std::string shown;
-      for (char c : line.substr(0, 80)) shown += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
+      for (char c : line.substr(0, 80))
+        shown += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c;
       throw InputError(path,
                        "line " + std::to_string(n) + " is not \"NUMBER NAME\": '" + shown + "'");
     }
     for (char c : name)
-      if (static_cast<unsigned char>(c) < 0x20)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
         throw InputError(path, "line " + std::to_string(n) +
                                    ": the name holds a control character (byte " +
                                    std::to_string(static_cast<unsigned char>(c)) + ")");
@@ -46,10 +62,6 @@ std::map<int, std::string> readLabelTable(const fs::path& path) {
                                  " is outside 0 .. 2147483647");
     if (!out.emplace(static_cast<int>(number), name).second)
       throw InputError(path, "label " + std::to_string(number) + " is named twice");
-    if (const auto [at, fresh] = numberOf.emplace(name, static_cast<int>(number)); !fresh)
-      throw InputError(path, "the name '" + name + "' is given to labels " +
-                                 std::to_string(at->second) + " and " + std::to_string(number) +
-                                 " (a glyph view choosing it by name could not tell which)");
   }
   return out;
 }

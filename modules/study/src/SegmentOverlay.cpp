@@ -51,7 +51,11 @@ SegmentOverlay readSegmentOverlay(const config::VolumeSource& source,
     if (source.frame->mean)
       throw InputError(source.path,
                        "'segmentation.frame' cannot be \"mean\": label numbers are not averaged");
-    labels = selectFrame(labels, *source.frame);
+    try {
+      labels = selectFrame(labels, *source.frame);
+    } catch (const InputError& e) {
+      throw InputError(e.file(), e.problem() + " (the study config's \"segmentation.frame\")");
+    }
   }
   std::map<long long, int> component;
   const glm::ivec3 d = labels.dimensions();

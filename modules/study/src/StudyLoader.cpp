@@ -5,6 +5,7 @@
 #include <string>
 #include <type_traits>
 
+#include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Frame.h"
 
@@ -26,19 +27,17 @@ Volume readSource(const config::VolumeSource& source, io::ReadOptions options) {
   return volume;
 }
 
-Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options) {
-  Study s;
-  s.name = config.name;
-  s.anatomical = readSource(config.anatomical, options);
-  if (config.functional) s.functional = readSource(*config.functional, options);
+Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options) {
+  MVW_CHECK(config.functional.has_value());
+  Volume functional = readSource(*config.functional, options);
   // Labels are whole numbers: a PET or a probability map given as "labels" would be read as
   // thousands of one-voxel labels, its glyph classes meaningless.
-  if (s.functional && config.functionalKind == config::FunctionalKind::Labels)
-    dispatchScalar(s.functional->scalarType(), [&](auto zero) {
+  if (config.functionalKind == config::FunctionalKind::Labels)
+    dispatchScalar(functional.scalarType(), [&](auto zero) {
       using T = decltype(zero);
       if constexpr (std::is_floating_point_v<T>) {
-        const T* p = s.functional->dataAs<T>();
-        for (std::size_t i = 0; i < s.functional->voxelCount(); ++i)
+        const T* p = functional.dataAs<T>();
+        for (std::size_t i = 0; i < functional.voxelCount() * functional.components(); ++i)
           if (!std::isnan(p[i]) && p[i] != std::floor(p[i])) {
             char text[48];
             std::snprintf(text, sizeof text, "%.6g", static_cast<double>(p[i]));
@@ -50,6 +49,14 @@ Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& option
       }
       return 0;
     });
+  return functional;
+}
+
+Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options) {
+  Study s;
+  s.name = config.name;
+  s.anatomical = readSource(config.anatomical, options);
+  if (config.functional) s.functional = readFunctional(config, options);
   return s;
 }
 

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <map>
 
 #include <glm/geometric.hpp>
@@ -123,6 +124,14 @@ std::vector<render::LabelGlyph> chosenLabels(const config::StudyConfig& study,
       if (it == names.end())
         throw InputError(study.file,
                          where + "no label named '" + c.label + "' in " + table->string());
+      // A name the table gives to two labels cannot choose one.
+      const auto twin = std::find_if(std::next(it), names.end(),
+                                     [&](const auto& n) { return n.second == c.label; });
+      if (twin != names.end())
+        throw InputError(study.file, where + "'" + c.label + "' names labels " +
+                                         std::to_string(it->first) + " and " +
+                                         std::to_string(twin->first) + " in " + table->string() +
+                                         ": give the label number");
       g.label = it->first, g.name = it->second;
     }
     if (g.label > kMaxGlyphLabel)

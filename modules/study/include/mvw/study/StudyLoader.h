@@ -11,7 +11,12 @@ namespace mvw::study {
 // The volume a study names, read with `options` and the source's own series selection.
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options = {});
 
-// Both volumes of the study (the functional one when the config names it).
+// The study's functional volume, read, and refused when its kind is "labels" but it holds a
+// value that is not a whole number (a PET given as labels). Every command that reads a
+// study's functional volume reads it here.
+Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options = {});
+
+// Both volumes of the study (the functional one when the config names it: readFunctional).
 Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options = {});
 
 }  // namespace mvw::study
