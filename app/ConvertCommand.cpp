@@ -8,10 +8,9 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
-
 #include <nlohmann/json.hpp>
-#include "CliChecks.h"
 
+#include "CliChecks.h"
 #include "VolumeReport.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Frame.h"

@@ -14,7 +14,6 @@
 #include <nlohmann/json.hpp>
 
 #include "CliChecks.h"
-
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/DicomSeg.h"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -17,6 +18,19 @@ FramingSphere framingSphere(const Volume& volume) {
   // The diagonal from the spacing rather than the corners: the same length for an orthonormal
   // direction matrix, and the value every golden image was rendered with.
   return {0.5 * (corner0 + corner1), 0.5 * glm::length(dims * volume.spacing())};
+}
+
+std::pair<glm::dvec3, glm::dvec3> worldBounds(const Volume& volume, const glm::dmat4& worldFrom) {
+  const glm::dvec3 n(volume.dimensions());
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 ijk((c & 1) ? n.x - 0.5 : -0.5, (c & 2) ? n.y - 0.5 : -0.5,
+                         (c & 4) ? n.z - 0.5 : -0.5);
+    const glm::dvec3 p(worldFrom * glm::dvec4(volume.worldFromIndexPoint(ijk), 1.0));
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  return {lo, hi};
 }
 
 double defaultStepMm(const Volume& volume) { return 0.5 * volume.smallestSpacing(); }
@@ -38,16 +52,7 @@ PatientCrop::PatientCrop(const Volume& volume) {
     for (int w = 0; w < 3; ++w)
       if (w != worldAxis_[t] && std::abs(d[t][w]) > 1e-9) axisAligned_ = false;
   }
-  const glm::dvec3 n(volume.dimensions());
-  boxMin_ = glm::dvec3(1e300);
-  boxMax_ = glm::dvec3(-1e300);
-  for (int c = 0; c < 8; ++c) {
-    const glm::dvec3 ijk((c & 1) ? n.x - 0.5 : -0.5, (c & 2) ? n.y - 0.5 : -0.5,
-                         (c & 4) ? n.z - 0.5 : -0.5);
-    const glm::dvec3 p = volume.worldFromIndexPoint(ijk);
-    boxMin_ = glm::min(boxMin_, p);
-    boxMax_ = glm::max(boxMax_, p);
-  }
+  std::tie(boxMin_, boxMax_) = worldBounds(volume);
 }
 
 std::pair<glm::dvec3, glm::dvec3> PatientCrop::textureBox(const glm::dvec3& lpsMin,

@@ -1,33 +1,14 @@
 #include "mvw/study/FunctionalPlacement.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <string>
 
 #include "mvw/core/Error.h"
+#include "mvw/render/Framing.h"
 #include "mvw/resampling/RigidRegistration.h"
 #include "mvw/resampling/Transform.h"
 
 namespace mvw::study {
-
-namespace {
-
-// The world box (LPS mm) around a volume's voxel box (faces half a voxel beyond the border
-// voxels' centres), after `worldFrom` maps its world.
-std::pair<glm::dvec3, glm::dvec3> boundsOf(const Volume& v, const glm::dmat4& worldFrom) {
-  glm::dvec3 lo(1e300), hi(-1e300);
-  const glm::dvec3 d(v.dimensions());
-  for (int c = 0; c < 8; ++c) {
-    const glm::dvec3 index((c & 1) ? d.x - 0.5 : -0.5, (c & 2) ? d.y - 0.5 : -0.5,
-                           (c & 4) ? d.z - 0.5 : -0.5);
-    const glm::dvec3 p(worldFrom * glm::dvec4(v.worldFromIndexPoint(index), 1.0));
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  return {lo, hi};
-}
-
-}  // namespace
 
 FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volume& anatomical,
                                     const Volume& functional) {
@@ -58,8 +39,8 @@ FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volu
   out.report["anatomical_from_functional"] = rows;
   // Placed beside the anatomy, not on it: every view would show the anatomy alone (an empty
   // overlay, no glyphs) without a word. Wrong frames of reference or a wrong transform file.
-  const auto [alo, ahi] = boundsOf(anatomical, glm::dmat4(1.0));
-  const auto [flo, fhi] = boundsOf(functional, out.anatomicalFromFunctional);
+  const auto [alo, ahi] = render::worldBounds(anatomical);
+  const auto [flo, fhi] = render::worldBounds(functional, out.anatomicalFromFunctional);
   for (int a = 0; a < 3; ++a)
     if (fhi[a] < alo[a] || flo[a] > ahi[a]) {
       char text[400];

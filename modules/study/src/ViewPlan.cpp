@@ -8,8 +8,6 @@
 #include <iterator>
 #include <map>
 
-#include <glm/geometric.hpp>
-
 #include "mvw/core/Error.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/io/ColorPalettes.h"
@@ -393,9 +391,9 @@ void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volum
   };
   const glm::dvec3 spacing = anatomy.spacing();
   const double finest = std::min({spacing.x, spacing.y, spacing.z}) / 100.0;
-  const render::PatientCrop box(anatomy);
-  const glm::dvec3 lo = box.boxMin(), hi = box.boxMax();
-  const double radius = 0.5 * glm::length(hi - lo);
+  const auto [lo, hi] = render::worldBounds(anatomy);
+  // The renderer places an MPR plane this far at most from the framing sphere's centre.
+  const double radius = render::framingSphere(anatomy).radius;
   for (const PlannedView& v : views) {
     const render::RenderSettings& s = v.settings;
     const std::string view = "view '" + v.config.name + "': ";

@@ -4,6 +4,7 @@
 // pixels with hand-computed answers, so they must frame exactly as the renderer does.
 #include <utility>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "mvw/core/Volume.h"
@@ -18,6 +19,12 @@ struct FramingSphere {
   double radius = 0.0;
 };
 FramingSphere framingSphere(const Volume& volume);
+
+// The world-aligned box (LPS mm) around a volume's voxel box, whose faces lie half a voxel
+// beyond the border voxels' centres, after `worldFrom` maps the volume's world (identity: the
+// volume where it is; a registration's anatomicalFromFunctional: where it is placed).
+std::pair<glm::dvec3, glm::dvec3> worldBounds(const Volume& volume,
+                                              const glm::dmat4& worldFrom = glm::dmat4(1.0));
 
 // The ray-casting step when RenderSettings::stepMm <= 0: half the smallest voxel spacing (mm),
 // two samples per voxel along the finest axis.
