@@ -157,7 +157,7 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   dose.halfLifeSeconds = meta->Get(0, vtkDICOMTagPath(seq, 0, DC::RadionuclideHalfLife)).AsDouble();
   dose.patientWeightKg = meta->Get(0, DC::PatientWeight).AsDouble();
   // The first file's tags serve the whole series; a series whose files disagree on them (edited
-  // or merged) is said to, with the range, since its SUV then rests on one file's values.
+  // or merged) is said to, naming two values that differ, since its SUV rests on one file's.
   for (const auto& [tag, name] :
        {std::pair{DC::PatientWeight, "PatientWeight"}, std::pair{DC::SeriesTime, "SeriesTime"}}) {
     const std::string first = meta->Get(0, tag).AsString();

@@ -36,6 +36,7 @@ std::map<int, std::string> readLabelTable(const fs::path& path) {
     i = j - 1;
   }
   std::istringstream lines(text);
+  auto control = [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; };
   std::map<int, std::string> out;
   std::string line;
   for (int n = 1; std::getline(lines, line); ++n) {
@@ -47,13 +48,12 @@ std::map<int, std::string> readLabelTable(const fs::path& path) {
     std::string name;
     if (!(fields >> number) || !(fields >> name)) {
       std::string shown;
-      for (char c : line.substr(0, 80))
-        shown += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c;
+      for (char c : line.substr(0, 80)) shown += control(c) ? '?' : c;
       throw InputError(path,
                        "line " + std::to_string(n) + " is not \"NUMBER NAME\": '" + shown + "'");
     }
     for (char c : name)
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      if (control(c))
         throw InputError(path, "line " + std::to_string(n) +
                                    ": the name holds a control character (byte " +
                                    std::to_string(static_cast<unsigned char>(c)) + ")");
