@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <ctime>
 #include <fstream>
 #include <iostream>
@@ -12,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include <zlib.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "Format.h"
@@ -32,9 +35,60 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// An image file as 8-bit BGR, empty when it cannot be read: OpenCV throws (rather than
-// returning empty) for a header claiming more pixels than it will decode, e.g. 100000^2.
-cv::Mat readImage(const fs::path& file) {
+// Why a file that starts as a PNG cannot be a whole one (truncated, a chunk's CRC wrong, no
+// IEND), or nothing. Checked before OpenCV decodes it, because libpng prints its own
+// "libpng error: Read Error" on stderr before OpenCV gives up, beside mvw's one message.
+std::optional<std::string> pngStructureProblem(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  unsigned char head[8] = {};
+  if (!in.read(reinterpret_cast<char*>(head), 8) || !std::equal(head, head + 8, kSignature))
+    return std::nullopt;  // not a PNG: OpenCV reads other formats, or refuses them quietly
+  std::vector<unsigned char> data;
+  for (std::uint64_t offset = 8;;) {
+    unsigned char lengthAndType[8];
+    if (!in.read(reinterpret_cast<char*>(lengthAndType), 8))
+      return "it ends at byte " + std::to_string(offset) + " before its IEND chunk (truncated)";
+    const std::uint32_t length = (std::uint32_t{lengthAndType[0]} << 24) |
+                                 (std::uint32_t{lengthAndType[1]} << 16) |
+                                 (std::uint32_t{lengthAndType[2]} << 8) | lengthAndType[3];
+    const std::string type(reinterpret_cast<const char*>(lengthAndType) + 4, 4);
+    if (length > 0x7fffffffu)
+      return "its chunk at byte " + std::to_string(offset) + " claims " + std::to_string(length) +
+             " bytes";
+    uLong crc = crc32(0L, lengthAndType + 4, 4);
+    std::uint32_t left = length;
+    while (left > 0) {
+      data.resize(std::min<std::uint32_t>(left, 1u << 20));
+      if (!in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size())))
+        return "its " + type + " chunk at byte " + std::to_string(offset) +
+               " runs past the end of the file (truncated)";
+      crc = crc32(crc, data.data(), static_cast<uInt>(data.size()));
+      left -= static_cast<std::uint32_t>(data.size());
+    }
+    unsigned char stored[4];
+    if (!in.read(reinterpret_cast<char*>(stored), 4))
+      return "its " + type + " chunk at byte " + std::to_string(offset) +
+             " runs past the end of the file (truncated)";
+    const std::uint32_t expected = (std::uint32_t{stored[0]} << 24) |
+                                   (std::uint32_t{stored[1]} << 16) |
+                                   (std::uint32_t{stored[2]} << 8) | stored[3];
+    if (expected != static_cast<std::uint32_t>(crc))
+      return "its " + type + " chunk at byte " + std::to_string(offset) +
+             " fails its CRC (the file is damaged)";
+    if (type == "IEND") return std::nullopt;
+    offset += 12 + std::uint64_t{length};
+  }
+}
+
+// An image file as 8-bit BGR, empty when it cannot be read (`why`, when given, receives the
+// reason where one is known): OpenCV throws (rather than returning empty) for a header
+// claiming more pixels than it will decode, e.g. 100000^2.
+cv::Mat readImage(const fs::path& file, std::string* why = nullptr) {
+  if (const auto problem = pngStructureProblem(file)) {
+    if (why) *why = *problem;
+    return cv::Mat();
+  }
   try {
     return cv::imread(file.string(), cv::IMREAD_COLOR);
   } catch (const cv::Exception&) {
@@ -356,7 +410,8 @@ class CaseJudge {
     const fs::path& ref = *c.reference;
     const bool refExists = fs::exists(ref);
     cv::Mat reference;
-    if (refExists) reference = readImage(ref);
+    std::string unreadable;
+    if (refExists) reference = readImage(ref, &unreadable);
     if (refExists && !reference.empty() && reference.size() == rendered.size()) {
       r.metrics = compareImages(rendered, reference, c.tolerance.maxDelta);
       writeMatPng(r.metrics->heat, dir / "diff.png");
@@ -381,7 +436,8 @@ class CaseJudge {
     }
     if (reference.empty()) {
       r.pass = false;
-      r.problems.push_back("reference " + ref.string() + " is not a readable image");
+      r.problems.push_back("reference " + ref.string() + " is not a readable image" +
+                           (unreadable.empty() ? "" : ": " + unreadable));
       return;
     }
     io::copyFileAtomically(ref, dir / "reference.png");
