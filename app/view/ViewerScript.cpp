@@ -220,6 +220,7 @@ ViewerScript ViewerScript::parse(const std::string& text, const std::filesystem:
 }
 
 ViewerScript ViewerScript::load(const std::filesystem::path& file) {
+  requireReadable(file);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file, "cannot read the script");
   std::ostringstream text;

@@ -133,7 +133,7 @@ TEST(ViewerScript, MissingFileIsBadInput) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), file);
-    EXPECT_EQ(e.problem(), "cannot read the script");
+    EXPECT_EQ(e.problem(), "no such file or directory");
   }
 }
 

@@ -641,6 +641,7 @@ json parseJson(std::istream& in, const fs::path& file) {
 }
 
 StudyConfig loadStudyConfig(const fs::path& file) {
+  requireReadable(file);
   std::ifstream in(file);
   if (!in) throw InputError(file, "cannot open the study config");
   json j;

@@ -15,10 +15,11 @@
 namespace mvw::io::detail {
 
 std::uintmax_t regularFileSize(const std::filesystem::path& path) {
+  requireReadable(path);
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) throw InputError(path, "file not found");
-  if (!std::filesystem::is_regular_file(status)) throw InputError(path, "not a regular file");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(path, "not a regular file (a device or a pipe)");
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(path, "cannot read the file size: " + ec.message());
   return size;

@@ -139,12 +139,7 @@ void checkGeometry(const Volume& volume, const fs::path& path) {
 // A path with nothing to read behind it, said as what it is.
 void refuseMissing(const fs::path& path) {
   std::error_code ec;
-  if (fs::exists(path, ec)) return;
-  if (fs::is_symlink(fs::symlink_status(path, ec)))
-    throw InputError(path,
-                     "is a symbolic link that leads to nothing (its target is missing, or the "
-                     "links form a loop)");
-  throw InputError(path, "no such file or directory");
+  if (!fs::exists(path, ec)) requireReadable(path);  // always a reason: says which
 }
 
 std::vector<Volume> finished(std::vector<Volume> volumes, const fs::path& path) {

@@ -46,6 +46,8 @@ std::string ChecksumManifest::keyOf(const fs::path& reference) const {
 ChecksumManifest loadChecksumManifest(const fs::path& file) {
   ChecksumManifest m;
   m.file = file;
+  if (fs::is_directory(file))
+    throw InputError(file, "is a folder, not a checksum manifest (.json)");
   std::ifstream in(file);
   if (!in) throw InputError(file, "no such checksum manifest (mvw validate --update writes it)");
   json root;

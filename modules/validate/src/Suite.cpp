@@ -134,8 +134,8 @@ bool isGoodCaseName(const std::string& n) {
 }
 
 Suite loadSuite(const fs::path& file) {
-  if (!fs::exists(file)) bad(file, "no such file");
   if (fs::is_directory(file)) bad(file, "is a folder, not a suite file (.json)");
+  if (const std::string why = whyUnreadable(file); !why.empty()) bad(file, why);
   std::ifstream in(file);
   if (!in) bad(file, "cannot be opened");
   json root;

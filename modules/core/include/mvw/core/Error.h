@@ -25,4 +25,13 @@ class InputError : public Error {
   std::string problem_;
 };
 
+// Why `path` cannot be opened as a file to read, said as what it is ("no such file or
+// directory", "is a symbolic link that leads to nothing (...)", "is a folder, not a file",
+// "cannot be read: permission denied"), or "" when it can. Pipes and devices count as readable
+// (a config given as <(...) is a pipe).
+std::string whyUnreadable(const std::filesystem::path& path);
+
+// Throws InputError(path, whyUnreadable(path)) when there is a reason.
+void requireReadable(const std::filesystem::path& path);
+
 }  // namespace mvw
