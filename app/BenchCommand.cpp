@@ -2,6 +2,7 @@
 
 #include "BenchFeatures.h"
 #include "BenchRegister.h"
+#include "CliChecks.h"
 #include "HeadlessGl.h"
 
 #include <chrono>
@@ -102,8 +103,9 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("--size", o->size, "Image width and height")->check(CLI::Range(16, 4096));
   cmd->add_option("--frames", o->frames, "Azimuth steps per mode")->check(CLI::Range(1, 3600));
-  cmd->add_option("--modes", o->modes, "Comma-separated modes");
-  cmd->add_option("--preset", o->preset, "Transfer function for composite");
+  cmd->add_option("--modes", o->modes, "Comma-separated modes")->check(nonEmpty());
+  cmd->add_option("--preset", o->preset, "Transfer function for composite")
+      ->check(CLI::IsMember(render::transferPresetNames()));
   cmd->add_option("--step", o->stepMm, "Sample distance in mm (default: half the smallest spacing)")
       ->check(CLI::Range(1e-3, 1e3));
   cmd->add_flag("--no-shading", o->noShading, "Composite without Phong shading");

@@ -48,7 +48,7 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   overrides.size = o.size;
   std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, overrides);
   auto context = makeHeadlessContext(o.gl);
-  const Volume anatomy = mvw::study::readSource(study.anatomical);
+  const Volume anatomy = mvw::study::readAnatomical(study.anatomical);
   mvw::study::checkViewsAgainstAnatomy(views, anatomy, study.file);
   std::optional<Volume> functional;
   if (study.functional) functional = mvw::study::readFunctional(study);

@@ -48,16 +48,13 @@ fs::path sidecarOf(const fs::path& output) {
 }
 
 // Everything about the output that can be wrong is said before the input is read.
-void checkOutput(const fs::path& output, const fs::path& sidecar) {
+void checkOutput(const fs::path& output, const fs::path& sidecar, const fs::path& input) {
   if (sidecar.empty())
     throw InputError(output, "unknown output format (use .nii.gz, .nii or .mha)");
+  io::checkVolumeOutput(output, {input});
   std::error_code ec;
-  if (fs::is_directory(output, ec)) throw InputError(output, "is a folder, not a file name");
-  const fs::path parent = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  if (!fs::is_directory(parent, ec))
-    throw InputError(output, "its folder " + parent.string() + " does not exist");
-  if (::access(parent.c_str(), W_OK | X_OK) != 0)
-    throw InputError(output, "its folder " + parent.string() + " is not writable");
+  if (fs::equivalent(sidecar, input, ec))
+    throw InputError(sidecar, "the sidecar's name is the input's: choose another output name");
   if (fs::is_directory(sidecar, ec))
     throw InputError(sidecar, "the sidecar's name is taken by a folder");
   // OUT.json is replaced only when an earlier `mvw convert` wrote it: the name is also what a
@@ -92,7 +89,7 @@ nlohmann::json sidecarJson(const Volume& volume, const ConvertOptions& o) {
 
 void runConvert(const ConvertOptions& o) {
   const fs::path output = o.output, sidecar = sidecarOf(output);
-  checkOutput(output, sidecar);
+  checkOutput(output, sidecar, o.input);
   std::optional<FrameChoice> frame;
   if (!o.frame.empty()) {
     frame = parseFrameChoice(o.frame);

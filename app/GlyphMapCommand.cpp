@@ -27,6 +27,7 @@ struct GlyphMapOptions {
 // `mvw glyphmap -o FILE`: the normal map as a 4-component float volume (RGB normal, A distance
 // to the glyph centre / radius, -1 outside) for inspection in any NIfTI/MetaImage viewer.
 void runGlyphMap(const GlyphMapOptions& o) {
+  io::checkVolumeOutput(o.output);
   const render::GlyphMap map = render::makeGlyphMap(o.settings);
   Volume v({map.size, map.size, map.size}, 4, ScalarType::Float32,
            makeWorldFromIndex(glm::dvec3(0.0), glm::dvec3(o.voxelMm), glm::dmat3(1.0)));

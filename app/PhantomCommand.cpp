@@ -26,6 +26,7 @@ struct PhantomOptions {
 
 // `mvw phantom vessels -o FILE`: the synthetic vessel tree of the depth-cued MIP tests.
 void runVesselPhantom(const PhantomOptions& o) {
+  io::checkVolumeOutput(o.output);
   const VesselTree tree = makeVesselTree(o.vessels);
   io::writeVolume(tree.volume, o.output);
   std::cout << "wrote a vessel tree of " << tree.segments.size() << " segments to " << o.output
@@ -40,6 +41,7 @@ struct PetPhantomOptions {
 
 // `mvw phantom pet`: the PET-like test volume of the registration tests, as a file.
 void runPetPhantom(const PetPhantomOptions& o) {
+  io::checkVolumeOutput(o.output, {o.ct});
   const Volume ct = io::readVolume(o.ct);
   const resampling::PetPhantom phantom(ct);
   resampling::RigidParameters p;

@@ -242,10 +242,14 @@ void addRegisterCommand(CLI::App& app) {
                   "Anatomical (reference) volume: DICOM folder or file, NIfTI, MetaImage")
       ->required();
   cmd->add_option("--moving", opt->moving, "Functional volume to align")->required();
-  cmd->add_option("-o,--output", opt->output, "Output folder (created if missing)")->required();
+  cmd->add_option("-o,--output", opt->output, "Output folder (created if missing)")
+      ->required()
+      ->check(nonEmpty());
   cmd->add_option("--fixed-series", opt->fixedSeries,
-                  "DICOM series of the fixed volume: UID, number or description");
-  cmd->add_option("--moving-series", opt->movingSeries, "DICOM series of the moving volume");
+                  "DICOM series of the fixed volume: UID, number or description")
+      ->check(nonEmpty());
+  cmd->add_option("--moving-series", opt->movingSeries, "DICOM series of the moving volume")
+      ->check(nonEmpty());
   cmd->add_option("--interpolation", opt->interpolation,
                   "Resampling: auto (nearest for label maps, else linear), linear, nearest, cubic")
       ->check(CLI::IsMember({"auto", "linear", "nearest", "cubic"}));

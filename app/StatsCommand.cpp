@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 struct StatsOptions {
   std::string source;
   std::string series;
-  std::string of = "functional";
+  std::string of;  // "" = functional, for a study config; refused for a volume file
   std::vector<double> sphere, box;
   std::string labels;
   int label = 0;
@@ -138,12 +138,15 @@ void runStats(const StatsOptions& opt) {
   if (source.extension() == ".json") {
     const auto study = config::loadStudyConfig(source);
     if (opt.of == "anatomical") {
-      volume = study::readSource(study.anatomical, read);
+      volume = study::readAnatomical(study.anatomical, read);
     } else {
       if (!study.functional) throw InputError(source, "the study names no functional volume");
       volume = study::readSource(*study.functional, read);
     }
   } else {
+    if (!opt.of.empty())
+      throw CLI::ValidationError("--of", "chooses a volume of a study config (.json); " +
+                                             source.string() + " is a volume");
     volume = io::readVolume(source, read);
   }
 
@@ -266,7 +269,8 @@ void addStatsCommand(CLI::App& app) {
       ->expected(6)
       ->check(finite);
   cmd->add_option("--labels", opt->labels,
-                  "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value)");
+                  "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value)")
+      ->check(nonEmpty());
   cmd->add_option("--label", opt->label, "Only this label (segment number; 0 is no label)")
       ->check(CLI::Validator(
           [](std::string& text) {

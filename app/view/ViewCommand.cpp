@@ -29,7 +29,7 @@ void runView(const ViewOptions& o) {
       v.study.functional =
           config::VolumeSource{o.functional, "", config::defaultFrame(v.study.functionalKind)};
   }
-  v.anatomical = mvw::study::readSource(v.study.anatomical);
+  v.anatomical = mvw::study::readAnatomical(v.study.anatomical);
   if (v.study.functional) v.functional = mvw::study::readFunctional(v.study);
   v.script = o.script;
   v.frameLog = o.frameLog;

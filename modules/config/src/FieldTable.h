@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 
 namespace mvw::config::detail {
 
@@ -59,11 +60,7 @@ std::string nameOf(const EnumNames<E>& names, E e) {
 
 // A number as a message shows it: 1e-300 and 1e+300, not 0.000000 and 300 digits, and enough
 // digits that a value just beyond a limit does not print as the limit (4294967296, not 4.29e9).
-inline std::string shortNumber(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", x);
-  return text;
-}
+inline std::string shortNumber(double x) { return mvw::shortNumber(x, 10); }
 
 inline double readNumber(const json& v, const Where& w, double lo, double hi) {
   if (!v.is_number()) w.bad("must be a number");

@@ -23,6 +23,7 @@
 #include "VtkBridge.h"
 #include "VtkMessages.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/VtkImageView.h"
 
@@ -362,12 +363,21 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   if (reader->GetQFac() < 0)
     notes.push_back("qfac = -1: slice order reversed to a right-handed index frame");
 
-  const double slope = reader->GetRescaleSlope(), intercept = reader->GetRescaleIntercept();
-  if (slope != 0.0 && std::isfinite(slope) && std::isfinite(intercept) &&
-      (slope != 1.0 || intercept != 0.0)) {
+  // As nifti_clib reads them: a slope of 0 (or not a number) means no scaling; an intercept
+  // that is not a number is 0 beside a real slope (said, not dropped with the slope).
+  const double slope = reader->GetRescaleSlope();
+  double intercept = reader->GetRescaleIntercept();
+  if (slope != 0.0 && std::isfinite(slope) && !std::isfinite(intercept)) {
+    notes.push_back("scl_inter " + shortNumber(intercept) +
+                    " is not a number: read as 0 beside scl_slope " + shortNumber(slope));
+    intercept = 0.0;
+  }
+  if (slope != 0.0 && std::isfinite(slope) && (slope != 1.0 || intercept != 0.0)) {
     volume = volume.converted(ScalarType::Float32, slope, intercept);  // keeps the metadata
-    volume.metadata().notes.push_back("scl_slope " + std::to_string(slope) + ", scl_inter " +
-                                      std::to_string(intercept) + " applied (values as float32)");
+    volume.metadata().notes.push_back("scl_slope " + shortNumber(slope) + ", scl_inter " +
+                                      shortNumber(intercept) + " applied (values as float32)");
+  } else if (!std::isfinite(slope)) {
+    notes.push_back("scl_slope " + shortNumber(slope) + " is not a number: values used as stored");
   }
   auto& meta = volume.metadata();
   meta.format = facts.version == 2 ? "NIfTI-2" : facts.version == 1 ? "NIfTI-1" : "Analyze 7.5";

@@ -16,6 +16,7 @@
 #include "FileChecks.h"
 #include "Formats.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 
 namespace mvw::io {
 
@@ -91,11 +92,7 @@ void clampInfinities(Volume& volume, const fs::path& path) {
       if (plus + minus == 0) return;
       for (std::size_t i = 0; i < n; ++i)
         if (std::isinf(p[i])) p[i] = p[i] > 0 ? hi : lo;
-      auto g = [](double v) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%g", v);
-        return std::string(buf);
-      };
+      const auto g = [](double v) { return shortNumber(v); };
       std::string note;
       if (plus)
         note = std::to_string(plus) + " voxels +inf clamped to the largest finite value " + g(hi);
@@ -117,11 +114,7 @@ void checkGeometry(const Volume& volume, const fs::path& path) {
   const detail::GeometryProblem problem = detail::geometryProblem(m);
   if (problem == detail::GeometryProblem::NotFinite)
     throw InputError(path, "its geometry (voxel axes and origin) is not finite");
-  auto g = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return std::string(buf);
-  };
+  const auto g = [](double v) { return shortNumber(v); };
   const glm::dvec3 spacing = volume.spacing();
   for (int a = 0; a < 3; ++a)
     if (!(spacing[a] >= 1e-6 && spacing[a] <= 1e6))

@@ -11,6 +11,7 @@
 #include <glm/matrix.hpp>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 
 namespace mvw::study {
 
@@ -229,12 +230,9 @@ LabelPlacement placeLabelVolume(const Volume& volume, const Volume& labels) {
   std::map<long long, std::size_t> slot;
   for (double v : values) {
     if (std::isnan(v) || v == 0.0) continue;
-    if (v != std::floor(v)) {
-      char text[48];
-      std::snprintf(text, sizeof text, "%.6g", v);
+    if (v != std::floor(v))
       throw InputError(labels.metadata().sourcePath,
-                       std::string("not a label map: it holds the non-integer value ") + text);
-    }
+                       "not a label map: it holds the non-integer value " + shortNumber(v));
     if (std::abs(v) > 1e9) {
       char text[48];
       std::snprintf(text, sizeof text, "%.0f", v);

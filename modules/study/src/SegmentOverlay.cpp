@@ -4,6 +4,7 @@
 #include <map>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/Frame.h"
 #include "mvw/io/DicomSeg.h"
 
@@ -68,7 +69,7 @@ SegmentOverlay readSegmentOverlay(const config::VolumeSource& source,
           throw InputError(source.path,
                            "a segmentation must be a DICOM SEG or a label volume; "
                            "this one holds the non-integer value " +
-                               std::to_string(v));
+                               shortNumber(v));
         if (component.emplace(static_cast<long long>(v), 0).second && component.size() > 16)
           throw InputError(source.path, "more than 16 labels: outlines take at most 16 segments");
       }

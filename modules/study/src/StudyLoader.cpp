@@ -7,6 +7,7 @@
 
 #include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/Frame.h"
 
 namespace mvw::study {
@@ -27,6 +28,22 @@ Volume readSource(const config::VolumeSource& source, io::ReadOptions options) {
   return volume;
 }
 
+Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions options) {
+  Volume anatomy = readSource(source, options);
+  VolumeMetadata& m = anatomy.metadata();
+  if (m.modality.empty() && m.unit.empty()) {
+    const auto [lo, hi] = anatomy.valueRange();
+    if (lo >= -3100.0 && lo <= -900.0 && hi > 0.0) {
+      m.unit = "HU";
+      m.notes.push_back("no modality or unit is stated; its values reach down to " +
+                        shortNumber(lo) +
+                        ", air in Hounsfield units: read as a CT in HU (CT preset, isosurface "
+                        "and window)");
+    }
+  }
+  return anatomy;
+}
+
 Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options) {
   MVW_CHECK(config.functional.has_value());
   Volume functional = readSource(*config.functional, options);
@@ -39,10 +56,9 @@ Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options
         const T* p = functional.dataAs<T>();
         for (std::size_t i = 0; i < functional.voxelCount() * functional.components(); ++i)
           if (!std::isnan(p[i]) && p[i] != std::floor(p[i])) {
-            char text[48];
-            std::snprintf(text, sizeof text, "%.6g", static_cast<double>(p[i]));
             throw InputError(config.functional->path,
-                             std::string("its kind is \"labels\", but it holds the value ") + text +
+                             "its kind is \"labels\", but it holds the value " +
+                                 shortNumber(static_cast<double>(p[i])) +
                                  ": labels are whole numbers (is its kind \"pet\", "
                                  "\"perfusion\" or \"fmri\"?)");
           }
@@ -55,7 +71,7 @@ Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options
 Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options) {
   Study s;
   s.name = config.name;
-  s.anatomical = readSource(config.anatomical, options);
+  s.anatomical = readAnatomical(config.anatomical, options);
   if (config.functional) s.functional = readFunctional(config, options);
   return s;
 }

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/io/ColorPalettes.h"
 #include "mvw/io/LabelTable.h"
@@ -384,11 +385,7 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
 
 void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volume& anatomy,
                               const std::filesystem::path& file) {
-  auto g = [](double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return std::string(text);
-  };
+  const auto g = [](double x) { return shortNumber(x); };
   const glm::dvec3 spacing = anatomy.spacing();
   const double finest = std::min({spacing.x, spacing.y, spacing.z}) / 100.0;
   const auto [lo, hi] = render::worldBounds(anatomy);

@@ -289,7 +289,7 @@ class Plan {
     for (std::size_t k = 0; k < c.checks.size(); ++k) {
       const fs::path& anatomical = study.anatomical.path;
       if (!volumes_.count(anatomical))
-        volumes_.emplace(anatomical, study::readSource(study.anatomical));
+        volumes_.emplace(anatomical, study::readAnatomical(study.anatomical));
       plans_[ci].push_back(planMip(volumes_.at(anatomical), c.checks[k], suite_.file,
                                    where + " check " + std::to_string(k + 1)));
       want(ci, static_cast<int>(k), c.study, plans_[ci].back().view, where);

@@ -11,6 +11,13 @@ namespace mvw::study {
 // The volume a study names, read with `options` and the source's own series selection.
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options = {});
 
+// The study's anatomical volume. One with neither modality nor unit (NIfTI and MetaImage carry
+// neither) whose lowest value lies between -3100 and -900, air in Hounsfield units (-1000, or a
+// scanner's padding: -1024, -2048, -3024), is read as a CT in HU, with a note: the CT preset,
+// isosurface and window then apply instead of the MR ones. Every command that reads a study's
+// anatomy reads it here.
+Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions options = {});
+
 // The study's functional volume, read, and refused when its kind is "labels" but it holds a
 // value that is not a whole number (a PET given as labels). Every command that reads a
 // study's functional volume reads it here.
