@@ -71,6 +71,29 @@ TEST(BadInput, MetaImageWithTooLittleData) {
   EXPECT_NE(refusal(dir / "short.mha").find("truncated"), std::string::npos);
 }
 
+// Text voxels, a key given twice and a matrix of "nan" are refused, each by what it is.
+TEST(BadInput, MetaImageHeadersThatLie) {
+  const fs::path dir = test::scratchDir();
+  const std::string head =
+      "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n";
+  std::ofstream(dir / "text.mha", std::ios::binary)
+      << head << "BinaryData = False\nElementDataFile = LOCAL\n1 2 3 4 5 6 7 8\n";
+  EXPECT_NE(refusal(dir / "text.mha").find("BinaryData = False: the voxels are text"),
+            std::string::npos);
+  std::ofstream(dir / "twice.mha", std::ios::binary)
+      << head << "Offset = 0 0 0\nOffset = 5 5 5\nElementDataFile = LOCAL\n"
+      << std::string(8, '\0');
+  EXPECT_EQ(refusal(dir / "twice.mha"), "the header gives Offset twice");
+  std::ofstream(dir / "nan.mha", std::ios::binary)
+      << head << "TransformMatrix = nan 0 0 0 1 0 0 0 1\nElementDataFile = LOCAL\n"
+      << std::string(8, '\0');
+  EXPECT_EQ(refusal(dir / "nan.mha"), "TransformMatrix holds nan, a value that is not finite");
+  std::ofstream(dir / "word.mha", std::ios::binary)
+      << head << "ElementSpacing = 1 one 1\nElementDataFile = LOCAL\n"
+      << std::string(8, '\0');
+  EXPECT_EQ(refusal(dir / "word.mha"), "ElementSpacing holds 'one', which is not a number");
+}
+
 // Label tables: any line ending (LF, CR LF, CR CR LF, CR alone); a bad line quoted with control
 // characters shown; a name with a control character refused. A name given to two labels is
 // read (atlases have them); only a glyph view choosing that name refuses it (ViewPlan).

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -17,6 +18,7 @@
 #include <vtkDICOMItem.h>
 #include <vtkDICOMMetaData.h>
 #include <vtkDICOMReader.h>
+#include <vtkDICOMSliceSorter.h>
 #include <vtkDICOMTagPath.h>
 #include <vtkDICOMValue.h>
 #include <vtkDataArray.h>
@@ -25,6 +27,7 @@
 #include <vtkIntArray.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
@@ -40,6 +43,7 @@
 #include "VtkBridge.h"
 #include "VtkMessages.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/Suv.h"
 #include "mvw/io/DicomSeg.h"
 
@@ -219,6 +223,239 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
 
 // Each output slice's ImagePositionPatient (vtk-dicom maps output slice -> file and frame);
 // empty when any is missing.
+// A DS value of `count` numbers, each a whole decimal string and at most `limit` in size
+// ("nan", "1e999" and text are not: vtk-dicom would read them as 0 or inf; a position beyond
+// 1 km is no place in a scanner).
+bool numbersOk(const vtkDICOMValue& value, unsigned int count, double limit = 1e6) {
+  if (value.GetNumberOfValues() != count) return false;
+  for (unsigned int i = 0; i < count; ++i) {
+    const std::string text = value.GetString(i);
+    const char* begin = text.c_str();
+    char* end = nullptr;
+    const double x = std::strtod(begin, &end);
+    if (end == begin || !(std::abs(x) <= limit)) return false;
+    while (*end == ' ') ++end;
+    if (*end != '\0') return false;
+  }
+  return true;
+}
+
+std::string fileName(vtkStringArray* files, int index) {
+  return fs::path(files->GetValue(index).c_str()).filename().string();
+}
+
+// Every slice the reader will stack: a position of three numbers when any slice has one, and
+// one orientation. Slices of different orientations (a three-plane localizer, a reformat
+// filed under the acquisition's series) are not one volume; a position that is not numbers
+// would be read as 0 and place its slice at the origin.
+void checkSliceGeometry(vtkDICOMReader* reader, vtkStringArray* files, const fs::path& path) {
+  vtkIntArray* fileIndex = reader->GetFileIndexArray();
+  vtkIntArray* frameIndex = reader->GetFrameIndexArray();
+  vtkDICOMMetaData* meta = reader->GetMetaData();
+  if (!fileIndex || !frameIndex) return;
+  const vtkIdType n = fileIndex->GetNumberOfTuples();
+  bool anyPosition = false;
+  for (vtkIdType s = 0; s < n && !anyPosition; ++s)
+    anyPosition = meta->Get(fileIndex->GetComponent(s, 0), frameIndex->GetComponent(s, 0),
+                            DC::ImagePositionPatient)
+                      .IsValid();
+  std::optional<glm::dvec3> firstNormal;
+  int firstFile = 0;
+  for (vtkIdType s = 0; s < n; ++s) {
+    const int f = static_cast<int>(fileIndex->GetComponent(s, 0));
+    const int frame = static_cast<int>(frameIndex->GetComponent(s, 0));
+    const vtkDICOMValue& ipp = meta->Get(f, frame, DC::ImagePositionPatient);
+    if (anyPosition && !numbersOk(ipp, 3))
+      throw InputError(path, fileName(files, f) +
+                                 (ipp.IsValid() ? ": ImagePositionPatient '" + ipp.AsString() +
+                                                      "' is not three numbers"
+                                                : ": no ImagePositionPatient") +
+                                 ", where the other slices of the series have one: its place in "
+                                 "the volume is unknown");
+    const vtkDICOMValue& iop = meta->Get(f, frame, DC::ImageOrientationPatient);
+    if (!numbersOk(iop, 6)) continue;  // said once for the series (below, in readSeries)
+    glm::dvec3 row, column;
+    for (unsigned int a = 0; a < 3; ++a) {
+      row[static_cast<int>(a)] = iop.GetDouble(a);
+      column[static_cast<int>(a)] = iop.GetDouble(a + 3);
+    }
+    const glm::dvec3 normal = glm::cross(row, column);
+    if (!(glm::length(normal) > 0.5)) continue;
+    if (!firstNormal) {
+      firstNormal = glm::normalize(normal);
+      firstFile = f;
+    } else if (glm::dot(glm::normalize(normal), *firstNormal) <
+               std::cos(1.0 * 3.14159265358979 / 180)) {
+      throw InputError(path, "its slices lie in different orientations (" +
+                                 fileName(files, firstFile) + " and " + fileName(files, f) +
+                                 ": ImageOrientationPatient '" +
+                                 meta->Get(firstFile, 0, DC::ImageOrientationPatient).AsString() +
+                                 "' and '" + iop.AsString() +
+                                 "'): not one volume (a localizer or a reformat?); give a "
+                                 "folder or series of one orientation");
+    }
+  }
+}
+
+// The files of a series (one frame each) that are not slices of its main stack: those of
+// another orientation than the most common one (a localizer or a reformat filed under the
+// acquisition's series), and, where others have a position, those without a usable one (a
+// position of text or NaN would be read as 0, its slice put at the origin). They are left out
+// before vtk-dicom sorts, so its stacks are not split at them; the gap a left-out slice leaves
+// is found and filled like any missing slice. Returns the note ("" when all are kept).
+std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
+                               vtkSmartPointer<vtkStringArray>& kept) {
+  vtkDICOMMetaData* meta = reader->GetMetaData();
+  const int n = static_cast<int>(files->GetNumberOfValues());
+  if (n < 3 || meta->GetNumberOfInstances() != n) return "";
+  for (int f = 0; f < n; ++f)
+    if (meta->Get(f, DC::NumberOfFrames).AsInt() > 1) return "";
+  // Orientation groups: row and column directions within 1 degree of the group's first file.
+  const double cosTolerance = std::cos(1.0 * 3.14159265358979323846 / 180.0);
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> groupAxes;
+  std::vector<int> group(static_cast<std::size_t>(n), -1), groupSize;
+  std::vector<bool> positioned(static_cast<std::size_t>(n), false);
+  int anyPositioned = 0;
+  for (int f = 0; f < n; ++f) {
+    positioned[static_cast<std::size_t>(f)] = numbersOk(meta->Get(f, DC::ImagePositionPatient), 3);
+    anyPositioned += positioned[static_cast<std::size_t>(f)];
+    const vtkDICOMValue& iop = meta->Get(f, DC::ImageOrientationPatient);
+    if (!numbersOk(iop, 6)) continue;
+    glm::dvec3 row, column;
+    for (unsigned int a = 0; a < 3; ++a) {
+      row[static_cast<int>(a)] = iop.GetDouble(a);
+      column[static_cast<int>(a)] = iop.GetDouble(a + 3);
+    }
+    if (!(glm::length(row) > 0.5 && glm::length(column) > 0.5)) continue;
+    // Two directions along one line give no slice normal: vtk-dicom would read every slice
+    // at one position, as frames of a single slice.
+    if (!(glm::length(glm::cross(glm::normalize(row), glm::normalize(column))) > 0.5))
+      throw InputError(fs::path(files->GetValue(f).c_str()),
+                       "ImageOrientationPatient '" + iop.AsString() +
+                           "' gives no slice normal (its row and column directions are "
+                           "parallel): the slices cannot be stacked");
+    row = glm::normalize(row);
+    column = glm::normalize(column);
+    int g = 0;
+    while (g < static_cast<int>(groupAxes.size()) &&
+           !(glm::dot(row, groupAxes[static_cast<std::size_t>(g)].first) > cosTolerance &&
+             glm::dot(column, groupAxes[static_cast<std::size_t>(g)].second) > cosTolerance))
+      ++g;
+    if (g == static_cast<int>(groupAxes.size())) {
+      groupAxes.emplace_back(row, column);
+      groupSize.push_back(0);
+    }
+    group[static_cast<std::size_t>(f)] = g;
+    ++groupSize[static_cast<std::size_t>(g)];
+  }
+  // In-plane pixel size: the most common among the files of usable PixelSpacing.
+  std::vector<std::pair<glm::dvec2, int>> spacings;
+  std::vector<int> spacingOf(static_cast<std::size_t>(n), -1);
+  for (int f = 0; f < n; ++f) {
+    const vtkDICOMValue& ps = meta->Get(f, DC::PixelSpacing);
+    if (!numbersOk(ps, 2) || !(ps.GetDouble(0) > 0.0 && ps.GetDouble(1) > 0.0)) continue;
+    const glm::dvec2 s(ps.GetDouble(0), ps.GetDouble(1));
+    std::size_t k = 0;
+    while (k < spacings.size() && glm::length(spacings[k].first - s) > 1e-3 * glm::length(s)) ++k;
+    if (k == spacings.size()) spacings.emplace_back(s, 0);
+    ++spacings[k].second;
+    spacingOf[static_cast<std::size_t>(f)] = static_cast<int>(k);
+  }
+  const int mainSpacing = spacings.empty()
+                              ? -1
+                              : static_cast<int>(std::max_element(spacings.begin(), spacings.end(),
+                                                                  [](const auto& a, const auto& b) {
+                                                                    return a.second < b.second;
+                                                                  }) -
+                                                 spacings.begin());
+  const int main = groupSize.empty()
+                       ? -1
+                       : static_cast<int>(std::max_element(groupSize.begin(), groupSize.end()) -
+                                          groupSize.begin());
+  std::string otherOrientation, noPosition, otherSpacing;
+  int left = 0;
+  kept = vtkSmartPointer<vtkStringArray>::New();
+  for (int f = 0; f < n; ++f) {
+    const std::size_t i = static_cast<std::size_t>(f);
+    // Where the others have an orientation, one without a usable one is stray too.
+    const bool strayOrientation = main >= 0 && group[i] != main;
+    const bool strayPosition = anyPositioned > 0 && !positioned[i];
+    const bool straySpacing = mainSpacing >= 0 && spacingOf[i] != mainSpacing;
+    if (!strayOrientation && !strayPosition && !straySpacing) {
+      kept->InsertNextValue(files->GetValue(f));
+      continue;
+    }
+    ++left;
+    std::string& list = strayOrientation ? otherOrientation
+                        : strayPosition  ? noPosition
+                                         : otherSpacing;
+    const int listed = static_cast<int>(std::count(list.begin(), list.end(), ',')) + !list.empty();
+    if (listed < 5)
+      list += (list.empty() ? "" : ", ") + fileName(files, f);
+    else if (listed == 5)
+      list += ", ...";
+  }
+  if (left == 0 || kept->GetNumberOfValues() < 2) return "";
+  std::string note = std::to_string(left) + " of " + std::to_string(n) +
+                     " files of the series left out as not slices of its stack:";
+  if (!otherOrientation.empty()) note += " another orientation, or none (" + otherOrientation + ")";
+  std::string sep;
+  if (!otherOrientation.empty()) sep = ";";
+  if (!noPosition.empty()) {
+    note += sep + " no usable ImagePositionPatient (" + noPosition + ")";
+    sep = ";";
+  }
+  if (!otherSpacing.empty())
+    note += sep + " another PixelSpacing than the " + shortNumber(spacings[mainSpacing].first.x) +
+            " x " + shortNumber(spacings[mainSpacing].first.y) + " mm of the others, or none (" +
+            otherSpacing + ")";
+  return note;
+}
+
+// vtk-dicom splits a series into stacks when its files do not line up (a file of another
+// orientation, one without a position, a second location per slice) and reads the first
+// stack, which can be a handful of an acquisition's slices. The largest stack is read instead
+// (the first of equals), and the note says which files were left out.
+std::string chooseLargestStack(vtkDICOMReader* reader, vtkStringArray* files) {
+  vtkStringArray* ids = reader->GetStackIDs();
+  if (!ids || ids->GetNumberOfValues() < 2) return "";
+  vtkNew<vtkDICOMSliceSorter> sorter;
+  sorter->SetMetaData(reader->GetMetaData());
+  sorter->TimeAsVectorOn();
+  std::vector<std::vector<int>> stackFiles;
+  std::size_t best = 0;
+  for (vtkIdType s = 0; s < ids->GetNumberOfValues(); ++s) {
+    sorter->SetDesiredStackID(ids->GetValue(s).c_str());
+    sorter->Update();
+    std::vector<int> in;
+    if (vtkIntArray* fi = sorter->GetFileIndexArray())
+      for (vtkIdType t = 0; t < fi->GetNumberOfTuples(); ++t)
+        in.push_back(static_cast<int>(fi->GetComponent(t, 0)));
+    std::sort(in.begin(), in.end());
+    in.erase(std::unique(in.begin(), in.end()), in.end());
+    stackFiles.push_back(std::move(in));
+    if (stackFiles.back().size() > stackFiles[best].size()) best = stackFiles.size() - 1;
+  }
+  reader->SetDesiredStackID(ids->GetValue(static_cast<vtkIdType>(best)).c_str());
+  reader->UpdateInformation();
+  std::vector<bool> read(static_cast<std::size_t>(files->GetNumberOfValues()), false);
+  for (int f : stackFiles[best])
+    if (f >= 0 && f < static_cast<int>(read.size())) read[static_cast<std::size_t>(f)] = true;
+  std::string left;
+  int count = 0;
+  for (std::size_t f = 0; f < read.size(); ++f) {
+    if (read[f]) continue;
+    if (++count <= 5) left += (left.empty() ? "" : ", ") + fileName(files, static_cast<int>(f));
+  }
+  if (count > 5) left += ", ... (" + std::to_string(count) + " files)";
+  return "the series holds " + std::to_string(stackFiles.size()) +
+         " stacks of slices that do not line up (orientation, position or a second location "
+         "per slice): the largest, " +
+         std::to_string(stackFiles[best].size()) + " of " +
+         std::to_string(files->GetNumberOfValues()) + " files, was read" +
+         (left.empty() ? std::string() : "; left out: " + left);
+}
+
 std::vector<glm::dvec3> slicePositions(vtkDICOMReader* reader) {
   vtkIntArray* fileIndex = reader->GetFileIndexArray();
   vtkIntArray* frameIndex = reader->GetFrameIndexArray();
@@ -234,6 +471,32 @@ std::vector<glm::dvec3> slicePositions(vtkDICOMReader* reader) {
     positions.push_back(p);
   }
   return positions;
+}
+
+// Slices without any ImagePositionPatient: stacked in vtk-dicom's order (instance numbers),
+// as far apart as SpacingBetweenSlices, else SliceThickness, else 1 mm, with a note; where
+// the volume lies in the patient is unknown.
+Volume spaceUnplacedSlices(Volume volume, vtkDICOMMetaData* meta) {
+  double step = meta->Get(0, DC::SpacingBetweenSlices).AsDouble();
+  std::string from = "SpacingBetweenSlices";
+  if (!(step > 0.0 && step < 1e3)) {
+    step = meta->Get(0, DC::SliceThickness).AsDouble();
+    from = "SliceThickness";
+  }
+  if (!(step > 0.0 && step < 1e3)) {
+    step = 1.0;
+    from = "neither SpacingBetweenSlices nor SliceThickness says otherwise";
+  }
+  glm::dmat4 m = volume.worldFromIndex();
+  const glm::dvec3 axis(m[2]);
+  if (glm::length(axis) > 0.0) m[2] = glm::dvec4(glm::normalize(axis) * step, 0.0);
+  volume.setWorldFromIndex(m);
+  char text[64];
+  std::snprintf(text, sizeof text, "%g mm", step);
+  volume.metadata().notes.push_back(
+      "no slice has an ImagePositionPatient: slices stacked in instance order " +
+      std::string(text) + " apart (" + from + "); where the volume lies in the patient is unknown");
+  return volume;
 }
 
 bool isMosaic(vtkDICOMMetaData* meta) {
@@ -304,6 +567,17 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   if (!messages.firstError().empty())
     throw InputError(first, "cannot read the DICOM header: " + messages.firstError());
   checkPixelDataSizes(reader->GetMetaData(), files);
+  vtkSmartPointer<vtkStringArray> kept;
+  const std::string strayNote = leaveOutStrayFiles(reader, files, kept);
+  if (!strayNote.empty()) {
+    files = kept;
+    reader->SetFileNames(files);
+    reader->UpdateInformation();
+    if (!messages.firstError().empty())
+      throw InputError(first, "cannot read the DICOM header: " + messages.firstError());
+  }
+  const std::string stackNote = chooseLargestStack(reader, files);
+  checkSliceGeometry(reader, files, path);
 
   vtkInformation* info = reader->GetOutputInformation(0);
   int extent[6];
@@ -347,9 +621,14 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   else if (files->GetNumberOfValues() == 1 && frames <= 1 && volume.dimensions().z == 1 &&
            isMosaic(meta))
     volume = unpackMosaicFrom(std::move(volume), meta);
-  else
-    volume = placeSlices(std::move(volume), slicePositions(reader), options.sliceSpacing,
-                         options.maxBytes, first);
+  else {
+    const std::vector<glm::dvec3> positions = slicePositions(reader);
+    if (positions.empty() && volume.dimensions().z > 1)
+      volume = spaceUnplacedSlices(std::move(volume), meta);
+    else
+      volume =
+          placeSlices(std::move(volume), positions, options.sliceSpacing, options.maxBytes, first);
+  }
   auto& md = volume.metadata();
   md.format = "DICOM";
   md.sourcePath = path.string();
@@ -392,11 +671,15 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   if (slope.IsValid() && !(std::isfinite(slope.GetDouble(0)) && slope.GetDouble(0) != 0.0))
     md.notes.push_back("RescaleSlope '" + slope.AsString() +
                        "' is not a usable factor: the stored values were not rescaled by it");
-  if (reader->GetStackIDs() && reader->GetStackIDs()->GetNumberOfValues() > 1)
-    md.notes.push_back("series holds several stacks; the first was read");
+  if (!strayNote.empty()) md.notes.insert(md.notes.begin(), strayNote);
+  if (!stackNote.empty()) md.notes.push_back(stackNote);
   if (reader->GetTimeDimension() > 1)
     md.notes.push_back(std::to_string(reader->GetTimeDimension()) +
                        " time points stored as components");
+  else if (volume.components() > spp && spp == 1)
+    md.notes.push_back(std::to_string(volume.components()) +
+                       " files share each slice position: read as " +
+                       std::to_string(volume.components()) + " frames (components) per slice");
   fillUnitAndSuv(volume, meta, options);
   return volume;
 }

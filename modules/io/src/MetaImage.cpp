@@ -4,6 +4,7 @@
 // one after another, as ITK's MetaImageIO writes it.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -15,6 +16,7 @@
 #include "FileChecks.h"
 #include "Formats.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/io/AtomicFile.h"
 
 namespace mvw::io::detail {
@@ -39,13 +41,18 @@ std::vector<double> numbers(const fs::path& path, const std::string& key, const 
                             std::size_t count) {
   std::istringstream in(text);
   std::vector<double> v;
-  double x;
-  while (in >> x) v.push_back(x);
-  if (v.size() != count || !in.eof())
-    throw InputError(path,
-                     key + " must hold " + std::to_string(count) + " numbers, not '" + text + "'");
-  for (double d : v)
-    if (!std::isfinite(d)) throw InputError(path, key + " holds a value that is not finite");
+  for (std::string word; in >> word;) {
+    char* end = nullptr;
+    const double x = std::strtod(word.c_str(), &end);
+    if (end == word.c_str() || *end != '\0')
+      throw InputError(path, key + " holds '" + word + "', which is not a number");
+    if (!std::isfinite(x))
+      throw InputError(path, key + " holds " + word + ", a value that is not finite");
+    v.push_back(x);
+  }
+  if (v.size() != count)
+    throw InputError(path, key + " must hold " + std::to_string(count) + " numbers, not " +
+                               std::to_string(v.size()) + " ('" + text + "')");
   return v;
 }
 
@@ -70,7 +77,8 @@ Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
       throw InputError(path, "header line without '=': '" + trim(line).substr(0, 60) + "'");
     }
     const std::string key = trim(line.substr(0, eq));
-    fields[key] = trim(line.substr(eq + 1));
+    if (!fields.emplace(key, trim(line.substr(eq + 1))).second)
+      throw InputError(path, "the header gives " + key + " twice");
     if (key == "ElementDataFile") {
       sawDataFile = true;
       dataOffset = static_cast<std::uintmax_t>(in.tellg());
@@ -92,9 +100,12 @@ Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
   glm::ivec3 dims(1);
   for (int a = 0; a < ndims; ++a) {
     if (dimSize[a] < 1 || dimSize[a] > (1 << 24) || dimSize[a] != std::floor(dimSize[a]))
-      throw InputError(path, "invalid DimSize value " + std::to_string(dimSize[a]));
+      throw InputError(path, "invalid DimSize value " + shortNumber(dimSize[a]));
     dims[a] = static_cast<int>(dimSize[a]);
   }
+  if (!get("BinaryData").empty() && !isTrue(get("BinaryData")))
+    throw InputError(path, "BinaryData = " + get("BinaryData") +
+                               ": the voxels are text, and mvw reads binary MetaImage data only");
   const auto typeIt = kElementTypes.find(get("ElementType"));
   if (typeIt == kElementTypes.end())
     throw InputError(path, "unsupported ElementType '" + get("ElementType") + "'");

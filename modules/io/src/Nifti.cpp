@@ -306,6 +306,16 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   }
   glm::dmat4 rasFromData(1.0);
   auto& notes = volume.metadata().notes;
+  // Beyond time (dim[4]): a 5-D image (vectors, tensors, several statistics per voxel) or
+  // more. Its values become frames like time points, said so.
+  if (facts.dim[5] > 1 || facts.dim[6] > 1 || facts.dim[7] > 1) {
+    std::string sizes;
+    for (int i = 4; i < 8; ++i)
+      sizes += (i > 4 ? " x " : "") + std::to_string(std::max<long long>(1, facts.dim[i]));
+    notes.push_back("dimensions 4 to 7 (" + sizes + ") are read as " +
+                    std::to_string(volume.components()) +
+                    " frames in storage order: the frame of a study is one of these");
+  }
   // A matrix that maps the voxel axes to three independent finite directions: an sform of
   // zeros, NaN or two equal rows (a broken writer) is no geometry.
   auto usable = [](const glm::dmat4& m) {

@@ -186,6 +186,21 @@ Volume placeSlices(Volume stack, const std::vector<glm::dvec3>& positions, doubl
   // Slices all at one position are stacks or time points (vtk-dicom's business), not geometry.
   if ((ss.regular && !tilted && sortedAlready) || !(ss.nominal > kSamePositionMm) ||
       !(extent > kSamePositionMm)) {
+    // The reader's matrix can disagree with the positions it was given (vtk-dicom, without a
+    // usable ImageOrientationPatient, stacks slices 1 mm apart from the origin): where it
+    // does, the positions place the slices.
+    if (ss.regular && !tilted && sortedAlready && ss.nominal > kSamePositionMm) {
+      glm::dmat4 m = w;
+      const double along = glm::length(glm::dvec3(m[2]));
+      if (std::abs(along - ss.nominal) > tol || glm::length(glm::dvec3(m[3]) - first) > 0.01) {
+        m[2] = glm::dvec4(normal * ss.nominal, 0.0);
+        m[3] = glm::dvec4(first, 1.0);
+        stack.setWorldFromIndex(m);
+        stack.metadata().notes.push_back("slices placed by their positions, " + fmt(ss.nominal) +
+                                         " mm apart along the normal (the reader had " +
+                                         fmt(along) + " mm)");
+      }
+    }
     stack.metadata().sliceSpacing = ss;
     return stack;
   }
@@ -287,6 +302,13 @@ Volume placeSlices(Volume stack, const std::vector<glm::dvec3>& positions, doubl
                       " missing");
     }
   }
+  for (int r = 0, listed = 0; r + 1 < n && listed < 4; ++r)
+    if (gaps[r] <= kSamePositionMm) {
+      ++listed;
+      notes.push_back("slices " + std::to_string(r + 1) + " and " + std::to_string(r + 2) + " of " +
+                      std::to_string(n) + " lie at the same position (" +
+                      lpsText(positions[g.order[r]]) + "): the first one's pixels are used");
+    }
   if (!sortedAlready) notes.push_back("slices reordered by their position along the normal");
   notes.push_back("resampled along the normal onto " + fmt(step) + " mm (" + why +
                   "): " + std::to_string(n) + " acquired slices -> " + std::to_string(g.dims.z) +
