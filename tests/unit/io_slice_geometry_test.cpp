@@ -29,13 +29,15 @@ using mvw::io::detail::unpackMosaic;
 
 constexpr std::size_t kNoLimit = std::size_t{1} << 34;
 
-// A stack as vtk-dicom hands it over: nx x ny x positions.size(), columns u*su, v*sv, n*1.
+// A stack as vtk-dicom hands it over: nx x ny x positions.size(), columns u*su, v*sv and the
+// normal n times the distance of the first two slices along it.
 mvw::Volume stackOf(int nx, int ny, const std::vector<glm::dvec3>& positions, glm::dvec3 u,
                     glm::dvec3 v, double su, double sv, mvw::ScalarType type) {
   glm::dmat4 w(1.0);
   w[0] = glm::dvec4(u * su, 0);
   w[1] = glm::dvec4(v * sv, 0);
-  w[2] = glm::dvec4(glm::cross(u, v), 0);
+  const glm::dvec3 n = glm::cross(u, v);
+  w[2] = glm::dvec4(n * (positions.size() > 1 ? glm::dot(positions[1] - positions[0], n) : 1.0), 0);
   w[3] = glm::dvec4(positions[0], 1);
   return mvw::Volume({nx, ny, static_cast<int>(positions.size())}, 1, type, w);
 }
@@ -61,6 +63,27 @@ TEST(SlicePlacement, RegularStackIsKeptBitForBit) {
   EXPECT_TRUE(out.metadata().sliceSpacing->regular);
   EXPECT_FALSE(out.metadata().sliceSpacing->resampled);
   EXPECT_TRUE(out.metadata().notes.empty());
+}
+
+// vtk-dicom without a usable ImageOrientationPatient stacks slices 1 mm apart from the
+// origin: the positions place them, with a note, the pixels untouched.
+TEST(SlicePlacement, ReaderMatrixThatDisagreesWithThePositionsIsReplaced) {
+  std::vector<glm::dvec3> p;
+  for (int k = 0; k < 4; ++k) p.push_back({-10.0, 4.0, 30.0 + 1.5 * k});
+  mvw::Volume s = stackOf(3, 2, p, {1, 0, 0}, {0, 1, 0}, 0.7, 0.8, mvw::ScalarType::Int16);
+  glm::dmat4 w = s.worldFromIndex();
+  w[2] = glm::dvec4(0, 0, 1, 0);
+  w[3] = glm::dvec4(0, 0, 0, 1);
+  s.setWorldFromIndex(w);
+  for (int k = 0; k < 4; ++k) s.setValue(1, 1, k, 0, 100 + k);
+  const std::vector<std::byte> before(s.data(), s.data() + s.byteSize());
+  const mvw::Volume out = placeSlices(s, p, 0.0, kNoLimit, "stack");
+  EXPECT_EQ(out.dimensions(), glm::ivec3(3, 2, 4));
+  EXPECT_EQ(std::memcmp(out.data(), before.data(), before.size()), 0);
+  for (int k = 0; k < 4; ++k)
+    EXPECT_LT(glm::length(out.worldFromIndexPoint({0, 0, k}) - p[static_cast<std::size_t>(k)]),
+              1e-9);
+  EXPECT_TRUE(hasNote(out, "slices placed by their positions, 1.500 mm apart"));
 }
 
 TEST(SlicePlacement, MissingSliceIsInterpolatedAndTheOthersKeptExactly) {

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -499,6 +500,40 @@ Volume spaceUnplacedSlices(Volume volume, vtkDICOMMetaData* meta) {
   return volume;
 }
 
+// vtk-dicom keeps an integer output type when the slope and intercept are whole numbers, and
+// clips what does not fit: a RescaleSlope of 1e6 on 12-bit data read as -32768 .. 32767
+// without a word. Where a file's slope (other than 1) can take its stored values (by
+// BitsStored and PixelRepresentation) beyond the output type, the series is refused.
+void checkRescaleFits(vtkDICOMMetaData* meta, ScalarType type, const fs::path& path) {
+  if (!isInteger(type)) return;  // floating point holds any rescale
+  const auto [lo, hi] = dispatchScalar(type, [](auto zero) {
+    using T = decltype(zero);
+    return std::pair<double, double>(static_cast<double>(std::numeric_limits<T>::lowest()),
+                                     static_cast<double>(std::numeric_limits<T>::max()));
+  });
+  for (int f = 0; f < meta->GetNumberOfInstances(); ++f) {
+    const vtkDICOMValue& s = meta->Get(f, DC::RescaleSlope);
+    const double slope = s.IsValid() ? s.AsDouble() : 1.0;
+    if (!std::isfinite(slope) || slope == 0.0 || slope == 1.0) continue;
+    const double intercept = meta->Get(f, DC::RescaleIntercept).AsDouble();
+    int bits = meta->Get(f, DC::BitsStored).AsInt();
+    if (bits < 1 || bits > 32) bits = meta->Get(f, DC::BitsAllocated).AsInt();
+    if (bits < 1 || bits > 32) continue;
+    const bool isSigned = meta->Get(f, DC::PixelRepresentation).AsInt() == 1;
+    const double storedMin = isSigned ? -std::ldexp(1.0, bits - 1) : 0.0;
+    const double storedMax =
+        isSigned ? std::ldexp(1.0, bits - 1) - 1.0 : std::ldexp(1.0, bits) - 1.0;
+    const double a = slope * storedMin + intercept, b = slope * storedMax + intercept;
+    if (std::min(a, b) < lo - 0.5 || std::max(a, b) > hi + 0.5)
+      throw InputError(path, "RescaleSlope " + shortNumber(slope) + " and RescaleIntercept " +
+                                 shortNumber(intercept) + " take its " + std::to_string(bits) +
+                                 "-bit values to " + shortNumber(std::min(a, b)) + " .. " +
+                                 shortNumber(std::max(a, b)) + ", beyond the " +
+                                 std::string(scalarName(type)) +
+                                 " the DICOM reader returns: they would be clipped");
+  }
+}
+
 bool isMosaic(vtkDICOMMetaData* meta) {
   const vtkDICOMValue& type = meta->Get(0, DC::ImageType);
   for (unsigned int i = 0; i < type.GetNumberOfValues(); ++i)
@@ -668,6 +703,7 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
         ": in-plane voxel size " + size + " assumed");
   }
   const vtkDICOMValue& slope = meta->Get(0, 0, DC::RescaleSlope);
+  checkRescaleFits(meta, volume.scalarType(), path);
   if (slope.IsValid() && !(std::isfinite(slope.GetDouble(0)) && slope.GetDouble(0) != 0.0))
     md.notes.push_back("RescaleSlope '" + slope.AsString() +
                        "' is not a usable factor: the stored values were not rescaled by it");

@@ -15,9 +15,13 @@ std::mutex gMutex;
 std::vector<std::string> gErrors;
 
 std::string stripVtkPrefix(std::string text) {
-  // "ERROR: In file.cxx, line 12\nvtkClass (0x55d...): message\n\n" -> "message"
-  if (auto p = text.find("(0x"); p != std::string::npos)
-    if (auto q = text.find("): ", p); q != std::string::npos) text = text.substr(q + 3);
+  // "ERROR: In file.cxx, line 12\nvtkClass (0x55d...): message\n\n" -> "message"; a reader
+  // passing on its parser's message nests one such prefix in another, so all of them go.
+  for (auto p = text.find("(0x"); p != std::string::npos; p = text.find("(0x")) {
+    const auto q = text.find("): ", p);
+    if (q == std::string::npos) break;
+    text = text.substr(q + 3);
+  }
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   for (auto& c : text)
     if (c == '\n') c = ' ';
