@@ -1,5 +1,8 @@
 #include "InfoCommand.h"
 
+#include <cerrno>
+#include <cstdlib>
+
 #include <iostream>
 #include <memory>
 #include <string>
@@ -85,7 +88,19 @@ void addInfoCommand(CLI::App& app) {
          "Refuse a volume larger than this in memory, checked on the header before anything is "
          "allocated (e.g. 512M, 4G; default: a quarter of physical RAM)")
       ->transform(CLI::AsSizeValue(false))
-      ->check(positive());
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            // After the transform: a byte count. 1 MiB .. 1 PiB; beyond 2^64 the text is no
+            // longer a number CLI11 could convert.
+            errno = 0;
+            char* end = nullptr;
+            const unsigned long long bytes = std::strtoull(text.c_str(), &end, 10);
+            if (errno != 0 || end == text.c_str() || *end != '\0' || bytes < (1ull << 20) ||
+                bytes > (1ull << 50))
+              return std::string("must be a size from 1M to 1P (e.g. 512M, 4G)");
+            return std::string();
+          },
+          "SIZE"));
   cmd->callback([opt] { runInfo(*opt); });
 }
 

@@ -184,8 +184,12 @@ void runStats(const StatsOptions& opt) {
     placementNote = placed.note;
     bool found = false;
     std::string known;
+    std::size_t listed = 0;
     for (const auto& l : placed.labels) {
-      known += (known.empty() ? "" : ", ") + std::to_string(l.number);
+      // The first 20 and the last (a CT given as labels has thousands of values).
+      if (listed < 20 || &l == &placed.labels.back())
+        known += (known.empty() ? "" : listed >= 20 ? ", ... " : ", ") + std::to_string(l.number);
+      ++listed;
       if (opt.label != 0 && l.number != opt.label) continue;
       found = true;
       if (l.voxels.empty())
@@ -195,7 +199,8 @@ void runStats(const StatsOptions& opt) {
                       placed.gridsCoincide});
     }
     if (!found)
-      throw InputError(file, "no label " + std::to_string(opt.label) + " (labels: " + known + ")");
+      throw InputError(file, "no label " + std::to_string(opt.label) + " (" +
+                                 std::to_string(placed.labels.size()) + " labels: " + known + ")");
   }
 
   // A PET left in Bq/ml says why (a threshold of 2.5 would otherwise be read as SUV 2.5).
