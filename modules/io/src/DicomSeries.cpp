@@ -749,12 +749,12 @@ Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
     // A DICOMDIR (Media Storage Directory, or the name) indexes the images of a medium.
     if (meta->Get(DC::MediaStorageSOPClassUID).AsString() == "1.2.840.10008.1.3.10" ||
         path.filename() == "DICOMDIR")
-      throw InputError(path,
-                       "is a DICOMDIR, the index of a DICOM medium, not an image: give its "
-                       "folder (" +
-                           (path.parent_path().empty() ? std::string(".")
-                                                       : path.parent_path().string()) +
-                           ") to read the series it lists");
+      throw InputError(
+          path,
+          "is a DICOMDIR, the index of a DICOM medium, not an image: give its "
+          "folder (" +
+              (path.parent_path().empty() ? std::string(".") : path.parent_path().string()) +
+              ") to read the series it lists");
     const std::string modality = meta->Get(DC::Modality).AsString();
     throw InputError(path, "no pixel data: " +
                                (modality.empty() ? std::string("this DICOM object")
