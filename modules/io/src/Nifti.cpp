@@ -306,6 +306,9 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   }
   glm::dmat4 rasFromData(1.0);
   auto& notes = volume.metadata().notes;
+  if (const int code = header->GetXYZTUnits() & 7; code >= 4)
+    notes.push_back("xyzt_units spatial code " + std::to_string(code) +
+                    " is no unit (1 metre, 2 mm, 3 micron): millimetres assumed");
   // Beyond time (dim[4]): a 5-D image (vectors, tensors, several statistics per voxel) or
   // more. Its values become frames like time points, said so.
   if (facts.dim[5] > 1 || facts.dim[6] > 1 || facts.dim[7] > 1) {
