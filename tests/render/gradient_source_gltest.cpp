@@ -100,6 +100,27 @@ TEST(GradientSource, EverySourceLightsASphereAsLambertSays) {
   }
 }
 
+// The same sphere on a sheared grid (the slice axis tilted 25 degrees toward +y, as a
+// gantry-tilted CT kept in its matrix): positions follow the matrix, and so must the normals.
+// Taking the direction cosines as if the axes were perpendicular tilts every normal.
+TEST(GradientSource, AShearedGridLightsTheSphereAsLambertSays) {
+  const double R = 20.0, tilt = 25.0 * 3.14159265358979323846 / 180.0;
+  glm::dmat4 w(1.0);
+  w[1] = glm::dvec4(0.0, 1.0, 0.0, 0.0);
+  w[2] = glm::dvec4(0.0, 1.2 * std::sin(tilt), 1.2 * std::cos(tilt), 0.0);
+  w[3] = glm::dvec4(glm::dvec3(-32.0, -32.0, 0.0) - 20.0 * glm::dvec3(w[2]), 1.0);
+  const Volume v = makeVolume({65, 65, 41}, w,
+                              [R](glm::dvec3 p) { return static_cast<float>(R - glm::length(p)); });
+  auto ctx = createHeadlessContext({16, 16});
+  for (GradientSource gradient : {GradientSource::Texture, GradientSource::OnTheFly}) {
+    VolumeRenderer renderer(*ctx, v, gradient);
+    const double worst = worstLambertError(renderer, R, glm::dvec3(0.0));
+    std::cout << "sheared grid, gradient from the " << toString(gradient)
+              << ": worst Lambert error " << worst << " grey levels\n";
+    EXPECT_LT(worst, 3.0) << toString(gradient);
+  }
+}
+
 // Shaded composite of the int16 sphere: with the packed texture its samples take value and
 // gradient from one fetch (the intensity's texel in A); on the fly, from the R16 intensity.
 // The same values and nearly the same normals must give the same image.

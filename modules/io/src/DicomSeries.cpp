@@ -286,7 +286,7 @@ void checkSliceGeometry(vtkDICOMReader* reader, vtkStringArray* files, const fs:
       firstNormal = glm::normalize(normal);
       firstFile = f;
     } else if (glm::dot(glm::normalize(normal), *firstNormal) <
-               std::cos(1.0 * 3.14159265358979 / 180)) {
+               std::cos(2.0 * 3.14159265358979 / 180)) {  // twice the grouping's 1 degree
       throw InputError(path, "its slices lie in different orientations (" +
                                  fileName(files, firstFile) + " and " + fileName(files, f) +
                                  ": ImageOrientationPatient '" +
@@ -308,7 +308,7 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
                                vtkSmartPointer<vtkStringArray>& kept) {
   vtkDICOMMetaData* meta = reader->GetMetaData();
   const int n = static_cast<int>(files->GetNumberOfValues());
-  if (n < 3 || meta->GetNumberOfInstances() != n) return "";
+  if (n < 2 || meta->GetNumberOfInstances() != n) return "";
   for (int f = 0; f < n; ++f)
     if (meta->Get(f, DC::NumberOfFrames).AsInt() > 1) return "";
   // Orientation groups: row and column directions within 1 degree of the group's first file.
@@ -316,7 +316,7 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
   std::vector<std::pair<glm::dvec3, glm::dvec3>> groupAxes;
   std::vector<int> group(static_cast<std::size_t>(n), -1), groupSize;
   std::vector<bool> positioned(static_cast<std::size_t>(n), false);
-  int anyPositioned = 0;
+  int anyPositioned = 0, oriented = 0, parallel = -1;
   for (int f = 0; f < n; ++f) {
     positioned[static_cast<std::size_t>(f)] = numbersOk(meta->Get(f, DC::ImagePositionPatient), 3);
     anyPositioned += positioned[static_cast<std::size_t>(f)];
@@ -328,13 +328,13 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
       column[static_cast<int>(a)] = iop.GetDouble(a + 3);
     }
     if (!(glm::length(row) > 0.5 && glm::length(column) > 0.5)) continue;
-    // Two directions along one line give no slice normal: vtk-dicom would read every slice
-    // at one position, as frames of a single slice.
-    if (!(glm::length(glm::cross(glm::normalize(row), glm::normalize(column))) > 0.5))
-      throw InputError(fs::path(files->GetValue(f).c_str()),
-                       "ImageOrientationPatient '" + iop.AsString() +
-                           "' gives no slice normal (its row and column directions are "
-                           "parallel): the slices cannot be stacked");
+    // Two directions along one line give no slice normal: such a file has no usable
+    // orientation (vtk-dicom would read every slice at one position).
+    if (!(glm::length(glm::cross(glm::normalize(row), glm::normalize(column))) > 0.5)) {
+      if (parallel < 0) parallel = f;
+      continue;
+    }
+    ++oriented;
     row = glm::normalize(row);
     column = glm::normalize(column);
     int g = 0;
@@ -369,6 +369,19 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
                                                                     return a.second < b.second;
                                                                   }) -
                                                  spacings.begin());
+  if (groupSize.empty() && parallel >= 0)
+    throw InputError(fs::path(files->GetValue(parallel).c_str()),
+                     "ImageOrientationPatient '" +
+                         meta->Get(parallel, DC::ImageOrientationPatient).AsString() +
+                         "' gives no slice normal (its row and column directions are "
+                         "parallel): the slices cannot be stacked");
+  // A file lacking what the others have (orientation, position, pixel size) is stray only
+  // when the files that have it are the majority: ten files without a position beside two
+  // with one are not left out.
+  int spaced = 0;
+  for (int k : spacingOf) spaced += k >= 0;
+  const bool needOrientation = 2 * oriented > n, needPosition = 2 * anyPositioned > n,
+             needSpacing = 2 * spaced > n;
   const int main = groupSize.empty()
                        ? -1
                        : static_cast<int>(std::max_element(groupSize.begin(), groupSize.end()) -
@@ -379,9 +392,10 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
   for (int f = 0; f < n; ++f) {
     const std::size_t i = static_cast<std::size_t>(f);
     // Where the others have an orientation, one without a usable one is stray too.
-    const bool strayOrientation = main >= 0 && group[i] != main;
-    const bool strayPosition = anyPositioned > 0 && !positioned[i];
-    const bool straySpacing = mainSpacing >= 0 && spacingOf[i] != mainSpacing;
+    const bool strayOrientation = main >= 0 && (group[i] >= 0 ? group[i] != main : needOrientation);
+    const bool strayPosition = needPosition && !positioned[i];
+    const bool straySpacing =
+        mainSpacing >= 0 && (spacingOf[i] >= 0 ? spacingOf[i] != mainSpacing : needSpacing);
     if (!strayOrientation && !strayPosition && !straySpacing) {
       kept->InsertNextValue(files->GetValue(f));
       continue;
@@ -396,7 +410,7 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
     else if (listed == 5)
       list += ", ...";
   }
-  if (left == 0 || kept->GetNumberOfValues() < 2) return "";
+  if (left == 0 || kept->GetNumberOfValues() < 1) return "";
   std::string note = std::to_string(left) + " of " + std::to_string(n) +
                      " files of the series left out as not slices of its stack:";
   if (!otherOrientation.empty()) note += " another orientation, or none (" + otherOrientation + ")";
@@ -423,19 +437,24 @@ std::string chooseLargestStack(vtkDICOMReader* reader, vtkStringArray* files) {
   vtkNew<vtkDICOMSliceSorter> sorter;
   sorter->SetMetaData(reader->GetMetaData());
   sorter->TimeAsVectorOn();
+  // Ranked by slices (an enhanced multi-frame file holds several stacks in one file).
   std::vector<std::vector<int>> stackFiles;
+  std::vector<vtkIdType> stackSlices;
   std::size_t best = 0;
   for (vtkIdType s = 0; s < ids->GetNumberOfValues(); ++s) {
     sorter->SetDesiredStackID(ids->GetValue(s).c_str());
     sorter->Update();
     std::vector<int> in;
-    if (vtkIntArray* fi = sorter->GetFileIndexArray())
-      for (vtkIdType t = 0; t < fi->GetNumberOfTuples(); ++t)
-        in.push_back(static_cast<int>(fi->GetComponent(t, 0)));
+    vtkIdType slices = 0;
+    if (vtkIntArray* fi = sorter->GetFileIndexArray()) {
+      slices = fi->GetNumberOfTuples();
+      for (vtkIdType t = 0; t < slices; ++t) in.push_back(static_cast<int>(fi->GetComponent(t, 0)));
+    }
     std::sort(in.begin(), in.end());
     in.erase(std::unique(in.begin(), in.end()), in.end());
     stackFiles.push_back(std::move(in));
-    if (stackFiles.back().size() > stackFiles[best].size()) best = stackFiles.size() - 1;
+    stackSlices.push_back(slices);
+    if (stackSlices.back() > stackSlices[best]) best = stackSlices.size() - 1;
   }
   reader->SetDesiredStackID(ids->GetValue(static_cast<vtkIdType>(best)).c_str());
   reader->UpdateInformation();
@@ -452,9 +471,10 @@ std::string chooseLargestStack(vtkDICOMReader* reader, vtkStringArray* files) {
   return "the series holds " + std::to_string(stackFiles.size()) +
          " stacks of slices that do not line up (orientation, position or a second location "
          "per slice): the largest, " +
+         std::to_string(stackSlices[best]) + " slices from " +
          std::to_string(stackFiles[best].size()) + " of " +
          std::to_string(files->GetNumberOfValues()) + " files, was read" +
-         (left.empty() ? std::string() : "; left out: " + left);
+         (left.empty() ? std::string() : "; files left out: " + left);
 }
 
 std::vector<glm::dvec3> slicePositions(vtkDICOMReader* reader) {
@@ -502,36 +522,66 @@ Volume spaceUnplacedSlices(Volume volume, vtkDICOMMetaData* meta) {
 
 // vtk-dicom keeps an integer output type when the slope and intercept are whole numbers, and
 // clips what does not fit: a RescaleSlope of 1e6 on 12-bit data read as -32768 .. 32767
-// without a word. Where a file's slope (other than 1) can take its stored values (by
-// BitsStored and PixelRepresentation) beyond the output type, the series is refused.
-void checkRescaleFits(vtkDICOMMetaData* meta, ScalarType type, const fs::path& path) {
-  if (!isInteger(type)) return;  // floating point holds any rescale
-  const auto [lo, hi] = dispatchScalar(type, [](auto zero) {
+// without a word. True when a slice's slope (other than 1) could take its stored values (by
+// BitsStored and PixelRepresentation) beyond the integer type vtk-dicom announces; the series
+// is then read as stored and rescaled here, to float32 (rescaleSlices).
+bool rescaleMayClip(vtkDICOMMetaData* meta, vtkIntArray* fileIndex, vtkIntArray* frameIndex,
+                    int vtkType) {
+  if (vtkType == VTK_FLOAT || vtkType == VTK_DOUBLE || !fileIndex || !frameIndex) return false;
+  const double lo = vtkDataArray::GetDataTypeMin(vtkType),
+               hi = vtkDataArray::GetDataTypeMax(vtkType);
+  for (vtkIdType t = 0; t < fileIndex->GetNumberOfTuples(); ++t)
+    for (int c = 0; c < fileIndex->GetNumberOfComponents(); ++c) {
+      const int f = fileIndex->GetComponent(t, c), frame = frameIndex->GetComponent(t, c);
+      const vtkDICOMValue& s = meta->Get(f, frame, DC::RescaleSlope);
+      const double slope = s.IsValid() ? s.AsDouble() : 1.0;
+      if (!std::isfinite(slope) || slope == 0.0 || slope == 1.0) continue;
+      const double intercept = meta->Get(f, frame, DC::RescaleIntercept).AsDouble();
+      int bits = meta->Get(f, DC::BitsStored).AsInt();
+      if (bits < 1 || bits > 32) bits = meta->Get(f, DC::BitsAllocated).AsInt();
+      if (bits < 1 || bits > 32) continue;
+      const bool isSigned = meta->Get(f, DC::PixelRepresentation).AsInt() == 1;
+      const double storedMin = isSigned ? -std::ldexp(1.0, bits - 1) : 0.0;
+      const double storedMax =
+          isSigned ? std::ldexp(1.0, bits - 1) - 1.0 : std::ldexp(1.0, bits) - 1.0;
+      const double a = slope * storedMin + intercept, b = slope * storedMax + intercept;
+      if (std::min(a, b) < lo - 0.5 || std::max(a, b) > hi + 0.5) return true;
+    }
+  return false;
+}
+
+// The stored values of `volume` (read with AutoRescaleOff) times each slice's own slope plus
+// its intercept, as float32. Slice k, component c comes from the file and frame the reader's
+// index arrays name for slice k and time point c / samplesPerPixel.
+Volume rescaleSlices(const Volume& volume, vtkDICOMMetaData* meta, vtkIntArray* fileIndex,
+                     vtkIntArray* frameIndex, int samplesPerPixel) {
+  const glm::ivec3 d = volume.dimensions();
+  const int comps = volume.components();
+  Volume out(d, comps, ScalarType::Float32, volume.worldFromIndex());
+  out.metadata() = volume.metadata();
+  const std::size_t plane = static_cast<std::size_t>(d.x) * d.y;
+  float* dst = out.dataAs<float>();
+  dispatchScalar(volume.scalarType(), [&](auto zero) {
     using T = decltype(zero);
-    return std::pair<double, double>(static_cast<double>(std::numeric_limits<T>::lowest()),
-                                     static_cast<double>(std::numeric_limits<T>::max()));
+    const T* src = volume.dataAs<T>();
+    for (int k = 0; k < d.z; ++k)
+      for (int c = 0; c < comps; ++c) {
+        const int time =
+            std::min(c / std::max(samplesPerPixel, 1), fileIndex->GetNumberOfComponents() - 1);
+        const int f = fileIndex->GetComponent(k, time), frame = frameIndex->GetComponent(k, time);
+        const vtkDICOMValue& s = meta->Get(f, frame, DC::RescaleSlope);
+        double slope = s.IsValid() ? s.AsDouble() : 1.0;
+        if (!std::isfinite(slope) || slope == 0.0) slope = 1.0;  // noted by readSeries
+        double intercept = meta->Get(f, frame, DC::RescaleIntercept).AsDouble();
+        if (!std::isfinite(intercept)) intercept = 0.0;
+        const std::size_t base = static_cast<std::size_t>(k) * plane * comps + c;
+        for (std::size_t p = 0; p < plane; ++p)
+          dst[base + p * comps] =
+              static_cast<float>(static_cast<double>(src[base + p * comps]) * slope + intercept);
+      }
+    return 0;
   });
-  for (int f = 0; f < meta->GetNumberOfInstances(); ++f) {
-    const vtkDICOMValue& s = meta->Get(f, DC::RescaleSlope);
-    const double slope = s.IsValid() ? s.AsDouble() : 1.0;
-    if (!std::isfinite(slope) || slope == 0.0 || slope == 1.0) continue;
-    const double intercept = meta->Get(f, DC::RescaleIntercept).AsDouble();
-    int bits = meta->Get(f, DC::BitsStored).AsInt();
-    if (bits < 1 || bits > 32) bits = meta->Get(f, DC::BitsAllocated).AsInt();
-    if (bits < 1 || bits > 32) continue;
-    const bool isSigned = meta->Get(f, DC::PixelRepresentation).AsInt() == 1;
-    const double storedMin = isSigned ? -std::ldexp(1.0, bits - 1) : 0.0;
-    const double storedMax =
-        isSigned ? std::ldexp(1.0, bits - 1) - 1.0 : std::ldexp(1.0, bits) - 1.0;
-    const double a = slope * storedMin + intercept, b = slope * storedMax + intercept;
-    if (std::min(a, b) < lo - 0.5 || std::max(a, b) > hi + 0.5)
-      throw InputError(path, "RescaleSlope " + shortNumber(slope) + " and RescaleIntercept " +
-                                 shortNumber(intercept) + " take its " + std::to_string(bits) +
-                                 "-bit values to " + shortNumber(std::min(a, b)) + " .. " +
-                                 shortNumber(std::max(a, b)) + ", beyond the " +
-                                 std::string(scalarName(type)) +
-                                 " the DICOM reader returns: they would be clipped");
-  }
+  return out;
 }
 
 bool isMosaic(vtkDICOMMetaData* meta) {
@@ -590,7 +640,7 @@ Volume stackFramesAsSlices(const Volume& in, int frames, int spp, vtkDICOMMetaDa
 
 Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& ref,
                   const ReadOptions& options) {
-  const fs::path first(files->GetValue(0).c_str());
+  fs::path first(files->GetValue(0).c_str());
   DecoderGuard guard(path);
   VtkMessageScope messages;
   vtkNew<vtkDICOMReader> reader;
@@ -606,6 +656,7 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   const std::string strayNote = leaveOutStrayFiles(reader, files, kept);
   if (!strayNote.empty()) {
     files = kept;
+    first = fs::path(files->GetValue(0).c_str());
     reader->SetFileNames(files);
     reader->UpdateInformation();
     if (!messages.firstError().empty())
@@ -620,10 +671,14 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   const glm::ivec3 dims{extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
                         extent[5] - extent[4] + 1};
   const int components = std::max(1, vtkImageData::GetNumberOfScalarComponents(info));
-  const int typeSize = vtkDataArray::GetDataTypeSize(vtkImageData::GetScalarType(info));
+  const int vtkType = vtkImageData::GetScalarType(info);
+  const bool rescaleHere = rescaleMayClip(reader->GetMetaData(), reader->GetFileIndexArray(),
+                                          reader->GetFrameIndexArray(), vtkType);
+  const int typeSize = rescaleHere ? 4 : vtkDataArray::GetDataTypeSize(vtkType);
   checkedVolumeBytes(first, dims, components, static_cast<std::size_t>(std::max(typeSize, 1)),
                      options.maxBytes);
 
+  if (rescaleHere) reader->AutoRescaleOff();  // the stored values; rescaled below, to float32
   reader->Update();
   if (!messages.firstError().empty() || reader->GetErrorCode() != 0) {
     std::string why = messages.firstError();
@@ -632,6 +687,10 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   }
   vtkImageData* image = reader->GetOutput();
   Volume volume = volumeFromImage(image, first);
+  if (rescaleHere)
+    volume = rescaleSlices(volume, reader->GetMetaData(), reader->GetFileIndexArray(),
+                           reader->GetFrameIndexArray(),
+                           std::max(1, reader->GetMetaData()->Get(0, DC::SamplesPerPixel).AsInt()));
   double origin[3], spacing[3];
   image->GetOrigin(origin);
   image->GetSpacing(spacing);
@@ -703,7 +762,10 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
         ": in-plane voxel size " + size + " assumed");
   }
   const vtkDICOMValue& slope = meta->Get(0, 0, DC::RescaleSlope);
-  checkRescaleFits(meta, volume.scalarType(), path);
+  if (rescaleHere)
+    md.notes.push_back(
+        "RescaleSlope and RescaleIntercept applied here, to float32: on the "
+        "stored values' range they could leave the reader's integer type");
   if (slope.IsValid() && !(std::isfinite(slope.GetDouble(0)) && slope.GetDouble(0) != 0.0))
     md.notes.push_back("RescaleSlope '" + slope.AsString() +
                        "' is not a usable factor: the stored values were not rescaled by it");

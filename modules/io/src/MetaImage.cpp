@@ -56,7 +56,10 @@ std::vector<double> numbers(const fs::path& path, const std::string& key, const 
   return v;
 }
 
-bool isTrue(const std::string& v) { return v == "True" || v == "true" || v == "1"; }
+// MetaIO's own rule: a value starting with T, t or 1 is true ("True", "TRUE", "T", "1").
+bool isTrue(const std::string& v) {
+  return !v.empty() && (v[0] == 'T' || v[0] == 't' || v[0] == '1');
+}
 
 }  // namespace
 

@@ -6,10 +6,13 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <numbers>
+#include <string>
 #include <type_traits>
 
 #include <unistd.h>
 
+#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -135,9 +138,31 @@ void refuseMissing(const fs::path& path) {
   if (!fs::exists(path, ec)) requireReadable(path);  // always a reason: says which
 }
 
+// Voxel axes that are not perpendicular (a NIfTI sform or MetaImage matrix with shear, e.g. a
+// gantry-tilted scan stored without resampling) are kept as given, with a note: rendering,
+// resampling and shading normals (render::VolumeTextures) follow the whole matrix, but a
+// NIfTI qform (written by `mvw convert` beside the sform) cannot hold a shear.
+void noteShear(Volume& volume) {
+  const glm::dmat4& m = volume.worldFromIndex();
+  std::string angles;
+  for (int a = 0; a < 3; ++a)
+    for (int b = a + 1; b < 3; ++b) {
+      const glm::dvec3 u = glm::normalize(glm::dvec3(m[a])), v = glm::normalize(glm::dvec3(m[b]));
+      const double degrees =
+          std::acos(std::clamp(glm::dot(u, v), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+      if (std::abs(degrees - 90.0) > 0.01)
+        angles += std::string(angles.empty() ? "" : ", ") + "ijk"[a] + "-" + "ijk"[b] + " " +
+                  shortNumber(degrees, 4) + " degrees";
+    }
+  if (!angles.empty())
+    volume.metadata().notes.push_back("its voxel axes are not perpendicular (" + angles +
+                                      "): a sheared grid, kept as given");
+}
+
 std::vector<Volume> finished(std::vector<Volume> volumes, const fs::path& path) {
   for (auto& v : volumes) {
     checkGeometry(v, path);
+    noteShear(v);
     clampInfinities(v, path);
   }
   return volumes;

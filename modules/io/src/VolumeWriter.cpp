@@ -53,11 +53,19 @@ void checkVolumeOutput(const fs::path& output, const std::vector<fs::path>& inpu
     throw InputError(output, "its folder " + parent.string() + " does not exist");
   if (::access(parent.c_str(), W_OK | X_OK) != 0)
     throw InputError(output, "its folder " + parent.string() + " is not writable");
-  for (const fs::path& input : inputs)
-    if (fs::exists(output, ec) && fs::exists(input, ec) && fs::equivalent(output, input, ec))
+  // The file is written beside and renamed onto the output's name: that replaces what the
+  // name holds (a link there is replaced, not followed). The input is lost when its own path,
+  // links resolved, is that name; another hard link to it, or a link at the output's name,
+  // leaves it whole.
+  const fs::path entry = fs::weakly_canonical(parent, ec) / output.filename();
+  for (const fs::path& input : inputs) {
+    std::error_code ic;
+    const fs::path target = fs::weakly_canonical(input, ic);
+    if (!ec && !ic && fs::exists(target, ic) && target == entry)
       throw InputError(output, "is the input " + input.string() +
                                    ": writing it would destroy what is being read (choose "
                                    "another output name)");
+  }
 }
 
 }  // namespace mvw::io

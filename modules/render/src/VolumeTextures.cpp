@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -178,13 +179,29 @@ int largestTextureSide() {
   return std::min<int>(max3d, static_cast<int>(n));
 }
 
+// The matrix that turns derivatives per mm along the voxel axes (d/di / spacing_i) into the
+// world gradient: the direction cosines when the axes are perpendicular; for a sheared grid
+// (a gantry tilt kept in the matrix) the inverse transpose of the index-to-world matrix times
+// the spacings, since a derivative along one skewed axis also moves along the others. The
+// perpendicular case keeps the direction cosines bit for bit.
+glm::dmat3 gradientAxes(const Volume& volume) {
+  const glm::dmat3 d = volume.direction();
+  const double skew = std::max({std::abs(glm::dot(d[0], d[1])), std::abs(glm::dot(d[0], d[2])),
+                                std::abs(glm::dot(d[1], d[2]))});
+  if (skew < 1e-9) return d;
+  const glm::dmat3 linear(volume.worldFromIndex());
+  glm::dmat3 spacing(0.0);
+  for (int a = 0; a < 3; ++a) spacing[a][a] = volume.spacing()[a];
+  return glm::transpose(glm::inverse(linear)) * spacing;
+}
+
 }  // namespace
 
 VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
     : dims_(volume.dimensions()),
       worldFromIndex_(volume.worldFromIndex()),
       spacing_(volume.spacing()),
-      direction_(volume.direction()),
+      direction_(gradientAxes(volume)),
       referenceStepMm_(volume.smallestSpacing()) {
   const int max3d = largestTextureSide();
   // Too large for this GL: bad input for this machine, named by the volume's file.

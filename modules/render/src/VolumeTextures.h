@@ -74,7 +74,7 @@ class VolumeTextures {
   void uploadSlice(GLenum format, GLenum type, const void* texels, int k) const;
   glm::dmat4 worldFromIndex_;
   glm::dvec3 spacing_;
-  glm::dmat3 direction_;
+  glm::dmat3 direction_;  // gradient axes: see gradientAxes (the direction cosines unless sheared)
   double referenceStepMm_;
   std::pair<double, double> range_;
   GLenum internalFormat_ = 0;

@@ -28,17 +28,44 @@ Volume readSource(const config::VolumeSource& source, io::ReadOptions options) {
   return volume;
 }
 
+namespace {
+
+// The share of voxels (component 0, NaN skipped) that a CT in HU has in quantity and an MR
+// does not: air (-1050 .. -950 HU, where -1000 and the -1024 floor fall) and the scanners'
+// padding values outside the reconstruction circle (-2048, -2000, -3024), all whole numbers.
+// A field map, a phase or velocity image or a difference image reaches below -900 too, but
+// spreads its values instead of piling a tenth of the volume at air.
+double airFraction(const Volume& v) {
+  return dispatchScalar(v.scalarType(), [&](auto zero) {
+    using T = decltype(zero);
+    const T* p = v.dataAs<T>();
+    const std::size_t n = v.voxelCount(), stride = static_cast<std::size_t>(v.components());
+    std::size_t air = 0, counted = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = static_cast<double>(p[i * stride]);
+      if (std::isnan(x)) continue;
+      ++counted;
+      if (x != std::floor(x)) continue;
+      if ((x >= -1050.0 && x <= -950.0) || x == -2048.0 || x == -2000.0 || x == -3024.0) ++air;
+    }
+    return counted == 0 ? 0.0 : static_cast<double>(air) / static_cast<double>(counted);
+  });
+}
+
+}  // namespace
+
 Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions options) {
   Volume anatomy = readSource(source, options);
   VolumeMetadata& m = anatomy.metadata();
   if (m.modality.empty() && m.unit.empty()) {
     const auto [lo, hi] = anatomy.valueRange();
-    if (lo >= -3100.0 && lo <= -900.0 && hi > 0.0) {
+    if (lo >= -3100.0 && lo <= -900.0 && hi > 0.0 && airFraction(anatomy) >= 0.1) {
       m.unit = "HU";
       m.notes.push_back("no modality or unit is stated; its values reach down to " +
                         shortNumber(lo) +
-                        ", air in Hounsfield units: read as a CT in HU (CT preset, isosurface "
-                        "and window)");
+                        " and a tenth or more of its voxels lie at air in Hounsfield units "
+                        "(-1000, or a scanner's padding): read as a CT in HU (CT preset, "
+                        "isosurface and window)");
     }
   }
   return anatomy;

@@ -73,7 +73,10 @@ std::optional<std::string> pngStructureProblem(const fs::path& file) {
     const std::uint32_t expected = (std::uint32_t{stored[0]} << 24) |
                                    (std::uint32_t{stored[1]} << 16) |
                                    (std::uint32_t{stored[2]} << 8) | stored[3];
-    if (expected != static_cast<std::uint32_t>(crc))
+    // Critical chunks (upper-case first letter: IHDR, PLTE, IDAT, IEND) must be whole; an
+    // ancillary one with a bad CRC is dropped by libpng with a warning, as it is here.
+    const bool critical = type[0] >= 'A' && type[0] <= 'Z';
+    if (critical && expected != static_cast<std::uint32_t>(crc))
       return "its " + type + " chunk at byte " + std::to_string(offset) +
              " fails its CRC (the file is damaged)";
     if (type == "IEND") return std::nullopt;

@@ -12,10 +12,12 @@ namespace mvw::study {
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options = {});
 
 // The study's anatomical volume. One with neither modality nor unit (NIfTI and MetaImage carry
-// neither) whose lowest value lies between -3100 and -900, air in Hounsfield units (-1000, or a
-// scanner's padding: -1024, -2048, -3024), is read as a CT in HU, with a note: the CT preset,
-// isosurface and window then apply instead of the MR ones. Every command that reads a study's
-// anatomy reads it here.
+// neither) whose lowest value lies between -3100 and -900 and which has a tenth or more of its
+// voxels at air in Hounsfield units (whole numbers in -1050 .. -950, or a scanner's padding:
+// -2048, -2000, -3024) is read as a CT in HU, with a note: the CT preset, isosurface and
+// window then apply instead of the MR ones. (A field map, a phase or a difference image
+// reaches below -900 too, but does not pile its voxels at air.) Every command that reads a
+// study's anatomy reads it here.
 Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions options = {});
 
 // The study's functional volume, read, and refused when its kind is "labels" but it holds a
