@@ -10,9 +10,11 @@
 #include <cstring>
 #include <exception>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <vtkDICOMDictHash.h>
 #include <vtkDICOMDirectory.h>
@@ -222,8 +224,6 @@ void fillUnitAndSuv(Volume& volume, vtkDICOMMetaData* meta, const ReadOptions& o
   volume.metadata().notes.push_back(text);
 }
 
-// Each output slice's ImagePositionPatient (vtk-dicom maps output slice -> file and frame);
-// empty when any is missing.
 // A DS value of `count` numbers, each a whole decimal string and at most `limit` in size
 // ("nan", "1e999" and text are not: vtk-dicom would read them as 0 or inf; a position beyond
 // 1 km is no place in a scanner).
@@ -243,6 +243,26 @@ bool numbersOk(const vtkDICOMValue& value, unsigned int count, double limit = 1e
 
 std::string fileName(vtkStringArray* files, int index) {
   return fs::path(files->GetValue(index).c_str()).filename().string();
+}
+
+// The first five names, then "..." and how many there are.
+std::string listed(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size() && i < 5; ++i) text += (i ? ", " : "") + names[i];
+  if (names.size() > 5) text += ", ... (" + std::to_string(names.size()) + " files)";
+  return text;
+}
+
+// The row and column directions of an ImageOrientationPatient of six numbers, as stored (not
+// normalised); nullopt when it is not six numbers.
+std::optional<std::pair<glm::dvec3, glm::dvec3>> orientationAxes(const vtkDICOMValue& iop) {
+  if (!numbersOk(iop, 6)) return std::nullopt;
+  glm::dvec3 row, column;
+  for (unsigned int a = 0; a < 3; ++a) {
+    row[static_cast<int>(a)] = iop.GetDouble(a);
+    column[static_cast<int>(a)] = iop.GetDouble(a + 3);
+  }
+  return std::pair{row, column};
 }
 
 // Every slice the reader will stack: a position of three numbers when any slice has one, and
@@ -274,19 +294,15 @@ void checkSliceGeometry(vtkDICOMReader* reader, vtkStringArray* files, const fs:
                                  ", where the other slices of the series have one: its place in "
                                  "the volume is unknown");
     const vtkDICOMValue& iop = meta->Get(f, frame, DC::ImageOrientationPatient);
-    if (!numbersOk(iop, 6)) continue;  // said once for the series (below, in readSeries)
-    glm::dvec3 row, column;
-    for (unsigned int a = 0; a < 3; ++a) {
-      row[static_cast<int>(a)] = iop.GetDouble(a);
-      column[static_cast<int>(a)] = iop.GetDouble(a + 3);
-    }
-    const glm::dvec3 normal = glm::cross(row, column);
+    const auto axes = orientationAxes(iop);
+    if (!axes) continue;  // said once for the series (below, in readSeries)
+    const glm::dvec3 normal = glm::cross(axes->first, axes->second);
     if (!(glm::length(normal) > 0.5)) continue;
     if (!firstNormal) {
       firstNormal = glm::normalize(normal);
       firstFile = f;
     } else if (glm::dot(glm::normalize(normal), *firstNormal) <
-               std::cos(2.0 * 3.14159265358979 / 180)) {  // twice the grouping's 1 degree
+               std::cos(2.0 * std::numbers::pi / 180.0)) {  // twice the grouping's 1 degree
       throw InputError(path, "its slices lie in different orientations (" +
                                  fileName(files, firstFile) + " and " + fileName(files, f) +
                                  ": ImageOrientationPatient '" +
@@ -312,7 +328,7 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
   for (int f = 0; f < n; ++f)
     if (meta->Get(f, DC::NumberOfFrames).AsInt() > 1) return "";
   // Orientation groups: row and column directions within 1 degree of the group's first file.
-  const double cosTolerance = std::cos(1.0 * 3.14159265358979323846 / 180.0);
+  const double cosTolerance = std::cos(1.0 * std::numbers::pi / 180.0);
   std::vector<std::pair<glm::dvec3, glm::dvec3>> groupAxes;
   std::vector<int> group(static_cast<std::size_t>(n), -1), groupSize;
   std::vector<bool> positioned(static_cast<std::size_t>(n), false);
@@ -320,13 +336,9 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
   for (int f = 0; f < n; ++f) {
     positioned[static_cast<std::size_t>(f)] = numbersOk(meta->Get(f, DC::ImagePositionPatient), 3);
     anyPositioned += positioned[static_cast<std::size_t>(f)];
-    const vtkDICOMValue& iop = meta->Get(f, DC::ImageOrientationPatient);
-    if (!numbersOk(iop, 6)) continue;
-    glm::dvec3 row, column;
-    for (unsigned int a = 0; a < 3; ++a) {
-      row[static_cast<int>(a)] = iop.GetDouble(a);
-      column[static_cast<int>(a)] = iop.GetDouble(a + 3);
-    }
+    const auto axes = orientationAxes(meta->Get(f, DC::ImageOrientationPatient));
+    if (!axes) continue;
+    auto [row, column] = *axes;
     if (!(glm::length(row) > 0.5 && glm::length(column) > 0.5)) continue;
     // Two directions along one line give no slice normal: such a file has no usable
     // orientation (vtk-dicom would read every slice at one position).
@@ -386,7 +398,7 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
                        ? -1
                        : static_cast<int>(std::max_element(groupSize.begin(), groupSize.end()) -
                                           groupSize.begin());
-  std::string otherOrientation, noPosition, otherSpacing;
+  std::vector<std::string> otherOrientation, noPosition, otherSpacing;
   int left = 0;
   kept = vtkSmartPointer<vtkStringArray>::New();
   for (int f = 0; f < n; ++f) {
@@ -401,29 +413,26 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
       continue;
     }
     ++left;
-    std::string& list = strayOrientation ? otherOrientation
-                        : strayPosition  ? noPosition
-                                         : otherSpacing;
-    const int listed = static_cast<int>(std::count(list.begin(), list.end(), ',')) + !list.empty();
-    if (listed < 5)
-      list += (list.empty() ? "" : ", ") + fileName(files, f);
-    else if (listed == 5)
-      list += ", ...";
+    (strayOrientation ? otherOrientation
+     : strayPosition  ? noPosition
+                      : otherSpacing)
+        .push_back(fileName(files, f));
   }
   if (left == 0 || kept->GetNumberOfValues() < 1) return "";
   std::string note = std::to_string(left) + " of " + std::to_string(n) +
                      " files of the series left out as not slices of its stack:";
-  if (!otherOrientation.empty()) note += " another orientation, or none (" + otherOrientation + ")";
   std::string sep;
-  if (!otherOrientation.empty()) sep = ";";
-  if (!noPosition.empty()) {
-    note += sep + " no usable ImagePositionPatient (" + noPosition + ")";
+  auto reason = [&](const std::vector<std::string>& names, const std::string& why) {
+    if (names.empty()) return;
+    note += sep + " " + why + " (" + listed(names) + ")";
     sep = ";";
-  }
-  if (!otherSpacing.empty())
-    note += sep + " another PixelSpacing than the " + shortNumber(spacings[mainSpacing].first.x) +
-            " x " + shortNumber(spacings[mainSpacing].first.y) + " mm of the others, or none (" +
-            otherSpacing + ")";
+  };
+  reason(otherOrientation, "another orientation, or none");
+  reason(noPosition, "no usable ImagePositionPatient");
+  if (mainSpacing >= 0)
+    reason(otherSpacing,
+           "another PixelSpacing than the " + shortNumber(spacings[mainSpacing].first.x) + " x " +
+               shortNumber(spacings[mainSpacing].first.y) + " mm of the others, or none");
   return note;
 }
 
@@ -461,22 +470,20 @@ std::string chooseLargestStack(vtkDICOMReader* reader, vtkStringArray* files) {
   std::vector<bool> read(static_cast<std::size_t>(files->GetNumberOfValues()), false);
   for (int f : stackFiles[best])
     if (f >= 0 && f < static_cast<int>(read.size())) read[static_cast<std::size_t>(f)] = true;
-  std::string left;
-  int count = 0;
-  for (std::size_t f = 0; f < read.size(); ++f) {
-    if (read[f]) continue;
-    if (++count <= 5) left += (left.empty() ? "" : ", ") + fileName(files, static_cast<int>(f));
-  }
-  if (count > 5) left += ", ... (" + std::to_string(count) + " files)";
+  std::vector<std::string> left;
+  for (std::size_t f = 0; f < read.size(); ++f)
+    if (!read[f]) left.push_back(fileName(files, static_cast<int>(f)));
   return "the series holds " + std::to_string(stackFiles.size()) +
          " stacks of slices that do not line up (orientation, position or a second location "
          "per slice): the largest, " +
          std::to_string(stackSlices[best]) + " slices from " +
          std::to_string(stackFiles[best].size()) + " of " +
          std::to_string(files->GetNumberOfValues()) + " files, was read" +
-         (left.empty() ? std::string() : "; files left out: " + left);
+         (left.empty() ? std::string() : "; files left out: " + listed(left));
 }
 
+// Each output slice's ImagePositionPatient (vtk-dicom maps output slice -> file and frame);
+// empty when any is missing.
 std::vector<glm::dvec3> slicePositions(vtkDICOMReader* reader) {
   vtkIntArray* fileIndex = reader->GetFileIndexArray();
   vtkIntArray* frameIndex = reader->GetFrameIndexArray();
@@ -512,11 +519,10 @@ Volume spaceUnplacedSlices(Volume volume, vtkDICOMMetaData* meta) {
   const glm::dvec3 axis(m[2]);
   if (glm::length(axis) > 0.0) m[2] = glm::dvec4(glm::normalize(axis) * step, 0.0);
   volume.setWorldFromIndex(m);
-  char text[64];
-  std::snprintf(text, sizeof text, "%g mm", step);
   volume.metadata().notes.push_back(
       "no slice has an ImagePositionPatient: slices stacked in instance order " +
-      std::string(text) + " apart (" + from + "); where the volume lies in the patient is unknown");
+      shortNumber(step) + " mm apart (" + from +
+      "); where the volume lies in the patient is unknown");
   return volume;
 }
 
@@ -525,6 +531,15 @@ Volume spaceUnplacedSlices(Volume volume, vtkDICOMMetaData* meta) {
 // without a word. True when a slice's slope (other than 1) could take its stored values (by
 // BitsStored and PixelRepresentation) beyond the integer type vtk-dicom announces; the series
 // is then read as stored and rescaled here, to float32 (rescaleSlices).
+// The RescaleSlope of one file's frame (1 where it is missing, zero or not finite: such a
+// slope is not applied, and readSeries says so) and its RescaleIntercept as stored.
+std::pair<double, double> rescaleOf(vtkDICOMMetaData* meta, int file, int frame) {
+  const vtkDICOMValue& s = meta->Get(file, frame, DC::RescaleSlope);
+  double slope = s.IsValid() ? s.AsDouble() : 1.0;
+  if (!std::isfinite(slope) || slope == 0.0) slope = 1.0;
+  return {slope, meta->Get(file, frame, DC::RescaleIntercept).AsDouble()};
+}
+
 bool rescaleMayClip(vtkDICOMMetaData* meta, vtkIntArray* fileIndex, vtkIntArray* frameIndex,
                     int vtkType) {
   if (vtkType == VTK_FLOAT || vtkType == VTK_DOUBLE || !fileIndex || !frameIndex) return false;
@@ -533,10 +548,8 @@ bool rescaleMayClip(vtkDICOMMetaData* meta, vtkIntArray* fileIndex, vtkIntArray*
   for (vtkIdType t = 0; t < fileIndex->GetNumberOfTuples(); ++t)
     for (int c = 0; c < fileIndex->GetNumberOfComponents(); ++c) {
       const int f = fileIndex->GetComponent(t, c), frame = frameIndex->GetComponent(t, c);
-      const vtkDICOMValue& s = meta->Get(f, frame, DC::RescaleSlope);
-      const double slope = s.IsValid() ? s.AsDouble() : 1.0;
-      if (!std::isfinite(slope) || slope == 0.0 || slope == 1.0) continue;
-      const double intercept = meta->Get(f, frame, DC::RescaleIntercept).AsDouble();
+      const auto [slope, intercept] = rescaleOf(meta, f, frame);
+      if (slope == 1.0) continue;
       int bits = meta->Get(f, DC::BitsStored).AsInt();
       if (bits < 1 || bits > 32) bits = meta->Get(f, DC::BitsAllocated).AsInt();
       if (bits < 1 || bits > 32) continue;
@@ -569,10 +582,7 @@ Volume rescaleSlices(const Volume& volume, vtkDICOMMetaData* meta, vtkIntArray* 
         const int time =
             std::min(c / std::max(samplesPerPixel, 1), fileIndex->GetNumberOfComponents() - 1);
         const int f = fileIndex->GetComponent(k, time), frame = frameIndex->GetComponent(k, time);
-        const vtkDICOMValue& s = meta->Get(f, frame, DC::RescaleSlope);
-        double slope = s.IsValid() ? s.AsDouble() : 1.0;
-        if (!std::isfinite(slope) || slope == 0.0) slope = 1.0;  // noted by readSeries
-        double intercept = meta->Get(f, frame, DC::RescaleIntercept).AsDouble();
+        auto [slope, intercept] = rescaleOf(meta, f, frame);
         if (!std::isfinite(intercept)) intercept = 0.0;
         const std::size_t base = static_cast<std::size_t>(k) * plane * comps + c;
         for (std::size_t p = 0; p < plane; ++p)
@@ -736,15 +746,10 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
     md.notes.push_back("no ImageOrientationPatient: patient orientation unknown, axes assumed LPS");
   } else {
     // Two unit directions, at right angles; anything else was replaced by the reader.
-    glm::dvec3 row, column;
-    for (int a = 0; a < 3; ++a) {
-      row[a] = iop.GetDouble(static_cast<unsigned int>(a));
-      column[a] = iop.GetDouble(static_cast<unsigned int>(a + 3));
-    }
-    const bool usable = std::isfinite(glm::dot(row, row) + glm::dot(column, column)) &&
-                        std::abs(glm::length(row) - 1.0) < 0.01 &&
-                        std::abs(glm::length(column) - 1.0) < 0.01 &&
-                        std::abs(glm::dot(row, column)) < 0.01;
+    const auto axes = orientationAxes(iop);
+    const bool usable = axes && std::abs(glm::length(axes->first) - 1.0) < 0.01 &&
+                        std::abs(glm::length(axes->second) - 1.0) < 0.01 &&
+                        std::abs(glm::dot(axes->first, axes->second)) < 0.01;
     if (!usable)
       md.notes.push_back("ImageOrientationPatient '" + iop.AsString() +
                          "' is not two perpendicular unit directions: axes assumed LPS");

@@ -95,14 +95,14 @@ void clampInfinities(Volume& volume, const fs::path& path) {
       if (plus + minus == 0) return;
       for (std::size_t i = 0; i < n; ++i)
         if (std::isinf(p[i])) p[i] = p[i] > 0 ? hi : lo;
-      const auto g = [](double v) { return shortNumber(v); };
       std::string note;
       if (plus)
-        note = std::to_string(plus) + " voxels +inf clamped to the largest finite value " + g(hi);
+        note = std::to_string(plus) + " voxels +inf clamped to the largest finite value " +
+               shortNumber(hi);
       if (minus) {
         if (!note.empty()) note += "; ";
-        note +=
-            std::to_string(minus) + " voxels -inf clamped to the smallest finite value " + g(lo);
+        note += std::to_string(minus) + " voxels -inf clamped to the smallest finite value " +
+                shortNumber(lo);
       }
       volume.metadata().notes.push_back(note);
     }
@@ -117,18 +117,17 @@ void checkGeometry(const Volume& volume, const fs::path& path) {
   const detail::GeometryProblem problem = detail::geometryProblem(m);
   if (problem == detail::GeometryProblem::NotFinite)
     throw InputError(path, "its geometry (voxel axes and origin) is not finite");
-  const auto g = [](double v) { return shortNumber(v); };
   const glm::dvec3 spacing = volume.spacing();
   for (int a = 0; a < 3; ++a)
     if (!(spacing[a] >= 1e-6 && spacing[a] <= 1e6))
-      throw InputError(path, "voxel size " + g(spacing[a]) + " mm along axis " +
+      throw InputError(path, "voxel size " + shortNumber(spacing[a]) + " mm along axis " +
                                  std::to_string(a + 1) + " is not a voxel size (1e-6 .. 1e6 mm)");
   if (problem == detail::GeometryProblem::Singular)
     throw InputError(path, "its voxel axes are parallel (a singular orientation)");
   const glm::dvec3 origin(m[3]);
   for (int a = 0; a < 3; ++a)
     if (std::abs(origin[a]) > 1e6)
-      throw InputError(path, "its origin " + g(origin[a]) + " mm along " + "xyz"[a] +
+      throw InputError(path, "its origin " + shortNumber(origin[a]) + " mm along " + "xyz"[a] +
                                  " lies beyond 1 km: not a position in a scanner");
 }
 

@@ -385,7 +385,6 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
 
 void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volume& anatomy,
                               const std::filesystem::path& file) {
-  const auto g = [](double x) { return shortNumber(x); };
   const glm::dvec3 spacing = anatomy.spacing();
   const double finest = std::min({spacing.x, spacing.y, spacing.z}) / 100.0;
   const auto [lo, hi] = render::worldBounds(anatomy);
@@ -395,21 +394,21 @@ void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volum
     const render::RenderSettings& s = v.settings;
     const std::string view = "view '" + v.config.name + "': ";
     if (s.stepMm > 0.0 && s.stepMm < finest)
-      throw InputError(file, view + "step_mm " + g(s.stepMm) +
+      throw InputError(file, view + "step_mm " + shortNumber(s.stepMm) +
                                  " is below 1/100 of the smallest voxel spacing (" +
-                                 g(100.0 * finest) +
+                                 shortNumber(100.0 * finest) +
                                  " mm): no ray can take so many samples (0: half the spacing)");
     if (s.cropMinMm && s.cropMaxMm)
       for (int a = 0; a < 3; ++a)
         if ((*s.cropMaxMm)[a] < lo[a] || (*s.cropMinMm)[a] > hi[a])
           throw InputError(file, view + "crop_mm misses the volume along " + "LPS"[a] + " (" +
-                                     g((*s.cropMinMm)[a]) + " .. " + g((*s.cropMaxMm)[a]) +
-                                     " mm; the volume spans " + g(lo[a]) + " .. " + g(hi[a]) +
-                                     " mm)");
+                                     shortNumber((*s.cropMinMm)[a]) + " .. " +
+                                     shortNumber((*s.cropMaxMm)[a]) + " mm; the volume spans " +
+                                     shortNumber(lo[a]) + " .. " + shortNumber(hi[a]) + " mm)");
     if (s.mode == render::RenderMode::Mpr && std::abs(s.planeOffsetMm) > radius)
-      throw InputError(file, view + "plane_offset_mm " + g(s.planeOffsetMm) +
-                                 " puts the plane outside the volume (at most " + g(radius) +
-                                 " mm either side of its centre)");
+      throw InputError(file, view + "plane_offset_mm " + shortNumber(s.planeOffsetMm) +
+                                 " puts the plane outside the volume (at most " +
+                                 shortNumber(radius) + " mm either side of its centre)");
   }
 }
 
