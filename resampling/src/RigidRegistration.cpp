@@ -139,12 +139,18 @@ namespace {
 // no two levels (and no sample and voxel centre) line up and the histogram sees no grid
 // pattern; stratified (one uniform point in each of nSamples cells, about cubic in mm, of a
 // grid of at least that many), so they cover the volume more evenly than independent draws.
-// The moving image is copied in (it is the small one).
+// The box keeps marginMm from each face (at most a quarter of the axis, so a slab keeps
+// points): see RegistrationOptions::faceMargin. The moving image is copied in (it is the
+// small one).
 MattesMutualInformation levelMetric(const Volume& fixedLevel, const Volume& movingLevel,
-                                    int nSamples, std::uint64_t seed,
+                                    int nSamples, std::uint64_t seed, double marginMm,
                                     const RegistrationOptions& options) {
   std::mt19937_64 rng(seed);
-  const glm::dvec3 extent(fixedLevel.dimensions() - 1);
+  const glm::dvec3 fullExtent(fixedLevel.dimensions() - 1);
+  glm::dvec3 first(0.0);
+  for (int a = 0; a < 3; ++a)
+    first[a] = std::min(marginMm / fixedLevel.spacing()[a], fullExtent[a] / 4.0);
+  const glm::dvec3 extent = fullExtent - 2.0 * first;
   std::vector<glm::dvec3> indices;
   indices.reserve(static_cast<std::size_t>(nSamples));
   {
@@ -197,6 +203,7 @@ MattesMutualInformation levelMetric(const Volume& fixedLevel, const Volume& movi
     indices.push_back(glm::dvec3(ux(rng), uy(rng), uz(rng)));
   std::vector<glm::dvec3> points(indices.size());
   std::vector<float> values(points.size());
+  for (auto& index : indices) index += first;
   for (std::size_t i = 0; i < points.size(); ++i) {
     points[i] = fixedLevel.worldFromIndexPoint(indices[i]);
     values[i] = static_cast<float>(sample(fixedLevel, indices[i]));
@@ -412,6 +419,9 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
   auto movingAt = [&](std::size_t l) -> const Volume& {
     return movingSigma[l] > 0 ? movingLevels[l] : moving;
   };
+  auto marginAt = [&](std::size_t l) {
+    return options.faceMargin * std::max(smoothing[l], std::max(fixedVoxel, movingVoxel));
+  };
 
   RegistrationResult result;
   // Initialisation on the coarsest images: centroids need no detail.
@@ -454,8 +464,8 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
     const auto levelStart = Clock::now();
     const Volume& fixedLevel = fixedAt(level);
     const int nSamples = samplesAt(level);
-    const MattesMutualInformation metric =
-        levelMetric(fixedLevel, movingAt(level), nSamples, options.seed + level, options);
+    const MattesMutualInformation metric = levelMetric(
+        fixedLevel, movingAt(level), nSamples, options.seed + level, marginAt(level), options);
     const Objective rigid = [&](const std::vector<double>& p) {
       const auto r = metric.evaluateRigid(rigidFromCoordinates(p, scale), centre);
       Evaluation e{r.value, r.validSamples,
@@ -556,8 +566,8 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
       const auto levelStart = Clock::now();
       const Volume& fixedLevel = fixedAt(level);
       const int nSamples = samplesAt(level);
-      const MattesMutualInformation metric =
-          levelMetric(fixedLevel, movingAt(level), nSamples, options.seed + level, options);
+      const MattesMutualInformation metric = levelMetric(
+          fixedLevel, movingAt(level), nSamples, options.seed + level, marginAt(level), options);
       const Objective affine = [&](const std::vector<double>& p) {
         const auto r = metric.evaluateAffine(affineFromCoordinates(p, centre, scale), centre);
         Evaluation e{r.value, r.validSamples,

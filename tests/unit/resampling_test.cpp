@@ -9,6 +9,7 @@
 #include <set>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestUtil.h"
@@ -545,6 +546,49 @@ TEST_F(KnownTransform, ResolutionMatchingRemovesTheBiasOfACoarsePet) {
   RecordProperty("mean_tre_mm", std::to_string(matchedTre));
   EXPECT_LT(matchedTre, 0.45);
   EXPECT_LT(matchedTre, 0.8 * unmatchedTre);
+}
+
+// The test PET's activity stops where the CT's slices do, as a PET/CT's two volumes end
+// together: sample points at the CT's faces see the PET's edge, and MI pulls that edge to
+// match (a z bias of +0.5 mm at noise 0.2, from the inferior face). Keeping the sample points
+// a fraction of the level's scale from the faces removes part of that pull.
+TEST_F(KnownTransform, FaceMarginRemovesThePullOfAMovingEdgeAtTheFixedFaces) {
+  const PetPhantom coarse(*ct_, 7.5);
+  PetGridOptions grid;
+  grid.voxelMm = 5.0;
+  grid.noise = 0.2;
+  const std::vector<std::pair<glm::dvec3, glm::dvec3>> cases = {
+      {{-4.0, -2.4, 5.4}, {7.9, -2.8, -7.9}},
+      {{-0.4, -6.2, -4.7}, {-4.0, -10.0, 8.9}},
+      {{-6.0, -0.2, 6.0}, {-2.4, 3.8, -7.0}},
+      {{-4.0, 6.1, 1.5}, {5.8, -3.6, -1.0}},
+  };
+  RegistrationOptions noMargin;
+  noMargin.faceMargin = 0.0;
+  double withTre = 0.0, withoutTre = 0.0, withZ = 0.0, withoutZ = 0.0;
+  unsigned seed = 1300;
+  for (const auto& [degrees, mm] : cases) {
+    const glm::dmat4 truth = rigidMatrix({degrees * kDegree, mm}, coarse.centre());
+    const Volume pet = coarse.pet(truth, seed++, grid);
+    const glm::dmat4 with = registerRigid(*ct_, pet).transform.movingFromFixed();
+    const glm::dmat4 without = registerRigid(*ct_, pet, noMargin).transform.movingFromFixed();
+    // The error at the head's centre along z, in the CT's frame.
+    auto zError = [&](const glm::dmat4& m) {
+      const glm::dvec3 c = coarse.centre();
+      return glm::dvec3(glm::inverse(truth) * m * glm::dvec4(c, 1.0)).z - c.z;
+    };
+    const double n = static_cast<double>(cases.size());
+    withTre += coarse.meanTre(with, truth) / n;
+    withoutTre += coarse.meanTre(without, truth) / n;
+    withZ += zError(with) / n;
+    withoutZ += zError(without) / n;
+  }
+  std::cout << "5 mm PET, noise 0.2: mean TRE " << withTre << " mm with the face margin, "
+            << withoutTre << " mm without; mean z error " << withZ << " / " << withoutZ << " mm\n";
+  RecordProperty("mean_tre_mm", std::to_string(withTre));
+  // Measured: TRE 0.51 against 0.60 mm, z error +0.40 against +0.49 mm.
+  EXPECT_LT(std::abs(withZ), 0.9 * std::abs(withoutZ));
+  EXPECT_LT(withTre, 0.9 * withoutTre);
 }
 
 TEST_F(KnownTransform, DifferentFramesOfReferenceStartFromTheCentresOfMass) {

@@ -45,6 +45,14 @@ struct RegistrationOptions {
   // MI's peak off the truth (0.3 degrees on the 5 mm test pair) and its sampled estimate on a
   // flat ridge. 0: compare the images as they are.
   double resolutionMatching = 0.5;
+  // Fixed sample points keep this x the level's scale (its smoothing sigma, at least the
+  // coarser voxel size) away from the fixed image's faces. There the smoothed fixed image is
+  // made up (its edge repeated), and a moving image often ends with it (a PET/CT's two
+  // volumes span the same slices; the test PET's activity stops where the CT does): MI then
+  // pulls the moving image's edge to match. On `mvw bench register` (5 mm PET, noise 0.2) the
+  // samples within 5 mm of the CT's inferior face gave 4600 of the 8000 ppm/mm slope of MI
+  // along z at the truth; a margin of 0.3 took the mean TRE from 0.53 to 0.45 mm.
+  double faceMargin = 0.3;
   int histogramBins = 32;
   int maxIterationsPerLevel = 300;
   double rotationScaleMm = 80.0;  // radians x this = mm: about a head's radius
