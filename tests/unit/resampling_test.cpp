@@ -510,6 +510,17 @@ TEST_F(KnownTransform, RecoversRigidTransformsFromCtToPetLike) {
   RecordProperty("worst_tre_mm", std::to_string(worst));
 }
 
+// The four 5 mm transforms of `mvw bench register` (seed 1): rotation in degrees, shift in mm.
+const std::vector<std::pair<glm::dvec3, glm::dvec3>>& benchFiveMmCases() {
+  static const std::vector<std::pair<glm::dvec3, glm::dvec3>> cases = {
+      {{-4.0, -2.4, 5.4}, {7.9, -2.8, -7.9}},
+      {{-0.4, -6.2, -4.7}, {-4.0, -10.0, 8.9}},
+      {{-6.0, -0.2, 6.0}, {-2.4, 3.8, -7.0}},
+      {{-4.0, 6.1, 1.5}, {5.8, -3.6, -1.0}},
+  };
+  return cases;
+}
+
 // A PET on 5 mm voxels that resolves 1.5 voxels (7.5 mm FWHM), as `mvw bench register` makes
 // it, from the bench's four 5 mm transforms. Compared with the sharp CT at full resolution,
 // MI peaks about 0.3 degrees (nodding) off the truth and its sampled estimate wanders along a
@@ -519,12 +530,7 @@ TEST_F(KnownTransform, ResolutionMatchingRemovesTheBiasOfACoarsePet) {
   const PetPhantom coarse(*ct_, 7.5);
   PetGridOptions grid;
   grid.voxelMm = 5.0;
-  const std::vector<std::pair<glm::dvec3, glm::dvec3>> cases = {
-      {{-4.0, -2.4, 5.4}, {7.9, -2.8, -7.9}},
-      {{-0.4, -6.2, -4.7}, {-4.0, -10.0, 8.9}},
-      {{-6.0, -0.2, 6.0}, {-2.4, 3.8, -7.0}},
-      {{-4.0, 6.1, 1.5}, {5.8, -3.6, -1.0}},
-  };
+  const auto& cases = benchFiveMmCases();
   RegistrationOptions unmatched;
   unmatched.resolutionMatching = 0.0;
   double matchedTre = 0.0, unmatchedTre = 0.0;
@@ -557,12 +563,7 @@ TEST_F(KnownTransform, FaceMarginRemovesThePullOfAMovingEdgeAtTheFixedFaces) {
   PetGridOptions grid;
   grid.voxelMm = 5.0;
   grid.noise = 0.2;
-  const std::vector<std::pair<glm::dvec3, glm::dvec3>> cases = {
-      {{-4.0, -2.4, 5.4}, {7.9, -2.8, -7.9}},
-      {{-0.4, -6.2, -4.7}, {-4.0, -10.0, 8.9}},
-      {{-6.0, -0.2, 6.0}, {-2.4, 3.8, -7.0}},
-      {{-4.0, 6.1, 1.5}, {5.8, -3.6, -1.0}},
-  };
+  const auto& cases = benchFiveMmCases();
   RegistrationOptions noMargin;
   noMargin.faceMargin = 0.0;
   double withTre = 0.0, withoutTre = 0.0, withZ = 0.0, withoutZ = 0.0;
