@@ -149,7 +149,7 @@ MattesMutualInformation levelMetric(const Volume& fixedLevel, const Volume& movi
   const glm::dvec3 fullExtent(fixedLevel.dimensions() - 1);
   glm::dvec3 first(0.0);
   for (int a = 0; a < 3; ++a)
-    first[a] = std::min(marginMm / fixedLevel.spacing()[a], fullExtent[a] / 4.0);
+    first[a] = std::clamp(marginMm / fixedLevel.spacing()[a], 0.0, fullExtent[a] / 4.0);
   const glm::dvec3 extent = fullExtent - 2.0 * first;
   std::vector<glm::dvec3> indices;
   indices.reserve(static_cast<std::size_t>(nSamples));
