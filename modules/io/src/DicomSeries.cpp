@@ -526,11 +526,6 @@ Volume spaceUnplacedSlices(Volume volume, vtkDICOMMetaData* meta) {
   return volume;
 }
 
-// vtk-dicom keeps an integer output type when the slope and intercept are whole numbers, and
-// clips what does not fit: a RescaleSlope of 1e6 on 12-bit data read as -32768 .. 32767
-// without a word. True when a slice's slope (other than 1) could take its stored values (by
-// BitsStored and PixelRepresentation) beyond the integer type vtk-dicom announces; the series
-// is then read as stored and rescaled here, to float32 (rescaleSlices).
 // The RescaleSlope of one file's frame (1 where it is missing, zero or not finite: such a
 // slope is not applied, and readSeries says so) and its RescaleIntercept as stored.
 std::pair<double, double> rescaleOf(vtkDICOMMetaData* meta, int file, int frame) {
@@ -540,6 +535,11 @@ std::pair<double, double> rescaleOf(vtkDICOMMetaData* meta, int file, int frame)
   return {slope, meta->Get(file, frame, DC::RescaleIntercept).AsDouble()};
 }
 
+// vtk-dicom keeps an integer output type when the slope and intercept are whole numbers, and
+// clips what does not fit: a RescaleSlope of 1e6 on 12-bit data read as -32768 .. 32767
+// without a word. True when a slice's slope (other than 1) could take its stored values (by
+// BitsStored and PixelRepresentation) beyond the integer type vtk-dicom announces; the series
+// is then read as stored and rescaled here, to float32 (rescaleSlices).
 bool rescaleMayClip(vtkDICOMMetaData* meta, vtkIntArray* fileIndex, vtkIntArray* frameIndex,
                     int vtkType) {
   if (vtkType == VTK_FLOAT || vtkType == VTK_DOUBLE || !fileIndex || !frameIndex) return false;
