@@ -30,12 +30,14 @@ Volume readSource(const config::VolumeSource& source, io::ReadOptions options) {
 
 namespace {
 
-// The share of voxels (component 0, NaN skipped) that a CT in HU has in quantity and an MR
-// does not: air (-1050 .. -950 HU, where -1000 and the -1024 floor fall) and the scanners'
-// padding values outside the reconstruction circle (-2048, -2000, -3024), all whole numbers.
-// A field map, a phase or velocity image or a difference image reaches below -900 too, but
-// spreads its values instead of piling a tenth of the volume at air.
-double airFraction(const Volume& v) {
+// Whether a tenth or more of the voxels (component 0, NaN skipped) lie where a CT in HU has
+// them in quantity and an MR does not: air (-1050 .. -950 HU, where -1000 and the -1024 floor
+// fall) and the scanners' padding values outside the reconstruction circle (-2048, -2000,
+// -3024), all whole numbers. A field map, a phase or velocity image or a difference image
+// reaches below -900 too, but spreads its values instead of piling a tenth of the volume at
+// air. Stops as soon as a tenth of all voxels is air (a CT's first slices usually get there):
+// this runs while a study opens.
+bool tenthAtAir(const Volume& v) {
   return dispatchScalar(v.scalarType(), [&](auto zero) {
     using T = decltype(zero);
     const T* p = v.dataAs<T>();
@@ -46,9 +48,10 @@ double airFraction(const Volume& v) {
       if (std::isnan(x)) continue;
       ++counted;
       if (x != std::floor(x)) continue;
-      if ((x >= -1050.0 && x <= -950.0) || x == -2048.0 || x == -2000.0 || x == -3024.0) ++air;
+      if ((x >= -1050.0 && x <= -950.0) || x == -2048.0 || x == -2000.0 || x == -3024.0)
+        if (10 * ++air >= n) return true;  // a tenth of every voxel, so of the counted ones
     }
-    return counted == 0 ? 0.0 : static_cast<double>(air) / static_cast<double>(counted);
+    return counted > 0 && 10 * air >= counted;
   });
 }
 
@@ -59,7 +62,7 @@ Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions option
   VolumeMetadata& m = anatomy.metadata();
   if (m.modality.empty() && m.unit.empty()) {
     const auto [lo, hi] = anatomy.valueRange();
-    if (lo >= -3100.0 && lo <= -900.0 && hi > 0.0 && airFraction(anatomy) >= 0.1) {
+    if (lo >= -3100.0 && lo <= -900.0 && hi > 0.0 && tenthAtAir(anatomy)) {
       m.unit = "HU";
       m.notes.push_back("no modality or unit is stated; its values reach down to " +
                         shortNumber(lo) +
