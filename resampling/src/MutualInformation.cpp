@@ -47,7 +47,8 @@ std::pair<double, double> robustRange(std::vector<float> values, double q) {
 
 MattesMutualInformation::MattesMutualInformation(std::vector<glm::dvec3> fixedPoints,
                                                  const std::vector<float>& fixedValues,
-                                                 Volume moving, int bins, int threads)
+                                                 Volume moving, int bins, int threads,
+                                                 double movingClip)
     : points_(std::move(fixedPoints)),
       moving_(std::move(moving)),
       movingIndexFromWorld_(glm::inverse(moving_.worldFromIndex())),
@@ -76,7 +77,8 @@ MattesMutualInformation::MattesMutualInformation(std::vector<glm::dvec3> fixedPo
   std::vector<float> subset;
   subset.reserve(n / stride + 1);
   for (std::size_t i = 0; i < n; i += stride) subset.push_back(v[i]);
-  const auto [movingMin, movingMax] = robustRange(std::move(subset), 0.001);
+  const auto [movingMin, movingMax] =
+      robustRange(std::move(subset), std::clamp(movingClip, 0.0, 0.49));
   movingMin_ = movingMin;
   movingBinWidth_ = std::max(movingMax - movingMin, 1e-12) / usable;
 }

@@ -209,7 +209,7 @@ MattesMutualInformation levelMetric(const Volume& fixedLevel, const Volume& movi
     values[i] = static_cast<float>(sample(fixedLevel, indices[i]));
   }
   return MattesMutualInformation(std::move(points), values, movingLevel, options.histogramBins,
-                                 options.threads);
+                                 options.threads, options.movingRangeClip);
 }
 
 struct Evaluation {

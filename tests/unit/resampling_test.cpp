@@ -525,7 +525,8 @@ const std::vector<std::pair<glm::dvec3, glm::dvec3>>& benchFiveMmCases() {
 // it, from the bench's four 5 mm transforms. Compared with the sharp CT at full resolution,
 // MI peaks about 0.3 degrees (nodding) off the truth and its sampled estimate wanders along a
 // flat ridge: mean TRE 0.54 mm with the former defaults (30000 samples, gradient steps),
-// 0.58 with the current optimiser and samples but no resolution matching, 0.38 with it.
+// 0.58 with the current optimiser and samples but no resolution matching, 0.38 with it; with
+// the moving range up to the 99.99th percentile (movingRangeClip) 0.40 without, 0.33 with.
 TEST_F(KnownTransform, ResolutionMatchingRemovesTheBiasOfACoarsePet) {
   const PetPhantom coarse(*ct_, 7.5);
   PetGridOptions grid;
@@ -551,7 +552,7 @@ TEST_F(KnownTransform, ResolutionMatchingRemovesTheBiasOfACoarsePet) {
   }
   RecordProperty("mean_tre_mm", std::to_string(matchedTre));
   EXPECT_LT(matchedTre, 0.45);
-  EXPECT_LT(matchedTre, 0.8 * unmatchedTre);
+  EXPECT_LT(matchedTre, 0.9 * unmatchedTre);
 }
 
 // The test PET's activity stops where the CT's slices do, as a PET/CT's two volumes end
@@ -590,6 +591,43 @@ TEST_F(KnownTransform, FaceMarginRemovesThePullOfAMovingEdgeAtTheFixedFaces) {
   // Measured: TRE 0.51 against 0.60 mm, z error +0.40 against +0.49 mm.
   EXPECT_LT(std::abs(withZ), 0.9 * std::abs(withoutZ));
   EXPECT_LT(withTre, 0.9 * withoutTre);
+}
+
+// A PET's noise grows with its activity. With the moving histogram's range cut at the 99.9th
+// percentile (the PET's lesions) the bins are fine against that noise, and the noise moves
+// MI's optimum along z; a cut at the 99.99th keeps the lesions in range and most of the bias
+// away (movingRangeClip).
+TEST_F(KnownTransform, MovingRangeWithTheHotTailKeepsNoiseFromPullingAlongZ) {
+  const PetPhantom coarse(*ct_, 7.5);
+  PetGridOptions grid;
+  grid.voxelMm = 5.0;
+  grid.noise = 0.2;
+  const auto& cases = benchFiveMmCases();
+  RegistrationOptions narrow;
+  narrow.movingRangeClip = 1e-3;
+  double withTre = 0.0, narrowTre = 0.0, withZ = 0.0, narrowZ = 0.0;
+  unsigned seed = 1400;
+  for (const auto& [degrees, mm] : cases) {
+    const glm::dmat4 truth = rigidMatrix({degrees * kDegree, mm}, coarse.centre());
+    const Volume pet = coarse.pet(truth, seed++, grid);
+    const glm::dmat4 with = registerRigid(*ct_, pet).transform.movingFromFixed();
+    const glm::dmat4 cut = registerRigid(*ct_, pet, narrow).transform.movingFromFixed();
+    auto zError = [&](const glm::dmat4& m) {
+      const glm::dvec3 c = coarse.centre();
+      return glm::dvec3(glm::inverse(truth) * m * glm::dvec4(c, 1.0)).z - c.z;
+    };
+    const double n = static_cast<double>(cases.size());
+    withTre += coarse.meanTre(with, truth) / n;
+    narrowTre += coarse.meanTre(cut, truth) / n;
+    withZ += zError(with) / n;
+    narrowZ += zError(cut) / n;
+  }
+  std::cout << "5 mm PET, noise 0.2: mean TRE " << withTre << " mm with the range to 99.99 %, "
+            << narrowTre << " mm to 99.9 %; mean z error " << withZ << " / " << narrowZ << " mm\n";
+  RecordProperty("mean_tre_mm", std::to_string(withTre));
+  // Measured: TRE 0.38 against 0.43 mm, z error +0.26 against +0.35 mm.
+  EXPECT_LT(std::abs(withZ), 0.85 * std::abs(narrowZ));
+  EXPECT_LT(withTre, 0.95 * narrowTre);
 }
 
 TEST_F(KnownTransform, DifferentFramesOfReferenceStartFromTheCentresOfMass) {

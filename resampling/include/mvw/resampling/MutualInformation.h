@@ -34,11 +34,12 @@ class MattesMutualInformation {
 
   // fixedPoints: sample positions in the fixed world (LPS mm); fixedValues: the fixed
   // volume at those points. moving: float32, one component, every dimension at least 2.
-  // Intensity ranges are the 0.1 and 99.9 percentiles, so a few metal or hot voxels do not
-  // squeeze the tissue into one bin; values beyond them count in the edge bins.
+  // Intensity ranges: the fixed values' 0.1 and 99.9 percentiles, so a few metal voxels do not
+  // squeeze the tissue into one bin, and the moving volume's movingClip and 1 - movingClip
+  // quantiles (see RegistrationOptions::movingRangeClip); values beyond count in the edge bins.
   MattesMutualInformation(std::vector<glm::dvec3> fixedPoints,
                           const std::vector<float>& fixedValues, Volume moving, int bins = 32,
-                          int threads = 0);
+                          int threads = 0, double movingClip = 1e-4);
   ~MattesMutualInformation();
 
   // The metric with the moving volume read at movingFromFixed(point).
