@@ -367,12 +367,14 @@ glm::dmat4 affineFromCoordinates(const std::vector<double>& x, const glm::dvec3&
 
 }  // namespace
 
-RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& movingVolume,
-                                 const RegistrationOptions& options) {
+namespace {
+
+// The registration with the sample points in fixedVolume. `blamed`: the volume an overlap or
+// collapse error names (the caller's moving volume, whichever role it has here).
+RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movingVolume,
+                                  const RegistrationOptions& options, const Volume& blamed) {
   const auto start = Clock::now();
   detail::WorkerPool pool(options.threads);
-  checkVolume(fixedVolume, "fixed volume");
-  checkVolume(movingVolume, "moving volume");
   // The fixed image is used as stored (no full-resolution float copy of a CT); a
   // multi-component one is reduced to its first component.
   const Volume fixedFirst =
@@ -481,7 +483,7 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
     report.samples = nSamples;
     const int minimumValid = std::max(64, nSamples / 20);
     auto tooFewInside = [&](int valid, const std::string& when) {
-      return InputError(nameOf(movingVolume, "moving volume"),
+      return InputError(nameOf(blamed, "moving volume"),
                         "does not overlap the fixed volume " + when + ": " + std::to_string(valid) +
                             " of " + std::to_string(nSamples) + " sample points fall inside it");
     };
@@ -592,7 +594,7 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
     }
     m = affineFromCoordinates(y, centre, scale);
     if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-3)
-      throw InputError(nameOf(movingVolume, "moving volume"),
+      throw InputError(nameOf(blamed, "moving volume"),
                        "the affine stage collapsed the volume (determinant near 0)");
     result.affine = true;
     result.transform = Transform::fromMovingFromFixed(m, centre);
@@ -600,6 +602,39 @@ RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& moving
   }
   result.seconds = secondsSince(start);
   return result;
+}
+
+// The box a volume's voxels span, mm^3.
+double boxVolumeMm3(const Volume& v) {
+  const glm::dvec3 mm = glm::dvec3(v.dimensions()) * v.spacing();
+  return mm.x * mm.y * mm.z;
+}
+
+}  // namespace
+
+RegistrationResult registerRigid(const Volume& fixedVolume, const Volume& movingVolume,
+                                 const RegistrationOptions& options) {
+  checkVolume(fixedVolume, "fixed volume");
+  checkVolume(movingVolume, "moving volume");
+  if (!(options.samplePointsInSmallerVolume &&
+        boxVolumeMm3(movingVolume) < 0.5 * boxVolumeMm3(fixedVolume)))
+    return registerOneWay(fixedVolume, movingVolume, options, movingVolume);
+  // The roles swapped: the sample points lie in the moving volume, the fixed one is read at
+  // their images, and the result is inverted (centre: the swapped one's, in the fixed world).
+  RegistrationResult r = registerOneWay(movingVolume, fixedVolume, options, movingVolume);
+  const glm::dvec3 swappedCentre = r.transform.centre();
+  const glm::dvec3 centre = r.transform.movingFromFixedPoint(swappedCentre);
+  const glm::dmat4 rigidStage = glm::inverse(rigidMatrix(r.parameters, swappedCentre));
+  r.transform = Transform(r.transform.movingFromFixed(), centre);
+  r.parameters = rigidParameters(rigidStage, centre);
+  r.initialTranslationMm = -r.initialTranslationMm;
+  if (r.searchedRotations > 0)
+    r.searchAngles =
+        rigidParameters(glm::dmat4(glm::transpose(eulerRotation(r.searchAngles))), glm::dvec3(0.0))
+            .angles;
+  for (LevelReport& level : r.levels) std::swap(level.fixedDimensions, level.movingDimensions);
+  r.samplesInMoving = true;
+  return r;
 }
 
 }  // namespace mvw::resampling

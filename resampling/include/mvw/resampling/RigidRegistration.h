@@ -64,6 +64,14 @@ struct RegistrationOptions {
   // full range (elastix's choice; elastix +0.15). The full range lost at noise 0.1 (6 mm,
   // 0.469 against elastix's 0.457 mm) and lets one hot spike squeeze the tissue into a bin.
   double movingRangeClip = 1e-4;
+  // Sample points are drawn in the moving volume instead (the roles swapped, the result
+  // inverted) when its box is under half the fixed one's: a thin functional slab in a whole
+  // head. Drawn in the larger volume, most points fall outside the slab and the ones inside
+  // change as it turns, and MI rewards tilting it over other anatomy: the real T1 -> relative
+  // CBF pair (12 slices, 66 mm) came out 10 degrees from its header's alignment, which the
+  // T2 -> CBF (0.9 degrees) and T1 -> T2 (1.7 degrees) registrations of the same session
+  // confirm to within 2 degrees.
+  bool samplePointsInSmallerVolume = true;
   int histogramBins = 32;
   int maxIterationsPerLevel = 300;
   double rotationScaleMm = 80.0;  // radians x this = mm: about a head's radius
@@ -118,6 +126,9 @@ struct RegistrationResult {
   int iterations = 0;
   bool converged = false;  // the finest level converged
   double seconds = 0.0;
+  // The sample points lay in the moving volume (RegistrationOptions::
+  // samplePointsInSmallerVolume); `levels` keep each volume's own dimensions.
+  bool samplesInMoving = false;
 };
 
 // Bad input (an empty, 2-D or constant volume, NaNs, no overlap after initialisation, an
