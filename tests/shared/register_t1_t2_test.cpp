@@ -8,6 +8,7 @@
 // the two results must also agree with each other, to 0.25 degrees and 0.25 mm.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <numbers>
 #include <string>
@@ -25,13 +26,15 @@ namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
+mvw::Volume readSeries(const std::filesystem::path& folder, const char* number) {
+  mvw::io::ReadOptions options;
+  options.series = std::string(number);
+  return mvw::io::readVolume(folder, options);
+}
+
 TEST(RealMrRegistration, T1ToT2FromAPerturbedStartRecoversTheHeaderIdentity) {
   MVW_REQUIRE_SHARED_DATA("mr-t1-t2-asl");
-  auto series = [&](const char* number) {
-    mvw::io::ReadOptions options;
-    options.series = std::string(number);
-    return mvw::io::readVolume(sharedPath, options);
-  };
+  auto series = [&](const char* number) { return readSeries(sharedPath, number); };
   const mvw::Volume t1 = series("5");
   mvw::Volume t2 = series("6");
 
@@ -78,11 +81,7 @@ TEST(RealMrRegistration, T1ToT2FromAPerturbedStartRecoversTheHeaderIdentity) {
 // slab's centre) from that chain; with them in the slab, 0.6 degrees and 1.9 mm.
 TEST(RealMrRegistration, T1ToCbfSlabAgreesWithT1ToT2ThenT2ToCbf) {
   MVW_REQUIRE_SHARED_DATA("mr-t1-t2-asl");
-  auto series = [&](const char* number) {
-    mvw::io::ReadOptions options;
-    options.series = std::string(number);
-    return mvw::io::readVolume(sharedPath, options);
-  };
+  auto series = [&](const char* number) { return readSeries(sharedPath, number); };
   const mvw::Volume t1 = series("5"), t2 = series("6"), cbf = series("18");
   const auto direct = mvw::resampling::registerRigid(t1, cbf);
   const auto t1ToT2 = mvw::resampling::registerRigid(t1, t2);
