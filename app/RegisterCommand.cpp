@@ -154,6 +154,8 @@ void runRegister(const RegisterOptions& opt) {
     j["rotation_search"] = {{"range_deg", opt.rotationSearchDeg},
                             {"rotations_scored", r.searchedRotations},
                             {"best_angles_deg", vec(r.searchAngles * (180.0 / std::numbers::pi))}};
+  j["runs"] = r.runs;
+  j["runs_averaged"] = r.runsAveraged;
   j["sample_points_in"] =
       r.samplesInMoving ? "moving (its box is under half the fixed one's)" : "fixed";
   j["initialisation"] = toString(r.initialisation);

@@ -371,6 +371,19 @@ namespace {
 
 // The registration with the sample points in fixedVolume. `blamed`: the volume an overlap or
 // collapse error names (the caller's moving volume, whichever role it has here).
+// The largest distance, over the corners of a volume's box, between where two maps put them.
+double largestDisplacementMm(const Volume& v, const glm::dmat4& a, const glm::dmat4& b) {
+  const glm::dvec3 last(v.dimensions() - 1);
+  double largest = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 index((corner & 1) ? last.x : 0.0, (corner & 2) ? last.y : 0.0,
+                           (corner & 4) ? last.z : 0.0);
+    const glm::dvec4 p(v.worldFromIndexPoint(index), 1.0);
+    largest = std::max(largest, glm::length(glm::dvec3(a * p) - glm::dvec3(b * p)));
+  }
+  return largest;
+}
+
 RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movingVolume,
                                   const RegistrationOptions& options, const Volume& blamed) {
   const auto start = Clock::now();
@@ -450,107 +463,157 @@ RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movin
   const double scale = options.rotationScaleMm;
   std::vector<double> x = rigidCoordinates(result.parameters, scale);
 
-  auto progress = [&](std::size_t level, std::size_t levels, const LevelReport& report) {
+  const int runs = std::max(1, options.runs);
+  auto progress = [&](std::size_t level, std::size_t levels, const LevelReport& report, int run) {
     if (!options.progress) return;
+    char prefix[32] = "";
+    if (run >= 0) std::snprintf(prefix, sizeof prefix, " run %d/%d", run + 1, runs);
     char line[240];
     std::snprintf(line, sizeof line,
-                  "%s level %zu/%zu: sigma %.1f mm, %d iterations, MI %.4f -> %.4f%s, %.2f s",
-                  report.stage.c_str(), level + 1, levels, report.smoothingMm, report.iterations,
-                  report.metricStart, report.metricEnd, report.converged ? "" : " (not converged)",
-                  report.seconds);
+                  "%s%s level %zu/%zu: sigma %.1f mm, %d iterations, MI %.4f -> %.4f%s, %.2f s",
+                  report.stage.c_str(), prefix, level + 1, levels, report.smoothingMm,
+                  report.iterations, report.metricStart, report.metricEnd,
+                  report.converged ? "" : " (not converged)", report.seconds);
     options.progress(line);
   };
 
-  double firstStep = options.maxStepMm;
-  for (std::size_t level = 0; level < smoothing.size(); ++level, firstStep *= 0.5) {
-    const auto levelStart = Clock::now();
-    const Volume& fixedLevel = fixedAt(level);
-    const int nSamples = samplesAt(level);
-    const MattesMutualInformation metric = levelMetric(
-        fixedLevel, movingAt(level), nSamples, options.seed + level, marginAt(level), options);
-    const Objective rigid = [&](const std::vector<double>& p) {
-      const auto r = metric.evaluateRigid(rigidFromCoordinates(p, scale), centre);
-      Evaluation e{r.value, r.validSamples,
-                   std::vector<double>(r.gradient.begin(), r.gradient.end())};
-      for (int a = 0; a < 3; ++a) e.gradient[static_cast<std::size_t>(a)] /= scale;
-      return e;
-    };
+  // The rigid stage, `runs` times with their own points; the coordinates averaged.
+  const std::vector<double> initial = x;
+  std::vector<std::vector<double>> ends;
+  std::vector<double> endMetric;
+  for (int run = 0; run < runs; ++run) {
+    x = initial;
+    result.searchedRotations = 0;
+    std::vector<LevelReport> runLevels;
+    const std::uint64_t runSeed = options.seed + 7919ull * static_cast<std::uint64_t>(run);
+    double firstStep = options.maxStepMm;
+    for (std::size_t level = 0; level < smoothing.size(); ++level, firstStep *= 0.5) {
+      const auto levelStart = Clock::now();
+      const Volume& fixedLevel = fixedAt(level);
+      const int nSamples = samplesAt(level);
+      const MattesMutualInformation metric = levelMetric(fixedLevel, movingAt(level), nSamples,
+                                                         runSeed + level, marginAt(level), options);
+      const Objective rigid = [&](const std::vector<double>& p) {
+        const auto r = metric.evaluateRigid(rigidFromCoordinates(p, scale), centre);
+        Evaluation e{r.value, r.validSamples,
+                     std::vector<double>(r.gradient.begin(), r.gradient.end())};
+        for (int a = 0; a < 3; ++a) e.gradient[static_cast<std::size_t>(a)] /= scale;
+        return e;
+      };
 
-    LevelReport report;
-    report.smoothingMm = smoothing[level];
-    report.fixedDimensions = fixedLevel.dimensions();
-    report.movingDimensions = movingAt(level).dimensions();
-    report.samples = nSamples;
-    const int minimumValid = std::max(64, nSamples / 20);
-    auto tooFewInside = [&](int valid, const std::string& when) {
-      return InputError(nameOf(blamed, "moving volume"),
-                        "does not overlap the fixed volume " + when + ": " + std::to_string(valid) +
-                            " of " + std::to_string(nSamples) + " sample points fall inside it");
-    };
+      LevelReport report;
+      report.smoothingMm = smoothing[level];
+      report.fixedDimensions = fixedLevel.dimensions();
+      report.movingDimensions = movingAt(level).dimensions();
+      report.samples = nSamples;
+      const int minimumValid = std::max(64, nSamples / 20);
+      auto tooFewInside = [&](int valid, const std::string& when) {
+        return InputError(nameOf(blamed, "moving volume"), "does not overlap the fixed volume " +
+                                                               when + ": " + std::to_string(valid) +
+                                                               " of " + std::to_string(nSamples) +
+                                                               " sample points fall inside it");
+      };
 
-    Evaluation current = rigid(x);
-    report.metricStart = current.value;
-    if (level == 0 && options.rotationSearchRangeDeg > 0.0) {
-      // Score a lattice of rotations about the centre (translation as initialised), then
-      // climb from the best few on this level and keep the highest.
-      const double range = options.rotationSearchRangeDeg * std::numbers::pi / 180.0;
-      const double stepAngle =
-          std::max(1.0, options.rotationSearchStepDeg) * std::numbers::pi / 180.0;
-      const int steps = static_cast<int>(std::floor(range / stepAngle + 1e-9));
-      std::vector<std::pair<double, std::vector<double>>> scored;
-      for (int a = -steps; a <= steps; ++a)
-        for (int b = -steps; b <= steps; ++b)
-          for (int c = -steps; c <= steps; ++c) {
-            std::vector<double> p = x;
-            p[0] += a * stepAngle * scale;
-            p[1] += b * stepAngle * scale;
-            p[2] += c * stepAngle * scale;
-            const auto r = metric.evaluate(rigidMatrix(rigidFromCoordinates(p, scale), centre));
-            ++result.searchedRotations;
-            if (r.validSamples >= minimumValid) scored.emplace_back(r.value, std::move(p));
+      Evaluation current = rigid(x);
+      report.metricStart = current.value;
+      if (level == 0 && options.rotationSearchRangeDeg > 0.0) {
+        // Score a lattice of rotations about the centre (translation as initialised), then
+        // climb from the best few on this level and keep the highest.
+        const double range = options.rotationSearchRangeDeg * std::numbers::pi / 180.0;
+        const double stepAngle =
+            std::max(1.0, options.rotationSearchStepDeg) * std::numbers::pi / 180.0;
+        const int steps = static_cast<int>(std::floor(range / stepAngle + 1e-9));
+        std::vector<std::pair<double, std::vector<double>>> scored;
+        for (int a = -steps; a <= steps; ++a)
+          for (int b = -steps; b <= steps; ++b)
+            for (int c = -steps; c <= steps; ++c) {
+              std::vector<double> p = x;
+              p[0] += a * stepAngle * scale;
+              p[1] += b * stepAngle * scale;
+              p[2] += c * stepAngle * scale;
+              const auto r = metric.evaluate(rigidMatrix(rigidFromCoordinates(p, scale), centre));
+              ++result.searchedRotations;
+              if (r.validSamples >= minimumValid) scored.emplace_back(r.value, std::move(p));
+            }
+        std::sort(scored.begin(), scored.end(),
+                  [](const auto& l, const auto& r) { return l.first > r.first; });
+        scored.resize(std::min<std::size_t>(
+            scored.size(),
+            static_cast<std::size_t>(std::max(1, options.rotationSearchCandidates))));
+        double best = -1.0;
+        int iterations = 0, rejected = 0;
+        for (const auto& candidate : scored) {
+          std::vector<double> p = candidate.second;
+          Evaluation e = rigid(p);
+          LevelReport climb = report;
+          ascend(p, e, rigid, firstStep, minimumValid, options, climb);
+          iterations += climb.iterations;
+          rejected += climb.rejectedSteps;
+          if (e.value > best) {
+            best = e.value;
+            x = std::move(p);
+            current = std::move(e);
+            report.metricEnd = climb.metricEnd;
+            report.validSamples = climb.validSamples;
+            report.finalStepMm = climb.finalStepMm;
+            report.converged = climb.converged;
           }
-      std::sort(scored.begin(), scored.end(),
-                [](const auto& l, const auto& r) { return l.first > r.first; });
-      scored.resize(std::min<std::size_t>(
-          scored.size(), static_cast<std::size_t>(std::max(1, options.rotationSearchCandidates))));
-      double best = -1.0;
-      int iterations = 0, rejected = 0;
-      for (const auto& candidate : scored) {
-        std::vector<double> p = candidate.second;
-        Evaluation e = rigid(p);
-        LevelReport climb = report;
-        ascend(p, e, rigid, firstStep, minimumValid, options, climb);
-        iterations += climb.iterations;
-        rejected += climb.rejectedSteps;
-        if (e.value > best) {
-          best = e.value;
-          x = std::move(p);
-          current = std::move(e);
-          report.metricEnd = climb.metricEnd;
-          report.validSamples = climb.validSamples;
-          report.finalStepMm = climb.finalStepMm;
-          report.converged = climb.converged;
         }
+        // The level's count covers every candidate's climb, the end state the best one's.
+        report.iterations = iterations;
+        report.rejectedSteps = rejected;
+        if (!scored.empty()) result.searchAngles = rigidFromCoordinates(x, scale).angles;
       }
-      // The level's count covers every candidate's climb, the end state the best one's.
-      report.iterations = iterations;
-      report.rejectedSteps = rejected;
-      if (!scored.empty()) result.searchAngles = rigidFromCoordinates(x, scale).angles;
+      if (current.validSamples < minimumValid)
+        throw tooFewInside(current.validSamples,
+                           level == 0
+                               ? "after initialisation (" + toString(result.initialisation) + ")"
+                               : "any more at level " + std::to_string(level + 1) +
+                                     " (the coarser levels drifted away: do the volumes "
+                                     "show the same anatomy?)");
+      if (!(level == 0 && result.searchedRotations > 0))
+        ascend(x, current, rigid, firstStep, minimumValid, options, report);
+      report.seconds = secondsSince(levelStart);
+      result.iterations += report.iterations;
+      progress(level, smoothing.size(), report, runs > 1 ? run : -1);
+      runLevels.push_back(report);
+      if (run == 0) {
+        result.levels.push_back(report);
+      } else {
+        LevelReport& merged = result.levels[level];
+        merged.iterations += report.iterations;
+        merged.rejectedSteps += report.rejectedSteps;
+        merged.metricStart += report.metricStart;
+        merged.metricEnd += report.metricEnd;
+        merged.validSamples = std::min(merged.validSamples, report.validSamples);
+        merged.finalStepMm = std::max(merged.finalStepMm, report.finalStepMm);
+        merged.converged = merged.converged && report.converged;
+        merged.seconds += report.seconds;
+      }
     }
-    if (current.validSamples < minimumValid)
-      throw tooFewInside(current.validSamples,
-                         level == 0
-                             ? "after initialisation (" + toString(result.initialisation) + ")"
-                             : "any more at level " + std::to_string(level + 1) +
-                                   " (the coarser levels drifted away: do the volumes "
-                                   "show the same anatomy?)");
-    if (!(level == 0 && result.searchedRotations > 0))
-      ascend(x, current, rigid, firstStep, minimumValid, options, report);
-    report.seconds = secondsSince(levelStart);
-    result.iterations += report.iterations;
-    result.levels.push_back(report);
-    progress(level, smoothing.size(), report);
+    ends.push_back(x);
+    endMetric.push_back(runLevels.back().metricEnd);
   }
+  // Averaged are the runs that ended within the coarser voxel size (anywhere in the fixed
+  // box) of the one with the highest metric: a run caught on another optimum is left out.
+  const std::size_t best = static_cast<std::size_t>(
+      std::max_element(endMetric.begin(), endMetric.end()) - endMetric.begin());
+  const glm::dmat4 bestMatrix = rigidMatrix(rigidFromCoordinates(ends[best], scale), centre);
+  std::vector<double> sum(x.size(), 0.0);
+  int averaged = 0;
+  for (const std::vector<double>& end : ends) {
+    const glm::dmat4 m = rigidMatrix(rigidFromCoordinates(end, scale), centre);
+    if (largestDisplacementMm(fixed, m, bestMatrix) > std::max(fixedVoxel, movingVoxel)) continue;
+    for (std::size_t k = 0; k < x.size(); ++k) sum[k] += end[k];
+    ++averaged;
+  }
+  for (std::size_t k = 0; k < x.size(); ++k) x[k] = sum[k] / averaged;
+  for (LevelReport& level : result.levels) {
+    level.metricStart /= runs;
+    level.metricEnd /= runs;
+  }
+  result.runs = runs;
+  result.runsAveraged = averaged;
   result.parameters = rigidFromCoordinates(x, scale);
   result.transform = Transform::fromMovingFromFixed(rigidMatrix(result.parameters, centre), centre);
   result.converged = !result.levels.empty() && result.levels.back().converged;
@@ -590,7 +653,7 @@ RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movin
       report.seconds = secondsSince(levelStart);
       result.iterations += report.iterations;
       result.levels.push_back(report);
-      progress(level, levels, report);
+      progress(level, levels, report, -1);
     }
     m = affineFromCoordinates(y, centre, scale);
     if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-3)
