@@ -8,8 +8,10 @@
 
 uniform sampler2D uTransfer;   // RGBA over (value, |gradient| * uGradientScale); alpha per step
 uniform vec2 uTransferRange;   // (scale, offset): value * scale + offset is the table's column, 0..1
-                               // (a multiply-add per sample, not a division)
+                               // (a multiply-add per sample, not a division), entry i's value at
+                               // its texel centre
 uniform float uGradientScale;  // 1 / the |gradient| (unit/mm) at the last row
+uniform vec2 uGradientRows;    // 0..1 (first to last row) * x + y: the rows' texel centres
 uniform bool uShading;
 
 struct RayState {
@@ -35,7 +37,8 @@ int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, c
   // cost this loop half its speed on llvmpipe.
 #if defined(MVW_TF2D)
   g = sampleGradientOfValue(tex);
-  c = textureLod(uTransfer, vec2(u, clamp(length(g.xyz) * uGradientScale, 0.0, 1.0)), 0.0);
+  float row = clamp(length(g.xyz) * uGradientScale, 0.0, 1.0) * uGradientRows.x + uGradientRows.y;
+  c = textureLod(uTransfer, vec2(u, row), 0.0);
 #else
   c = textureLod(uTransfer, vec2(u, 0.5), 0.0);
 #endif

@@ -25,7 +25,8 @@ uniform sampler3D uGradient;   // RGBA16F: world-space gradient (unit/mm) in RGB
                                // MVW_GRADIENT_ON_THE_FLY: none
 uniform sampler3D uAttribute;  // R16F: the glyph attribute where the gradient's A does not hold it
 uniform vec2 uGradientDecode;
-uniform usampler3D uBlocks;    // R8UI per 8^3 voxel block: 1 if the transfer function can show it
+uniform usampler3D uBlocks;    // R8UI per 6^3 voxel block: 0 if the transfer function can show it,
+                               // else the Chebyshev distance (blocks) to the nearest such block
 uniform sampler3D uBlockRange; // RG32F per block: min and max value (one-voxel apron included)
 uniform float uBlockVoxels;    // voxels per block side
 uniform mat4 uWorldFromClip;
@@ -186,17 +187,27 @@ vec4 sampleGradientOfValue(vec3 tex) { return sampleGradient(tex); }
 #endif
 
 ivec3 blockOf(vec3 tex) { return clamp(ivec3(floor(tex * gBlockScale)), ivec3(0), gBlockMax); }
-bool blockVisible(vec3 tex) { return texelFetch(uBlocks, blockOf(tex), 0).r != 0u; }
+// Blocks around the current one that skipBlock steps over with it: a cube of side
+// 2 gSkipReach + 1 blocks (set by a mode's skipHook; 0 is the block alone).
+float gSkipReach = 0.0;
+// Composite: whether the block can show anything, and if not, how many around it cannot either.
+bool blockVisible(vec3 tex) {
+  uint distance = texelFetch(uBlocks, blockOf(tex), 0).r;
+  gSkipReach = float(distance) - 1.0;
+  return distance == 0u;
+}
 vec2 blockRange(vec3 tex) { return texelFetch(uBlockRange, blockOf(tex), 0).rg; }
 
 // The last sample distance on this ray's step grid that still lies in the block holding
-// `tex`: the loop's next step then lands in the following block (empty-space skipping).
+// `tex`, or in the cube of gSkipReach blocks around it: the loop's next step then lands in the
+// following block (empty-space skipping).
 // A ray parallel to a face pair never leaves through it. Not left to a division: a direction
 // component the matrix product makes -0.0 (which axis, for which directions, follows the
 // signs in the volume's storage order) picked the far face and divided to -inf, and the ray
 // then crept through empty space one sample per iteration (2.7x the frame at some azimuths).
 float skipBlock(float t, vec3 tex) {
-  vec3 faces = (vec3(blockOf(tex)) + step(vec3(0.0), gTexDir)) * gBlockSize;
+  vec3 ahead = step(vec3(0.0), gTexDir);
+  vec3 faces = (vec3(blockOf(tex)) + ahead + gSkipReach * (2.0 * ahead - 1.0)) * gBlockSize;
   vec3 tFaces = mix((faces - gTexOrigin) * gTexInvDir, vec3(1e30), gParallel);
   float tExit = min(min(tFaces.x, tFaces.y), tFaces.z);
   return t + max(0.0, floor((tExit - t) * gInvStep)) * uStep;

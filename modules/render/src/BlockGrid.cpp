@@ -57,22 +57,66 @@ BlockGrid::BlockGrid(const Volume& volume) {
   checkGl("uploading the block grid");
 }
 
+namespace {
+
+// One pass of the Chebyshev (L-infinity) distance transform along one axis of the block grid:
+// out(x) = min over x' of max(|x - x'|, in(x')), scanning outward from x until no nearer x'
+// can win. Three passes, one per axis, give the distance to the nearest visible block.
+void chebyshevPass(std::vector<std::uint8_t>& d, glm::ivec3 count, int axis) {
+  const glm::ivec3 stride(1, count.x, count.x * count.y);
+  const int n = count[axis];
+  glm::ivec3 lines = count;
+  lines[axis] = 1;
+  std::vector<std::uint8_t> in(static_cast<std::size_t>(n));
+  for (int c = 0; c < lines.z; ++c)
+    for (int b = 0; b < lines.y; ++b)
+      for (int a = 0; a < lines.x; ++a) {
+        const std::size_t base = static_cast<std::size_t>(a) * stride.x +
+                                 static_cast<std::size_t>(b) * stride.y +
+                                 static_cast<std::size_t>(c) * stride.z;
+        for (int x = 0; x < n; ++x) in[x] = d[base + static_cast<std::size_t>(x) * stride[axis]];
+        for (int x = 0; x < n; ++x) {
+          int best = in[x];
+          for (int r = 1; r < best; ++r) {
+            if (x - r >= 0) best = std::min(best, std::max(r, int(in[x - r])));
+            if (x + r < n) best = std::min(best, std::max(r, int(in[x + r])));
+            if (x - r < 0 && x + r >= n) break;
+          }
+          d[base + static_cast<std::size_t>(x) * stride[axis]] = static_cast<std::uint8_t>(best);
+        }
+      }
+}
+
+}  // namespace
+
 void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, double hi,
                                  bool skipEmpty) {
-  std::vector<std::uint8_t> visible(minMax_.size(), 1);
+  // 0 where a block is visible, else its Chebyshev distance (in blocks, at most 255) to the
+  // nearest visible one: every block nearer than that is empty, so a ray skips the whole cube.
+  if (skipEmpty_ == int(skipEmpty) && lo == lo_ && hi == hi_ && (!skipEmpty || lut == lut_)) return;
+  skipEmpty_ = int(skipEmpty);
+  lo_ = lo;
+  hi_ = hi;
+  lut_ = lut;
+  std::vector<std::uint8_t> distance(minMax_.size(), 0);
   if (skipEmpty) {
+    // The entries linear filtering reads for values in the block's range (the shader looks
+    // value v up at entry (v - lo) / (hi - lo) (n - 1)), widened by a hundredth of an entry
+    // for the shader's float rounding.
     const int n = static_cast<int>(lut.size());
-    for (std::size_t b = 0; b < visible.size(); ++b) {
-      const auto e0 = static_cast<int>(std::floor((minMax_[b].x - lo) / (hi - lo) * (n - 1)));
-      const auto e1 = static_cast<int>(std::ceil((minMax_[b].y - lo) / (hi - lo) * (n - 1)));
+    for (std::size_t b = 0; b < distance.size(); ++b) {
+      const auto e0 =
+          static_cast<int>(std::floor((minMax_[b].x - lo) / (hi - lo) * (n - 1) - 0.01));
+      const auto e1 = static_cast<int>(std::ceil((minMax_[b].y - lo) / (hi - lo) * (n - 1) + 0.01));
       bool any = false;
       for (int e = std::max(0, e0); e <= std::min(n - 1, e1) && !any; ++e) any = lut[e].a > 0.0f;
-      visible[b] = any;
+      distance[b] = any ? 0 : 255;
     }
+    for (int axis = 0; axis < 3; ++axis) chebyshevPass(distance, count_, axis);
   }
   glBindTexture(GL_TEXTURE_3D, visibility_.id());
   glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, count_.x, count_.y, count_.z, 0, GL_RED_INTEGER,
-               GL_UNSIGNED_BYTE, visible.data());
+               GL_UNSIGNED_BYTE, distance.data());
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }

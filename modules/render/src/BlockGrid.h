@@ -1,7 +1,9 @@
 #pragma once
 // Empty-space skipping for the ray caster (internal to mvw_render): the volume's min/max per
-// 8^3 block, and per frame which blocks the transfer function makes visible, so composite rays
-// step over blocks that would add nothing.
+// 6^3 block, and per frame which blocks the transfer function makes visible, so composite rays
+// step over blocks that would add nothing: over every block within the distance to the
+// nearest visible one at once. 6 voxels: on the Cranium CT composite took 62 ms/frame with
+// 4^3 and 6^3 blocks, 67 with 8^3, 145 with 2^3 (README, "Speed").
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -15,13 +17,14 @@ namespace mvw::render::detail {
 
 class BlockGrid {
  public:
-  static constexpr int kBlockVoxels = 8;
+  static constexpr int kBlockVoxels = 6;
 
   // Of the volume's component 0, NaN ("no data") left out. The context must be current.
   explicit BlockGrid(const Volume& volume);
 
   // Marks the blocks whose value range meets a non-transparent entry of `lut` (sampled over
-  // lo..hi); with `skipEmpty` false (modes that see every sample) all blocks are visible.
+  // lo..hi) with 0, every other with its Chebyshev distance in blocks to the nearest of those
+  // (at most 255); with `skipEmpty` false (modes that see every sample) all blocks are 0.
   void updateVisibility(const std::vector<glm::vec4>& lut, double lo, double hi, bool skipEmpty);
 
   GLuint visibility() const { return visibility_.id(); }
@@ -30,6 +33,10 @@ class BlockGrid {
  private:
   glm::ivec3 count_;
   std::vector<glm::vec2> minMax_;
+  // What the uploaded distances were computed for: the viewer asks every frame.
+  std::vector<glm::vec4> lut_;
+  double lo_ = 0.0, hi_ = 0.0;
+  int skipEmpty_ = -1;
   Texture visibility_, minMaxTexture_;
 };
 

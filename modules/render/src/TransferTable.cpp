@@ -12,6 +12,7 @@ void TransferTable::update(const TransferFunction& transfer, double lo, double h
   lut_ = sampleTransferFunction(transfer, lo, hi, kEntries, lo, hi);
   const bool transfer2d = gradientHigh > 0.0;
   const int rows = transfer2d ? 64 : 1;
+  rows_ = rows;
   const double gradientMax = transfer2d ? 2.0 * gradientHigh : 1.0;
   gradientScale_ = 1.0 / gradientMax;
   std::vector<glm::vec4> table(static_cast<std::size_t>(kEntries) * rows);

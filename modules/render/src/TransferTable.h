@@ -27,12 +27,14 @@ class TransferTable {
   const std::vector<glm::vec4>& lut() const { return lut_; }
   // 1 / the gradient magnitude of the table's last row: maps |gradient| to the table's y.
   double gradientScale() const { return gradientScale_; }
+  int rows() const { return rows_; }
   GLuint texture() const { return texture_.id(); }
 
  private:
   Texture texture_;
   std::vector<glm::vec4> lut_;
   double gradientScale_ = 1.0;
+  int rows_ = 1;
 };
 
 }  // namespace mvw::render::detail

@@ -176,8 +176,15 @@ void VolumeRenderer::Impl::setVolumeUniforms(const ShaderProgram& p) const {
   glUniform1f(p.uniform("uVolume.referenceStep"), float(volume.referenceStepMm()));
   glUniform2f(p.uniform("uVolume.valueRange"), float(lo), float(hi));
   glUniform1f(p.uniform("uBlockVoxels"), float(detail::BlockGrid::kBlockVoxels));
-  glUniform2f(p.uniform("uTransferRange"), float(1.0 / (hi - lo)), float(-lo / (hi - lo)));
+  // Entry i of the table holds the value lo + i (hi - lo) / (n - 1) and sits at the texel
+  // centre (i + 0.5) / n: the column a value is looked up at puts it there, so that linear
+  // filtering reads the entries block visibility checked (BlockGrid::updateVisibility).
+  const double n = detail::TransferTable::kEntries;
+  glUniform2f(p.uniform("uTransferRange"), float((n - 1.0) / (n * (hi - lo))),
+              float((0.5 - lo * (n - 1.0) / (hi - lo)) / n));
   glUniform1f(p.uniform("uGradientScale"), float(transfer.gradientScale()));
+  const double rows = transfer.rows();
+  glUniform2f(p.uniform("uGradientRows"), float((rows - 1.0) / rows), float(0.5 / rows));
   volume.setUniforms(p);
 }
 
