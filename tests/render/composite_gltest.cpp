@@ -1,10 +1,15 @@
-// Composite DVR: Beer-Lambert through a uniform slab at any step, and frames that repeat
-// exactly (and follow the jitter seed).
+// Composite DVR: Beer-Lambert through a uniform slab at any step, frames that repeat exactly
+// (and follow the jitter seed), and empty-space skipping that leaves out no visible sample.
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iostream>
 
 #include <gtest/gtest.h>
 
+#include "../unit/TestUtil.h"
 #include "RenderTestUtil.h"
+#include "mvw/io/VolumeReader.h"
 #include "mvw/render/VolumeRenderer.h"
 
 namespace mvw::render {
@@ -51,6 +56,55 @@ TEST(Raycast, RenderingTwiceGivesIdenticalPixels) {
   s.seed = 2;
   const Frame c = renderer.render(s);
   EXPECT_NE(a.image.rgba, c.image.rgba);  // the jitter follows the seed
+}
+
+// Composite rays step over blocks the transfer function leaves empty, over a whole cube of them
+// at once where the nearest visible block is farther (BlockGrid). A table with an opacity floor
+// of 1e-6 per step everywhere leaves no block empty, so nothing is skipped, and over a ray of
+// some hundred samples the floor changes a pixel by well under one grey level: the two renders
+// must agree wherever skipping left out no sample that shows. The real CT (int16: value and
+// gradient from the packed texture), three presets, eight directions, shading on.
+TEST(Raycast, EmptySpaceSkippingLeavesOutNoVisibleSample) {
+  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
+  auto ctx = createHeadlessContext({16, 16});
+  VolumeRenderer renderer(*ctx, ct);
+  RenderSettings s;
+  s.mode = RenderMode::Composite;
+  s.size = {160, 160};
+  s.jitter = false;
+  std::size_t differing = 0, values = 0;
+  int worst = 0;
+  for (const char* preset : {"ct-bone", "ct-skin", "ct-muscle-bone"})
+    for (const auto& [azimuth, elevation] : {std::pair{0.0, 0.0},
+                                             {37.0, 0.0},
+                                             {90.0, 0.0},
+                                             {180.0, 25.0},
+                                             {225.0, -40.0},
+                                             {300.0, 10.0},
+                                             {0.0, 90.0},
+                                             {123.0, 61.0}}) {
+      s.camera.azimuthDeg = azimuth;
+      s.camera.elevationDeg = elevation;
+      s.transfer = transferPreset(preset);
+      const Frame skipping = renderer.render(s);
+      for (TfPoint& p : s.transfer.points) p.rgba.a = std::max(p.rgba.a, 1e-6f);
+      const Frame everySample = renderer.render(s);
+      std::size_t here = 0;
+      for (std::size_t i = 0; i < skipping.image.rgba.size(); ++i) {
+        const int d = std::abs(int(skipping.image.rgba[i]) - int(everySample.image.rgba[i]));
+        worst = std::max(worst, d);
+        here += d > 0;
+      }
+      EXPECT_LE(worst, 1) << preset << ", azimuth " << azimuth << ", elevation " << elevation;
+      differing += here;
+      values += skipping.image.rgba.size();
+    }
+  std::cout << "skipping against every sample: " << differing << " of " << values
+            << " channel values differ, by at most " << worst << "\n";
+  // Measured on llvmpipe: 2745 of 2457600 differ, by 1 (the floor's own 0.1 grey level on a
+  // long ray, and float rounding of the step grid after a skip, tip a rounding). Skipping one
+  // block too many (the distance map one larger) changes 106509 values, by up to 255.
+  EXPECT_LE(differing, values / 100);
 }
 
 }  // namespace
