@@ -12,6 +12,7 @@ uniform vec2 uTransferRange;   // (scale, offset): value * scale + offset is the
                                // its texel centre
 uniform float uGradientScale;  // 1 / the |gradient| (unit/mm) at the last row
 uniform vec2 uGradientRows;    // 0..1 (first to last row) * x + y: the rows' texel centres
+uniform vec2 uVisibleValues;   // values outside [x, y] are transparent whatever the gradient
 uniform bool uShading;
 
 struct RayState {
@@ -96,8 +97,27 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 // pressure in every iteration); split, 1.07x (README, "What the methods cost"). The pixels
 // are the same, bit for bit: below the window the glyph code returns the anatomy's normal.
 #define MVW_SPLIT_LOOP
+float plainSampleValue(vec3 tex) { return sampleValue(tex); }
 int plainSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   return compositeSample(s, t, tex, value, ray, false);
+}
+#else
+// The ray runs a lean loop up to its first sample the table does not leave transparent, then
+// the full one from that sample on (MVW_SPLIT_LOOP): the lean loop reads the value alone and
+// asks whether it lies between the first and the last table entry with some opacity (no table
+// lookup), without the gradient, the shading and the compositing. llvmpipe runs every
+// part of a loop body on every iteration, and most samples in a visible block are transparent
+// (the air and soft tissue in front of the bone), so they no longer pay for the rest. The
+// samples and their order are the same, and a sample handed over early only costs time: the
+// pixels are the same too. The 2D table's opacity is the 1D one times a factor of at most 1,
+// so the 1D table's entries answer for it. The value comes from the intensity texture alone
+// (one channel; the packed texture's A holds the same texel).
+#define MVW_SPLIT_LOOP
+float plainSampleValue(vec3 tex) {
+  return textureLod(uIntensity, storedTexture(tex), 0.0).r * uValueMapping.x + uValueMapping.y;
+}
+int plainSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
+  return value >= uVisibleValues.x && value <= uVisibleValues.y ? 2 : 0;
 }
 #endif
 

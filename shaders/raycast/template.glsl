@@ -9,6 +9,7 @@
 //   int plainSampleHook(...)  (only where the mode defines MVW_SPLIT_LOOP) like sampleHook
 //                             without its costly part: 0 go on, 1 end the ray, 2 hand this
 //                             sample and the rest of the ray over to sampleHook
+//   float plainSampleValue(vec3 tex)  (with MVW_SPLIT_LOOP) the value plainSampleHook gets
 // RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
 void main() {
@@ -31,7 +32,7 @@ void main() {
         t = skipBlock(t, tex);
         continue;
       }
-      int next = plainSampleHook(s, t, tex, sampleValue(tex), ray);
+      int next = plainSampleHook(s, t, tex, plainSampleValue(tex), ray);
       if (next == 1) rest = false;
       if (next != 0) break;
     }

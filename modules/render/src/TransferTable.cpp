@@ -13,6 +13,18 @@ void TransferTable::update(const TransferFunction& transfer, double lo, double h
   const bool transfer2d = gradientHigh > 0.0;
   const int rows = transfer2d ? 64 : 1;
   rows_ = rows;
+  int first = kEntries, last = -1;
+  for (int i = 0; i < kEntries; ++i)
+    if (lut_[i].a > 0.0f) {
+      first = std::min(first, i);
+      last = i;
+    }
+  const double entry = (hi - lo) / (kEntries - 1);
+  // Values beyond lo..hi read the end entries (the lookup clamps).
+  visibleValues_ = last < 0
+                       ? glm::vec2(1.0f, 0.0f)
+                       : glm::vec2(first == 0 ? -3.4e38f : float(lo + (first - 1) * entry),
+                                   last == kEntries - 1 ? 3.4e38f : float(lo + (last + 1) * entry));
   const double gradientMax = transfer2d ? 2.0 * gradientHigh : 1.0;
   gradientScale_ = 1.0 / gradientMax;
   std::vector<glm::vec4> table(static_cast<std::size_t>(kEntries) * rows);

@@ -4,6 +4,7 @@
 // corrected for the frame's step once here rather than per sample.
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "GlObjects.h"
@@ -28,6 +29,10 @@ class TransferTable {
   // 1 / the gradient magnitude of the table's last row: maps |gradient| to the table's y.
   double gradientScale() const { return gradientScale_; }
   int rows() const { return rows_; }
+  // The values (lo..hi units) from the first to the last entry with some opacity, widened by
+  // an entry either side (what linear filtering reads), unbounded on a side whose end entry
+  // has some; min > max where none has any.
+  glm::vec2 visibleValues() const { return visibleValues_; }
   GLuint texture() const { return texture_.id(); }
 
  private:
@@ -35,6 +40,7 @@ class TransferTable {
   std::vector<glm::vec4> lut_;
   double gradientScale_ = 1.0;
   int rows_ = 1;
+  glm::vec2 visibleValues_{1.0f, 0.0f};
 };
 
 }  // namespace mvw::render::detail

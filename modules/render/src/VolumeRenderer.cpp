@@ -185,6 +185,8 @@ void VolumeRenderer::Impl::setVolumeUniforms(const ShaderProgram& p) const {
   glUniform1f(p.uniform("uGradientScale"), float(transfer.gradientScale()));
   const double rows = transfer.rows();
   glUniform2f(p.uniform("uGradientRows"), float((rows - 1.0) / rows), float(0.5 / rows));
+  const glm::vec2 visible = transfer.visibleValues();
+  glUniform2f(p.uniform("uVisibleValues"), visible.x, visible.y);
   volume.setUniforms(p);
 }
 
