@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 #include <thread>
+#include <type_traits>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -253,18 +254,36 @@ VolumeTextures::VolumeTextures(const Volume& volume, GradientSource gradient)
     for (int k0 = 0; k0 < dims_.z; k0 += kSlabSlices) {
       const int n = std::min(kSlabSlices, dims_.z - k0);
       const T* src = p + static_cast<std::size_t>(k0) * sliceVoxels * nc;
-      for (std::size_t i = 0; i < sliceVoxels * n; ++i) {
-        const T v = src[i * nc];
-        if constexpr (std::is_floating_point_v<T>) {
+      const std::size_t count = sliceVoxels * n;
+      if constexpr (std::is_floating_point_v<T>) {
+        for (std::size_t i = 0; i < count; ++i) {
+          const T v = src[i * nc];
           if (std::isfinite(v)) {
             lo = std::min<double>(lo, v);
             hi = std::max<double>(hi, v);
           }
-        } else {
-          lo = std::min<double>(lo, v);
-          hi = std::max<double>(hi, v);
+          slab[i] = texelOf(v);
         }
-        slab[i] = texelOf(v);
+      } else {
+        // Integers: the range in the voxel type, one component apart (the compiler
+        // vectorises that loop; per voxel in double it took 0.4 s of a 512 x 512 x 432 CT).
+        T mn = std::numeric_limits<T>::max(), mx = std::numeric_limits<T>::lowest();
+        auto convert = [&](auto stride) {
+          for (std::size_t i = 0; i < count; ++i) {
+            const T v = src[i * stride];
+            mn = std::min(mn, v);
+            mx = std::max(mx, v);
+            slab[i] = texelOf(v);
+          }
+        };
+        if (nc == 1)
+          convert(std::integral_constant<std::size_t, 1>{});
+        else
+          convert(static_cast<std::size_t>(nc));
+        if (count > 0) {
+          lo = std::min<double>(lo, mn);
+          hi = std::max<double>(hi, mx);
+        }
       }
       if (foldRuns_ == 1)
         glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, k0, dims_.x, dims_.y, n, GL_RED, layout.type,
