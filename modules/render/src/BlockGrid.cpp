@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "TextureUpload.h"
+#include "TransferTable.h"
 
 namespace mvw::render::detail {
 
@@ -100,14 +101,15 @@ void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, d
   lut_ = lut;
   std::vector<std::uint8_t> distance(minMax_.size(), 0);
   if (skipEmpty) {
-    // The entries linear filtering reads for values in the block's range (the shader looks
-    // value v up at entry (v - lo) / (hi - lo) (n - 1)), widened by a hundredth of an entry
-    // for the shader's float rounding.
+    // The entries linear filtering reads for values in the block's range (where the shader
+    // looks a value up: TransferTable::entryOf), widened by a hundredth of an entry for the
+    // shader's float rounding.
     const int n = static_cast<int>(lut.size());
     for (std::size_t b = 0; b < distance.size(); ++b) {
       const auto e0 =
-          static_cast<int>(std::floor((minMax_[b].x - lo) / (hi - lo) * (n - 1) - 0.01));
-      const auto e1 = static_cast<int>(std::ceil((minMax_[b].y - lo) / (hi - lo) * (n - 1) + 0.01));
+          static_cast<int>(std::floor(TransferTable::entryOf(minMax_[b].x, lo, hi) - 0.01));
+      const auto e1 =
+          static_cast<int>(std::ceil(TransferTable::entryOf(minMax_[b].y, lo, hi) + 0.01));
       bool any = false;
       for (int e = std::max(0, e0); e <= std::min(n - 1, e1) && !any; ++e) any = lut[e].a > 0.0f;
       distance[b] = any ? 0 : 255;

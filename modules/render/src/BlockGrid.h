@@ -22,9 +22,10 @@ class BlockGrid {
   // Of the volume's component 0, NaN ("no data") left out. The context must be current.
   explicit BlockGrid(const Volume& volume);
 
-  // Marks the blocks whose value range meets a non-transparent entry of `lut` (sampled over
-  // lo..hi) with 0, every other with its Chebyshev distance in blocks to the nearest of those
-  // (at most 255); with `skipEmpty` false (modes that see every sample) all blocks are 0.
+  // Marks the blocks whose value range meets a non-transparent entry of `lut` (the
+  // TransferTable's, sampled over lo..hi) with 0, every other with its Chebyshev distance in blocks
+  // to the nearest of those (at most 255); with `skipEmpty` false (modes that see every sample) all
+  // blocks are 0.
   void updateVisibility(const std::vector<glm::vec4>& lut, double lo, double hi, bool skipEmpty);
 
   GLuint visibility() const { return visibility_.id(); }

@@ -19,12 +19,11 @@ void TransferTable::update(const TransferFunction& transfer, double lo, double h
       first = std::min(first, i);
       last = i;
     }
-  const double entry = (hi - lo) / (kEntries - 1);
   // Values beyond lo..hi read the end entries (the lookup clamps).
-  visibleValues_ = last < 0
-                       ? glm::vec2(1.0f, 0.0f)
-                       : glm::vec2(first == 0 ? -3.4e38f : float(lo + (first - 1) * entry),
-                                   last == kEntries - 1 ? 3.4e38f : float(lo + (last + 1) * entry));
+  visibleValues_ =
+      last < 0 ? glm::vec2(1.0f, 0.0f)
+               : glm::vec2(first == 0 ? -3.4e38f : float(valueOf(first - 1, lo, hi)),
+                           last == kEntries - 1 ? 3.4e38f : float(valueOf(last + 1, lo, hi)));
   const double gradientMax = transfer2d ? 2.0 * gradientHigh : 1.0;
   gradientScale_ = 1.0 / gradientMax;
   std::vector<glm::vec4> table(static_cast<std::size_t>(kEntries) * rows);

@@ -18,6 +18,16 @@ class TransferTable {
 
   TransferTable();  // the context must be current
 
+  // Where a value sits in the table, and back: entry i holds the value lo + i (hi - lo) /
+  // (kEntries - 1). The shader's lookup (uTransferRange puts entry i at its texel centre),
+  // block visibility (BlockGrid) and the visible value range below all follow it.
+  static double entryOf(double value, double lo, double hi) {
+    return (value - lo) / (hi - lo) * (kEntries - 1);
+  }
+  static double valueOf(double entry, double lo, double hi) {
+    return lo + entry * ((hi - lo) / (kEntries - 1));
+  }
+
   // Samples `transfer` over lo..hi and uploads the table for a ray step of stepMm (opacities
   // are per referenceStepMm). gradientHigh > 0: opacity also scaled by
   // smoothstep(gradientLow, gradientHigh, |gradient|), over 64 rows up to 2 gradientHigh.
