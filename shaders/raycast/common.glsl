@@ -215,16 +215,20 @@ float skipBlock(float t, vec3 tex) {
 
 // Phong. By default a headlight (the light at the eye, along each ray); otherwise a
 // directional light from uLightDir (world, unit, from the scene toward the light). Normals
-// are made to face the viewer first, so surfaces are lit from either side.
+// are made to face the viewer first, so surfaces are lit from either side. The light and
+// halfway vectors depend on the ray alone: set once per ray (setupLight), not per sample.
 uniform vec4 uLight;     // ambient, diffuse, specular, shininess
 uniform bool uHeadlight;
 uniform vec3 uLightDir;
+vec3 gLight, gHalfway;
+void setupLight(vec3 viewDir) {
+  gLight = uHeadlight ? -viewDir : uLightDir;
+  gHalfway = normalize(gLight - viewDir);
+}
 vec3 phong(vec3 color, vec3 n, vec3 viewDir) {
   if (dot(n, viewDir) > 0.0) n = -n;
-  vec3 l = uHeadlight ? -viewDir : uLightDir;
-  float diffuse = max(dot(n, l), 0.0);
-  vec3 h = normalize(l - viewDir);
-  float specular = pow(max(dot(n, h), 0.0), uLight.w);
+  float diffuse = max(dot(n, gLight), 0.0);
+  float specular = pow(max(dot(n, gHalfway), 0.0), uLight.w);
   return color * (uLight.x + uLight.y * diffuse) + vec3(uLight.z * specular);
 }
 

@@ -15,6 +15,7 @@
 void main() {
   Ray ray = makeRay();
   setupRayConstants(ray);
+  setupLight(ray.dir);
   vec2 span = intersectBox(ray);
   gRayEntry = span.x;
   RayState s;

@@ -56,16 +56,21 @@ const ShaderProgram& RaycastPrograms::forMode(RenderMode mode, const RenderSetti
   }
   std::string key = toString(mode);
   for (const auto& d : defines) key += "+" + d;
-  return cached(key, file, defines);
+  return cached(key, usesBoxProxy(mode) ? "box.vert.glsl" : "fullscreen.vert.glsl", file, defines);
 }
 
-const ShaderProgram& RaycastPrograms::beta() { return cached("beta", "beta.frag.glsl", {}); }
+const ShaderProgram& RaycastPrograms::beta() {
+  return cached("beta", "fullscreen.vert.glsl", "beta.frag.glsl", {});
+}
 
-const ShaderProgram& RaycastPrograms::cached(const std::string& key, const std::string& fragment,
+bool RaycastPrograms::usesBoxProxy(RenderMode mode) { return mode != RenderMode::Mpr; }
+
+const ShaderProgram& RaycastPrograms::cached(const std::string& key, const std::string& vertex,
+                                             const std::string& fragment,
                                              const std::vector<std::string>& defines) {
   auto it = programs_.find(key);
   if (it == programs_.end())
-    it = programs_.emplace(key, ShaderProgram("fullscreen.vert.glsl", fragment, defines)).first;
+    it = programs_.emplace(key, ShaderProgram(vertex, fragment, defines)).first;
   return it->second;
 }
 

@@ -24,10 +24,13 @@ class RaycastPrograms {
   const ShaderProgram& forMode(RenderMode mode, const RenderSettings& settings, bool fusion);
   // beta.frag.glsl: the functional attribute into the gradient's alpha.
   const ShaderProgram& beta();
+  // Whether forMode's program for `mode` draws box.vert.glsl's proxy (BoxProxy.h), 36
+  // vertices; otherwise (MPR) a triangle over the viewport, 3 vertices.
+  static bool usesBoxProxy(RenderMode mode);
 
  private:
-  const ShaderProgram& cached(const std::string& key, const std::string& fragment,
-                              const std::vector<std::string>& defines);
+  const ShaderProgram& cached(const std::string& key, const std::string& vertex,
+                              const std::string& fragment, const std::vector<std::string>& defines);
   bool gradientOnTheFly_;
   bool packedGradient_;
   bool folded_;

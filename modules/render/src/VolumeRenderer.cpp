@@ -12,6 +12,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "BlockGrid.h"
+#include "BoxProxy.h"
 #include "FunctionalTextures.h"
 #include "GlObjects.h"
 #include "GlyphTextures.h"
@@ -72,6 +73,8 @@ struct VolumeRenderer::Impl {
   Image drawShells(const RenderSettings& s, const Camera& camera);
   Image rayCast(const RenderSettings& s, const Camera& camera);
   void setVolumeUniforms(const ShaderProgram& p) const;
+  std::pair<glm::dvec3, glm::dvec3> cropFractions(const RenderSettings& s) const;
+  std::pair<glm::dvec3, glm::dvec3> rayBox(const RenderSettings& s) const;
   void setRayUniforms(const ShaderProgram& p, const RenderSettings& s, const Camera& camera,
                       double step) const;
   void setShadingUniforms(const ShaderProgram& p, const RenderSettings& s,
@@ -160,8 +163,31 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   glViewport(0, 0, s.size.x, s.size.y);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
   glBindVertexArray(vao.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (!detail::RaycastPrograms::usesBoxProxy(s.mode)) {
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    return target.read();
+  }
+  // The rays run only where the box's proxy falls; elsewhere the target keeps what a ray that
+  // meets nothing writes: the background (the colour map's own where one applies: then the
+  // whole viewport is drawn instead) and no depth.
+  const auto [boxMin, boxMax] = rayBox(s);
+  detail::BoxProxy proxy = detail::boxProxy(camera, volume.textureFromWorld(), boxMin, boxMax);
+  if (showsImageColors(s)) proxy.fullscreen = true;
+  const GLfloat background[] = {s.background.r, s.background.g, s.background.b, 1.0f};
+  const GLfloat noDepth[] = {-1.0f, 0.0f, 0.0f, 0.0f};
+  glClearBufferfv(GL_COLOR, 0, background);
+  glClearBufferfv(GL_COLOR, 1, noDepth);
+  const glm::mat4 clipFromTexture(proxy.clipFromTexture);
+  glUniformMatrix4fv(p.uniform("uClipFromTexture"), 1, GL_FALSE, glm::value_ptr(clipFromTexture));
+  glUniform3f(p.uniform("uProxyMin"), float(proxy.min.x), float(proxy.min.y), float(proxy.min.z));
+  glUniform3f(p.uniform("uProxyMax"), float(proxy.max.x), float(proxy.max.y), float(proxy.max.z));
+  glUniform1i(p.uniform("uFaces"), proxy.faces);
+  glUniform1i(p.uniform("uFullscreen"), proxy.fullscreen ? 1 : 0);
+  glEnable(GL_DEPTH_CLAMP);  // faces before the near plane or past the far one still count
+  glDrawArrays(GL_TRIANGLES, 0, 36);
+  glDisable(GL_DEPTH_CLAMP);
   return target.read();
 }
 
@@ -190,6 +216,21 @@ void VolumeRenderer::Impl::setVolumeUniforms(const ShaderProgram& p) const {
   volume.setUniforms(p);
 }
 
+// The crop as fractions of the patient axes' extent (PatientCrop).
+std::pair<glm::dvec3, glm::dvec3> VolumeRenderer::Impl::cropFractions(
+    const RenderSettings& s) const {
+  if (s.cropMinMm && s.cropMaxMm) return crop.fractionsFromMm(*s.cropMinMm, *s.cropMaxMm);
+  return {s.cropMin, s.cropMax};
+}
+
+// The box the rays sample, in texture coordinates: along the patient axes the crop; an oblique
+// volume's whole box, since it is clipped in world mm instead (PatientCrop::worldBox).
+std::pair<glm::dvec3, glm::dvec3> VolumeRenderer::Impl::rayBox(const RenderSettings& s) const {
+  if (!crop.axisAligned()) return {glm::dvec3(0.0), glm::dvec3(1.0)};
+  const auto [lpsMin, lpsMax] = cropFractions(s);
+  return crop.textureBox(lpsMin, lpsMax);
+}
+
 // The rays: through which pixels, how far apart their samples, where they may go.
 void VolumeRenderer::Impl::setRayUniforms(const ShaderProgram& p, const RenderSettings& s,
                                           const Camera& camera, double step) const {
@@ -200,17 +241,12 @@ void VolumeRenderer::Impl::setRayUniforms(const ShaderProgram& p, const RenderSe
   glUniform1i(p.uniform("uMaxSteps"), static_cast<int>(std::ceil(2.0 * framing.radius / step)) + 2);
   glUniform1i(p.uniform("uJitter"), s.jitter ? 1 : 0);
   glUniform1ui(p.uniform("uSeed"), s.seed);
-  auto [lpsMin, lpsMax] = std::pair{s.cropMin, s.cropMax};
-  if (s.cropMinMm && s.cropMaxMm)
-    std::tie(lpsMin, lpsMax) = crop.fractionsFromMm(*s.cropMinMm, *s.cropMaxMm);
-  // Along the patient axes the texture box is the crop; an oblique volume is clipped in world
-  // mm instead (PatientCrop). 1e30: no world clip, so axis-aligned renders are unchanged.
-  auto [cmin, cmax] = crop.textureBox(lpsMin, lpsMax);
+  const auto [cmin, cmax] = rayBox(s);
+  // 1e30: no world clip, so axis-aligned renders are unchanged.
   glm::dvec3 wmin(-1e30), wmax(1e30);
   if (!crop.axisAligned()) {
+    const auto [lpsMin, lpsMax] = cropFractions(s);
     std::tie(wmin, wmax) = crop.worldBox(lpsMin, lpsMax);
-    cmin = glm::dvec3(0.0);
-    cmax = glm::dvec3(1.0);
   }
   glUniform3f(p.uniform("uBoxMin"), float(cmin.x), float(cmin.y), float(cmin.z));
   glUniform3f(p.uniform("uBoxMax"), float(cmax.x), float(cmax.y), float(cmax.z));
