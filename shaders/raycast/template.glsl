@@ -28,7 +28,7 @@ void main() {
     bool rest = true;
 #if defined(MVW_SPLIT_LOOP)
     for (; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
-      vec3 tex = toTexture(ray.origin + t * ray.dir);
+      vec3 tex = gTexOrigin + t * gTexDir;  // toTexture(ray.origin + t * ray.dir), 3 multiply-adds
       if (skipHook(s, t, tex)) {
         t = skipBlock(t, tex);
         continue;
@@ -39,7 +39,7 @@ void main() {
     }
 #endif
     for (; rest && i < uMaxSteps && t <= span.y; ++i, t += uStep) {
-      vec3 tex = toTexture(ray.origin + t * ray.dir);
+      vec3 tex = gTexOrigin + t * gTexDir;  // toTexture(ray.origin + t * ray.dir), 3 multiply-adds
       // Tested per sample: caching the test once per block entered left ring artefacts on
       // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
       if (skipHook(s, t, tex)) {
