@@ -25,6 +25,7 @@ struct RayState {
   float value;
   float depth;
   int count;
+  float bound;  // MIP: the ray's maximum is at least this (MVW_PREPASS)
   // Depth cue, per ray: beta(t) = cue0 - cue1 t (eq. 3 with z' = a z + b) and the emission
   // phi = clamp(v * scale + offset): the loop then multiplies and adds, and never divides
   // (a division per sample cost the cue a third of plain MIP's time on llvmpipe).
@@ -54,7 +55,28 @@ void setupHook(inout RayState s, Ray ray) {
 #endif
   s.depth = -1.0;
   s.count = 0;
+  s.bound = s.value;
 }
+
+#if defined(MVW_MIP) && !defined(MVW_DEPTH_CUE)
+// Before the ray proper, every MVW_PREPASS_STRIDE-th of its samples: their maximum, less a
+// margin, bounds the ray's maximum from below, so blocks whose maximum lies under it are
+// skipped from the start. The maximum so far alone skips no block before the ray has met
+// the brightest structure (in front of a skull: all of the air and the skin). The margin (a
+// hundredth of the value range) covers the pre-pass's positions being summed differently
+// from the ray's (float rounding of t, and the filter's fixed-point weights): no block that
+// holds the ray's maximum, or a sample that ties with it, is skipped. (MinIP without it: its
+// rays meet the air around a body first; with it, 2-5 % slower on the Cranium CT.)
+#define MVW_PREPASS
+#define MVW_PREPASS_STRIDE 16.0
+void prepassHook(inout RayState s, float t, float tEnd) {
+  float m = s.value;
+  float stride = MVW_PREPASS_STRIDE * uStep;
+  for (int i = 0; i < uMaxSteps && t <= tEnd; ++i, t += stride)
+    m = max(m, sampleValue(gTexOrigin + t * gTexDir));
+  s.bound = m - 0.01 * (uVolume.valueRange.y - uVolume.valueRange.x);
+}
+#endif
 
 // Empty-space skipping by the block min/max grid (one-voxel apron, so no trilinear sample in a
 // block leaves its range): a block whose maximum cannot beat the ray's maximum so far (MIP; with
@@ -67,7 +89,10 @@ bool skipHook(RayState s, float t, vec3 tex) {
          s.value;
 }
 #elif defined(MVW_MIP)
-bool skipHook(RayState s, float t, vec3 tex) { return blockRange(tex).y <= s.value; }
+bool skipHook(RayState s, float t, vec3 tex) {
+  float blockMax = blockRange(tex).y;
+  return blockMax <= s.value || blockMax < s.bound;
+}
 #elif defined(MVW_MINIP)
 bool skipHook(RayState s, float t, vec3 tex) { return blockRange(tex).x >= s.value; }
 #else

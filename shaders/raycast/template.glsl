@@ -24,6 +24,9 @@ void main() {
     // Without jitter, samples sit at the middle of each step (midpoint rule): a ray through a
     // slab of thickness L takes exactly L / step samples.
     float t = span.x + (uJitter ? jitterOffset() : 0.5) * uStep;
+#if defined(MVW_PREPASS)
+    prepassHook(s, t, span.y);
+#endif
     int i = 0;
     bool rest = true;
 #if defined(MVW_SPLIT_LOOP)
