@@ -64,6 +64,10 @@ vec3 toTexture(vec3 world) { return (uVolume.textureFromWorld * vec4(world, 1.0)
 // space, so that the loop multiplies where it divided. llvmpipe runs every branch of the loop
 // body on every iteration, the skip's arithmetic included (6 % of a composite frame).
 vec3 gTexOrigin, gTexDir, gTexInvDir, gBlockScale, gBlockSize;
+// skipBlock's per-ray part: a block face's distance along the ray is
+// (its block coordinate) * gFaceScale + gFaceOffset (axes the ray runs parallel to: 1e30), and
+// gFaceAhead picks the face the ray leaves through.
+vec3 gFaceAhead, gFaceScale, gFaceOffset;
 bvec3 gParallel;  // the ray is parallel to that axis's face pair (its direction 0.0 or -0.0)
 ivec3 gBlockMax;
 float gInvStep;
@@ -76,6 +80,9 @@ void setupRayConstants(Ray r) {
   gBlockSize = uBlockVoxels / uVolume.dimensions;
   gBlockMax = ivec3(ceil(gBlockScale)) - 1;
   gInvStep = 1.0 / uStep;
+  gFaceAhead = step(vec3(0.0), gTexDir);
+  gFaceScale = mix(gBlockSize * gTexInvDir, vec3(0.0), gParallel);
+  gFaceOffset = mix(-gTexOrigin * gTexInvDir, vec3(1e30), gParallel);
 }
 
 // Entry and exit distances (world mm) of the ray through the crop box; empty if x >= y.
@@ -206,9 +213,8 @@ vec2 blockRange(vec3 tex) { return texelFetch(uBlockRange, blockOf(tex), 0).rg; 
 // signs in the volume's storage order) picked the far face and divided to -inf, and the ray
 // then crept through empty space one sample per iteration (2.7x the frame at some azimuths).
 float skipBlock(float t, vec3 tex) {
-  vec3 ahead = step(vec3(0.0), gTexDir);
-  vec3 faces = (vec3(blockOf(tex)) + ahead + gSkipReach * (2.0 * ahead - 1.0)) * gBlockSize;
-  vec3 tFaces = mix((faces - gTexOrigin) * gTexInvDir, vec3(1e30), gParallel);
+  vec3 faces = vec3(blockOf(tex)) + gFaceAhead + gSkipReach * (2.0 * gFaceAhead - 1.0);
+  vec3 tFaces = faces * gFaceScale + gFaceOffset;
   float tExit = min(min(tFaces.x, tFaces.y), tFaces.z);
   return t + max(0.0, floor((tExit - t) * gInvStep)) * uStep;
 }
