@@ -12,6 +12,7 @@
 #include "BenchCommand.h"
 #include "ConvertCommand.h"
 #include "GlyphMapCommand.h"
+#include "HugePages.h"
 #include "InfoCommand.h"
 #include "PhantomCommand.h"
 #include "RegisterCommand.h"
@@ -23,6 +24,7 @@
 #include "view/ViewCommand.h"
 
 int main(int argc, char** argv) {
+  mvw::app::restartWithHugePages(argv);
   CLI::App app{
       "mvw - multimodal volume workstation: anatomy + functional volumes, registered and rendered"};
   app.require_subcommand(1);
