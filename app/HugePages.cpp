@@ -1,10 +1,12 @@
 #include "HugePages.h"
 
+#include <climits>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
 #if defined(__linux__) && defined(__GLIBC__)
+#include <sys/auxv.h>
 #include <unistd.h>
 #endif
 
@@ -18,21 +20,46 @@ namespace mvw::app {
 // transparent huge pages (2 MiB, where the kernel allows them: THP "madvise" or "always")
 // when glibc.malloc.hugetlb=1, for every library in the process; the tunable is read once,
 // by the dynamic loader at start-up, hence the second start. It took that cold start from
-// 2.94-3.16 s to 1.83-1.96 s at the same peak memory (README, "Speed").
+// 2.94-3.16 s to 1.23-2.29 s at the same peak memory (README, "Huge pages").
+//
+// The second start puts the user's GLIBC_TUNABLES back (kept meanwhile in
+// MVW_GLIBC_TUNABLES_BEFORE, which also marks it), so the programs mvw runs (elastix in
+// `mvw bench register`, ffmpeg) start as they would without it.
 void restartWithHugePages(char** argv) {
 #if defined(__linux__) && defined(__GLIBC__)
+  constexpr const char* kMark = "MVW_GLIBC_TUNABLES_BEFORE";
+  constexpr const char* kUnset = "-";             // GLIBC_TUNABLES was not set
+  if (const char* before = std::getenv(kMark)) {  // the second start
+    if (std::strcmp(before, kUnset) == 0)
+      unsetenv("GLIBC_TUNABLES");
+    else
+      setenv("GLIBC_TUNABLES", before, 1);
+    unsetenv(kMark);
+    return;
+  }
+  // Not where the loader ignores tunables (set-user-ID and the like), nor where this process
+  // is not the program itself (run through the dynamic loader: /proc/self/exe is the loader).
+  if (getauxval(AT_SECURE) != 0 || getauxval(AT_BASE) == 0) return;
   constexpr const char* kTunable = "glibc.malloc.hugetlb";
   const char* current = std::getenv("GLIBC_TUNABLES");
-  if (current && std::strstr(current, kTunable)) return;  // set, by mvw's first start or a user
-  std::string tunables = current && *current ? std::string(current) + ":" : std::string();
-  tunables += std::string(kTunable) + "=1";
-  if (setenv("GLIBC_TUNABLES", tunables.c_str(), 1) != 0) return;
-  execv("/proc/self/exe", argv);
-  // The new start failed (no /proc, say): go on in this process, without huge pages.
+  if (current && std::strstr(current, kTunable)) return;  // a user's choice: keep it
+  // The program's own path, so that the new process keeps mvw's name (ps, top, perf).
+  char self[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) return;
+  self[n] = '\0';
+  const std::string tunables =
+      (current && *current ? std::string(current) + ":" : std::string()) + kTunable + "=1";
+  if (setenv(kMark, current ? current : kUnset, 1) != 0 ||
+      setenv("GLIBC_TUNABLES", tunables.c_str(), 1) != 0)
+    return;
+  execv(self, argv);
+  // The new start failed: go on in this process, without huge pages.
   if (current)
     setenv("GLIBC_TUNABLES", current, 1);
   else
     unsetenv("GLIBC_TUNABLES");
+  unsetenv(kMark);
 #else
   (void)argv;
 #endif

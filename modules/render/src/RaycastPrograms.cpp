@@ -7,6 +7,7 @@ const ShaderProgram& RaycastPrograms::forMode(RenderMode mode, const RenderSetti
   std::string file = "projection.frag.glsl";
   std::vector<std::string> defines;
   if (mode == RenderMode::Mip && s.depthCue) defines.push_back("MVW_DEPTH_CUE 1");
+  if (mode == RenderMode::Mip && !s.linear) defines.push_back("MVW_NEAREST 1");
   if (mode == RenderMode::Composite) {
     if (s.gradientOpacityHigh > 0.0) defines.push_back("MVW_TF2D 1");
     if (fusion) defines.push_back("MVW_FUSION 1");
