@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <thread>
 
+#include <glm/common.hpp>
+#include <glm/vector_relational.hpp>
+
 #include "TextureUpload.h"
 #include "TransferTable.h"
 
@@ -13,6 +16,7 @@ namespace mvw::render::detail {
 BlockGrid::BlockGrid(const Volume& volume) {
   constexpr int kB = kBlockVoxels;
   const glm::ivec3 dims = volume.dimensions();
+  dims_ = dims;
   const int nc = volume.components();
   count_ = (dims + kB - 1) / kB;
   // Min/max per block, widened by one voxel: trilinear samples near a block's face read the
@@ -115,6 +119,25 @@ void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, d
       distance[b] = any ? 0 : 255;
     }
     for (int axis = 0; axis < 3; ++axis) chebyshevPass(distance, count_, axis);
+  }
+  // The visible blocks' box, as the shader's blockOf maps texture coordinates to blocks (the
+  // grid's first and last blocks reach on to the box's faces).
+  glm::ivec3 first = count_, last(-1);
+  for (int bk = 0, b = 0; bk < count_.z; ++bk)
+    for (int bj = 0; bj < count_.y; ++bj)
+      for (int bi = 0; bi < count_.x; ++bi, ++b)
+        if (distance[b] == 0) {
+          first = glm::min(first, glm::ivec3(bi, bj, bk));
+          last = glm::max(last, glm::ivec3(bi, bj, bk));
+        }
+  if (last.x < 0) {
+    visibleBox_ = {glm::dvec3(1.0), glm::dvec3(0.0)};
+  } else {
+    const glm::dvec3 size = glm::dvec3(kBlockVoxels) / glm::dvec3(dims_);
+    visibleBox_.first =
+        glm::mix(glm::dvec3(first) * size, glm::dvec3(0.0), glm::equal(first, glm::ivec3(0)));
+    visibleBox_.second =
+        glm::mix(glm::dvec3(last + 1) * size, glm::dvec3(1.0), glm::equal(last, count_ - 1));
   }
   glBindTexture(GL_TEXTURE_3D, visibility_.id());
   glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, count_.x, count_.y, count_.z, 0, GL_RED_INTEGER,

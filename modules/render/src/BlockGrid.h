@@ -4,6 +4,7 @@
 // step over blocks that would add nothing: over every block within the distance to the
 // nearest visible one at once. 6 voxels: on the Cranium CT composite took 62 ms/frame with
 // 4^3 and 6^3 blocks, 67 with 8^3, 145 with 2^3 (README, "Speed").
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -28,11 +29,17 @@ class BlockGrid {
   // blocks are 0.
   void updateVisibility(const std::vector<glm::vec4>& lut, double lo, double hi, bool skipEmpty);
 
+  // The box, in texture coordinates (0..1 across the voxel box), that holds every block
+  // updateVisibility marked visible: no sample outside it can show. Empty (min > max) where
+  // none is; the whole box with skipEmpty false.
+  std::pair<glm::dvec3, glm::dvec3> visibleBox() const { return visibleBox_; }
+
   GLuint visibility() const { return visibility_.id(); }
   GLuint minMax() const { return minMaxTexture_.id(); }
 
  private:
-  glm::ivec3 count_;
+  glm::ivec3 dims_, count_;
+  std::pair<glm::dvec3, glm::dvec3> visibleBox_{glm::dvec3(0.0), glm::dvec3(1.0)};
   std::vector<glm::vec2> minMax_;
   // What the uploaded distances were computed for: the viewer asks every frame.
   std::vector<glm::vec4> lut_;

@@ -172,13 +172,21 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   // The rays run only where the box's proxy falls; elsewhere the target keeps what a ray that
   // meets nothing writes: the background (the colour map's own where one applies: then the
   // whole viewport is drawn instead) and no depth.
-  const auto [boxMin, boxMax] = rayBox(s);
-  detail::BoxProxy proxy = detail::boxProxy(camera, volume.textureFromWorld(), boxMin, boxMax);
-  if (showsImageColors(s)) proxy.fullscreen = true;
+  // Composite: within the crop, only the box of the blocks the transfer function can show
+  // (no sample outside it adds anything); none at all leaves the background alone.
+  auto [boxMin, boxMax] = rayBox(s);
+  std::tie(boxMin, boxMax) = std::pair{glm::min(boxMin, boxMax), glm::max(boxMin, boxMax)};
+  if (s.mode == RenderMode::Composite) {
+    boxMin = glm::max(boxMin, blocks.visibleBox().first);
+    boxMax = glm::min(boxMax, blocks.visibleBox().second);
+  }
   const GLfloat background[] = {s.background.r, s.background.g, s.background.b, 1.0f};
   const GLfloat noDepth[] = {-1.0f, 0.0f, 0.0f, 0.0f};
   glClearBufferfv(GL_COLOR, 0, background);
   glClearBufferfv(GL_COLOR, 1, noDepth);
+  if (glm::any(glm::greaterThan(boxMin, boxMax))) return target.read();
+  detail::BoxProxy proxy = detail::boxProxy(camera, volume.textureFromWorld(), boxMin, boxMax);
+  if (showsImageColors(s)) proxy.fullscreen = true;
   const glm::mat4 clipFromTexture(proxy.clipFromTexture);
   glUniformMatrix4fv(p.uniform("uClipFromTexture"), 1, GL_FALSE, glm::value_ptr(clipFromTexture));
   glUniform3f(p.uniform("uProxyMin"), float(proxy.min.x), float(proxy.min.y), float(proxy.min.z));
