@@ -63,19 +63,22 @@ void setupHook(inout RayState s, Ray ray) {
 // margin, bounds the ray's maximum from below, so blocks whose maximum lies under it are
 // skipped from the start. The maximum so far alone skips no block before the ray has met
 // the brightest structure (in front of a skull: all of the air and the skin). The margin (a
-// hundredth of the value range) covers the pre-pass's positions being summed differently
-// from the ray's (float rounding of t, and the filter's fixed-point weights): no block that
-// holds the ray's maximum, or a sample that ties with it, is skipped. (MinIP without it: its
+// hundredth of the value range) is for safety only: the pre-pass reads the ray's own samples,
+// their positions computed by the same expression (t0 + n * uStep), so no block that holds the
+// ray's maximum, or a sample that ties with it, is skipped. (MinIP without it: its
 // rays meet the air around a body first; with it, 2-5 % slower on the Cranium CT.) Not with
-// nearest-neighbour sampling (MVW_NEAREST): there a position summed differently can read
-// another voxel altogether, and no margin short of the value range covers that.
+// nearest-neighbour sampling (MVW_NEAREST): were the compiler to evaluate the same expression
+// differently in the two loops (a fused multiply-add in one only), a sample there could read
+// another voxel altogether, which no margin short of the value range covers.
 #define MVW_PREPASS
 #define MVW_PREPASS_STRIDE 16.0
-void prepassHook(inout RayState s, float t, float tEnd) {
+void prepassHook(inout RayState s, float t0, float tEnd) {
   float m = s.value;
-  float stride = MVW_PREPASS_STRIDE * uStep;
-  for (int i = 0; i < uMaxSteps && t <= tEnd; ++i, t += stride)
+  for (float n = 0.0; n < float(uMaxSteps); n += MVW_PREPASS_STRIDE) {
+    float t = t0 + n * uStep;  // the ray's own sample n (template.glsl)
+    if (t > tEnd) break;
     m = max(m, sampleValue(gTexOrigin + t * gTexDir));
+  }
   s.bound = m - 0.01 * (uVolume.valueRange.y - uVolume.valueRange.x);
 }
 #endif

@@ -64,7 +64,7 @@ vec3 toTexture(vec3 world) { return (uVolume.textureFromWorld * vec4(world, 1.0)
 // space, so that the loop multiplies where it divided. llvmpipe runs every branch of the loop
 // body on every iteration, the skip's arithmetic included (6 % of a composite frame).
 vec3 gTexOrigin, gTexDir, gTexInvDir, gBlockScale, gBlockSize;
-// skipBlock's per-ray part: a block face's distance along the ray is
+// skipSteps's per-ray part: a block face's distance along the ray is
 // (its block coordinate) * gFaceScale + gFaceOffset (axes the ray runs parallel to: 1e30), and
 // gFaceAhead picks the face the ray leaves through.
 vec3 gFaceAhead, gFaceScale, gFaceOffset;
@@ -194,7 +194,7 @@ vec4 sampleGradientOfValue(vec3 tex) { return sampleGradient(tex); }
 #endif
 
 ivec3 blockOf(vec3 tex) { return clamp(ivec3(floor(tex * gBlockScale)), ivec3(0), gBlockMax); }
-// Blocks around the current one that skipBlock steps over with it: a cube of side
+// Blocks around the current one that skipSteps steps over with it: a cube of side
 // 2 gSkipReach + 1 blocks (set by a mode's skipHook; 0 is the block alone).
 float gSkipReach = 0.0;
 // Composite: whether the block can show anything, and if not, how many around it cannot either.
@@ -205,18 +205,18 @@ bool blockVisible(vec3 tex) {
 }
 vec2 blockRange(vec3 tex) { return texelFetch(uBlockRange, blockOf(tex), 0).rg; }
 
-// The last sample distance on this ray's step grid that still lies in the block holding
-// `tex`, or in the cube of gSkipReach blocks around it: the loop's next step then lands in the
-// following block (empty-space skipping).
+// How many more steps from the sample at t still lie in the block holding `tex`, or in the
+// cube of gSkipReach blocks around it: the loop's next step after those lands in the following
+// block (empty-space skipping).
 // A ray parallel to a face pair never leaves through it. Not left to a division: a direction
 // component the matrix product makes -0.0 (which axis, for which directions, follows the
 // signs in the volume's storage order) picked the far face and divided to -inf, and the ray
 // then crept through empty space one sample per iteration (2.7x the frame at some azimuths).
-float skipBlock(float t, vec3 tex) {
+float skipSteps(float t, vec3 tex) {
   vec3 faces = vec3(blockOf(tex)) + gFaceAhead + gSkipReach * (2.0 * gFaceAhead - 1.0);
   vec3 tFaces = faces * gFaceScale + gFaceOffset;
   float tExit = min(min(tFaces.x, tFaces.y), tFaces.z);
-  return t + max(0.0, floor((tExit - t) * gInvStep)) * uStep;
+  return max(0.0, floor((tExit - t) * gInvStep));
 }
 
 // Phong. By default a headlight (the light at the eye, along each ray); otherwise a

@@ -22,18 +22,23 @@ void main() {
   setupHook(s, ray);
   if (span.x < span.y) {
     // Without jitter, samples sit at the middle of each step (midpoint rule): a ray through a
-    // slab of thickness L takes exactly L / step samples.
-    float t = span.x + (uJitter ? jitterOffset() : 0.5) * uStep;
+    // slab of thickness L takes exactly L / step samples. Sample n lies at t0 + n * uStep,
+    // computed afresh (not summed step by step): no rounding builds up along a long ray, and a
+    // mode's pre-pass over every k-th sample reads the very samples the ray will.
+    float t0 = span.x + (uJitter ? jitterOffset() : 0.5) * uStep;
 #if defined(MVW_PREPASS)
-    prepassHook(s, t, span.y);
+    prepassHook(s, t0, span.y);
 #endif
     int i = 0;
+    float n = 0.0;  // whole numbers, exact in a float up to 2^24 samples
     bool rest = true;
 #if defined(MVW_SPLIT_LOOP)
-    for (; i < uMaxSteps && t <= span.y; ++i, t += uStep) {
+    for (; i < uMaxSteps; ++i, n += 1.0) {
+      float t = t0 + n * uStep;
+      if (t > span.y) break;
       vec3 tex = gTexOrigin + t * gTexDir;  // toTexture(ray.origin + t * ray.dir), 3 multiply-adds
       if (skipHook(s, t, tex)) {
-        t = skipBlock(t, tex);
+        n += skipSteps(t, tex);
         continue;
       }
       int next = plainSampleHook(s, t, tex, plainSampleValue(tex), ray);
@@ -41,12 +46,14 @@ void main() {
       if (next != 0) break;
     }
 #endif
-    for (; rest && i < uMaxSteps && t <= span.y; ++i, t += uStep) {
+    for (; rest && i < uMaxSteps; ++i, n += 1.0) {
+      float t = t0 + n * uStep;
+      if (t > span.y) break;
       vec3 tex = gTexOrigin + t * gTexDir;  // toTexture(ray.origin + t * ray.dir), 3 multiply-adds
       // Tested per sample: caching the test once per block entered left ring artefacts on
       // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
       if (skipHook(s, t, tex)) {
-        t = skipBlock(t, tex);
+        n += skipSteps(t, tex);
         continue;
       }
       if (!sampleHook(s, t, tex, sampleValue(tex), ray)) break;
