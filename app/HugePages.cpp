@@ -25,16 +25,28 @@ namespace mvw::app {
 // The second start puts the user's GLIBC_TUNABLES back (kept meanwhile in
 // MVW_GLIBC_TUNABLES_BEFORE, which also marks it), so the programs mvw runs (elastix in
 // `mvw bench register`, ffmpeg) start as they would without it.
+#if defined(__linux__) && defined(__GLIBC__)
+namespace {
+
+constexpr const char* kMark = "MVW_GLIBC_TUNABLES_BEFORE";
+
+// GLIBC_TUNABLES as the user had it (nullptr: unset), and no mark.
+void putTunablesBack(const char* before) {
+  if (before)
+    setenv("GLIBC_TUNABLES", before, 1);
+  else
+    unsetenv("GLIBC_TUNABLES");
+  unsetenv(kMark);
+}
+
+}  // namespace
+#endif
+
 void restartWithHugePages(char** argv) {
 #if defined(__linux__) && defined(__GLIBC__)
-  constexpr const char* kMark = "MVW_GLIBC_TUNABLES_BEFORE";
   constexpr const char* kUnset = "-";             // GLIBC_TUNABLES was not set
   if (const char* before = std::getenv(kMark)) {  // the second start
-    if (std::strcmp(before, kUnset) == 0)
-      unsetenv("GLIBC_TUNABLES");
-    else
-      setenv("GLIBC_TUNABLES", before, 1);
-    unsetenv(kMark);
+    putTunablesBack(std::strcmp(before, kUnset) == 0 ? nullptr : before);
     return;
   }
   // Not where the loader ignores tunables (set-user-ID and the like), nor where this process
@@ -51,15 +63,12 @@ void restartWithHugePages(char** argv) {
   const std::string tunables =
       (current && *current ? std::string(current) + ":" : std::string()) + kTunable + "=1";
   if (setenv(kMark, current ? current : kUnset, 1) != 0 ||
-      setenv("GLIBC_TUNABLES", tunables.c_str(), 1) != 0)
+      setenv("GLIBC_TUNABLES", tunables.c_str(), 1) != 0) {
+    putTunablesBack(current);
     return;
+  }
   execv(self, argv);
-  // The new start failed: go on in this process, without huge pages.
-  if (current)
-    setenv("GLIBC_TUNABLES", current, 1);
-  else
-    unsetenv("GLIBC_TUNABLES");
-  unsetenv(kMark);
+  putTunablesBack(current);  // the new start failed: go on here, without huge pages
 #else
   (void)argv;
 #endif

@@ -64,7 +64,7 @@ void setupHook(inout RayState s, Ray ray) {
 // skipped from the start. The maximum so far alone skips no block before the ray has met
 // the brightest structure (in front of a skull: all of the air and the skin). The margin (a
 // hundredth of the value range) is for safety only: the pre-pass reads the ray's own samples,
-// their positions computed by the same expression (t0 + n * uStep), so no block that holds the
+// their positions from the same functions (sampleDistance, textureAt), so no block that holds the
 // ray's maximum, or a sample that ties with it, is skipped. (MinIP without it: its
 // rays meet the air around a body first; with it, 2-5 % slower on the Cranium CT.) Not with
 // nearest-neighbour sampling (MVW_NEAREST): were the compiler to evaluate the same expression
@@ -75,9 +75,9 @@ void setupHook(inout RayState s, Ray ray) {
 void prepassHook(inout RayState s, float t0, float tEnd) {
   float m = s.value;
   for (float n = 0.0; n < float(uMaxSteps); n += MVW_PREPASS_STRIDE) {
-    float t = t0 + n * uStep;  // the ray's own sample n (template.glsl)
+    float t = sampleDistance(t0, n);  // the ray's own sample n
     if (t > tEnd) break;
-    m = max(m, sampleValue(gTexOrigin + t * gTexDir));
+    m = max(m, sampleValue(textureAt(t)));
   }
   s.bound = m - 0.01 * (uVolume.valueRange.y - uVolume.valueRange.x);
 }

@@ -85,6 +85,13 @@ void setupRayConstants(Ray r) {
   gFaceOffset = mix(-gTexOrigin * gTexInvDir, vec3(1e30), gParallel);
 }
 
+// Sample n of the ray: its distance (mm) from the first sample's t0, computed afresh rather
+// than summed step by step, and its texture position (toTexture(ray.origin + t * ray.dir) in 3
+// multiply-adds). The loops and a mode's pre-pass both call these, so they read the same
+// samples.
+float sampleDistance(float t0, float n) { return t0 + n * uStep; }
+vec3 textureAt(float t) { return gTexOrigin + t * gTexDir; }
+
 // Entry and exit distances (world mm) of the ray through the crop box; empty if x >= y.
 // After setupRayConstants.
 vec2 intersectBox(Ray r) {

@@ -22,7 +22,7 @@ void main() {
   setupHook(s, ray);
   if (span.x < span.y) {
     // Without jitter, samples sit at the middle of each step (midpoint rule): a ray through a
-    // slab of thickness L takes exactly L / step samples. Sample n lies at t0 + n * uStep,
+    // slab of thickness L takes exactly L / step samples. Sample n lies at sampleDistance(t0, n),
     // computed afresh (not summed step by step): no rounding builds up along a long ray, and a
     // mode's pre-pass over every k-th sample reads the very samples the ray will.
     float t0 = span.x + (uJitter ? jitterOffset() : 0.5) * uStep;
@@ -34,9 +34,9 @@ void main() {
     bool rest = true;
 #if defined(MVW_SPLIT_LOOP)
     for (; i < uMaxSteps; ++i, n += 1.0) {
-      float t = t0 + n * uStep;
+      float t = sampleDistance(t0, n);
       if (t > span.y) break;
-      vec3 tex = gTexOrigin + t * gTexDir;  // toTexture(ray.origin + t * ray.dir), 3 multiply-adds
+      vec3 tex = textureAt(t);
       if (skipHook(s, t, tex)) {
         n += skipSteps(t, tex);
         continue;
@@ -47,9 +47,9 @@ void main() {
     }
 #endif
     for (; rest && i < uMaxSteps; ++i, n += 1.0) {
-      float t = t0 + n * uStep;
+      float t = sampleDistance(t0, n);
       if (t > span.y) break;
-      vec3 tex = gTexOrigin + t * gTexDir;  // toTexture(ray.origin + t * ray.dir), 3 multiply-adds
+      vec3 tex = textureAt(t);
       // Tested per sample: caching the test once per block entered left ring artefacts on
       // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
       if (skipHook(s, t, tex)) {

@@ -1,6 +1,5 @@
 #include "BoxProxy.h"
 
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -11,8 +10,8 @@ BoxProxy boxProxy(const Camera& camera, const glm::dmat4& textureFromWorld, glm:
                   glm::dvec3 boxMax) {
   constexpr double kMargin = 0.01;
   BoxProxy p;
-  p.min = glm::min(boxMin, boxMax) - kMargin;  // a crop given high to low still encloses
-  p.max = glm::max(boxMin, boxMax) + kMargin;
+  p.min = boxMin - kMargin;
+  p.max = boxMax + kMargin;
   const glm::dmat4 worldFromTexture = glm::inverse(textureFromWorld);
   p.clipFromTexture = camera.clipFromWorld * worldFromTexture;
   if (camera.perspective)

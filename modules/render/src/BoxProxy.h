@@ -17,7 +17,8 @@ struct BoxProxy {
   bool fullscreen = true;         // draw the whole viewport instead
 };
 
-// The proxy for the texture box [boxMin, boxMax] seen by `camera`. Enlarged by a hundredth of
+// The proxy for the texture box [boxMin, boxMax] (boxMin <= boxMax on every axis; the caller
+// orders a crop given high to low) seen by `camera`. Enlarged by a hundredth of
 // the texture on each side, so that rounding in the rasteriser cannot leave out a pixel whose
 // ray grazes the box; faces seen edge-on are drawn too (a pixel drawn twice gets the same
 // colour twice). A perspective camera with a corner of the box on or behind its eye plane
