@@ -10,6 +10,7 @@
 
 #include "../unit/TestUtil.h"
 #include "RenderTestUtil.h"
+#include "Trilinear.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/VolumeRenderer.h"
@@ -53,25 +54,6 @@ TEST(Raycast, MipAlongTheSliceAxisEqualsTheCtMaximumProjection) {
   EXPECT_LE(worst, 1);
 }
 
-// Trilinear, as the GL samples with clamp-to-edge: at index position p (voxel centres at
-// integers).
-double trilinear(const Volume& v, const std::vector<double>& values, glm::dvec3 p) {
-  const glm::ivec3 d = v.dimensions();
-  p = glm::clamp(p, glm::dvec3(0.0), glm::dvec3(d - 1));
-  const glm::ivec3 i0 = glm::min(glm::ivec3(glm::floor(p)), d - 2);
-  const glm::dvec3 f = p - glm::dvec3(i0);
-  const auto at = [&](int i, int j, int k) {
-    return values[(static_cast<std::size_t>(k) * d.y + j) * d.x + i];
-  };
-  double r = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
-    r += (di ? f.x : 1 - f.x) * (dj ? f.y : 1 - f.y) * (dk ? f.z : 1 - f.z) *
-         at(i0.x + di, i0.y + dj, i0.z + dk);
-  }
-  return r;
-}
-
 // MIP skips blocks by the maximum so far and by a bound that a pre-pass over every 16th sample
 // finds; MinIP by the minimum so far. Values and depths against the same rays marched on the CPU
 // (every sample, no skipping), from oblique directions, with the full value range and a narrow
@@ -109,13 +91,10 @@ TEST(Raycast, MipAndMinIpSkippingLosesNoRaysExtreme) {
             const WorldRay ray = rayThrough(f.camera, ndc);
             const glm::dvec3 o(indexFromWorld * glm::dvec4(ray.origin, 1.0));
             const glm::dvec3 dir(indexFromWorld * glm::dvec4(ray.direction, 0.0));
-            double tNear = 0.0, tFar = 1e30;
-            for (int a = 0; a < 3; ++a) {
-              double t0 = (-0.5 - o[a]) / dir[a], t1 = (d[a] - 0.5 - o[a]) / dir[a];
-              if (t0 > t1) std::swap(t0, t1);
-              tNear = std::max(tNear, t0);
-              tFar = std::min(tFar, t1);
-            }
+            const auto span =
+                test::rayThroughIndexBox(ct, ray, glm::dvec3(-0.5), glm::dvec3(d) - 0.5);
+            if (!span) continue;
+            const auto [tNear, tFar] = *span;
             if (tFar - tNear < 4.0 * step) continue;  // misses or grazes the box
             // The extreme, where it lies, and whether a sample more than a step from it comes
             // within a tenth of a unit (then float rounding may pick either: no depth check).
@@ -123,7 +102,11 @@ TEST(Raycast, MipAndMinIpSkippingLosesNoRaysExtreme) {
             double extreme = -1e30, where = -1.0;
             std::vector<std::pair<double, double>> samples;
             for (double t = tNear + 0.5 * step; t <= tFar; t += step) {
-              const double v = sign * trilinear(ct, values, o + t * dir);
+              // As the GL samples, clamped to the edge voxels.
+              const double v =
+                  sign * resampling::detail::trilinear(
+                             values.data(), d,
+                             glm::clamp(o + t * dir, glm::dvec3(0.0), glm::dvec3(d - 1)));
               samples.emplace_back(t, v);
               if (v > extreme) {
                 extreme = v;

@@ -18,26 +18,13 @@ namespace {
 
 using test::makeVolume;
 
-// The chord (mm) of a ray through the index box [lo, hi] (voxel edges), or nullopt if it
-// misses the box enlarged by `grow` voxels. t >= 0: the ray starts on the near plane.
+// The chord (mm) of a ray through the index box [lo, hi] enlarged by `grow` voxels, or nullopt
+// where it misses.
 std::optional<double> chordThroughBox(const Volume& v, const WorldRay& ray, glm::dvec3 lo,
                                       glm::dvec3 hi, double grow) {
-  const glm::dmat4 indexFromWorld = glm::inverse(v.worldFromIndex());
-  const glm::dvec3 o(indexFromWorld * glm::dvec4(ray.origin, 1.0));
-  const glm::dvec3 d(indexFromWorld * glm::dvec4(ray.direction, 0.0));
-  double tNear = 0.0, tFar = 1e30;
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(d[a]) < 1e-15) {
-      if (o[a] < lo[a] - grow || o[a] > hi[a] + grow) return std::nullopt;
-      continue;
-    }
-    double t0 = (lo[a] - grow - o[a]) / d[a], t1 = (hi[a] + grow - o[a]) / d[a];
-    if (t0 > t1) std::swap(t0, t1);
-    tNear = std::max(tNear, t0);
-    tFar = std::min(tFar, t1);
-  }
-  if (tNear >= tFar) return std::nullopt;
-  return tFar - tNear;
+  const auto span = test::rayThroughIndexBox(v, ray, lo, hi, grow);
+  if (!span) return std::nullopt;
+  return span->second - span->first;
 }
 
 struct Case {
