@@ -10,6 +10,10 @@
 //                             without its costly part: 0 go on, 1 end the ray, 2 hand this
 //                             sample and the rest of the ray over to sampleHook
 //   float plainSampleValue(vec3 tex)  (with MVW_SPLIT_LOOP) the value plainSampleHook gets
+//   bool handBackHook(float value)  (only where the mode also defines MVW_HAND_BACK) true: a
+//                             sample of this value leaves the ray state as it is (sampleHook
+//                             would do nothing), so the full loop hands the rest of the ray
+//                             back to the plain one
 // RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
 void main() {
@@ -33,31 +37,60 @@ void main() {
     float n = 0.0;  // whole numbers, exact in a float up to 2^24 samples
     bool rest = true;
 #if defined(MVW_SPLIT_LOOP)
-    for (; i < uMaxSteps; ++i, n += 1.0) {
-      float t = sampleDistance(t0, n);
-      if (t > span.y) break;
-      vec3 tex = textureAt(t);
-      if (skipHook(s, t, tex)) {
-        n += skipSteps(t, tex);
-        continue;
+    // Rounds of the plain loop up to a sample it hands over, then the full loop from that
+    // sample on, until the full loop ends the ray or (MVW_HAND_BACK) meets a sample that
+    // changes nothing and hands the ray back. A ray through a thin bone thus crosses the
+    // transparent tissue behind it in the plain loop again, not in the full one (which
+    // llvmpipe runs whole for every sample). Every round advances by a sample at least.
+    while (rest) {
+      bool handed = false;
+      for (; i < uMaxSteps; ++i, n += 1.0) {
+        float t = sampleDistance(t0, n);
+        if (t > span.y) break;
+        vec3 tex = textureAt(t);
+        if (skipHook(s, t, tex)) {
+          n += skipSteps(t, tex);
+          continue;
+        }
+        int next = plainSampleHook(s, t, tex, plainSampleValue(tex), ray);
+        if (next == 1) rest = false;
+        if (next != 0) {
+          handed = true;
+          break;
+        }
       }
-      int next = plainSampleHook(s, t, tex, plainSampleValue(tex), ray);
-      if (next == 1) rest = false;
-      if (next != 0) break;
+      if (!handed) break;
+#endif
+      for (; rest && i < uMaxSteps; ++i, n += 1.0) {
+        float t = sampleDistance(t0, n);
+        if (t > span.y) {
+          rest = false;
+          break;
+        }
+        vec3 tex = textureAt(t);
+        // Tested per sample: caching the test once per block entered left ring artefacts on
+        // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
+        if (skipHook(s, t, tex)) {
+          n += skipSteps(t, tex);
+          continue;
+        }
+        float value = sampleValue(tex);
+#if defined(MVW_HAND_BACK)
+        if (handBackHook(value)) {
+          ++i;
+          n += 1.0;
+          break;
+        }
+#endif
+        if (!sampleHook(s, t, tex, value, ray)) {
+          rest = false;
+          break;
+        }
+      }
+      if (i >= uMaxSteps) rest = false;
+#if defined(MVW_SPLIT_LOOP)
     }
 #endif
-    for (; rest && i < uMaxSteps; ++i, n += 1.0) {
-      float t = sampleDistance(t0, n);
-      if (t > span.y) break;
-      vec3 tex = textureAt(t);
-      // Tested per sample: caching the test once per block entered left ring artefacts on
-      // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
-      if (skipHook(s, t, tex)) {
-        n += skipSteps(t, tex);
-        continue;
-      }
-      if (!sampleHook(s, t, tex, sampleValue(tex), ray)) break;
-    }
   }
   finishHook(s, ray, span);
 }
