@@ -91,17 +91,18 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 
 #if defined(MVW_GLYPHS)
 // The ray runs without the glyph code until its first sample that needs it, then with it
-// (MVW_SPLIT_LOOP), and the glyph map position is computed per sample in that second loop
-// only: carried through one loop as ray state (six floats), the glyph ray cost composite DVR
-// 1.35x the frame without glyphs on llvmpipe even with no attribute in view (register
-// pressure in every iteration); split, 1.07x (README, "What the methods cost"). The pixels
-// are the same, bit for bit: below the window the glyph code returns the anatomy's normal.
-#define MVW_SPLIT_LOOP
-float plainSampleValue(vec3 tex) { return sampleValue(tex); }
-int plainSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
+// (MVW_MIDDLE_LOOP, then the full loop), and the glyph map position is computed per sample in
+// that last loop only: carried through one loop as ray state (six floats), the glyph ray cost
+// composite DVR 1.35x the frame without glyphs on llvmpipe even with no attribute in view
+// (register pressure in every iteration); split, 1.07x (README, "What the methods cost"). The
+// pixels are the same, bit for bit: below the window the glyph code returns the anatomy's
+// normal. Before both, the lean loop (below) passes the transparent samples, and both hand the
+// ray back to it at the next one.
+#define MVW_MIDDLE_LOOP
+int middleSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   return compositeSample(s, t, tex, value, ray, false);
 }
-#else
+#endif
 // The ray runs a lean loop up to its first sample the table does not leave transparent, then
 // the full one from that sample on (MVW_SPLIT_LOOP): the lean loop reads the value alone and
 // asks whether it lies between the first and the last table entry with some opacity (no table
@@ -126,7 +127,6 @@ float plainSampleValue(vec3 tex) {
 int plainSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   return value >= uVisibleValues.x && value <= uVisibleValues.y ? 2 : 0;
 }
-#endif
 
 void finishHook(inout RayState s, Ray ray, vec2 span) {
   fragColor = vec4(s.color.rgb + (1.0 - s.color.a) * uBackground, 1.0);

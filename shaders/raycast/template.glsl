@@ -10,10 +10,13 @@
 //                             without its costly part: 0 go on, 1 end the ray, 2 hand this
 //                             sample and the rest of the ray over to sampleHook
 //   float plainSampleValue(vec3 tex)  (with MVW_SPLIT_LOOP) the value plainSampleHook gets
-//   bool handBackHook(float value)  (only where the mode also defines MVW_HAND_BACK) true: a
-//                             sample of this value leaves the ray state as it is (sampleHook
-//                             would do nothing), so the full loop hands the rest of the ray
-//                             back to the plain one
+//   bool handBackHook(float value)  (where the mode also defines MVW_HAND_BACK or
+//                             MVW_MIDDLE_LOOP) true: a sample of this value leaves the ray
+//                             state as it is (sampleHook would do nothing), so the loop hands
+//                             the rest of the ray back to the plain one
+//   int middleSampleHook(...)  (only with MVW_MIDDLE_LOOP) run between the plain loop and the
+//                             full one: 0 go on, 1 end the ray, 2 hand this sample and the
+//                             rest of the ray over to sampleHook
 // RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
 void main() {
@@ -37,11 +40,12 @@ void main() {
     float n = 0.0;  // whole numbers, exact in a float up to 2^24 samples
     bool rest = true;
 #if defined(MVW_SPLIT_LOOP)
-    // Rounds of the plain loop up to a sample it hands over, then the full loop from that
-    // sample on, until the full loop ends the ray or (MVW_HAND_BACK) meets a sample that
-    // changes nothing and hands the ray back. A ray through a thin bone thus crosses the
-    // transparent tissue behind it in the plain loop again, not in the full one (which
-    // llvmpipe runs whole for every sample). Every round advances by a sample at least.
+    // Rounds of the plain loop up to a sample it hands over, (MVW_MIDDLE_LOOP) the middle
+    // loop, then the full loop from the sample handed over on, until the full loop ends the ray
+    // or (MVW_HAND_BACK) meets a sample that changes nothing and hands the ray back. A ray
+    // through a thin bone thus crosses the transparent tissue behind it in the plain loop
+    // again, not in the full one (which llvmpipe runs whole for every sample). Every round
+    // advances by a sample at least.
     while (rest) {
       bool handed = false;
       for (; i < uMaxSteps; ++i, n += 1.0) {
@@ -60,6 +64,38 @@ void main() {
         }
       }
       if (!handed) break;
+#endif
+#if defined(MVW_MIDDLE_LOOP)
+      // The middle loop, from the sample the plain loop handed over: it hands the ray back to
+      // the plain loop at the next sample that changes nothing, passing it, and on to the full
+      // loop at a sample middleSampleHook leaves to sampleHook (2), not passing it.
+      bool toFull = false;
+      for (; rest && i < uMaxSteps; ++i, n += 1.0) {
+        float t = sampleDistance(t0, n);
+        if (t > span.y) {
+          rest = false;
+          break;
+        }
+        vec3 tex = textureAt(t);
+        if (skipHook(s, t, tex)) {
+          n += skipSteps(t, tex);
+          continue;
+        }
+        float value = sampleValue(tex);
+        if (handBackHook(value)) {
+          ++i;
+          n += 1.0;
+          break;
+        }
+        int next = middleSampleHook(s, t, tex, value, ray);
+        if (next == 1) rest = false;
+        if (next != 0) {
+          toFull = next == 2;
+          break;
+        }
+      }
+      if (i >= uMaxSteps) rest = false;
+      if (!toFull) continue;
 #endif
       for (; rest && i < uMaxSteps; ++i, n += 1.0) {
         float t = sampleDistance(t0, n);
