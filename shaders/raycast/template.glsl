@@ -69,6 +69,8 @@ void main() {
       // The middle loop, from the sample the plain loop handed over: it hands the ray back to
       // the plain loop at the next sample that changes nothing, passing it, and on to the full
       // loop at a sample middleSampleHook leaves to sampleHook (2), not passing it.
+      // (Each loop spells out its first lines, the sample's distance, the box's end and the
+      // skip: as one function returning what to do, composite and MIP took 4-5 % longer.)
       bool toFull = false;
       for (; rest && i < uMaxSteps; ++i, n += 1.0) {
         float t = sampleDistance(t0, n);
