@@ -14,11 +14,14 @@
 //                             MVW_MIDDLE_LOOP) true: a sample of this value leaves the ray
 //                             state as it is (sampleHook would do nothing), so the loop hands
 //                             the rest of the ray back to the plain one
-//   int middleSampleHook(...)  (only with MVW_MIDDLE_LOOP) run between the plain loop and the
-//                             full one: 0 go on, 1 end the ray, 2 hand this sample and the
-//                             rest of the ray over to sampleHook
+//   int middleSampleHook(...)  (only with MVW_MIDDLE_LOOP, which needs MVW_SPLIT_LOOP) run
+//                             between the plain loop and the full one: 0 go on, 1 end the ray,
+//                             2 hand this sample and the rest of the ray over to sampleHook
 // RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
+#if defined(MVW_MIDDLE_LOOP) && !defined(MVW_SPLIT_LOOP)
+#error "MVW_MIDDLE_LOOP runs inside MVW_SPLIT_LOOP's rounds: define both"
+#endif
 void main() {
   Ray ray = makeRay();
   setupRayConstants(ray);
