@@ -1,16 +1,41 @@
 #pragma once
 // Shared helpers for the unit tests: a scratch folder per test and the sample-data root.
 #include <filesystem>
+#include <iostream>
 #include <string>
 
 #include <gtest/gtest.h>
 
 namespace mvw::test {
 
+inline std::filesystem::path scratchDirOf(const ::testing::TestInfo& info) {
+  return std::filesystem::temp_directory_path() /
+         ("mvw-test-" + std::string(info.test_suite_name()) + "-" + info.name());
+}
+
+// Removes a test's scratch folder when the test ends; a failed test's folder stays for a look,
+// and its path is printed.
+class ScratchCleaner : public ::testing::EmptyTestEventListener {
+  void OnTestEnd(const ::testing::TestInfo& info) override {
+    const std::filesystem::path dir = scratchDirOf(info);
+    std::error_code ec;
+    if (!std::filesystem::exists(dir, ec)) return;
+    if (info.result() != nullptr && info.result()->Failed())
+      std::cerr << "the failed test's files are kept in " << dir.string() << "\n";
+    else
+      std::filesystem::remove_all(dir, ec);
+  }
+};
+
+// Installed once per test program, before main (gtest_main) runs the tests.
+inline const bool kScratchCleanerInstalled = [] {
+  ::testing::UnitTest::GetInstance()->listeners().Append(new ScratchCleaner);
+  return true;
+}();
+
+// An empty folder of the running test's own, removed when the test passes.
 inline std::filesystem::path scratchDir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  auto dir = std::filesystem::temp_directory_path() /
-             ("mvw-test-" + std::string(info->test_suite_name()) + "-" + info->name());
+  const auto dir = scratchDirOf(*::testing::UnitTest::GetInstance()->current_test_info());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -1,7 +1,6 @@
 // Colour maps and rotating views without GL: the DICOM standard palettes against the
 // standard's own tabulated values, the names, the config keys (round trip, bad values naming
 // the key), the orbit's azimuths, and the movie writer (frames, size, atomic output).
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "TestUtil.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/ColorMap.h"
 #include "mvw/core/Error.h"
@@ -298,9 +298,7 @@ Image solid(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
 }
 
 TEST(MovieWriter, WritesEveryFrameAtAnEvenSizeAndAppearsWhole) {
-  const fs::path dir = fs::temp_directory_path() / ("mvw-movie-test-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = test::scratchDir();
   for (const char* name : {"spin.mp4", "spin.avi"}) {
     const fs::path path = dir / name;
     {
@@ -328,7 +326,6 @@ TEST(MovieWriter, WritesEveryFrameAtAnEvenSizeAndAppearsWhole) {
     EXPECT_TRUE(e.path().filename() == "spin.mp4" || e.path().filename() == "spin.avi") << e.path();
   EXPECT_THROW(io::MovieWriter(dir / "spin.gif", 32, 32, 10.0), Error);
   EXPECT_THROW(io::readMovieInfo(dir / "missing.mp4"), Error);
-  fs::remove_all(dir);
 }
 
 }  // namespace

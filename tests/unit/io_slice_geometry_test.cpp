@@ -1,6 +1,6 @@
 // Slice placement (uneven and missing slices, gantry tilt), the Siemens CSA header parser and
 // mosaic unpacking, on synthetic stacks whose answers are known analytically. The real-data
-// counterparts are in tests/shared/dicom_geometry_test.cpp.
+// counterparts are in tests/real-data/dicom_geometry_test.cpp.
 #include <cmath>
 #include <cstdint>
 #include <cstring>

@@ -82,7 +82,7 @@ TEST(Checksums, PixelSha256HashesPixelsAndShape) {
 }
 
 TEST(Checksums, ManifestRoundTripAndRefusals) {
-  const auto dir = std::filesystem::temp_directory_path() / "mvw-checksums-test";
+  const auto dir = test::scratchDir();
   std::filesystem::create_directories(dir / "golden");
   ChecksumManifest m;
   m.file = dir / "golden" / "checksums.json";
@@ -100,7 +100,6 @@ TEST(Checksums, ManifestRoundTripAndRefusals) {
   std::ofstream(m.file) << R"({"gl_renderer": "x", "gl_version": "y", "images": {"a.png": "12"}})";
   EXPECT_THROW(loadChecksumManifest(m.file), InputError);
   EXPECT_THROW(loadChecksumManifest(dir / "none.json"), InputError);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(Suite, ParsesCasesWithDefaultsAndOverrides) {

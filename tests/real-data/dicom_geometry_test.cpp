@@ -1,7 +1,7 @@
 // Every acquired slice where its header says, on real scanner data (../shared/data): the
 // gantry-tilted CT with uneven slice distances, the MR T1 with one missing slice and the
 // Siemens ASL mosaics. The reference is independent of mvw and of vtk-dicom: pydicom reads
-// each slice and nibabel.nicom unpacks the mosaics (tests/shared/check-dicom-geometry.py);
+// each slice and nibabel.nicom unpacks the mosaics (tests/real-data/check-dicom-geometry.py);
 // mvw's volume reaches python through mvw's own NIfTI writer.
 #include <algorithm>
 #include <cstdlib>
@@ -33,7 +33,7 @@ nlohmann::json check(const mvw::Volume& volume, const std::string& name, const s
   const fs::path log = dir / (name + ".log");
   fs::remove(json);
   mvw::io::writeVolume(volume, nifti);
-  const std::string script = std::string(MVW_SOURCE_DIR) + "/tests/shared/check-dicom-geometry.py";
+  const std::string script = std::string(MVW_SOURCE_DIR) + "/tests/real-data/check-dicom-geometry.py";
   const std::string command = "/usr/bin/python3 '" + script + "' " + mode + " '" + nifti.string() +
                               "' '" + json.string() + "' " + args + " > '" + log.string() +
                               "' 2>&1";

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Independent geometry checks of mvw's DICOM reading (run by tests/shared/dicom_geometry_test).
+"""Independent geometry checks of mvw's DICOM reading (run by tests/real-data/dicom_geometry_test).
 
   slices VOLUME.nii OUT.json DIR SERIES  every acquired slice of series number SERIES in DIR
                                         (read with pydicom) against mvw's volume sampled
