@@ -11,8 +11,7 @@
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/render/VolumeRenderer.h"
-#include "mvw/study/FunctionalPlacement.h"
-#include "mvw/study/StudyLoader.h"
+#include "mvw/study/Session.h"
 #include "mvw/study/ViewPlan.h"
 
 namespace mvw::app {
@@ -43,34 +42,22 @@ double median(std::vector<double> v) {
 }
 
 void runFeatureBench(const FeatureBenchOptions& o) {
-  const config::StudyConfig study = config::loadStudyConfig(o.study);
   mvw::study::ViewOverrides overrides;
   overrides.size = o.size;
-  std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, overrides);
+  mvw::study::Session session(config::loadStudyConfig(o.study), overrides);
   auto context = makeHeadlessContext(o.gl);
-  const Volume anatomy = mvw::study::readAnatomical(study.anatomical);
-  mvw::study::checkViewsAgainstAnatomy(views, anatomy, study.file);
-  std::optional<Volume> functional;
-  if (study.functional) functional = mvw::study::readFunctional(study);
-  render::VolumeRenderer renderer(*context, anatomy);
-  if (functional)
-    renderer.setFunctional(
-        *functional,
-        mvw::study::placeFunctional(study, anatomy, *functional).anatomicalFromFunctional);
+  session.load();
+  const config::StudyConfig& study = session.config();
+  render::VolumeRenderer renderer(*context, session.anatomical());
+  session.attach(renderer);
   std::printf(
       "mvw bench features: %s, %s %s, %d azimuth steps per view, with/without interleaved\n",
       study.file.filename().c_str(), context->backend().c_str(), context->renderer().c_str(),
       o.frames);
   std::printf("  %-30s %-11s %-15s %10s %10s %8s\n", "view", "mode", "feature", "without", "with",
               "ratio");
-  for (mvw::study::PlannedView& v : views) {
+  for (const mvw::study::PlannedView& v : session.views(renderer)) {
     if (!hasFeature(v.settings)) continue;
-    mvw::study::applyDefaultPreset(v, anatomy);
-    if (functional) {
-      mvw::study::applyAttributeDefaults(v, study.functionalKind, *functional,
-                                         renderer.functionalRange());
-      mvw::study::applyGlyphScale(v, anatomy, *functional);
-    }
     render::RenderSettings with = v.settings;
     render::RenderSettings without = with;
     without.glyphs = without.fusion = without.depthCue = false;

@@ -24,15 +24,12 @@
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/MovieWriter.h"
 #include "mvw/io/PngWriter.h"
-#include "mvw/io/VolumeReader.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/SegmentLegend.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/study/Caption.h"
-#include "mvw/study/FunctionalPlacement.h"
-#include "mvw/study/SegmentOverlay.h"
-#include "mvw/study/StudyLoader.h"
+#include "mvw/study/Session.h"
 #include "mvw/study/ViewPlan.h"
 
 namespace mvw::app {
@@ -129,227 +126,212 @@ std::string frameName(int k) {
   return buf;
 }
 
-void runRender(const RenderOptions& o) {
-  const config::StudyConfig study = config::loadStudyConfig(o.study);
-  checkOutputFolder(o.outDir);
-  std::vector<mvw::study::PlannedView> views = mvw::study::planViews(study, o.overrides);
-  // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
-  auto context = makeHeadlessContext(o.gl);
-  const Study volumes = mvw::study::loadStudy(study);
-  const Volume& anatomy = volumes.anatomical;
-  mvw::study::checkViewsAgainstAnatomy(views, anatomy, study.file);
-  const std::optional<Volume>& functional = volumes.functional;
+// A view's image as the reader sees it: the render, and (annotate) its caption, orientation
+// labels and scale bar, the glyph legend, the colour bar of the map shown (the overlay's, else
+// the image's own over its window, in the anatomy's unit; a grey image has none) and the
+// segments' legend.
+struct ViewPainter {
+  render::VolumeRenderer& renderer;
+  const mvw::study::Session& session;
+  const mvw::study::PlannedView& view;
+  WindowLevel shown;
+  std::string caption;
+  bool overlayShown;
 
-  render::VolumeRenderer renderer(*context, anatomy, render::parseGradientSource(o.gradient));
-  // The study's "registration" places the functional volume (none: by world coordinates).
-  std::optional<mvw::study::FunctionalPlacement> placement;
-  if (functional) {
-    placement = mvw::study::placeFunctional(study, anatomy, *functional);
-    renderer.setFunctional(*functional, placement->anatomicalFromFunctional);
-  }
-  // The study's "segmentation": outlines on the MPR views, placed with the functional volume
-  // when it shares its frame of reference.
-  std::optional<mvw::study::SegmentOverlay> segments;
-  if (study.segmentation) {
-    segments = mvw::study::readSegmentOverlay(*study.segmentation);
-    renderer.setSegmentation(
-        segments->masks, segments->colours,
-        mvw::study::anatomicalFromSegmentation(
-            *segments, functional ? &*functional : nullptr,
-            placement ? placement->anatomicalFromFunctional : glm::dmat4(1.0)));
-  }
-  const auto [lo, hi] = renderer.valueRange();
-  struct Output {
-    std::string file;
-    Image image;
-    nlohmann::json record;
-  };
-  std::vector<Output> outputs;
-  Staging staging(o.outDir);
-  std::vector<std::string> orbits;  // views whose frames and movie wait in staging
-  for (auto& v : views) {
-    mvw::study::applyDefaultPreset(v, anatomy);
-    if (functional) {
-      mvw::study::applyAttributeDefaults(v, study.functionalKind, *functional,
-                                         renderer.functionalRange());
-      mvw::study::applyGlyphScale(v, anatomy, *functional);
-    }
-    const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
-    const std::string caption = mvw::study::viewCaption(v, shown);
-    const bool shellMode = isShellMode(v.settings.mode);
-    const bool overlayShown =
-        functional &&
-        (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion);
-    // The colour bar follows the map shown: the overlay's, else the image's own (over its
-    // window, in the anatomy's unit); a grey image has none.
-    auto renderAnnotated = [&](const render::RenderSettings& settings) {
-      render::Frame f = renderer.render(settings);
-      if (!v.config.annotate) return f;
-      render::annotate(f.image, f.camera, caption);
-      if (functional)
-        render::drawGlyphLegend(f.image, mvw::study::glyphLegend(v, functional->metadata().unit,
-                                                                 renderer.functionalRange()));
-      if (overlayShown) {
-        auto [flo, fhi] = renderer.functionalRange();
-        if (settings.functionalHigh > settings.functionalLow)
-          flo = settings.functionalLow, fhi = settings.functionalHigh;
-        if (settings.overlayColors)
-          render::drawColourBar(f.image, flo, fhi, functional->metadata().unit,
-                                *settings.overlayColors);
-        else
-          render::drawColourBar(f.image, flo, fhi, functional->metadata().unit);
-      } else if (render::showsImageColors(settings)) {
-        render::drawColourBar(f.image, shown.level - 0.5 * shown.window,
-                              shown.level + 0.5 * shown.window, anatomy.metadata().unit,
-                              *settings.imageColors);
-      }
-      if (segments && settings.mode == render::RenderMode::Mpr && settings.segmentOutlines) {
-        std::vector<render::LegendEntry> legend;
-        for (std::size_t i = 0; i < segments->names.size(); ++i)
-          legend.push_back({segments->names[i], segments->colours[i]});
-        render::drawSegmentLegend(f.image, legend);
-      }
-      return f;
-    };
-    render::Frame frame = renderAnnotated(v.settings);
-    nlohmann::json orbitRecord;
-    if (v.config.orbit > 0) {
-      // Frame 0 is the still itself (the view's own azimuth), rendered once.
-      const fs::path folder = staging.dir() / v.config.name;
-      fs::create_directories(folder);
-      const std::string movieName = v.config.name + ".mp4";
-      io::MovieWriter movie(staging.dir() / movieName, frame.image.width, frame.image.height,
-                            v.config.orbitFps);
-      const std::vector<double> azimuths = config::orbitAzimuths(v.config);
-      nlohmann::json files = nlohmann::json::array();
-      double ms = frame.milliseconds;
-      for (std::size_t k = 0; k < azimuths.size(); ++k) {
-        render::Frame f;
-        if (k == 0) {
-          f.image = frame.image;
-        } else {
-          render::RenderSettings turned = v.settings;
-          turned.camera.azimuthDeg = azimuths[k];
-          f = renderAnnotated(turned);
-          ms += f.milliseconds;
-        }
-        const std::string name = frameName(static_cast<int>(k));
-        io::writePng(f.image, folder / name);
-        movie.add(f.image);
-        files.push_back(v.config.name + "/" + name);
-      }
-      movie.finish();
-      orbitRecord = {{"mode", config::toString(v.config.orbitMode)},
-                     {"frames", azimuths.size()},
-                     {"azimuths_deg", azimuths},
-                     {"folder", v.config.name},
-                     {"files", files},
-                     {"movie", movieName},
-                     {"movie_codec", "mp4v (MPEG-4 Part 2), OpenCV VideoWriter"},
-                     {"movie_size", {movie.width(), movie.height()}},
-                     {"fps", v.config.orbitFps},
-                     {"ms_all_frames", ms}};
-      if (v.config.orbitMode == config::OrbitMode::Rock)
-        orbitRecord["range_deg"] = v.config.orbitRangeDeg;
-      orbits.push_back(v.config.name);
-    }
-    nlohmann::json r;
-    r["file"] = v.config.name + ".png";
-    r["mode"] = toString(v.config.mode);
-    r["view"] = config::toString(v.config.view);
-    r["azimuth_deg"] = v.config.azimuth;
-    r["elevation_deg"] = v.config.elevation;
-    r["roll_deg"] = v.config.roll;
-    r["zoom"] = v.config.zoom;
-    r["perspective"] = v.config.perspective;
-    r["size"] = {v.config.width, v.config.height};
-    r["transfer_preset"] = v.presetName;
-    if (v.settings.gradientOpacityHigh > 0)
-      r["gradient_opacity"] = {v.settings.gradientOpacityLow, v.settings.gradientOpacityHigh};
-    r["window"] = shown.window;
-    r["level"] = shown.level;
-    r["iso"] = v.settings.isoValue;
-    // An isovalue no voxel reaches draws an empty image: legitimate to ask, but said.
-    if (v.settings.mode == render::RenderMode::Isosurface && v.settings.isoValue > hi) {
-      char text[200];
-      std::snprintf(text, sizeof text,
-                    "iso %g lies above the volume's maximum %g: the isosurface is empty",
-                    v.settings.isoValue, hi);
-      r["notes"] = {text};
-      std::cerr << "mvw render: note: view '" << v.config.name << "': " << text << "\n";
-    }
-    if (v.settings.glyphs)
-      r["glyphs"] = {
-          {"method", config::toString(v.config.glyphMethod)},
-          {"convexity", config::toString(v.config.glyphConvexity)},
-          {"diameter_mm", v.settings.glyphDiameterMm},
-          {"spacing_mm", v.settings.glyphMap.placement == render::GlyphPlacement::BlueNoise
-                             ? render::blueNoiseSpacing(v.settings.glyphMap.size) *
-                                   v.settings.glyphDiameterMm / v.settings.glyphMap.diameter
-                             : 0.0},
-          {"count", v.config.glyphCount},
-          {"seed", v.config.glyphSeed},
-          {"map_size", v.config.glyphMapSize},
-          {"map_diameter", v.config.glyphMapDiameter}};
-    if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
-    if (v.settings.functionalHigh > v.settings.functionalLow)
-      r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
-    if (shellMode) {
-      r["shells"] = v.settings.shellCount;
-      r["shells_disabled"] = v.config.shellsDisabled;
-    }
-    if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue)
-      r["depth_cue"] = {{"brightness", v.settings.cueBrightness},
-                        {"amount", v.settings.cueAmount},
-                        {"contrast", v.settings.cueContrast}};
-    r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : render::defaultStepMm(anatomy);
-    r["sampling"] = config::toString(v.config.sampling);
-    r["shading"] = v.settings.shading;
-    r["jitter"] = v.settings.jitter;
-    r["seed"] = v.settings.seed;
-    r["annotated"] = v.config.annotate;
-    if (v.settings.mode == render::RenderMode::Mpr) {
-      r["plane_offset_mm"] = v.settings.planeOffsetMm;
-      r["slab_mm"] = v.settings.slabMm;
-    }
-    if (render::showsImageColors(v.settings)) r["colormap"] = toString(v.settings.imageColors->map);
-    r["functional_overlay"] = overlayShown;
-    if (segments && v.settings.mode == render::RenderMode::Mpr)
-      r["segment_outlines"] = segments->names;
+  render::RenderedFrame operator()(const render::RenderSettings& settings) const {
+    render::RenderedFrame f = renderer.render(settings);
+    if (!view.config.annotate) return f;
+    const Volume* functional = session.functional();
+    render::annotate(f.image, f.camera, caption);
+    if (functional)
+      render::drawGlyphLegend(f.image, mvw::study::glyphLegend(view, functional->metadata().unit,
+                                                               renderer.functionalRange()));
     if (overlayShown) {
-      r["overlay_opacity"] = v.settings.overlayOpacity;
-      r["overlay_threshold"] = v.settings.overlayThreshold;
-      r["overlay_colormap"] = toString(v.config.overlayColormap);
-      r["functional_placement"] = placement ? placement->report["method"] : nlohmann::json("none");
+      auto [flo, fhi] = renderer.functionalRange();
+      if (settings.functionalHigh > settings.functionalLow)
+        flo = settings.functionalLow, fhi = settings.functionalHigh;
+      if (settings.overlayColors)
+        render::drawColourBar(f.image, flo, fhi, functional->metadata().unit,
+                              *settings.overlayColors);
+      else
+        render::drawColourBar(f.image, flo, fhi, functional->metadata().unit);
+    } else if (render::showsImageColors(settings)) {
+      render::drawColourBar(f.image, shown.level - 0.5 * shown.window,
+                            shown.level + 0.5 * shown.window, session.anatomical().metadata().unit,
+                            *settings.imageColors);
     }
-    r["ms_per_frame"] = frame.milliseconds;
-    r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);
-    if (!orbitRecord.is_null()) r["orbit"] = orbitRecord;
-    outputs.push_back({v.config.name + ".png", std::move(frame.image), r});
-    std::cerr << "rendered " << v.config.name << " (" << toString(v.config.mode) << ", "
-              << config::toString(v.config.view) << ") in " << static_cast<int>(frame.milliseconds)
-              << " ms\n";
+    const mvw::study::SegmentOverlay* segments = session.segments();
+    if (segments && settings.mode == render::RenderMode::Mpr && settings.segmentOutlines) {
+      std::vector<render::LegendEntry> legend;
+      for (std::size_t i = 0; i < segments->names.size(); ++i)
+        legend.push_back({segments->names[i], segments->colours[i]});
+      render::drawSegmentLegend(f.image, legend);
+    }
+    return f;
   }
-  // All frames exist before anything is written, and everything is written into the staging
-  // folder before anything moves into place: a failure (a full disk) leaves no partial output.
+};
+
+// The rest of an orbit's frames (frame 0 is the still itself, at the view's own azimuth),
+// written with the movie into the staging folder; returns render.json's "orbit" record.
+nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame& still,
+                           Staging& staging) {
+  const config::ViewConfig& c = paint.view.config;
+  const fs::path folder = staging.dir() / c.name;
+  fs::create_directories(folder);
+  const std::string movieName = c.name + ".mp4";
+  io::MovieWriter movie(staging.dir() / movieName, still.image.width, still.image.height,
+                        c.orbitFps);
+  const std::vector<double> azimuths = config::orbitAzimuths(c);
+  nlohmann::json files = nlohmann::json::array();
+  double ms = still.milliseconds;
+  for (std::size_t k = 0; k < azimuths.size(); ++k) {
+    render::RenderedFrame f;
+    if (k == 0) {
+      f.image = still.image;
+    } else {
+      render::RenderSettings turned = paint.view.settings;
+      turned.camera.azimuthDeg = azimuths[k];
+      f = paint(turned);
+      ms += f.milliseconds;
+    }
+    const std::string name = frameName(static_cast<int>(k));
+    io::writePng(f.image, folder / name);
+    movie.add(f.image);
+    files.push_back(c.name + "/" + name);
+  }
+  movie.finish();
+  nlohmann::json r = {{"mode", config::toString(c.orbitMode)},
+                      {"frames", azimuths.size()},
+                      {"azimuths_deg", azimuths},
+                      {"folder", c.name},
+                      {"files", files},
+                      {"movie", movieName},
+                      {"movie_codec", "mp4v (MPEG-4 Part 2), OpenCV VideoWriter"},
+                      {"movie_size", {movie.width(), movie.height()}},
+                      {"fps", c.orbitFps},
+                      {"ms_all_frames", ms}};
+  if (c.orbitMode == config::OrbitMode::Rock) r["range_deg"] = c.orbitRangeDeg;
+  return r;
+}
+
+// One view's entry in render.json: what was asked, what the defaults chose, what was shown.
+nlohmann::json viewRecord(const ViewPainter& paint, const render::RenderedFrame& frame) {
+  const mvw::study::PlannedView& v = paint.view;
+  const mvw::study::Session& session = paint.session;
+  const Volume& anatomy = session.anatomical();
+  const double hi = paint.renderer.valueRange().second;
+  nlohmann::json r;
+  r["file"] = v.config.name + ".png";
+  r["mode"] = toString(v.config.mode);
+  r["view"] = config::toString(v.config.view);
+  r["azimuth_deg"] = v.config.azimuth;
+  r["elevation_deg"] = v.config.elevation;
+  r["roll_deg"] = v.config.roll;
+  r["zoom"] = v.config.zoom;
+  r["perspective"] = v.config.perspective;
+  r["size"] = {v.config.width, v.config.height};
+  r["transfer_preset"] = v.presetName;
+  if (v.settings.gradientOpacityHigh > 0)
+    r["gradient_opacity"] = {v.settings.gradientOpacityLow, v.settings.gradientOpacityHigh};
+  r["window"] = paint.shown.window;
+  r["level"] = paint.shown.level;
+  r["iso"] = v.settings.isoValue;
+  // An isovalue no voxel reaches draws an empty image: legitimate to ask, but said.
+  if (v.settings.mode == render::RenderMode::Isosurface && v.settings.isoValue > hi) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "iso %g lies above the volume's maximum %g: the isosurface is empty",
+                  v.settings.isoValue, hi);
+    r["notes"] = {text};
+    std::cerr << "mvw render: note: view '" << v.config.name << "': " << text << "\n";
+  }
+  if (v.settings.glyphs)
+    r["glyphs"] = {
+        {"method", config::toString(v.config.glyphMethod)},
+        {"convexity", config::toString(v.config.glyphConvexity)},
+        {"diameter_mm", v.settings.glyphDiameterMm},
+        {"spacing_mm", v.settings.glyphMap.placement == render::GlyphPlacement::BlueNoise
+                           ? render::blueNoiseSpacing(v.settings.glyphMap.size) *
+                                 v.settings.glyphDiameterMm / v.settings.glyphMap.diameter
+                           : 0.0},
+        {"count", v.config.glyphCount},
+        {"seed", v.config.glyphSeed},
+        {"map_size", v.config.glyphMapSize},
+        {"map_diameter", v.config.glyphMapDiameter}};
+  if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
+  if (v.settings.functionalHigh > v.settings.functionalLow)
+    r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
+  const bool shellMode = isShellMode(v.settings.mode);
+  if (shellMode) {
+    r["shells"] = v.settings.shellCount;
+    r["shells_disabled"] = v.config.shellsDisabled;
+  }
+  if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue)
+    r["depth_cue"] = {{"brightness", v.settings.cueBrightness},
+                      {"amount", v.settings.cueAmount},
+                      {"contrast", v.settings.cueContrast}};
+  r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : render::defaultStepMm(anatomy);
+  r["sampling"] = config::toString(v.config.sampling);
+  r["shading"] = v.settings.shading;
+  r["jitter"] = v.settings.jitter;
+  r["seed"] = v.settings.seed;
+  r["annotated"] = v.config.annotate;
+  if (v.settings.mode == render::RenderMode::Mpr) {
+    r["plane_offset_mm"] = v.settings.planeOffsetMm;
+    r["slab_mm"] = v.settings.slabMm;
+  }
+  if (render::showsImageColors(v.settings)) r["colormap"] = toString(v.settings.imageColors->map);
+  r["functional_overlay"] = paint.overlayShown;
+  if (session.segments() && v.settings.mode == render::RenderMode::Mpr)
+    r["segment_outlines"] = session.segments()->names;
+  if (paint.overlayShown) {
+    r["overlay_opacity"] = v.settings.overlayOpacity;
+    r["overlay_threshold"] = v.settings.overlayThreshold;
+    r["overlay_colormap"] = toString(v.config.overlayColormap);
+    r["functional_placement"] =
+        session.placement() ? session.placement()->report["method"] : nlohmann::json("none");
+  }
+  r["ms_per_frame"] = frame.milliseconds;
+  r["checksum_fnv1a64"] = fnv1a(frame.image.rgba);
+  return r;
+}
+
+// render.json's study-wide part: the sources, what the readers decided (units, reorderings,
+// the frame a 4D volume contributes), the placement, the GL that rendered.
+nlohmann::json studyRecord(const mvw::study::Session& session,
+                           const render::VolumeRenderer& renderer,
+                           const render::GlContext& context) {
   nlohmann::json report;
-  report["study"] = study.file.string();
-  report["anatomical"] = anatomy.metadata().sourcePath;
-  // What the readers decided (units, reorderings, the frame a 4D volume contributes).
-  report["anatomical_notes"] = anatomy.metadata().notes;
-  if (functional) {
+  report["study"] = session.config().file.string();
+  report["anatomical"] = session.anatomical().metadata().sourcePath;
+  report["anatomical_notes"] = session.anatomical().metadata().notes;
+  if (const Volume* functional = session.functional()) {
     report["functional"] = functional->metadata().sourcePath;
     report["functional_notes"] = functional->metadata().notes;
-    report["registration"] = placement->report;
+    report["registration"] = session.placement()->report;
   }
+  const auto [lo, hi] = renderer.valueRange();
   report["value_range"] = {lo, hi};
-  report["gl_backend"] = context->backend();
-  report["gl_renderer"] = context->renderer();
-  report["gl_version"] = context->version();
+  report["gl_backend"] = context.backend();
+  report["gl_renderer"] = context.renderer();
+  report["gl_version"] = context.version();
   report["gradient"] = render::toString(renderer.gradientSource());
   report["texture_runs"] = renderer.textureRuns();  // > 1: folded past the GL's 3D texture size
   report["mvw_version"] = kVersion;
   report["views"] = nlohmann::json::array();
+  return report;
+}
+
+struct Output {
+  std::string file;
+  Image image;
+  nlohmann::json record;
+};
+
+// Everything is written into the staging folder before anything moves into place: a failure
+// (a full disk) leaves no partial output. The moves are renames within one file system.
+void writeOutputs(const fs::path& outDir, std::vector<Output>& outputs,
+                  const std::vector<std::string>& orbits, nlohmann::json report, Staging& staging) {
   try {
     for (const auto& out : outputs) {
       io::writePng(out.image, staging.dir() / out.file);
@@ -357,20 +339,56 @@ void runRender(const RenderOptions& o) {
     }
     io::writeTextAtomically(staging.dir() / "render.json", report.dump(2) + "\n");
   } catch (const Error& e) {
-    throw InputError(o.outDir,
+    throw InputError(outDir,
                      std::string("cannot write the renders (is the disk full?): ") + e.what());
   }
-  // Renames within one file system.
-  fs::create_directories(o.outDir);
-  for (const auto& out : outputs)
-    fs::rename(staging.dir() / out.file, fs::path(o.outDir) / out.file);
+  fs::create_directories(outDir);
+  for (const auto& out : outputs) fs::rename(staging.dir() / out.file, outDir / out.file);
   for (const std::string& name : orbits) {
-    const fs::path folder = fs::path(o.outDir) / name;
+    const fs::path folder = outDir / name;
     fs::remove_all(folder);  // an earlier run's frames
     fs::rename(staging.dir() / name, folder);
-    fs::rename(staging.dir() / (name + ".mp4"), fs::path(o.outDir) / (name + ".mp4"));
+    fs::rename(staging.dir() / (name + ".mp4"), outDir / (name + ".mp4"));
   }
-  fs::rename(staging.dir() / "render.json", fs::path(o.outDir) / "render.json");
+  fs::rename(staging.dir() / "render.json", outDir / "render.json");
+}
+
+void runRender(const RenderOptions& o) {
+  config::StudyConfig study = config::loadStudyConfig(o.study);
+  checkOutputFolder(o.outDir);
+  mvw::study::Session session(std::move(study), o.overrides);
+  // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
+  auto context = makeHeadlessContext(o.gl);
+  session.load();
+  render::VolumeRenderer renderer(*context, session.anatomical(),
+                                  render::parseGradientSource(o.gradient));
+  session.attach(renderer);
+  const auto [lo, hi] = renderer.valueRange();
+  std::vector<Output> outputs;
+  Staging staging(o.outDir);
+  std::vector<std::string> orbits;  // views whose frames and movie wait in staging
+  for (const mvw::study::PlannedView& v : session.views(renderer)) {
+    const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
+    const ViewPainter paint{
+        renderer,
+        session,
+        v,
+        shown,
+        mvw::study::viewCaption(v, shown),
+        session.functional() &&
+            (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion)};
+    render::RenderedFrame frame = paint(v.settings);
+    nlohmann::json record = viewRecord(paint, frame);
+    if (v.config.orbit > 0) {
+      record["orbit"] = renderOrbit(paint, frame, staging);
+      orbits.push_back(v.config.name);
+    }
+    outputs.push_back({v.config.name + ".png", std::move(frame.image), record});
+    std::cerr << "rendered " << v.config.name << " (" << toString(v.config.mode) << ", "
+              << config::toString(v.config.view) << ") in " << static_cast<int>(frame.milliseconds)
+              << " ms\n";
+  }
+  writeOutputs(o.outDir, outputs, orbits, studyRecord(session, renderer, *context), staging);
   std::cout << "wrote " << outputs.size() << " view(s) and render.json to " << o.outDir << "\n";
 }
 

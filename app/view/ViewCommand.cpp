@@ -7,7 +7,7 @@
 
 #include "Viewer.h"
 #include "mvw/core/Error.h"
-#include "mvw/study/StudyLoader.h"
+#include "mvw/study/Session.h"
 
 namespace mvw::app {
 
@@ -19,18 +19,21 @@ struct ViewOptions {
 };
 
 void runView(const ViewOptions& o) {
-  ViewerOptions v;
+  config::StudyConfig study;
   if (!o.study.empty()) {
-    v.study = config::loadStudyConfig(o.study);
+    study = config::loadStudyConfig(o.study);
   } else {
     if (o.anatomical.empty()) throw InputError("mvw view", "give a study config or --anatomical");
-    v.study.anatomical.path = o.anatomical;
+    study.anatomical.path = o.anatomical;
     if (!o.functional.empty())
-      v.study.functional =
-          config::VolumeSource{o.functional, "", config::defaultFrame(v.study.functionalKind)};
+      study.functional =
+          config::VolumeSource{o.functional, "", config::defaultFrame(study.functionalKind)};
   }
-  v.anatomical = mvw::study::readAnatomical(v.study.anatomical);
-  if (v.study.functional) v.functional = mvw::study::readFunctional(v.study);
+  ViewerOptions v;
+  // Everything the study names is read and placed before the window opens: bad input is
+  // reported with nothing drawn.
+  v.session.emplace(std::move(study));
+  v.session->load();
   v.script = o.script;
   v.frameLog = o.frameLog;
   v.width = o.width;

@@ -24,8 +24,7 @@
 #include "mvw/render/DisplayTexture.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/render/WindowFramebuffer.h"
-#include "mvw/study/FunctionalPlacement.h"
-#include "mvw/study/SegmentOverlay.h"
+#include "mvw/study/Session.h"
 
 namespace mvw::app {
 
@@ -88,7 +87,7 @@ Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
   for (int p = 0; p < kPaneCount; ++p) {
     if (!state.needsRender(p)) continue;
     const render::RenderSettings s = state.renderSettings(p, interacting);
-    render::Frame f = renderer.render(s);
+    render::RenderedFrame f = renderer.render(s);
     if (p == k3d) rendered3d = {f.milliseconds, s.size};
     Image shown = f.image;
     render::annotate(shown, f.camera, state.caption(p, s));
@@ -125,42 +124,28 @@ int runViewer(ViewerOptions options) {
     if (!frameLog) throw InputError(options.frameLog, "cannot write the frame log");
     frameLog << "frame,ms,render3d_ms,render3d_width,render3d_height,interactive,drag_divisor\n";
   }
-  const Volume* functional = options.functional ? &*options.functional : nullptr;
-  // The study's segmentation, outlined on the MPR panes: read before the window opens too.
-  std::optional<mvw::study::SegmentOverlay> segments;
-  if (options.study.segmentation)
-    segments = mvw::study::readSegmentOverlay(*options.study.segmentation);
-  auto placeSegments = [&](render::VolumeRenderer& r, const glm::dmat4& anatomicalFromFunctional) {
-    if (segments)
-      r.setSegmentation(
-          segments->masks, segments->colours,
-          mvw::study::anatomicalFromSegmentation(*segments, functional, anatomicalFromFunctional));
-  };
+  const mvw::study::Session& session = *options.session;
+  const Volume* functional = session.functional();
 
   // Declaration order is teardown order in reverse: the state (and a running registration,
   // which reads the volumes) goes first, the GL objects while the context still exists.
   GlfwContext context(glm::ivec2(options.width, options.height), "mvw view");
   ImGuiSession imgui(context.window());
-  render::VolumeRenderer renderer(context, options.anatomical);
+  render::VolumeRenderer renderer(context, session.anatomical());
+  session.attach(renderer);
   ViewerScene scene;
   if (functional) {
-    const mvw::study::FunctionalPlacement placement =
-        mvw::study::placeFunctional(options.study, options.anatomical, *functional);
-    renderer.setFunctional(*functional, placement.anatomicalFromFunctional);
     scene.registration = ViewerState::describePlacement(
-        config::toString(options.study.registration.method), placement.report);
+        config::toString(session.config().registration.method), session.placement()->report);
     scene.functionalRange = renderer.functionalRange();
-    scene.anatomicalFromFunctional = placement.anatomicalFromFunctional;
-    placeSegments(renderer, placement.anatomicalFromFunctional);
-  } else {
-    placeSegments(renderer, glm::dmat4(1.0));
+    scene.anatomicalFromFunctional = session.anatomicalFromFunctional();
   }
   scene.centre = renderer.centre();
   scene.radius = renderer.radius();
   scene.valueRange = renderer.valueRange();
   render::WindowFramebuffer framebuffer(context);
   ViewerPanel::PaneTextures textures;
-  ViewerState state(options.study, options.anatomical, functional, scene);
+  ViewerState state(session.config(), session.anatomical(), functional, scene);
   ViewerPanel panel(state, textures);
 
   auto lastSwap = std::chrono::steady_clock::now();
@@ -171,10 +156,8 @@ int runViewer(ViewerOptions options) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (auto anatomicalFromFunctional = state.finishRegistration()) {
-      renderer.setFunctional(*functional, *anatomicalFromFunctional);
-      placeSegments(renderer, *anatomicalFromFunctional);
-    }
+    if (auto anatomicalFromFunctional = state.finishRegistration())
+      session.attach(renderer, *anatomicalFromFunctional);
     const bool dragging = panel.draw() || state.scriptedInteraction();
     const int divisor = state.dragDivisor();  // the one this frame renders with
     state.advanceOrbit();  // one step per drawn frame while the 3D view spins or rocks

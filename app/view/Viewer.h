@@ -5,15 +5,14 @@
 #include <optional>
 #include <string>
 
-#include "mvw/config/StudyConfig.h"
-#include "mvw/core/Volume.h"
+#include "mvw/study/Session.h"
 
 namespace mvw::app {
 
 struct ViewerOptions {
-  config::StudyConfig study;  // file may be empty (volumes given on the command line)
-  Volume anatomical;
-  std::optional<Volume> functional;
+  // The study, loaded (Session::load); its config's file may be empty (volumes given on the
+  // command line).
+  std::optional<study::Session> session;
   std::filesystem::path script;  // scripted events, for tests (see ViewerScript.h)
   // One CSV line per drawn frame (frame, ms since the previous frame's swap, the 3D pane's
   // render ms and size where it rendered, interactive, drag divisor); empty: none.

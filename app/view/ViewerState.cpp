@@ -16,6 +16,7 @@
 #include "mvw/render/TransferFunction.h"
 #include "mvw/study/Caption.h"
 #include "mvw/study/ModalityDefaults.h"
+#include "mvw/study/Session.h"
 #include "mvw/study/ViewPlan.h"
 
 namespace mvw::app {
@@ -120,15 +121,9 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   // render it (glyphs, attribute window, crop, light, ...); an MPR view sets the MPR panes'
   // window and the overlay.
   std::vector<mvw::study::PlannedView> planned = mvw::study::planViews(study_);
-  mvw::study::checkViewsAgainstAnatomy(planned, anatomical_, study_.file);
-  for (mvw::study::PlannedView& v : planned) {
+  mvw::study::prepareViews(planned, study_, anatomical_, functional_, scene_.functionalRange);
+  for (const mvw::study::PlannedView& v : planned) {
     if (!is3dMode(v.settings.mode)) continue;
-    mvw::study::applyDefaultPreset(v, anatomical_);
-    if (functional_) {
-      mvw::study::applyAttributeDefaults(v, study_.functionalKind, *functional_,
-                                         scene_.functionalRange);
-      mvw::study::applyGlyphScale(v, anatomical_, *functional_);
-    }
     view3d_ = v.settings;
     presetName_ = v.presetName;
     break;

@@ -34,7 +34,7 @@ TEST(Raycast, CompositeThroughAUniformSlabFollowsBeerLambert) {
   s.size = {33, 33};
   for (double step : {0.5, 0.25, 1.0 / 3.0}) {
     s.stepMm = step;
-    const Frame f = renderer.render(s);
+    const RenderedFrame f = renderer.render(s);
     const double expected = (1.0 - std::pow(0.9, 16.0)) * 255.0;
     EXPECT_NEAR(f.image.pixel(16, 16)[0], expected, 1.0) << "step " << step;
   }
@@ -51,10 +51,10 @@ TEST(Raycast, RenderingTwiceGivesIdenticalPixels) {
   s.camera.azimuthDeg = 30;
   s.camera.elevationDeg = 20;
   s.size = {47, 31};
-  const Frame a = renderer.render(s), b = renderer.render(s);
+  const RenderedFrame a = renderer.render(s), b = renderer.render(s);
   EXPECT_EQ(a.image.rgba, b.image.rgba);
   s.seed = 2;
-  const Frame c = renderer.render(s);
+  const RenderedFrame c = renderer.render(s);
   EXPECT_NE(a.image.rgba, c.image.rgba);  // the jitter follows the seed
 }
 
@@ -91,9 +91,9 @@ TEST(Raycast, EmptySpaceSkippingLeavesOutNoVisibleSample) {
       s.camera.azimuthDeg = azimuth;
       s.camera.elevationDeg = elevation;
       s.transfer = transferPreset(preset);
-      const Frame skipping = renderer.render(s);
+      const RenderedFrame skipping = renderer.render(s);
       for (TfPoint& p : s.transfer.points) p.rgba.a = std::max(p.rgba.a, 1e-6f);
-      const Frame everySample = renderer.render(s);
+      const RenderedFrame everySample = renderer.render(s);
       std::size_t here = 0;
       for (std::size_t i = 0; i < skipping.image.rgba.size(); ++i) {
         const int d = std::abs(int(skipping.image.rgba[i]) - int(everySample.image.rgba[i]));

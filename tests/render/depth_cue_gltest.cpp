@@ -40,9 +40,9 @@ TEST(DepthCuedMip, NeutralSettingsReproducePlainMipExactly) {
   s.window = 900;
   s.level = 400;
   s.camera.azimuthDeg = 20;
-  const Frame plain = renderer.render(s);
+  const RenderedFrame plain = renderer.render(s);
   s.depthCue = true;  // contrast 100 %, depth cue 0, brightness 0
-  const Frame neutral = renderer.render(s);
+  const RenderedFrame neutral = renderer.render(s);
   EXPECT_EQ(plain.image.rgba, neutral.image.rgba);
 }
 
@@ -60,13 +60,13 @@ TEST(DepthCuedMip, TheRampIsAppliedBeforeTheMaximum) {
   s.jitter = false;
   s.linear = false;
   s.camera.view = StandardView::Anterior;
-  const Frame plain = renderer.render(s);
+  const RenderedFrame plain = renderer.render(s);
   EXPECT_NEAR(plain.image.pixel(20, 20)[0], 0.8 * 255, 1.0);  // the bright far sphere wins
   s.depthCue = true;
   s.cueBrightness = 0.0;
   s.cueAmount = 1.0;  // beta = z: 1 at the image side of the bounding sphere, 0 behind it
   s.cueContrast = 0.0;
-  const Frame cued = renderer.render(s);
+  const RenderedFrame cued = renderer.render(s);
   // Along the middle ray z = 1 - (t - tFront) / 2R with R the bounding sphere's radius; the
   // spheres' front surfaces lie at y = -28 and y = 12, i.e. R - 28 and R + 12 mm behind tFront.
   const double R = framingSphere(v).radius;
@@ -100,7 +100,7 @@ TEST(DepthCuedMip, IdenticalBlobsAreDimmedByTheRampRatio) {
   s.depthCue = true;
   s.cueAmount = 1.0;
   s.cueContrast = 0.0;
-  const Frame f = renderer.render(s);
+  const RenderedFrame f = renderer.render(s);
   // The brightest pixel of each blob: its front point, 5 mm before the centre.
   auto brightest = [&](int x0, int x1) {
     int best = 0;
@@ -145,7 +145,7 @@ TEST(DepthCuedMip, OverlappingVesselsShowTheNearerOne) {
   int overlaps = 0, nearest = 0;
   for (StandardView view : {StandardView::Anterior, StandardView::Left, StandardView::Superior}) {
     s.camera.view = view;
-    const Frame f = renderer.render(s);
+    const RenderedFrame f = renderer.render(s);
     // March each pixel's ray through the analytic tubes and find the runs of "inside a
     // tube's core" along it. Where two separate runs lie on a ray (two vessels one behind the
     // other), the reported depth of the maximum must fall in the first, nearer run.

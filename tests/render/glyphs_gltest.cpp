@@ -67,7 +67,7 @@ TEST(Glyphs, NoAttributeGivesPlainShadingAndGlyphsStayWhereTheAttributeIs) {
   VolumeRenderer renderer(*ctx, scene.anatomy);
   RenderSettings s = GlyphScene::settings();
   s.glyphs = false;
-  const Frame plain = renderer.render(s);
+  const RenderedFrame plain = renderer.render(s);
   // beta = 0 everywhere: bit for bit the plain image.
   renderer.setFunctional(GlyphScene::attribute(0.0f), glm::dmat4(1.0));
   s.glyphs = true;
@@ -87,7 +87,7 @@ TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
   auto ctx = createHeadlessContext({16, 16});
   VolumeRenderer renderer(*ctx, scene.anatomy);
   RenderSettings s = GlyphScene::settings();
-  const Frame plain = [&] {
+  const RenderedFrame plain = [&] {
     RenderSettings p = s;
     p.glyphs = false;
     return renderer.render(p);
@@ -102,9 +102,9 @@ TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
   }
   // Dimples change the same places as bumps, with other shading.
   renderer.setFunctional(GlyphScene::attribute(1.0f), glm::dmat4(1.0));
-  const Frame bumps = renderer.render(s);
+  const RenderedFrame bumps = renderer.render(s);
   s.glyphConvexity = GlyphConvexity::Dimples;
-  const Frame dimples = renderer.render(s);
+  const RenderedFrame dimples = renderer.render(s);
   EXPECT_GT(changedPixels(bumps.image, dimples.image), previous / 2);
 }
 

@@ -62,7 +62,7 @@ double worstLambertError(VolumeRenderer& renderer, double R, const glm::dvec3& c
   s.jitter = false;
   s.isoColor = {1.0f, 1.0f, 1.0f, 1.0f};
   s.light = {0.2f, 0.8f, 0.0f, 1.0f};
-  const Frame f = renderer.render(s);
+  const RenderedFrame f = renderer.render(s);
   double worst = 0.0;
   int checked = 0;
   for (int r = 0; r < s.size.y; ++r)
@@ -196,7 +196,7 @@ TEST(GradientSource, GlyphsWorkWithEverySourceFromTheFirstFrame) {
       s.functionalLow = 0.0;
       s.functionalHigh = 1.0;
       VolumeRenderer renderer(*ctx, volume, source.gradient);
-      const Frame plain = renderer.render(s);
+      const RenderedFrame plain = renderer.render(s);
       s.glyphs = true;
       VolumeRenderer first(*ctx, volume, source.gradient);
       first.setFunctional(attribute(0.8f), glm::dmat4(1.0));

@@ -29,7 +29,7 @@ TEST(Raycast, IsosurfaceBisectionFindsTheSphereWithinATenthOfAVoxel) {
   s.size = {65, 65};    // odd: the middle pixel's ray passes through the centre
   s.camera.zoom = 2.5;  // about 0.7 mm per pixel
   s.jitter = false;
-  const Frame f = renderer.render(s);
+  const RenderedFrame f = renderer.render(s);
   double worstErr = 0.0;
   int checked = 0;
   for (int r = 0; r < 65; ++r)

@@ -31,7 +31,7 @@ TEST(Raycast, MipAlongTheSliceAxisEqualsTheCtMaximumProjection) {
   s.camera.zoom = framingSphere(ct).radius / (0.5 * d.y * ct.spacing().y);  // one pixel per voxel
   s.jitter = false;
   s.stepMm = ct.spacing().z;  // with midpoint sampling every sample is a voxel centre
-  const Frame f = renderer.render(s);
+  const RenderedFrame f = renderer.render(s);
   const auto [lo, hi] = ct.valueRange();
   double mse = 0.0;
   int worst = 0;
@@ -83,7 +83,7 @@ TEST(Raycast, MipAndMinIpSkippingLosesNoRaysExtreme) {
         s.level = level;
         s.camera.azimuthDeg = azimuth;
         s.camera.elevationDeg = elevation;
-        const Frame f = renderer.render(s);
+        const RenderedFrame f = renderer.render(s);
         const double step = defaultStepMm(ct);
         for (int y = 0; y < s.size.y; ++y)
           for (int x = 0; x < s.size.x; ++x) {

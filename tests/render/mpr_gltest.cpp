@@ -33,7 +33,7 @@ TEST(Mpr, AxialPlaneShowsTheMiddleSliceVoxelForVoxel) {
   s.camera.zoom = framingSphere(v).radius / (0.5 * d.y);  // one pixel per voxel
   s.window = 256;
   s.level = 1200 + 128;  // slice 12 holds 1200 .. 1200 + 3*29 + 39
-  const Frame f = renderer.render(s);
+  const RenderedFrame f = renderer.render(s);
   for (int r = 0; r < d.y; ++r)
     for (int c = 0; c < d.x; ++c) {
       const double expected = (1200 + 3 * r + c) - 1200.0;  // grey = value - (level - window/2)
@@ -43,7 +43,7 @@ TEST(Mpr, AxialPlaneShowsTheMiddleSliceVoxelForVoxel) {
   // z = 28.75 mm = slice 14.375, where the (linear in z) value is 1437.5 + 3 j + i.
   s.slabMm = 10.0;
   s.level = 1400 + 128;
-  const Frame slab = renderer.render(s);
+  const RenderedFrame slab = renderer.render(s);
   EXPECT_NEAR(slab.image.pixel(5, 7)[0], (1437.5 + 21 + 5) - 1400.0, 1.0);
 }
 

@@ -55,7 +55,7 @@ TEST(Raycast, MarkersAppearWhereTheOrientationLabelsSayForAnyStorageOrder) {
     s.jitter = false;
     s.linear = false;  // nearest: marker edges keep their exact grey (255, 153, 76)
     s.camera.view = StandardView::Anterior;  // screen right = patient left, up = superior
-    Frame f = renderer.render(s);
+    RenderedFrame f = renderer.render(s);
     const Centroid left = centroidOf(f.image, 250, 255), sup = centroidOf(f.image, 70, 82);
     ASSERT_GT(left.n, 10);
     ASSERT_GT(sup.n, 10);
@@ -192,7 +192,7 @@ TEST(Raycast, ObliqueVolumeIsCroppedAlongThePatientAxes) {
   s.jitter = false;
   s.camera.view = StandardView::Anterior;
   s.cropMax = {1.0, 1.0, 0.5};
-  const Frame f = renderer.render(s);
+  const RenderedFrame f = renderer.render(s);
   // The cut's row: the world point on the cut plane at the centre, through the camera.
   const double zCut = 0.5 * (crop.boxMin().z + crop.boxMax().z);
   const glm::dvec4 clip = f.camera.clipFromWorld * glm::dvec4(0.0, 0.0, zCut, 1.0);

@@ -91,7 +91,7 @@ TEST(Raycast, OnlyPixelsWhoseRayMissesTheBoxAreLeftToTheClearedBackground) {
     s.background = background;
     s.stepMm = 0.25;
     s.jitter = false;
-    const Frame f = renderer.render(s);
+    const RenderedFrame f = renderer.render(s);
     const glm::dvec3 lo = c.cropMin * glm::dvec3(dims) - 0.5;
     const glm::dvec3 hi = c.cropMax * glm::dvec3(dims) - 0.5;
     const auto at = [&](int x, int y) { return f.image.pixel(x, y); };
@@ -148,7 +148,7 @@ TEST(Raycast, TheClearedBackgroundEqualsWhatARayThatMeetsNothingWrites) {
     s.camera.azimuthDeg = 20.0;
     s.background = glm::vec3(0.3f, 127.5f / 255.0f, 178.5f / 255.0f);
     s.jitter = false;
-    const Frame f = renderer.render(s);
+    const RenderedFrame f = renderer.render(s);
     int outside = 0, insidePastTheSphere = 0, differing = 0;
     const auto* corner = f.image.pixel(0, 0);
     for (int y = 0; y < s.size.y; ++y)

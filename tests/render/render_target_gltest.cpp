@@ -30,9 +30,9 @@ TEST(RenderTarget, FramesOfChangingSizesEqualThoseOfAFreshRenderer) {
     s.size = size;
     s.mode = mode;
     s.isoValue = 150;
-    const Frame a = reused.render(s);
+    const RenderedFrame a = reused.render(s);
     VolumeRenderer fresh(*ctx, v);
-    const Frame b = fresh.render(s);
+    const RenderedFrame b = fresh.render(s);
     ASSERT_EQ(a.image.width, size.x);
     ASSERT_EQ(a.image.height, size.y);
     EXPECT_EQ(a.image.rgba, b.image.rgba) << toString(mode) << " " << size.x << " x " << size.y;

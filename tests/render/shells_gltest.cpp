@@ -36,12 +36,12 @@ TEST(Shells, DiscreteMaximumConvergesToTheRayCastAsShellsAreAdded) {
   s.cueContrast = 0.33;
   s.camera.azimuthDeg = 30;
   s.mode = RenderMode::Mip;
-  const Frame reference = renderer.render(s);
+  const RenderedFrame reference = renderer.render(s);
   s.mode = RenderMode::ShellMip;
   double previous = 1e9;
   for (int n : {4, 8, 16, 32}) {
     s.shellCount = n;
-    const Frame f = renderer.render(s);
+    const RenderedFrame f = renderer.render(s);
     double err = 0.0;
     for (std::size_t i = 0; i < f.image.rgba.size(); i += 4)
       err += std::abs(double(f.image.rgba[i]) - double(reference.image.rgba[i]));
@@ -67,15 +67,15 @@ TEST(Shells, DisabledShellsAreNotDrawnAndLitShellsShowTheOutermost) {
   s.window = 1000;
   s.level = 500;
   s.shellCount = 4;  // spheres at 250, 500, 750, 1000 -> radii 15, 10, 5, 0 mm
-  const Frame all = renderer.render(s);
+  const RenderedFrame all = renderer.render(s);
   EXPECT_NEAR(all.image.pixel(20, 20)[0], 0.75 * 255,
               1.0);  // without depth cue: the brightest shell drawn (1000 is a point)
   s.shellEnabled = {true, true, false, false};
-  const Frame two = renderer.render(s);
+  const RenderedFrame two = renderer.render(s);
   EXPECT_NEAR(two.image.pixel(20, 20)[0], 0.5 * 255, 1.0);
   s.mode = RenderMode::ShellLit;
   s.shellEnabled.clear();
-  const Frame lit = renderer.render(s);
+  const RenderedFrame lit = renderer.render(s);
   // The outermost shell (emission 0.25, radius 15 mm) hides the others. At the centre its
   // normal faces the headlight (N.L = 1): emission x (ambient + diffuse) + specular, that is
   // 0.25 x (0.25 + 0.7) + 0.25 = 0.4875, grey 124; asserted at the measured value +- 2 (the

@@ -326,13 +326,13 @@ VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume, Gradien
 
 VolumeRenderer::~VolumeRenderer() = default;
 
-Frame VolumeRenderer::render(const RenderSettings& s) {
+RenderedFrame VolumeRenderer::render(const RenderSettings& s) {
   Impl& m = *impl_;
   m.context.makeCurrent();
   if (s.size.x <= 0 || s.size.y <= 0 || s.size.x > 8192 || s.size.y > 8192)
     throw Error("image size must be 1..8192 pixels a side");
   const auto start = std::chrono::steady_clock::now();
-  Frame frame;
+  RenderedFrame frame;
   frame.camera = m.cameraFor(s);
   frame.image = isShellMode(s.mode) ? m.drawShells(s, frame.camera) : m.rayCast(s, frame.camera);
   frame.milliseconds =

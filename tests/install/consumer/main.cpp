@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     settings.transfer = mvw::render::transferPreset("ct-bone");
     settings.camera.view = mvw::render::StandardView::Anterior;
     settings.camera.azimuthDeg = 25.0;
-    const mvw::render::Frame frame = renderer.render(settings);
+    const mvw::render::RenderedFrame frame = renderer.render(settings);
 
     mvw::io::writePng(frame.image, argv[2]);
     std::cout << "rendered " << frame.image.width << " x " << frame.image.height << " in "

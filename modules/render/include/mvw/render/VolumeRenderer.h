@@ -13,113 +13,14 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "mvw/core/ColorMap.h"
-#include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/Image.h"
-#include "mvw/core/RenderMode.h"
 #include "mvw/core/Volume.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/GlContext.h"
-#include "mvw/render/GlyphMap.h"
-#include "mvw/render/TransferFunction.h"
+#include "mvw/render/RenderSettings.h"
 
 namespace mvw::render {
-
-// A label chosen for glyphs: its number, a bump or a dimple, and its atlas name (if any).
-struct LabelGlyph {
-  int label = 0;
-  bool dimple = false;
-  std::string name;
-  bool operator==(const LabelGlyph&) const = default;
-};
-
-// The modes and glyph kinds are the study config's vocabulary too (mvw/core/RenderMode.h).
-using mvw::GlyphConvexity;
-using mvw::parseRenderMode;
-using mvw::RenderMode;
-using mvw::toString;
-
-struct RenderSettings {
-  RenderMode mode = RenderMode::Composite;
-  glm::ivec2 size{512, 512};
-  CameraSettings camera;
-  TransferFunction transfer = transferPreset("ct-bone");
-  // 2D transfer function: opacity scaled by smoothstep(g0, g1, |gradient|) (unit/mm), which
-  // keeps boundaries and hides homogeneous regions (Levoy). g1 <= 0: 1D only.
-  double gradientOpacityLow = 0.0, gradientOpacityHigh = 0.0;
-  double window = 0.0;  // projections: window width; <= 0 means the full value range
-  double level = 0.0;   // window centre
-  double isoValue = 300.0;
-  // MIP with depth cueing (Heidrich et al. 1995, eq. 3 and section 2.3): brightness beta0,
-  // depth cue amount a, contrast b. Off, or a = 0, b = 1, beta0 = 0: plain MIP.
-  bool depthCue = false;
-  double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
-  // Shell modes: n shells at emissions i/n of the window; shells can be disabled one by one.
-  int shellCount = 8;
-  std::vector<bool> shellEnabled;  // empty: all
-  double stepMm = 0.0;             // <= 0: half the smallest voxel spacing
-  bool shading = true;
-  bool linear = true;  // trilinear (true) or nearest-neighbour sampling
-  bool jitter = true;
-  std::uint32_t seed = 1;
-  glm::vec3 background{0.0f};
-  glm::vec4 isoColor{0.92f, 0.86f, 0.76f, 1.0f};
-  glm::vec4 light{0.25f, 0.7f, 0.25f, 24.0f};  // ambient, diffuse, specular, shininess
-  // Where the light comes from, in screen terms: (0, 0) is a headlight; (-1, 1) from the
-  // upper left at 45 degrees off the line of sight.
-  glm::dvec2 lightOffset{0.0};
-  // Crop box in patient terms (PatientCrop, Framing.h): fractions of the volume's world-aligned
-  // box along L, P, S, whatever the storage order; or, when set, LPS millimetres (these win).
-  glm::dvec3 cropMin{0.0};
-  glm::dvec3 cropMax{1.0};
-  std::optional<glm::dvec3> cropMinMm, cropMaxMm;
-  // MPR: the plane faces the camera through the volume centre, moved along the line of
-  // sight; a slab > 0 mm is a thick-slab MIP. (Always orthographic.)
-  double planeOffsetMm = 0.0;
-  double slabMm = 0.0;
-  // Volumetric normal glyphs (Seipel 2007) in composite and isosurface modes: the functional
-  // attribute (mapped to 0..1 by functionalWindow) perturbs the shading normal with glyphs
-  // from a periodic normal map. Needs a functional volume.
-  bool glyphs = false;
-  bool glyphSizeControl = true;  // eqs. (2)-(3); false: simple blending, eq. (1)
-  GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
-  double glyphDiameterMm = kPaperGlyphDiameterMm;  // the default map is the paper's
-  GlyphMapSettings glyphMap;  // size, count, diameter in map voxels, seed, placement
-  // The apparent bump radius just above the attribute window's low end, in glyph radii; it
-  // grows linearly to 1 at the high end (shaders/common/glyphs.glsl).
-  double glyphMinSize = kGlyphMinSize;
-  // Composite DVR (beyond the paper): the least opacity per mm of ray a bump gives the samples
-  // it tilts, so bumps show in translucent tissue (mvw/core/GlyphDefaults.h).
-  double glyphDvrOpacity = kGlyphDvrOpacityPerMm;
-  // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
-  double functionalLow = 0.0, functionalHigh = 0.0;
-  // Nominal attribute (labels), chosen by the reader (issue 15 item 4): when not empty only
-  // these labels get glyphs, each a full-size bump or dimple (the "both" shading of
-  // glyphs.glsl); other labels and 0 get none.
-  std::vector<LabelGlyph> glyphLabels;
-  // Nominal attribute (labels): K > 0 maps label L > 0 to glyph size (L mod K + 1) / K.
-  int functionalClasses = 0;
-  // Functional colour overlay, when the renderer holds a functional volume: on MPR by
-  // default (overlay), on composite and isosurface renders when asked (fusion: the colour
-  // map blended into the anatomy's colour before shading).
-  bool overlay = true;
-  bool fusion = false;
-  float overlayOpacity = 0.5f;
-  float overlayThreshold = 0.25f;  // fraction of the functional range
-  // MPR: outline the segments of a segmentation set with setSegmentation, in their colours.
-  bool segmentOutlines = true;
-  // Colour maps (mvw/core/ColorMap.h; io::standardColorTable fills the DICOM palettes): the
-  // image of MIP, MinIP, average and MPR views (none: grey), looked up by the grey byte, the
-  // background shown through it as the grey it is; and the functional overlay and fusion
-  // (none: hot metal). Other modes ignore imageColors.
-  std::optional<ColorTable> imageColors;
-  std::optional<ColorTable> overlayColors;
-};
-
-// Whether `settings` colours its image (a colour map on a mode that takes one).
-using mvw::takesImageColors;
-bool showsImageColors(const RenderSettings& settings);
 
 // Where shading takes the anatomy's gradient from. Texture: precomputed on the CPU (Sobel,
 // RGBA16F: 8 bytes a voxel on the GL), one sample per shaded step, the fastest on a software
@@ -133,7 +34,8 @@ inline constexpr std::size_t kGradientTextureBudgetBytes = std::size_t(512) << 2
 const char* toString(GradientSource source);
 GradientSource parseGradientSource(const std::string& name);
 
-struct Frame {
+// One render: the image, how long it took, and the camera it was seen through.
+struct RenderedFrame {
   Image image;  // with depth: the ray distance (mm) of the reported sample, -1 for none
   double milliseconds = 0.0;
   Camera camera;
@@ -150,7 +52,7 @@ class VolumeRenderer {
   VolumeRenderer(const VolumeRenderer&) = delete;
   VolumeRenderer& operator=(const VolumeRenderer&) = delete;
 
-  Frame render(const RenderSettings& settings);
+  RenderedFrame render(const RenderSettings& settings);
   std::pair<double, double> valueRange() const;
   // Texture or OnTheFly: what Auto chose for this volume.
   GradientSource gradientSource() const;

@@ -1,0 +1,68 @@
+#include "mvw/study/Session.h"
+
+#include "mvw/core/Check.h"
+#include "mvw/study/StudyLoader.h"
+
+namespace mvw::study {
+
+Session::Session(config::StudyConfig study, const ViewOverrides& overrides)
+    : study_(std::move(study)), planned_(planViews(study_, overrides)) {}
+
+void Session::load(const io::ReadOptions& options) {
+  volumes_ = loadStudy(study_, options);
+  // Before the placement: a registration can take minutes, a bad crop box is known now.
+  checkViewsAgainstAnatomy(planned_, volumes_->anatomical, study_.file);
+  if (volumes_->functional)
+    placement_ = placeFunctional(study_, volumes_->anatomical, *volumes_->functional);
+  if (study_.segmentation) segments_ = readSegmentOverlay(*study_.segmentation, options);
+}
+
+const Volume& Session::anatomical() const {
+  MVW_CHECK(volumes_.has_value());
+  return volumes_->anatomical;
+}
+
+const Volume* Session::functional() const {
+  MVW_CHECK(volumes_.has_value());
+  return volumes_->functional ? &*volumes_->functional : nullptr;
+}
+
+const FunctionalPlacement* Session::placement() const {
+  return placement_ ? &*placement_ : nullptr;
+}
+
+const SegmentOverlay* Session::segments() const { return segments_ ? &*segments_ : nullptr; }
+
+glm::dmat4 Session::anatomicalFromFunctional() const {
+  return placement_ ? placement_->anatomicalFromFunctional : glm::dmat4(1.0);
+}
+
+void Session::attach(render::VolumeRenderer& renderer,
+                     const std::optional<glm::dmat4>& anatomicalFromFunctional) const {
+  const glm::dmat4 placed = anatomicalFromFunctional.value_or(this->anatomicalFromFunctional());
+  if (const Volume* f = functional()) renderer.setFunctional(*f, placed);
+  if (segments_)
+    renderer.setSegmentation(segments_->masks, segments_->colours,
+                             anatomicalFromSegmentation(*segments_, functional(), placed));
+}
+
+std::vector<PlannedView> Session::views(std::pair<double, double> functionalRange) const {
+  std::vector<PlannedView> views = planned_;
+  prepareViews(views, study_, anatomical(), functional(), functionalRange);
+  return views;
+}
+
+void prepareViews(std::vector<PlannedView>& views, const config::StudyConfig& study,
+                  const Volume& anatomical, const Volume* functional,
+                  std::pair<double, double> functionalRange) {
+  checkViewsAgainstAnatomy(views, anatomical, study.file);
+  for (PlannedView& v : views) {
+    applyDefaultPreset(v, anatomical);
+    if (functional) {
+      applyAttributeDefaults(v, study.functionalKind, *functional, functionalRange);
+      applyGlyphScale(v, anatomical, *functional);
+    }
+  }
+}
+
+}  // namespace mvw::study
