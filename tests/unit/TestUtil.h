@@ -4,13 +4,18 @@
 #include <iostream>
 #include <string>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 namespace mvw::test {
 
+// Named by the process too: two checkouts' test runs on one machine (or CTest's parallel
+// jobs) never share a folder.
 inline std::filesystem::path scratchDirOf(const ::testing::TestInfo& info) {
   return std::filesystem::temp_directory_path() /
-         ("mvw-test-" + std::string(info.test_suite_name()) + "-" + info.name());
+         ("mvw-test-" + std::string(info.test_suite_name()) + "-" + info.name() + "-" +
+          std::to_string(::getpid()));
 }
 
 // Removes a test's scratch folder when the test ends; a failed test's folder stays for a look,
