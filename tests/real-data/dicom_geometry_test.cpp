@@ -33,7 +33,8 @@ nlohmann::json check(const mvw::Volume& volume, const std::string& name, const s
   const fs::path log = dir / (name + ".log");
   fs::remove(json);
   mvw::io::writeVolume(volume, nifti);
-  const std::string script = std::string(MVW_SOURCE_DIR) + "/tests/real-data/check-dicom-geometry.py";
+  const std::string script =
+      std::string(MVW_SOURCE_DIR) + "/tests/real-data/check-dicom-geometry.py";
   const std::string command = "/usr/bin/python3 '" + script + "' " + mode + " '" + nifti.string() +
                               "' '" + json.string() + "' " + args + " > '" + log.string() +
                               "' 2>&1";
