@@ -1,0 +1,51 @@
+// What a picture says about itself (study Caption): the caption under a view and the glyph
+// legend, whose sizes follow the attribute window.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "StudyTestUtil.h"
+#include "mvw/study/Caption.h"
+#include "mvw/study/ViewPlan.h"
+
+namespace mvw::study {
+namespace {
+
+TEST(Caption, SaysWhatTheViewShows) {
+  PlannedView mip =
+      planViews(studyWith({{"mode", "mip"}, {"depth_cue", {{"brightness", 0.1}, {"amount", 0.5}}}}))
+          .at(0);
+  EXPECT_EQ(viewCaption(mip, {400, 40}), "mip  W 400 L 40  depth cue b0 0.10 a 0.50 b 1.00");
+  PlannedView mpr =
+      planViews(studyWith({{"mode", "mpr"}, {"view", "coronal"}, {"slab_mm", 10}})).at(0);
+  EXPECT_EQ(viewCaption(mpr, {2000, 500}), "mpr coronal  slab 10 mm  W 2000 L 500");
+  PlannedView glyphs =
+      planViews(studyWith({{"preset", "ct-skin"}, {"glyphs", {{"convexity", "concave"}}}})).at(0);
+  EXPECT_EQ(viewCaption(glyphs, {}), "composite  ct-skin  glyphs sized concave");
+}
+// The legend says what the bump sizes mean: none at or below the window, then the minimum
+// size just above its low end up to full size at its high end (dimples below the middle for
+// "both").
+TEST(GlyphLegend, SizesFollowTheAttributeWindow) {
+  PlannedView v =
+      planViews(studyWith({{"glyphs", nlohmann::json::object()}, {"functional_window", {2.5, 8}}}))
+          .at(0);
+  const render::GlyphLegend legend = glyphLegend(v, "SUVbw", {0, 20});
+  EXPECT_EQ(legend.title, "glyphs: SUVbw");
+  ASSERT_EQ(legend.entries.size(), 4u);
+  EXPECT_EQ(legend.entries[0].size, 0.0);
+  EXPECT_EQ(legend.entries[1].label, "> 2.5");
+  EXPECT_NEAR(legend.entries[1].size, 0.6, 1e-3);
+  EXPECT_EQ(legend.entries[2].label, "5.25");
+  EXPECT_DOUBLE_EQ(legend.entries[2].size, 0.8);
+  EXPECT_DOUBLE_EQ(legend.entries[3].size, 1.0);
+  v.settings.glyphConvexity = GlyphConvexity::Both;
+  const render::GlyphLegend both = glyphLegend(v, "SUVbw", {0, 20});
+  ASSERT_EQ(both.entries.size(), 5u);
+  EXPECT_TRUE(both.entries[1].dimple);
+  EXPECT_FALSE(both.entries[4].dimple);
+  v.settings.glyphs = false;
+  EXPECT_TRUE(glyphLegend(v, "SUVbw", {0, 20}).entries.empty());
+}
+
+}  // namespace
+}  // namespace mvw::study

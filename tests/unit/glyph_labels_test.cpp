@@ -1,0 +1,70 @@
+// Glyphs on a label volume (study ViewPlan): labels chosen by number or by their atlas name,
+// on the fetched AAL atlas, and the names that cannot choose one refused.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "StudyTestUtil.h"
+#include "TestUtil.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+#include "mvw/study/Caption.h"
+#include "mvw/study/ViewPlan.h"
+
+namespace mvw::study {
+namespace {
+
+// Issue 15 item 4: labels chosen by number or by their AAL name (the label table beside the
+// atlas, aal.nii.txt); "none" drops one; a name the table lacks, or a name without a table,
+// is bad input naming the study.
+TEST(GlyphLabels, ChosenByNumberOrAtlasName) {
+  config::StudyConfig study = studyWith(
+      {{"mode", "isosurface"},
+       {"glyphs", {{"labels", {{"Hippocampus_L", "bumps"}, {"38", "dimples"}, {"7", "none"}}}}}});
+  study.functional->path = test::sampleData("mricron/aal.nii.gz");
+  study.functionalKind = config::FunctionalKind::Labels;
+  const auto labels = planViews(study).at(0).settings.glyphLabels;
+  ASSERT_EQ(labels.size(), 2u);
+  // nlohmann::json keeps object keys sorted: "38" before "Hippocampus_L".
+  EXPECT_EQ(labels[0], (render::LabelGlyph{38, true, "Hippocampus_R"}));
+  EXPECT_EQ(labels[1], (render::LabelGlyph{37, false, "Hippocampus_L"}));
+  const auto legend = glyphLegend(planViews(study).at(0), "", {0, 116});
+  ASSERT_EQ(legend.entries.size(), 2u);
+  EXPECT_EQ(legend.entries[1].label, "37 Hippocampus_L");
+  EXPECT_TRUE(legend.entries[0].dimple);
+
+  // planViews' refusal of the study as it stands ("" and a failure when it plans the views).
+  auto refusal = [&study](const char* accepted) {
+    try {
+      planViews(study);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << accepted;
+    return std::string();
+  };
+  study.render.views[0].glyphLabels[1].label = "Hippocampus_X";
+  const std::string unknown = refusal("an unknown label name was accepted");
+  EXPECT_NE(unknown.find("no label named 'Hippocampus_X' in"), std::string::npos) << unknown;
+  // A table that gives one name to two labels is read, but that name cannot choose one.
+  const std::filesystem::path dir = test::scratchDir();
+  std::ofstream(dir / "twins.nii.txt") << "1 Twin\n2 Other\n3 Twin\n";
+  std::filesystem::copy_file(test::sampleData("mricron/aal.nii.gz"), dir / "twins.nii.gz",
+                             std::filesystem::copy_options::overwrite_existing);
+  study.functional->path = dir / "twins.nii.gz";
+  study.render.views[0].glyphLabels = {{"2", config::LabelGlyphKind::Bumps}};
+  EXPECT_EQ(planViews(study).at(0).settings.glyphLabels.at(0).name, "Other");
+  study.render.views[0].glyphLabels = {{"Twin", config::LabelGlyphKind::Bumps}};
+  const std::string twin = refusal("a name given to two labels chose one");
+  EXPECT_NE(twin.find("'Twin' names labels 1 and 3"), std::string::npos) << twin;
+  study.functional->path = "/nonexistent/labels.nii.gz";
+  EXPECT_THROW(planViews(study), InputError);
+  study.functionalKind = config::FunctionalKind::Pet;
+  EXPECT_THROW(planViews(study), InputError);
+}
+
+}  // namespace
+}  // namespace mvw::study

@@ -1,0 +1,85 @@
+// Defaults by modality (study ModalityDefaults), so a study needs no settings to look right:
+// the anatomy's preset and window, and the functional attribute window by kind and unit.
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "StudyTestUtil.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Volume.h"
+#include "mvw/study/ModalityDefaults.h"
+#include "mvw/study/ViewPlan.h"
+
+namespace mvw::study {
+namespace {
+
+Volume volumeOf(const std::string& modality, const std::string& unit) {
+  Volume v({2, 2, 2}, 1, ScalarType::Int16, glm::dmat4(1.0));
+  v.metadata().modality = modality;
+  v.metadata().unit = unit;
+  return v;
+}
+
+TEST(ModalityDefaults, CtGetsBoneAndTheSoftTissueWindowMrTheRange) {
+  const ModalityDefaults ct = modalityDefaults(volumeOf("CT", "HU"), {-1024, 3071});
+  EXPECT_EQ(ct.preset, "ct-bone");
+  EXPECT_EQ(ct.isoValue, 300.0);
+  EXPECT_EQ(ct.mpr.window, 400.0);
+  EXPECT_EQ(ct.mpr.level, 40.0);
+  const ModalityDefaults mr = modalityDefaults(volumeOf("MR", ""), {0, 1000});
+  EXPECT_EQ(mr.preset, "mr-default");
+  EXPECT_EQ(mr.isoValue, 400.0);
+  EXPECT_EQ(mr.mpr.window, 1000.0);
+  EXPECT_EQ(mr.mpr.level, 500.0);
+  EXPECT_EQ(defaultPreset(volumeOf("PT", "SUVbw")), "pet-hot-metal");
+  EXPECT_EQ(defaultPreset(volumeOf("", "HU")), "ct-bone");  // HU without a modality: a CT
+}
+TEST(AttributeDefaults, PetInSuvFromTheLesionThresholdOtherUnitsFrom41Percent) {
+  const Volume suv = volumeOf("PT", "SUVbw");
+  const auto a = defaultAttributeWindow(config::FunctionalKind::Pet, suv, {0.0, 19.5});
+  ASSERT_TRUE(a.has_value());
+  EXPECT_EQ((*a)[0], 2.5);
+  EXPECT_EQ((*a)[1], 19.5);
+  // No uptake above 2.5: a valid window that shows none.
+  const auto none = defaultAttributeWindow(config::FunctionalKind::Pet, suv, {0.0, 1.8});
+  ASSERT_TRUE(none.has_value());
+  EXPECT_EQ((*none)[0], 2.5);
+  EXPECT_GT((*none)[1], 2.5);
+  // Bq/ml, or a NIfTI PET without a unit: relative to the maximum.
+  const auto bq = defaultAttributeWindow(config::FunctionalKind::Pet, volumeOf("", ""), {0, 4.0});
+  ASSERT_TRUE(bq.has_value());
+  EXPECT_DOUBLE_EQ((*bq)[0], 0.41 * 4.0);
+  EXPECT_EQ((*bq)[1], 4.0);
+  // The modality alone says PET too; fMRI, labels and the rest keep the full range.
+  EXPECT_TRUE(defaultAttributeWindow(config::FunctionalKind::Other, volumeOf("NM", ""), {0, 9}));
+  EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Fmri, volumeOf("MR", ""), {0, 9}));
+  // An fMRI statistic map (z or t from the NIfTI intent code): from z = 2.3.
+  const auto z = defaultAttributeWindow(config::FunctionalKind::Fmri, volumeOf("", "z"), {-4, 9});
+  ASSERT_TRUE(z.has_value());
+  EXPECT_EQ((*z)[0], 2.3);
+  EXPECT_EQ((*z)[1], 9.0);
+  EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Fmri, volumeOf("", "t"), {-4, 2}));
+  EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Labels, volumeOf("", ""), {0, 9}));
+}
+TEST(AttributeDefaults, AViewsOwnWindowOrClassesWin) {
+  const nlohmann::json glyphs = nlohmann::json::object();
+  PlannedView own =
+      planViews(studyWith({{"glyphs", glyphs}, {"functional_window", {1.0, 3.0}}})).at(0);
+  applyAttributeDefaults(own, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
+  EXPECT_EQ(own.settings.functionalLow, 1.0);
+  PlannedView classes = planViews(studyWith({{"glyphs", glyphs}, {"functional_classes", 4}})).at(0);
+  applyAttributeDefaults(classes, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
+  EXPECT_EQ(classes.settings.functionalHigh, 0.0);
+  PlannedView none = planViews(studyWith({{"glyphs", glyphs}})).at(0);
+  applyAttributeDefaults(none, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
+  EXPECT_EQ(none.settings.functionalLow, 2.5);
+  EXPECT_EQ(none.settings.functionalHigh, 10.0);
+  // A colour overlay keeps the full range as its colour scale.
+  PlannedView mpr = planViews(studyWith({{"mode", "mpr"}})).at(0);
+  applyAttributeDefaults(mpr, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
+  EXPECT_EQ(mpr.settings.functionalHigh, 0.0);
+}
+
+}  // namespace
+}  // namespace mvw::study
