@@ -20,7 +20,7 @@ namespace mvw::app {
 // transparent huge pages (2 MiB, where the kernel allows them: THP "madvise" or "always")
 // when glibc.malloc.hugetlb=1, for every library in the process; the tunable is read once,
 // by the dynamic loader at start-up, hence the second start. It took that cold start from
-// 2.94-3.16 s to 1.23-2.29 s at the same peak memory (README, "Huge pages").
+// 2.94-3.16 s to 1.23-2.29 s at the same peak memory (docs/performance-log.md#huge-pages).
 //
 // The second start puts the user's GLIBC_TUNABLES back (kept meanwhile in
 // MVW_GLIBC_TUNABLES_BEFORE, which also marks it), so the programs mvw runs (elastix in

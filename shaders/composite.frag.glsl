@@ -94,7 +94,9 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 // (MVW_MIDDLE_LOOP, then the full loop), and the glyph map position is computed per sample in
 // that last loop only: carried through one loop as ray state (six floats), the glyph ray cost
 // composite DVR 1.35x the frame without glyphs on llvmpipe even with no attribute in view
-// (register pressure in every iteration); split, 1.07x (README, "What the methods cost"). The
+// (register pressure in every iteration); split, 1.07x then
+// (docs/performance-log.md#glyph-split-loop). Since plain composite got the hand-back, glyph
+// composite measures 1.26-1.31x over it (docs/performance.md#what-the-methods-cost). The
 // pixels are the same, bit for bit: below the window the glyph code returns the anatomy's
 // normal. Before both, the lean loop (below) passes the transparent samples, and both hand the
 // ray back to it at the next one.

@@ -180,7 +180,7 @@ TEST(Glyphs, StayVisibleInCompositeDvrAsTheOpacityIsLowered) {
   // Measured on llvmpipe (Mesa 22.3.6) at opacity 0.9, 0.3, 0.1, 0.05: the share of the
   // sphere's right half changed by > 4, and the mean change over the brightness. Asserted
   // within 25 % of these (other GL implementations filter the glyph map a little differently);
-  // the README's "8-13 %" is this test's output.
+  // the "7.9-13.0 %" in docs/user-guide/glyphs.md is this test's output.
   const double measuredShare[] = {0.0791, 0.1305, 0.1303, 0.0796};
   const double measuredContrast[] = {0.0220, 0.0220, 0.0174, 0.0122};
   int step = 0;

@@ -3,7 +3,7 @@
 // 6^3 block, and per frame which blocks the transfer function makes visible, so composite rays
 // step over blocks that would add nothing: over every block within the distance to the
 // nearest visible one at once. 6 voxels: on the Cranium CT composite took 62 ms/frame with
-// 4^3 and 6^3 blocks, 67 with 8^3, 145 with 2^3 (README, "Speed").
+// 4^3 and 6^3 blocks, 67 with 8^3, 145 with 2^3 (docs/performance-log.md#block-size).
 #include <utility>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Two error tiers (CONVENTIONS.md): programmer bugs are MVW_CHECKs (Check.h); bad data and
+// Two error tiers (docs/design.md#errors): programmer bugs are MVW_CHECKs (Check.h); bad data and
 // environment failures are exceptions derived from mvw::Error. Only app/ decides exit codes:
 // InputError -> 2 (bad file, bad config), any other Error -> 1 (internal fault).
 #include <filesystem>
