@@ -1,20 +1,37 @@
 // modules/validate without GL: image metrics against hand-computed values, suite parsing and
-// its refusals, the report's text, the process pool's exit codes and time limit.
+// its refusals, the report's text, the process pool's exit codes, time limit and launcher, and
+// runValidate through an injected render function.
+#include <unistd.h>
+
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
+#include <future>
+#include <iostream>
 #include <limits>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
 #include "TestUtil.h"
+#include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Image.h"
+#include "mvw/io/PngWriter.h"
 #include "mvw/validate/Checksums.h"
 #include "mvw/validate/ImageMetrics.h"
 #include "mvw/validate/ProcessPool.h"
 #include "mvw/validate/Report.h"
 #include "mvw/validate/Suite.h"
+#include "mvw/validate/Validator.h"
 
 namespace mvw::validate {
 namespace {
@@ -179,29 +196,163 @@ TEST(Report, HtmlAndCaseLinesSayWhatFailed) {
   EXPECT_NE(caseLine(b, bad).find("mean delta 3.000"), std::string::npos);
 }
 
+// What the pool's jobs do in these tests, by their first argument.
+int testJob(const std::vector<std::string>& args) {
+  const std::string& what = args.at(0);
+  if (what == "exit3") {
+    std::cout << "out" << std::endl;
+    return 3;
+  }
+  if (what == "sleep") {
+    std::cout << ::getpid() << std::endl;
+    std::this_thread::sleep_for(std::chrono::seconds(30));
+    return 0;
+  }
+  if (what == "late") std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  if (what == "kill") ::raise(SIGKILL);
+  if (what == "input") throw InputError("bad.json", "is bad");
+  if (what == "fault") throw std::runtime_error("it broke");
+  if (what == "buffered") std::cout << "left in the buffer";  // no flush: the pool's
+  return 0;
+}
+
+std::string firstLine(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
 TEST(ProcessPool, ReportsExitCodesAndKillsAtTheTimeLimit) {
   const fs::path dir = test::scratchDir();
-  std::vector<ProcessJob> jobs = {{{"/bin/sh", "-c", "echo out; exit 3"}, dir / "a.log"},
-                                  {{"/bin/sh", "-c", "sleep 30"}, dir / "b.log"},
-                                  {{"/bin/sh", "-c", "kill -9 $$"}, dir / "c.log"}};
+  ProcessPool pool(testJob);
+  const std::vector<std::string> kinds = {"exit3", "sleep", "kill", "input", "fault", "buffered"};
+  std::vector<ProcessJob> jobs;
+  for (const std::string& k : kinds) jobs.push_back({{k}, dir / (k + ".log")});
   std::vector<ProcessResult> results(jobs.size());
   int calls = 0;
-  runProcesses(jobs, 2, 1.0, [&](std::size_t j, const ProcessResult& r) {
+  pool.run(jobs, 2, 1.0, [&](std::size_t j, const ProcessResult& r) {
     results[j] = r;
     ++calls;
   });
-  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(calls, 6);
   EXPECT_EQ(results[0].status, 3);
+  EXPECT_EQ(firstLine(dir / "exit3.log"), "out");
   EXPECT_EQ(results[1].status, kTimedOut);
   EXPECT_LT(results[1].seconds, 10.0);
   EXPECT_EQ(results[2].status, 128 + 9);
-  std::ifstream log(dir / "a.log");
-  std::string line;
-  std::getline(log, line);
-  EXPECT_EQ(line, "out");
-  EXPECT_THROW(runProcesses({{{"/nonexistent/mvw"}, dir / "d.log"}}, 1, 1.0,
-                            [](std::size_t, const ProcessResult&) {}),
+  // Exceptions end the child as mvw's main ends mvw: 2 for bad input, 1 for a fault.
+  EXPECT_EQ(results[3].status, 2);
+  EXPECT_EQ(firstLine(dir / "input.log"), "mvw: error: bad.json: is bad");
+  EXPECT_EQ(results[4].status, 1);
+  EXPECT_EQ(firstLine(dir / "fault.log"), "mvw: internal error: it broke");
+  EXPECT_EQ(results[5].status, 0);
+  EXPECT_EQ(firstLine(dir / "buffered.log"), "left in the buffer");
+  // The pool goes on with another run; a log that cannot be written is an Error.
+  calls = 0;
+  pool.run({{{"exit3"}, dir / "again.log"}}, 1, 10.0,
+           [&](std::size_t, const ProcessResult& r) { calls += r.status == 3; });
+  EXPECT_EQ(calls, 1);
+  EXPECT_THROW(pool.run({{{"exit3"}, dir / "no" / "such" / "folder.log"}}, 1, 1.0,
+                        [](std::size_t, const ProcessResult&) {}),
                Error);
+}
+
+// The jobs are forked by the launcher, a copy of the caller made with the pool: a lock that a
+// thread of the caller took later (a thread pool's, say) is free in the jobs, not held by a
+// thread that the fork left behind.
+TEST(ProcessPool, JobsAreCopiesOfTheCallerAsItWasWhenThePoolWasMade) {
+  static std::mutex lock;
+  const fs::path dir = test::scratchDir();
+  ProcessPool pool([](const std::vector<std::string>&) {
+    if (!lock.try_lock()) return 1;
+    lock.unlock();
+    return 0;
+  });
+  std::promise<void> held, release;
+  std::thread holder([&] {
+    const std::lock_guard<std::mutex> guard(lock);
+    held.set_value();
+    release.get_future().wait();
+  });
+  held.get_future().wait();
+  int status = -1;
+  pool.run({{{}, dir / "a.log"}}, 1, 10.0,
+           [&](std::size_t, const ProcessResult& r) { status = r.status; });
+  release.set_value();
+  holder.join();
+  EXPECT_EQ(status, 0) << "the job saw the lock that a thread of the caller holds";
+}
+
+// When onDone throws, the jobs still running are killed and reaped before run() returns.
+TEST(ProcessPool, AnExceptionFromOnDoneKillsTheJobsStillRunning) {
+  const fs::path dir = test::scratchDir();
+  ProcessPool pool(testJob);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THROW(pool.run({{{"sleep"}, dir / "sleep.log"}, {{"late"}, dir / "late.log"}}, 2, 60.0,
+                        [](std::size_t, const ProcessResult&) {
+                          throw std::runtime_error("the judge failed");
+                        }),
+               std::runtime_error);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  const pid_t sleeper = static_cast<pid_t>(std::stol(firstLine(dir / "sleep.log")));
+  EXPECT_NE(::kill(sleeper, 0), 0) << "the sleeping job " << sleeper << " still runs";
+  EXPECT_THROW(pool.run({}, 1, 1.0, [](std::size_t, const ProcessResult&) {}), Error);
+}
+
+TEST(ProcessPool, RunInChildGivesTheExitCodeAndTheMessage) {
+  EXPECT_EQ(runInChild([] {}), 0);
+  testing::internal::CaptureStderr();
+  const int status = runInChild([] { throw InputError("--gl egl", "no EGL here"); });
+  const std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(status, 2);
+  EXPECT_EQ(said, "mvw: error: --gl egl: no EGL here\n");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(runInChild([] { throw Error("broke"); }), 1);
+  testing::internal::GetCapturedStderr();
+}
+
+// runValidate renders through the function it is given, in child processes (not in the
+// caller's), and a render that throws fails its cases with the exit code and the message.
+TEST(Validate, RendersThroughTheInjectedFunctionInChildProcesses) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "ct.nii") << "not read: no analytic checks";
+  std::ofstream(dir / "study.json") << R"({"anatomical": {"path": "ct.nii"},
+      "render": {"views": [{"name": "a", "width": 8, "height": 6},
+                           {"name": "b", "width": 8, "height": 6}]}})";
+  Image grey(8, 6);
+  for (std::size_t i = 0; i < grey.rgba.size(); ++i) grey.rgba[i] = i % 4 == 3 ? 255 : 100;
+  io::writePng(grey, dir / "ref.png");
+  std::ofstream(dir / "suite.json") << R"({"study": "study.json", "cases": [
+      {"name": "one", "view": "a", "reference": "ref.png"},
+      {"name": "two", "view": "b", "reference": "ref.png"}]})";
+  const pid_t caller = ::getpid();
+  ValidateOptions o;
+  o.suite = dir / "suite.json";
+  o.outDir = dir / "report";
+  o.jobs = 2;
+  o.timeoutS = 60.0;
+  o.render = [caller, grey](const fs::path& study, const fs::path& out) {
+    if (::getpid() == caller) throw std::logic_error("rendered in the caller's process");
+    fs::create_directories(out);
+    for (const config::ViewConfig& v : config::loadStudyConfig(study).render.views)
+      io::writePng(grey, out / (v.name + ".png"));
+  };
+  EXPECT_TRUE(runValidate(o));
+
+  o.outDir = dir / "failed";
+  o.render = [](const fs::path& study, const fs::path&) {
+    throw InputError(study, "cannot be rendered here");
+  };
+  EXPECT_FALSE(runValidate(o));
+  std::ifstream report(dir / "failed" / "report.json");
+  std::stringstream text;
+  text << report.rdbuf();
+  EXPECT_NE(text.str().find("mvw render exited with 2: mvw: error: "), std::string::npos);
+  EXPECT_NE(text.str().find("cannot be rendered here"), std::string::npos);
+
+  o.render = nullptr;
+  EXPECT_THROW(runValidate(o), Error);
 }
 
 }  // namespace
