@@ -394,6 +394,14 @@ void runRender(const RenderOptions& o) {
 
 }  // namespace
 
+void renderStudy(const fs::path& study, const fs::path& outDir, const std::string& gl) {
+  RenderOptions o;
+  o.study = study.string();
+  o.outDir = outDir.string();
+  o.gl = gl;
+  runRender(o);
+}
+
 void addRenderCommand(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand(

@@ -2,40 +2,62 @@
 
 #include "CliChecks.h"
 #include "HeadlessGl.h"
+#include "RenderCommand.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "mvw/validate/ProcessPool.h"
 #include "mvw/validate/Validator.h"
 
 namespace mvw::app {
 
+namespace {
+
+struct ValidateCli {
+  validate::ValidateOptions options;
+  std::string gl;  // --gl for every render (empty: MVW_GL, else auto)
+};
+
+}  // namespace
+
 void addValidateCommand(CLI::App& app) {
-  auto o = std::make_shared<validate::ValidateOptions>();
+  auto o = std::make_shared<ValidateCli>();
   CLI::App* cmd = app.add_subcommand(
       "validate",
       "Render a validation suite headless, compare with reference images, write an HTML report");
-  cmd->add_option("suite", o->suite, "Suite file (.json)")->required();
-  cmd->add_option("-o,--output", o->outDir, "Report folder (index.html, report.json, cases/)")
+  cmd->add_option("suite", o->options.suite, "Suite file (.json)")->required();
+  cmd->add_option("-o,--output", o->options.outDir,
+                  "Report folder (index.html, report.json, cases/)")
       ->required();
-  cmd->add_flag("--update", o->update,
+  cmd->add_flag("--update", o->options.update,
                 "Rewrite the reference images with the new renders (review them!)");
-  cmd->add_option("-j,--jobs", o->jobs,
+  cmd->add_option("-j,--jobs", o->options.jobs,
                   "Render processes at once (each study's cases are shared among at most N)")
       ->check(CLI::Range(1, 64));
-  cmd->add_option("--timeout", o->timeoutS,
+  cmd->add_option("--timeout", o->options.timeoutS,
                   "Seconds one render process (its share of a study's cases) may take")
       ->check(positive());
   addGlOption(*cmd, o->gl);
   cmd->callback([o] {
     // A backend the user named must exist here (exit 2 now, not one failure per case). The
-    // probe context is gone before the renders start.
-    if (!o->gl.empty() || resolveGl("").request != render::GlRequest::Auto)
-      makeHeadlessContext(o->gl);
-    if (!validate::runValidate(*o)) {
+    // probe context is made in a child process: the renders are forked from this one, which
+    // makes no GL context (a driver's threads and state do not survive a fork).
+    if (!o->gl.empty() || resolveGl("").request != render::GlRequest::Auto) {
+      const int status = validate::runInChild([gl = o->gl] { makeHeadlessContext(gl); });
+      if (status != 0) std::exit(status);  // the child said why on stderr
+    }
+    // Each render process runs `mvw render STUDY -o OUT --gl GL`'s code.
+    o->options.render = [gl = o->gl](const std::filesystem::path& study,
+                                     const std::filesystem::path& outDir) {
+      renderStudy(study, outDir, gl);
+    };
+    if (!validate::runValidate(o->options)) {
       // A failing case is neither bad input nor an internal fault: exit 1 without a message.
       std::cout.flush();
       std::exit(1);

@@ -4,12 +4,12 @@
 namespace mvw::app {
 
 // `mvw validate SUITE.json -o REPORT_DIR [--update] [--jobs N]`: renders every case of a
-// validation suite headless through `mvw render` (child processes, N at a time, each rendering
-// a share of one study's cases so that the study loads once per process, not once per case),
-// compares each with its reference image under the case's tolerances (max per-pixel delta
-// with an allowed fraction, mean delta, PSNR, SSIM), runs the case's analytic checks, and
-// writes REPORT_DIR/index.html + report.json. Exit 0 only when every case passes, 1 when a
-// case fails, 2 for a bad suite (the message names the file).
+// validation suite headless with `mvw render`'s code (in child processes, N at a time, each
+// rendering a share of one study's cases so that the study loads once per process, not once
+// per case), compares each with its reference image under the case's tolerances (max
+// per-pixel delta with an allowed fraction, mean delta, PSNR, SSIM), runs the case's analytic
+// checks, and writes REPORT_DIR/index.html + report.json. Exit 0 only when every case
+// passes, 1 when a case fails, 2 for a bad suite (the message names the file).
 //
 //   { "name": "regression",
 //     "study": "${MVW_GOLDEN_STUDY}",              default study config of the cases

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "BenchCommand.h"
+#include "ConfigCommand.h"
 #include "ConvertCommand.h"
 #include "GlyphMapCommand.h"
 #include "HugePages.h"
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
   mvw::app::addBenchCommand(app);
   mvw::app::addViewCommand(app);
   mvw::app::addValidateCommand(app);
+  mvw::app::addConfigCommand(app);
   // Every number option is finite: NaN passes any range check (comparisons with it are false)
   // and inf overflows what it scales.
   const CLI::Validator finite(

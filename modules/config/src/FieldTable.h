@@ -2,7 +2,9 @@
 // One table per config object: its keys, how each is read (type and range checks, messages
 // naming the file and the key's full path), how it is written, and, through the object's own
 // default member initialisers, its defaults. Unknown keys are rejected from the same table, so
-// a key cannot be parsed without being written or written without being known.
+// a key cannot be parsed without being written or written without being known. Each key
+// carries its one-line description, and the tables describe themselves (describe(): key path,
+// type, allowed values, default, description): docs/config-reference.md is made from them.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -17,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mvw/config/ConfigReference.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
 
@@ -31,6 +34,32 @@ struct Where {
   [[noreturn]] void bad(const std::string& problem) const {
     throw InputError(file, "'" + key + "' " + problem);
   }
+};
+
+// Never defined: a Doc that calls it cannot be made at compile time, which stops the build
+// with this name in the message.
+void a_config_field_needs_a_description();
+
+// A key's one-line description, for the reference. A string literal that is not empty: every
+// add/number/... takes one next to the key, so a key cannot be added without its description.
+struct Doc {
+  consteval Doc(const char* description) : text(description) {
+    if (description == nullptr || description[0] == '\0') a_config_field_needs_a_description();
+  }
+  const char* text;
+};
+
+// How the reference shows a key that add() reads with its own code (the typed builders fill it
+// in themselves).
+struct Shape {
+  std::string type;    // "object", "array of 2 numbers", ...
+  std::string values;  // what it takes, in words ("" : any value of the type)
+  // What an absent key means, in words ("required", "a still"); empty: the value the writer
+  // writes for a default-constructed object (its default member initialisers), else "unset".
+  std::string absent;
+  // The keys of the object it holds, described below `path` (its own key path, with "[]" for an
+  // array of objects); empty for a plain value.
+  std::function<std::vector<ConfigKeyDoc>(const std::string& path)> below;
 };
 
 template <class E>
@@ -81,15 +110,23 @@ class FieldTable {
   using Reader = std::function<void(const json& value, T& out, const Where& where)>;
   using Writer = std::function<void(const T& in, json& object, const char* key)>;
 
-  FieldTable& add(const char* key, Reader read, Writer write) {
-    fields_.push_back({key, std::move(read), std::move(write), std::nullopt});
+  FieldTable& add(const char* key, Doc doc, Shape shape, Reader read, Writer write) {
+    fields_.push_back(
+        {key, doc.text, std::move(read), std::move(write), std::nullopt, std::move(shape)});
+    return *this;
+  }
+
+  // What the reference says an absent key means, for the key added last (where the writer's
+  // value for a default object is not the whole story: a view's name is "view<N>").
+  FieldTable& whenAbsent(std::string words) {
+    fields_.back().shape.absent = std::move(words);
     return *this;
   }
 
   template <class M>
-  FieldTable& number(const char* key, M T::*member, double lo, double hi) {
+  FieldTable& number(const char* key, Doc doc, M T::*member, double lo, double hi) {
     add(
-        key,
+        key, doc, {std::is_integral_v<M> ? "integer" : "number", rangeText(lo, hi), "", {}},
         [member, lo, hi](const json& v, T& out, const Where& w) {
           const double d = readNumber(v, w, lo, hi);
           // A count, a size or a seed: 48.5 is a mistake, not 48.
@@ -102,10 +139,10 @@ class FieldTable {
     return *this;
   }
 
-  FieldTable& optionalNumber(const char* key, std::optional<double> T::*member, double lo,
+  FieldTable& optionalNumber(const char* key, Doc doc, std::optional<double> T::*member, double lo,
                              double hi) {
     add(
-        key,
+        key, doc, {"number", rangeText(lo, hi), "", {}},
         [member, lo, hi](const json& v, T& out, const Where& w) {
           out.*member = readNumber(v, w, lo, hi);
         },
@@ -116,9 +153,9 @@ class FieldTable {
     return *this;
   }
 
-  FieldTable& boolean(const char* key, bool T::*member) {
+  FieldTable& boolean(const char* key, Doc doc, bool T::*member) {
     return add(
-        key,
+        key, doc, {"boolean", "true or false", "", {}},
         [member](const json& v, T& out, const Where& w) {
           if (!v.is_boolean()) w.bad("must be true or false");
           out.*member = v.get<bool>();
@@ -126,16 +163,17 @@ class FieldTable {
         [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
   }
 
-  FieldTable& string(const char* key, std::string T::*member) {
+  FieldTable& string(const char* key, Doc doc, std::string T::*member) {
     return add(
-        key, [member](const json& v, T& out, const Where& w) { out.*member = readString(v, w); },
+        key, doc, {"string", "", "", {}},
+        [member](const json& v, T& out, const Where& w) { out.*member = readString(v, w); },
         [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
   }
 
   template <class E>
-  FieldTable& enumeration(const char* key, E T::*member, EnumNames<E> names) {
+  FieldTable& enumeration(const char* key, Doc doc, E T::*member, EnumNames<E> names) {
     return add(
-        key,
+        key, doc, {"string", namesOf(names), "", {}},
         [member, names](const json& v, T& out, const Where& w) {
           const auto e = parseName(names, readString(v, w));
           if (!e) w.bad("must be " + namesOf(names));
@@ -145,9 +183,11 @@ class FieldTable {
   }
 
   template <std::size_t N>
-  FieldTable& numbers(const char* key, std::array<double, N> T::*member, double lo, double hi) {
+  FieldTable& numbers(const char* key, Doc doc, std::array<double, N> T::*member, double lo,
+                      double hi) {
     return add(
-        key,
+        key, doc,
+        {"array of " + std::to_string(N) + " numbers", "each " + rangeText(lo, hi), "", {}},
         [member, lo, hi](const json& v, T& out, const Where& w) {
           const std::string what = "must be an array of " + std::to_string(N) + " numbers";
           if (!v.is_array() || v.size() != N) w.bad(what);
@@ -165,9 +205,10 @@ class FieldTable {
 
   // A nested object whose presence switches a feature on ("glyphs": {...}); its keys are read
   // into the same struct by `table`, and it is written only while the feature is on.
-  FieldTable& section(const char* key, bool T::*enabled, const FieldTable<T>& table) {
+  FieldTable& section(const char* key, Doc doc, bool T::*enabled, const FieldTable<T>& table) {
     return add(
-        key,
+        key, doc,
+        {"object", "", "off", [table](const std::string& path) { return table.describe(path); }},
         [enabled, table](const json& v, T& out, const Where& w) {
           out.*enabled = true;
           table.read(v, out, Where{w.file, w.key + "."});
@@ -213,6 +254,35 @@ class FieldTable {
     return keys;
   }
 
+  // Every key of the table, and of the objects its keys hold, as the reference shows them:
+  // `object` is the key path of the table's object ("" at the top, "render.views[]").
+  std::vector<ConfigKeyDoc> describe(const std::string& object) const {
+    std::vector<ConfigKeyDoc> docs;
+    const T defaults{};
+    for (const Field& f : fields_) {
+      ConfigKeyDoc d;
+      d.object = object;
+      d.key = object.empty() ? f.key : object + "." + f.key;
+      d.type = f.shape.type;
+      d.values = f.shape.values;
+      d.description = f.doc;
+      json written = json::object();
+      if (f.shape.absent.empty()) f.write(defaults, written, f.key);
+      if (written.contains(f.key)) {
+        d.defaultValue = written[f.key].dump();
+        d.defaultIsJson = true;
+      } else {
+        d.defaultValue = f.shape.absent.empty() ? "unset" : f.shape.absent;
+      }
+      docs.push_back(d);
+      if (f.shape.below) {
+        std::vector<ConfigKeyDoc> below = f.shape.below(d.key);
+        docs.insert(docs.end(), below.begin(), below.end());
+      }
+    }
+    return docs;
+  }
+
   std::string knownKeys() const {
     std::vector<std::string> keys = this->keys();
     std::sort(keys.begin(), keys.end());
@@ -224,10 +294,15 @@ class FieldTable {
  private:
   struct Field {
     const char* key;
+    const char* doc;
     Reader read;
     Writer write;
     std::optional<std::pair<double, double>> range;
+    Shape shape;
   };
+  static std::string rangeText(double lo, double hi) {
+    return shortNumber(lo) + " .. " + shortNumber(hi);
+  }
   const Field* find(const std::string& key) const {
     for (const Field& f : fields_)
       if (key == f.key) return &f;

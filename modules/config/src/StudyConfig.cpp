@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "FieldTable.h"
+#include "mvw/config/ConfigReference.h"
 #include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
@@ -102,19 +103,38 @@ std::string absolutePath(const fs::path& path) {
 const FieldTable<ViewConfig>& glyphTable() {
   static const FieldTable<ViewConfig> t = [] {
     FieldTable<ViewConfig> g;
-    g.enumeration("method", &ViewConfig::glyphMethod, kGlyphMethods)
-        .enumeration("convexity", &ViewConfig::glyphConvexity, kConvexities)
-        .enumeration("placement", &ViewConfig::glyphPlacement, kPlacements)
-        .optionalNumber("spacing_mm", &ViewConfig::glyphSpacingMm, 0.5, 1000.0)
-        .number("min_size", &ViewConfig::glyphMinSize, 0.0, 1.0)
-        .number("dvr_opacity", &ViewConfig::glyphDvrOpacity, 0.0, 1.0)
-        .optionalNumber("diameter_mm", &ViewConfig::glyphDiameterMm, 0.1, 1000.0)
-        .number("count", &ViewConfig::glyphCount, 1, 255)
-        .number("seed", &ViewConfig::glyphSeed, 0, kMaxSeed)
-        .number("map_size", &ViewConfig::glyphMapSize, 8, 512)
-        .number("map_diameter", &ViewConfig::glyphMapDiameter, 2, 256)
+    g.enumeration("method",
+                  "Size control: sized, eqs. (2)-(3) of Seipel 2007; simple, eq. (1) blending.",
+                  &ViewConfig::glyphMethod, kGlyphMethods)
+        .enumeration("convexity", "Bumps (convex), dimples (concave) or both.",
+                     &ViewConfig::glyphConvexity, kConvexities)
+        .enumeration("placement",
+                     "Where glyphs sit: blue-noise, a turned, jittered lattice spacing_mm apart; "
+                     "paper, the paper's 16 random glyphs of 32 voxels in 128^3.",
+                     &ViewConfig::glyphPlacement, kPlacements)
+        .optionalNumber("spacing_mm", "Blue-noise: the glyph centres' spacing in mm.",
+                        &ViewConfig::glyphSpacingMm, 0.5, 1000.0)
+        .whenAbsent("the functional voxel, within what the rendered scale shows")
+        .number("min_size", "Apparent bump radius at the window's low end, in glyph radii.",
+                &ViewConfig::glyphMinSize, 0.0, 1.0)
+        .number("dvr_opacity",
+                "Composite, blue-noise: the least opacity per mm of ray a bump gives its samples.",
+                &ViewConfig::glyphDvrOpacity, 0.0, 1.0)
+        .optionalNumber("diameter_mm", "Glyph diameter in mm.", &ViewConfig::glyphDiameterMm, 0.1,
+                        1000.0)
+        .whenAbsent("blue-noise: a fraction of the spacing; paper: the paper's diameter")
+        .number("count", "Paper: the number of random glyphs in the map.", &ViewConfig::glyphCount,
+                1, 255)
+        .number("seed", "Seed of the glyph placement.", &ViewConfig::glyphSeed, 0, kMaxSeed)
+        .number("map_size", "Paper: the glyph map's size in voxels per side.",
+                &ViewConfig::glyphMapSize, 8, 512)
+        .number("map_diameter", "Paper: the glyph diameter in map voxels.",
+                &ViewConfig::glyphMapDiameter, 2, 256)
         .add(
             "labels",
+            "Label maps: only these labels get glyphs, by number (\"38\") or by name in the "
+            "atlas's label table (\"Hippocampus_L\").",
+            {"object", "label: \"bumps\", \"dimples\" or \"none\"", "every label", {}},
             [](const json& v, ViewConfig& out, const Where& w) {
               if (!v.is_object() || v.empty())
                 w.bad(
@@ -148,9 +168,9 @@ const FieldTable<ViewConfig>& glyphTable() {
 const FieldTable<ViewConfig>& depthCueTable() {
   static const FieldTable<ViewConfig> t = [] {
     FieldTable<ViewConfig> c;
-    c.number("brightness", &ViewConfig::cueBrightness, 0.0, 10.0)
-        .number("amount", &ViewConfig::cueAmount, -10.0, 10.0)
-        .number("contrast", &ViewConfig::cueContrast, 0.0, 10.0);
+    c.number("brightness", "Brightness beta0.", &ViewConfig::cueBrightness, 0.0, 10.0)
+        .number("amount", "Amount a (0: no cueing).", &ViewConfig::cueAmount, -10.0, 10.0)
+        .number("contrast", "Contrast b (1: plain MIP).", &ViewConfig::cueContrast, 0.0, 10.0);
     return c;
   }();
   return t;
@@ -160,30 +180,55 @@ const FieldTable<ViewConfig>& viewTable() {
   static const FieldTable<ViewConfig> t = [] {
     using V = ViewConfig;
     FieldTable<V> v;
-    v.string("name", &V::name)
-        .enumeration("mode", &V::mode, renderModes())
-        .enumeration("view", &V::view, kViewNames)
-        .number("azimuth", &V::azimuth, -3600, 3600)
-        .number("elevation", &V::elevation, -3600, 3600)
-        .number("roll", &V::roll, -3600, 3600)
-        .number("zoom", &V::zoom, 1e-3, 1e3)
-        .boolean("perspective", &V::perspective)
-        .number("width", &V::width, 1, 8192)
-        .number("height", &V::height, 1, 8192)
-        .string("preset", &V::preset)
-        .optionalNumber("window", &V::window, 1e-9, 1e12)
-        .optionalNumber("level", &V::level, -1e12, 1e12)
-        .number("iso", &V::iso, -1e12, 1e12)
-        .boolean("shading", &V::shading)
-        .enumeration("sampling", &V::sampling, kSamplings)
-        .number("step_mm", &V::stepMm, 0.0, 100.0)
-        .boolean("jitter", &V::jitter)
-        .number("seed", &V::seed, 0, kMaxSeed)
-        .numbers("background", &V::background, 0.0, 1.0)
-        .numbers("crop_min", &V::cropMin, 0.0, 1.0)
-        .numbers("crop_max", &V::cropMax, 0.0, 1.0)
+    v.string("name",
+             "The output's name: NAME.png (an orbit: NAME/frame-000.png ... and NAME.mp4); a "
+             "plain file name of at most 120 characters.",
+             &V::name)
+        .whenAbsent("view<N>, N its place in views from 0")
+        .enumeration("mode", "How the view renders the volume.", &V::mode, renderModes())
+        .enumeration("view",
+                     "The direction it is seen from as radiologists name it, or an MPR plane "
+                     "(axial: seen from the feet, coronal: from the front, sagittal: from the "
+                     "patient's left).",
+                     &V::view, kViewNames)
+        .number("azimuth", "Degrees about the view's up axis.", &V::azimuth, -3600, 3600)
+        .number("elevation", "Degrees about the view's right axis.", &V::elevation, -3600, 3600)
+        .number("roll", "Degrees about the line of sight.", &V::roll, -3600, 3600)
+        .number("zoom", "Magnification (1 fits the volume).", &V::zoom, 1e-3, 1e3)
+        .boolean("perspective", "Perspective instead of orthographic projection.", &V::perspective)
+        .number("width", "Image width in pixels.", &V::width, 1, 8192)
+        .number("height", "Image height in pixels.", &V::height, 1, 8192)
+        .string("preset", "Transfer function preset by name (ct-bone, ct-skin, mr-default, ...).",
+                &V::preset)
+        .whenAbsent("chosen by the anatomy's modality")
+        .optionalNumber("window", "Window width, in the anatomy's unit (goes with level).",
+                        &V::window, 1e-9, 1e12)
+        .whenAbsent("the anatomy's full value range")
+        .optionalNumber("level", "Window centre, in the anatomy's unit (goes with window).",
+                        &V::level, -1e12, 1e12)
+        .whenAbsent("the anatomy's full value range")
+        .number("iso", "Isosurface value, in the anatomy's unit.", &V::iso, -1e12, 1e12)
+        .boolean("shading", "Gradient shading.", &V::shading)
+        .enumeration("sampling", "How the volume is sampled between voxels.", &V::sampling,
+                     kSamplings)
+        .number("step_mm",
+                "Distance between samples along a ray in mm (0: half the smallest "
+                "voxel spacing).",
+                &V::stepMm, 0.0, 100.0)
+        .boolean("jitter", "Jitter each ray's first sample (no wood-grain rings).", &V::jitter)
+        .number("seed", "Seed of the ray jitter.", &V::seed, 0, kMaxSeed)
+        .numbers("background", "Background colour [red, green, blue].", &V::background, 0.0, 1.0)
+        .numbers("crop_min",
+                 "Crop box's low corner as fractions of the volume's box along L, P, S (0: most "
+                 "right, anterior, inferior).",
+                 &V::cropMin, 0.0, 1.0)
+        .numbers("crop_max",
+                 "Crop box's high corner as fractions of the volume's box along L, P, S (1: most "
+                 "left, posterior, superior).",
+                 &V::cropMax, 0.0, 1.0)
         .add(
-            "crop_mm",
+            "crop_mm", "Crop box in LPS mm; wins over crop_min and crop_max.",
+            {"object", "{\"min\": [L, P, S], \"max\": [L, P, S]}, min < max, within +-1e6", "", {}},
             [](const json& c, V& out, const Where& w) {
               const std::string what =
                   "must be {\"min\": [L, P, S], \"max\": [L, P, S]} in LPS mm, min < max";
@@ -207,18 +252,24 @@ const FieldTable<ViewConfig>& viewTable() {
               if (in.cropMinMm && in.cropMaxMm)
                 j[k] = {{"min", *in.cropMinMm}, {"max", *in.cropMaxMm}};
             })
-        .boolean("annotate", &V::annotate)
+        .boolean("annotate", "Orientation labels, scale bar, caption and colour bar.", &V::annotate)
         .add(
-            "light",
+            "light", "Light offset in screen terms ([0, 0]: a headlight).",
+            {"array of 2 numbers", "[right, up]", "", {}},
             [](const json& l, V& out, const Where& w) {
               if (!l.is_array() || l.size() != 2 || !l[0].is_number() || !l[1].is_number())
                 w.bad("must be [right, up] (0, 0 is a headlight)");
               out.light = {l[0].get<double>(), l[1].get<double>()};
             },
             [](const V& in, json& j, const char* k) { j[k] = in.light; })
-        .section("glyphs", &V::glyphs, glyphTable())
+        .section("glyphs",
+                 "Volumetric normal glyphs showing the functional volume (composite, "
+                 "isosurface): on where present.",
+                 &V::glyphs, glyphTable())
         .add(
             "functional_window",
+            "Functional values mapped to 0 .. 1 (overlay, glyph size) [low, high].",
+            {"array of 2 numbers", "low < high", "by the functional volume's kind", {}},
             [](const json& fw, V& out, const Where& w) {
               out.functionalWindow = readOrderedPair(fw, w, -std::numeric_limits<double>::max(),
                                                      "[low, high] with low < high");
@@ -226,9 +277,13 @@ const FieldTable<ViewConfig>& viewTable() {
             [](const V& in, json& j, const char* k) {
               if (in.functionalWindow) j[k] = *in.functionalWindow;
             })
-        .section("depth_cue", &V::depthCue, depthCueTable())
+        .section("depth_cue", "MIP depth cueing (Heidrich 1995): on where present.", &V::depthCue,
+                 depthCueTable())
         .add(
             "gradient_opacity",
+            "2D transfer function: opacity times smoothstep(low, high, |gradient|), in the "
+            "anatomy's unit per mm.",
+            {"array of 2 numbers", "0 <= low < high", "off", {}},
             [](const json& g, V& out, const Where& w) {
               out.gradientOpacity =
                   readOrderedPair(g, w, 0.0, "[low, high] with 0 <= low < high (unit/mm)");
@@ -236,14 +291,20 @@ const FieldTable<ViewConfig>& viewTable() {
             [](const V& in, json& j, const char* k) {
               if (in.gradientOpacity[1] > 0.0) j[k] = in.gradientOpacity;
             })
-        .number("plane_offset_mm", &V::planeOffsetMm, -1e4, 1e4)
-        .number("slab_mm", &V::slabMm, 0.0, 1e4)
-        .boolean("overlay", &V::overlay)
-        .boolean("segmentation_outlines", &V::segmentationOutlines)
-        .boolean("fusion", &V::fusion)
-        .number("shells", &V::shells, 1, 256)
+        .number("plane_offset_mm", "MPR: the plane moved along the line of sight, in mm.",
+                &V::planeOffsetMm, -1e4, 1e4)
+        .number("slab_mm", "MPR: thick-slab MIP thickness in mm (0: a single plane).", &V::slabMm,
+                0.0, 1e4)
+        .boolean("overlay", "MPR: show the functional volume, where the study has one.",
+                 &V::overlay)
+        .boolean("segmentation_outlines", "MPR: outline the segments of the study's segmentation.",
+                 &V::segmentationOutlines)
+        .boolean("fusion", "Composite and isosurface: blend the functional colour in.", &V::fusion)
+        .number("shells", "shells-mip, shells-sum, shells-lit: the number of isosurface shells.",
+                &V::shells, 1, 256)
         .add(
-            "shells_disabled",
+            "shells_disabled", "Shells switched off, by number (1 is the first).",
+            {"array of integers", "1 .. shells", "", {}},
             [](const json& d, V& out, const Where& w) {
               if (!d.is_array()) w.bad("must be an array of shell numbers");
               out.shellsDisabled.clear();
@@ -254,13 +315,25 @@ const FieldTable<ViewConfig>& viewTable() {
               }
             },
             [](const V& in, json& j, const char* k) { j[k] = in.shellsDisabled; })
-        .number("functional_classes", &V::functionalClasses, 0, 64)
-        .number("overlay_opacity", &V::overlayOpacity, 0.0, 1.0)
-        .number("overlay_threshold", &V::overlayThreshold, 0.0, 1.0)
-        .enumeration("colormap", &V::colormap, colorMaps())
-        .enumeration("overlay_colormap", &V::overlayColormap, colorMaps())
+        .number("functional_classes",
+                "Label maps: K > 0 gives label L the glyph size (L mod K + 1) / K (0: off).",
+                &V::functionalClasses, 0, 64)
+        .number("overlay_opacity", "Opacity of the functional overlay.", &V::overlayOpacity, 0.0,
+                1.0)
+        .number("overlay_threshold",
+                "Functional values below this fraction of their range are not overlaid.",
+                &V::overlayThreshold, 0.0, 1.0)
+        .enumeration("colormap",
+                     "Colour map of mip, minip, average and mpr images (grey-inverted also turns "
+                     "the black background white).",
+                     &V::colormap, colorMaps())
+        .enumeration("overlay_colormap", "Colour map of the functional overlay and fusion.",
+                     &V::overlayColormap, colorMaps())
         .add(
             "orbit",
+            "A rotating view: this many frames about the patient's long axis from the view's "
+            "azimuth on.",
+            {"integer", "2 .. " + std::to_string(kMaxOrbitFrames), "a still", {}},
             [](const json& n, V& out, const Where& w) {
               if (!n.is_number_integer() || n.get<long long>() < 2 ||
                   n.get<long long>() > kMaxOrbitFrames)
@@ -270,9 +343,13 @@ const FieldTable<ViewConfig>& viewTable() {
             [](const V& in, json& j, const char* k) {
               if (in.orbit > 0) j[k] = in.orbit;
             })
-        .enumeration("orbit_mode", &V::orbitMode, kOrbitModes)
-        .number("orbit_range", &V::orbitRangeDeg, 1.0, 180.0)
-        .number("orbit_fps", &V::orbitFps, 1.0, 60.0);
+        .enumeration("orbit_mode",
+                     "spin: a full turn (azimuth + 360 k / N); rock: back and forth (azimuth + "
+                     "orbit_range sin(2 pi k / N)).",
+                     &V::orbitMode, kOrbitModes)
+        .number("orbit_range", "rock: how far the view swings each way, in degrees.",
+                &V::orbitRangeDeg, 1.0, 180.0)
+        .number("orbit_fps", "Frames per second of the orbit's movie.", &V::orbitFps, 1.0, 60.0);
     return v;
   }();
   return t;
@@ -352,6 +429,9 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
   FieldTable<SourceEntry> t;
   t.add(
        "path",
+       "The volume: a NIfTI, MetaImage or DICOM file, or a DICOM folder; relative to the "
+       "config file's folder.",
+       {"string", "an existing file or folder", "required", {}},
        [](const json& v, SourceEntry& out, const Where& w) {
          const std::string p = detail::readString(v, w);
          if (p.empty()) w.bad("is empty");
@@ -363,6 +443,9 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
        [](const SourceEntry& in, json& j, const char* k) { j[k] = absolutePath(in.source.path); })
       .add(
           "series",
+          "The DICOM series, where the folder holds several: its UID, number or part of its "
+          "description.",
+          {"string", "", "", {}},
           [](const json& v, SourceEntry& out, const Where& w) {
             out.source.series = detail::readString(v, w);
           },
@@ -370,7 +453,11 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
             if (!in.source.series.empty()) j[k] = in.source.series;
           })
       .add(
-          "frame",
+          "frame", "What a 4D volume contributes: one frame, or the mean over the frames.",
+          {"integer or string",
+           "0, 1, ... or \"mean\"",
+           withKind ? "\"mean\"; kind labels: 0" : "0",
+           {}},
           [](const json& v, SourceEntry& out, const Where& w) {
             std::optional<FrameChoice> f;
             if (v.is_number_integer() && v.get<long long>() >= 0 && v.get<long long>() < 1000000)
@@ -390,13 +477,20 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
           })
       .add(
           "slice_spacing_mm",
+          "Slice distance in mm for DICOM series that must be resampled (uneven or missing "
+          "slices, gantry tilt).",
+          {"number", "0 .. 1000", "0: automatic", {}},
           [](const json& v, SourceEntry& out, const Where& w) {
             out.source.sliceSpacingMm = detail::readNumber(v, w, 0.0, 1000.0);
           },
           [](const SourceEntry& in, json& j, const char* k) {
             if (in.source.sliceSpacingMm > 0) j[k] = in.source.sliceSpacingMm;
           });
-  if (withKind) t.enumeration("kind", &SourceEntry::kind, kKinds);
+  if (withKind)
+    t.enumeration("kind",
+                  "What the functional volume measures: its display defaults (colours, window) "
+                  "and the frame a 4D one contributes.",
+                  &SourceEntry::kind, kKinds);
   return t;
 }
 
@@ -413,9 +507,15 @@ const FieldTable<RegistrationConfig>& registrationTable() {
   static const FieldTable<RegistrationConfig> t = [] {
     using R = RegistrationConfig;
     FieldTable<R> r;
-    r.enumeration("method", &R::method, kRegistrations)
+    r.enumeration("method",
+                  "none: by world coordinates (both in LPS mm); rigid or affine: mutual "
+                  "information registration when the study is opened; file: the transform file.",
+                  &R::method, kRegistrations)
         .add(
             "transform",
+            "method file: an ITK transform file (transform.tfm from `mvw register`); relative to "
+            "the config file's folder.",
+            {"string", "an existing file", "", {}},
             [](const json& v, R& out, const Where& w) {
               const std::string p = detail::readString(v, w);
               if (p.empty()) return;
@@ -424,7 +524,10 @@ const FieldTable<RegistrationConfig>& registrationTable() {
             [](const R& in, json& j, const char* k) {
               if (!in.transform.empty()) j[k] = absolutePath(in.transform);
             })
-        .number("rotation_search_deg", &R::rotationSearchDeg, 0.0, 180.0);
+        .number("rotation_search_deg",
+                "rigid, affine: a coarse search over rotations up to this many degrees first (0: "
+                "none).",
+                &R::rotationSearchDeg, 0.0, 180.0);
     return r;
   }();
   return t;
@@ -434,7 +537,9 @@ const FieldTable<RenderConfig>& renderTable() {
   static const FieldTable<RenderConfig> t = [] {
     FieldTable<RenderConfig> r;
     r.add(
-        "views",
+        "views", "The views `mvw render` renders, one image each.",
+        {"array of objects", "", "one composite anterior view",
+         [](const std::string& path) { return viewTable().describe(path + "[]"); }},
         [](const json& v, RenderConfig& out, const Where& w) {
           if (!v.is_array()) w.bad("must be an array");
           for (std::size_t i = 0; i < v.size(); ++i)
@@ -469,6 +574,8 @@ const FieldTable<Measurements>& measurementsTable() {
     FieldTable<M> m;
     m.add(
          "spheres",
+         "Spherical ROIs [L, P, S, radius] in LPS mm; the viewer shows their statistics.",
+         {"array of arrays of 4 numbers", "radius > 0", "none", {}},
          [](const json& v, M& out, const Where& w) {
            if (!v.is_array()) w.bad("must be an array of [L, P, S, radius] (LPS mm)");
            out.spheres.clear();
@@ -489,7 +596,8 @@ const FieldTable<Measurements>& measurementsTable() {
            j[k] = a;
          })
         .add(
-            "rulers",
+            "rulers", "Distance rulers [L0, P0, S0, L1, P1, S1] in LPS mm.",
+            {"array of arrays of 6 numbers", "", "none", {}},
             [](const json& v, M& out, const Where& w) {
               if (!v.is_array()) w.bad("must be an array of [L0, P0, S0, L1, P1, S1] (LPS mm)");
               out.rulers.clear();
@@ -517,9 +625,11 @@ const FieldTable<StudyConfig>& studyTable() {
   static const FieldTable<StudyConfig> t = [] {
     using S = StudyConfig;
     FieldTable<S> s;
-    s.string("name", &S::name)
+    s.string("name", "The study's name.", &S::name)
         .add(
-            "anatomical",
+            "anatomical", "The anatomical volume (CT or MR): what every view shows.",
+            {"object", "", "required",
+             [](const std::string& path) { return sourceTable(false).describe(path); }},
             [](const json& v, S& out, const Where& w) {
               out.anatomical = readSource(v, w.file, "anatomical", false).source;
             },
@@ -528,6 +638,10 @@ const FieldTable<StudyConfig>& studyTable() {
             })
         .add(
             "functional",
+            "A functional volume (PET, SPECT, fMRI, perfusion, dose, labels) placed on the "
+            "anatomy.",
+            {"object", "", "none",
+             [](const std::string& path) { return sourceTable(true).describe(path); }},
             [](const json& v, S& out, const Where& w) {
               const SourceEntry e = readSource(v, w.file, "functional", true);
               out.functional = e.source;
@@ -540,6 +654,10 @@ const FieldTable<StudyConfig>& studyTable() {
             })
         .add(
             "segmentation",
+            "A segmentation (DICOM SEG or a label volume) outlined on MPR views in its segments' "
+            "colours.",
+            {"object", "", "none",
+             [](const std::string& path) { return sourceTable(false).describe(path); }},
             [](const json& v, S& out, const Where& w) {
               out.segmentation = readSource(v, w.file, "segmentation", false).source;
             },
@@ -549,7 +667,9 @@ const FieldTable<StudyConfig>& studyTable() {
                     sourceTable(false).write(SourceEntry{*in.segmentation, FunctionalKind::Other});
             })
         .add(
-            "registration",
+            "registration", "How the functional volume is placed on the anatomy.",
+            {"object", "", "method none",
+             [](const std::string& path) { return registrationTable().describe(path); }},
             [](const json& v, S& out, const Where& w) {
               registrationTable().read(v, out.registration, Where{w.file, "registration."});
             },
@@ -557,13 +677,18 @@ const FieldTable<StudyConfig>& studyTable() {
               if (in.functional) j[k] = registrationTable().write(in.registration);
             })
         .add(
-            "render",
+            "render", "What `mvw render` renders.",
+            {"object", "", "one composite anterior view",
+             [](const std::string& path) { return renderTable().describe(path); }},
             [](const json& v, S& out, const Where& w) {
               renderTable().read(v, out.render, Where{w.file, "render."});
             },
             [](const S& in, json& j, const char* k) { j[k] = renderTable().write(in.render); })
         .add(
             "measurements",
+            "What a reader measured in `mvw view`, drawn again when the state is opened.",
+            {"object", "", "none",
+             [](const std::string& path) { return measurementsTable().describe(path); }},
             [](const json& v, S& out, const Where& w) {
               measurementsTable().read(v, out.measurements, Where{w.file, "measurements."});
             },
@@ -720,5 +845,7 @@ std::vector<std::string> studyConfigKeyPaths() {
   }
   return out;
 }
+
+std::vector<ConfigKeyDoc> studyConfigKeyDocs() { return studyTable().describe(""); }
 
 }  // namespace mvw::config

@@ -109,8 +109,8 @@ struct Render {
   std::string view;  // the view's name in the job's study, so its image is out/<view>.png
 };
 
-// One `mvw render` process: some of the renders of one study. A study's renders are spread
-// over at most --jobs processes, so the volumes load once per process, not once per case.
+// One render process: some of the renders of one study. A study's renders are spread over at
+// most --jobs processes, so the volumes load once per process, not once per case.
 struct Job {
   std::vector<Render> renders;
   fs::path study, out, log;
@@ -244,7 +244,7 @@ class Plan {
   }
 
   // Each study's renders dealt round-robin to at most `perStudy` jobs; each job is the study
-  // with those views only, written for `mvw render`.
+  // with those views only, written for the render function.
   void makeJobs(int perStudy) {
     for (const fs::path& file : studyOrder_) {
       const std::vector<Wanted>& all = wanted_[file];
@@ -519,6 +519,7 @@ class CaseJudge {
 }  // namespace
 
 bool runValidate(const ValidateOptions& o) {
+  if (!o.render) throw Error("mvw::validate::runValidate: ValidateOptions::render is not set");
   const Suite suite = loadSuite(o.suite);
   // The goldens' checksums, read before anything renders (a bad manifest is bad input).
   std::optional<ChecksumManifest> manifest, updated;
@@ -530,11 +531,16 @@ bool runValidate(const ValidateOptions& o) {
       updated->file = *suite.checksums;
     }
   }
+  // The render processes are forked from a launcher forked now, before this process reads a
+  // volume (VTK) or judges an image (OpenCV): both start TBB worker threads, whose state a
+  // child forked from this process later would hold half-copied.
+  ProcessPool pool([render = o.render](const std::vector<std::string>& args) {
+    render(args.at(0), args.at(1));
+    return 0;
+  });
   const WorkDir work;
   Plan plan(suite, work.dir, o.jobs);
 
-  const fs::path exe =
-      o.executable.empty() ? fs::read_symlink("/proc/self/exe") : fs::path(o.executable);
   const fs::path report = o.outDir;
   {
     std::error_code ec;
@@ -542,11 +548,7 @@ bool runValidate(const ValidateOptions& o) {
     if (ec) throw InputError(report, "cannot create the report folder: " + ec.message());
   }
   std::vector<ProcessJob> processes;
-  for (const Job& j : plan.jobs) {
-    std::vector<std::string> argv{exe.string(), "render", j.study.string(), "-o", j.out.string()};
-    if (!o.gl.empty()) argv.insert(argv.end(), {"--gl", o.gl});
-    processes.push_back({argv, j.log});
-  }
+  for (const Job& j : plan.jobs) processes.push_back({{j.study.string(), j.out.string()}, j.log});
   std::vector<int> pending(suite.cases.size(), 0);
   for (const Job& j : plan.jobs)
     for (const Render& one : j.renders) ++pending[one.caseIndex];
@@ -561,7 +563,7 @@ bool runValidate(const ValidateOptions& o) {
                   updated ? &*updated : nullptr);
   std::size_t casesDone = 0;
   progressBar(0, suite.cases.size(), tty);
-  runProcesses(processes, o.jobs, o.timeoutS, [&](std::size_t job, const ProcessResult& result) {
+  pool.run(processes, o.jobs, o.timeoutS, [&](std::size_t job, const ProcessResult& result) {
     plan.jobs[job].result = result;
     plan.jobs[job].renderJson = readRenderJson(plan.jobs[job].out / "render.json");
     for (const Render& one : plan.jobs[job].renders) {

@@ -1,7 +1,16 @@
 #pragma once
-// Child processes run N at a time, each with its stdout and stderr in a log file, stdin from
-// /dev/null and a wall-clock limit. The validator renders every case through `mvw render` so:
-// a crash or hang in one case is that case's failure, not the suite's.
+// Jobs run in child processes, N at a time, each with its stdout and stderr in a log file,
+// stdin from /dev/null and a wall-clock limit: a crash or hang in one job is that job's
+// failure, not the caller's. The validator renders every case so.
+//
+// A job is a call of the pool's function in a forked child, not a program: the library never
+// starts an executable of its own. The children are forked by a launcher process that the
+// pool forks when it is made, so each starts as a copy of the caller as it was then, with one
+// thread: a thread pool or lock that the caller starts afterwards (OpenCV's and VTK's TBB
+// workers, a GL driver's threads) is not half-copied into the jobs. Make the pool before
+// starting threads whose state the function needs.
+#include <sys/types.h>
+
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -10,8 +19,13 @@
 
 namespace mvw::validate {
 
+// What a job runs, in its child: its arguments in, its exit code out. An exception that
+// leaves it ends the child as mvw's main does: its message on stderr ("mvw: error: ..."), exit
+// 2 for bad input (InputError, a file system error), 1 for anything else.
+using JobFunction = std::function<int(const std::vector<std::string>& args)>;
+
 struct ProcessJob {
-  std::vector<std::string> argv;  // argv[0]: the executable's path
+  std::vector<std::string> args;  // handed to the pool's function
   std::filesystem::path log;      // stdout + stderr
 };
 
@@ -22,10 +36,32 @@ struct ProcessResult {
 
 constexpr int kTimedOut = 124;
 
-// Runs every job, at most `parallel` at once, killing any that runs past `timeoutS`. onDone is
-// called in the calling thread as each job ends (in the order they end). Throws mvw::Error if a
-// process cannot be started; the ones running then are killed and reaped first.
-void runProcesses(const std::vector<ProcessJob>& jobs, int parallel, double timeoutS,
-                  const std::function<void(std::size_t job, const ProcessResult&)>& onDone);
+class ProcessPool {
+ public:
+  // Forks the launcher. Throws mvw::Error if it cannot.
+  explicit ProcessPool(JobFunction function);
+  // Ends the launcher, which kills and reaps any job still running.
+  ~ProcessPool();
+  ProcessPool(const ProcessPool&) = delete;
+  ProcessPool& operator=(const ProcessPool&) = delete;
+
+  // Runs every job, at most `parallel` at once, killing any that runs past `timeoutS`. onDone
+  // is called in the calling thread as each job ends (in the order they end) while the others
+  // go on. Throws mvw::Error if a job cannot be started (its log cannot be written, no process
+  // can be forked); the jobs running then are killed and reaped first, as they are when onDone
+  // throws.
+  void run(const std::vector<ProcessJob>& jobs, int parallel, double timeoutS,
+           const std::function<void(std::size_t job, const ProcessResult&)>& onDone);
+
+ private:
+  pid_t launcher_ = -1;
+  int socket_ = -1;  // to the launcher: jobs out, results back
+};
+
+// Runs `body` in a forked child of this process, its output where this process's goes, and
+// returns the child's exit code as ProcessResult::status gives it; the child ends as a job does
+// (an exception: its message on stderr, exit 2 or 1). For what must not happen in this process
+// (`mvw validate` makes its probe GL context so, as the renders are forked from it).
+int runInChild(const std::function<void()>& body);
 
 }  // namespace mvw::validate
