@@ -321,5 +321,17 @@ TEST_F(ViewerScriptRun, ColormapAndOrbitActOnTheState) {
   EXPECT_EQ(state.orbit(), Orbit::Spin);
 }
 
+TEST(ViewerScriptGlyphLabel, BadLabelsAndKindsNameTheLine) {
+  for (const char* line : {"glyph-label 0 bumps", "glyph-label 2.5 bumps", "glyph-label 3 spikes",
+                           "glyph-label 3", "glyph-label 16384 none"}) {
+    try {
+      ViewerScript::parse(line, "s.txt");
+      ADD_FAILURE() << line;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("line 1: glyph-label"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mvw::app

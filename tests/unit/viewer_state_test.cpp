@@ -15,6 +15,7 @@
 
 #include "TestUtil.h"
 #include "ViewerScript.h"
+#include "ViewerTestUtil.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 
@@ -23,42 +24,7 @@ namespace {
 
 using render::RenderMode;
 
-// Intentional odd, anisotropic grid: a wrong axis or spacing shows in the wheel and click maths.
-Volume makeVolume(const std::string& modality, double lo, double hi) {
-  Volume v({9, 7, 5}, 1, ScalarType::Int16,
-           makeWorldFromIndex({-4.0, -3.0, -2.0}, {1.0, 1.0, 2.5}, glm::dmat3(1.0)));
-  v.setValue(0, 0, 0, 0, lo);
-  v.setValue(8, 6, 4, 0, hi);
-  v.metadata().modality = modality;
-  v.metadata().unit = modality == "CT" ? "HU" : "";
-  return v;
-}
-
-ViewerScene sceneOf(const Volume& v) {
-  ViewerScene s;
-  s.centre = v.worldFromIndexPoint(glm::dvec3(v.dimensions() - 1) * 0.5);
-  s.radius = 10.0;
-  s.valueRange = v.valueRange();
-  return s;
-}
-
-// Every pane sized and rendered once, with the cameras the renderer would report.
-void renderAll(ViewerState& state) {
-  for (int p = 0; p < kPaneCount; ++p) {
-    state.setPaneSize(p, {64, 48});
-    const render::RenderSettings s = state.renderSettings(p);
-    state.rendered(p,
-                   render::makeCamera(s.camera, state.scene().centre, state.scene().radius, s.size),
-                   Image(s.size.x, s.size.y), false);
-  }
-}
-
-class ViewerStateTest : public ::testing::Test {
- protected:
-  config::StudyConfig study;
-  Volume ct = makeVolume("CT", -1000.0, 2000.0);
-  Volume pet = makeVolume("PT", 0.0, 10.0);
-};
+using ViewerStateTest = ViewerFixture;
 
 TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
@@ -709,18 +675,6 @@ TEST_F(ViewerStateTest, ChosenGlyphLabelsReachTheRendererAndAreSaved) {
   EXPECT_TRUE(saved.render.views[1].glyphLabels.empty());  // an MPR pane draws no glyphs
   ViewerState reopened(saved, ct, &atlas, scene);
   EXPECT_EQ(reopened.view3d().glyphLabels, expected);
-}
-
-TEST(ViewerScriptGlyphLabel, BadLabelsAndKindsNameTheLine) {
-  for (const char* line : {"glyph-label 0 bumps", "glyph-label 2.5 bumps", "glyph-label 3 spikes",
-                           "glyph-label 3", "glyph-label 16384 none"}) {
-    try {
-      ViewerScript::parse(line, "s.txt");
-      ADD_FAILURE() << line;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("line 1: glyph-label"), std::string::npos) << e.what();
-    }
-  }
 }
 
 }  // namespace
