@@ -403,7 +403,8 @@ void ViewerPanel::drawControls() {
       "view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
       "fusion, P next preset, O spin, K rock, R reset, S screenshot, Ctrl+S save state as a "
       "study config.");
-  if (!state_.status().empty()) ImGui::TextWrapped("%s", state_.status().c_str());
+  if (const std::string& status = state_.requests().status(); !status.empty())
+    ImGui::TextWrapped("%s", status.c_str());
 }
 
 bool ViewerPanel::draw() {

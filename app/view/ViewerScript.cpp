@@ -232,7 +232,7 @@ void ViewerScript::dragIncrement(ViewerState& state) {
   const Command& d = commands_[*dragging_];
   --dragFramesLeft_;
   state.drag(d.pane, d.x / d.frames, d.y / d.frames, d.button, false);
-  state.setScriptedInteraction(true);
+  state.requests().setScriptedInteraction(true);
 }
 
 bool ViewerScript::step(ViewerState& state) {
@@ -244,7 +244,7 @@ bool ViewerScript::step(ViewerState& state) {
       return true;
     }
     dragging_.reset();
-    state.setScriptedInteraction(false);
+    state.requests().setScriptedInteraction(false);
   }
   if (wait_ > 0) {
     --wait_;
@@ -276,10 +276,10 @@ bool ViewerScript::step(ViewerState& state) {
       wait_ = c.frames;
       break;
     case Kind::Screenshot:
-      state.requestScreenshot(c.file);
+      state.requests().requestScreenshot(c.file);
       break;
     case Kind::PaneScreenshot:
-      state.requestPaneScreenshot(c.pane, c.file);
+      state.requests().requestPaneScreenshot(c.pane, c.file);
       break;
     case Kind::SaveConfig:
       state.saveConfig(c.file);
@@ -323,7 +323,7 @@ bool ViewerScript::step(ViewerState& state) {
       state.clearMeasurements();
       break;
     case Kind::Quit:
-      state.requestQuit();
+      state.requests().requestQuit();
       break;
   }
   return true;

@@ -256,7 +256,7 @@ void ViewerState::key(char key, bool ctrl) {
   } else if (key == 'S' && ctrl) {
     saveConfig("mvw-view-state.json");
   } else if (key == 'S') {
-    requestScreenshot("mvw-screenshot.png");
+    requests_.requestScreenshot("mvw-screenshot.png");
   } else {
     return;
   }
@@ -407,10 +407,6 @@ void ViewerState::rendered(int pane, const render::Camera& camera, Image raw, bo
   p.dirty = interacting && pane == k3d;  // refine when the drag ends
 }
 
-std::optional<std::filesystem::path> ViewerState::takeScreenshotRequest() {
-  return std::exchange(screenshot_, std::nullopt);
-}
-
 config::ViewConfig ViewerState::viewConfigOf(int pane) const {
   config::ViewConfig v =
       mvw::study::describeView(renderSettings(pane), std::string("view-") + kPaneNames[pane],
@@ -453,7 +449,7 @@ std::optional<glm::dmat4> ViewerState::finishRegistration() {
   std::optional<RegistrationWorker::Outcome> outcome = worker_.finish();
   if (!outcome) return std::nullopt;
   if (!outcome->result) {
-    status_ = "registration failed: " + outcome->error;
+    requests_.setStatus("registration failed: " + outcome->error);
     return std::nullopt;
   }
   const resampling::RegistrationResult& r = *outcome->result;

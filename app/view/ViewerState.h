@@ -19,6 +19,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "RegistrationWorker.h"
+#include "ViewerRequests.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/ColorMap.h"
 #include "mvw/core/Image.h"
@@ -170,25 +171,9 @@ class ViewerState {
   // Files.
   void saveConfig(const std::filesystem::path& file) const;      // every pane as a study view
   void dump(int pane, const std::filesystem::path& file) const;  // the pane as rendered, raw
-  // A screenshot is taken by the window once the frame is fully drawn.
-  void requestScreenshot(std::filesystem::path file) { screenshot_ = std::move(file); }
-  std::optional<std::filesystem::path> takeScreenshotRequest();
-  // The pane as the window shows it (its rectangle of the framebuffer: the render with its
-  // annotations, and the crosshair on an MPR pane), taken as the whole-window screenshot is.
-  void requestPaneScreenshot(int pane, std::filesystem::path file) {
-    paneScreenshot_ = {pane, std::move(file)};
-  }
-  std::optional<std::pair<int, std::filesystem::path>> takePaneScreenshotRequest() {
-    return std::exchange(paneScreenshot_, std::nullopt);
-  }
-  // A scripted drag in progress (ViewerScript's drag-frames): its frames are interactive, as
-  // the frames of a mouse drag are.
-  void setScriptedInteraction(bool on) { scriptedInteraction_ = on; }
-  bool scriptedInteraction() const { return scriptedInteraction_; }
-  void requestQuit() { quit_ = true; }
-  bool quitRequested() const { return quit_; }
-  void setStatus(std::string status) { status_ = std::move(status); }
-  const std::string& status() const { return status_; }
+  // What the window loop acts on once a frame is drawn (screenshots, quit), the status line.
+  ViewerRequests& requests() { return requests_; }
+  const ViewerRequests& requests() const { return requests_; }
 
   // Registration re-run in the background (rigid MI, as `mvw register`).
   void startRegistration();
@@ -256,7 +241,6 @@ class ViewerState {
 
  private:
   int dragDivisor_ = 2;
-  bool scriptedInteraction_ = false;
   struct PaneState {
     bool dirty = true;
     bool rendered = false;
@@ -298,10 +282,7 @@ class ViewerState {
   std::size_t orbitStep_ = 0;
   glm::dvec3 crosshair_{0.0};
   int maximised_ = -1;
-  bool quit_ = false;
-  std::string status_;
-  std::optional<std::filesystem::path> screenshot_;
-  std::optional<std::pair<int, std::filesystem::path>> paneScreenshot_;
+  ViewerRequests requests_;
   std::string registration_;
   RegistrationWorker::Job job_;
   RegistrationWorker worker_;  // last: joined before anything its job reads goes away

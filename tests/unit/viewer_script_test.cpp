@@ -166,10 +166,10 @@ TEST_F(ViewerScriptRun, OneLinePerFrameAndWaitsCountFrames) {
   EXPECT_TRUE(s.step(state));  // key 3
   EXPECT_EQ(state.view3d().mode, render::RenderMode::Mip);
   EXPECT_TRUE(s.step(state));
-  EXPECT_EQ(state.takeScreenshotRequest(), std::filesystem::path("a.png"));
-  EXPECT_FALSE(state.quitRequested());
+  EXPECT_EQ(state.requests().takeScreenshotRequest(), std::filesystem::path("a.png"));
+  EXPECT_FALSE(state.requests().quitRequested());
   EXPECT_TRUE(s.step(state));
-  EXPECT_TRUE(state.quitRequested());
+  EXPECT_TRUE(state.requests().quitRequested());
   EXPECT_FALSE(s.step(state));  // the end
 }
 
@@ -181,12 +181,12 @@ TEST_F(ViewerScriptRun, DragFramesSpreadsTheDragAndMarksItsFramesInteractive) {
   ViewerScript s = ViewerScript::parse("drag-frames 3d 0.5 0 4\nkey 3\n", "t");
   for (int frame = 1; frame <= 4; ++frame) {
     EXPECT_TRUE(s.step(state));
-    EXPECT_TRUE(state.scriptedInteraction()) << "frame " << frame;
+    EXPECT_TRUE(state.requests().scriptedInteraction()) << "frame " << frame;
     EXPECT_NEAR(state.view3d().camera.azimuthDeg - start, 0.5 * 180.0 * frame / 4.0, 1e-9);
     EXPECT_EQ(state.view3d().mode, render::RenderMode::Composite);  // not yet the next line
   }
   EXPECT_TRUE(s.step(state));  // the drag ends, and the next line runs in the same step
-  EXPECT_FALSE(state.scriptedInteraction());
+  EXPECT_FALSE(state.requests().scriptedInteraction());
   EXPECT_NEAR(state.view3d().camera.azimuthDeg - start, 90.0, 1e-9);
   EXPECT_EQ(state.view3d().mode, render::RenderMode::Mip);
   EXPECT_FALSE(s.step(state));
@@ -194,7 +194,7 @@ TEST_F(ViewerScriptRun, DragFramesSpreadsTheDragAndMarksItsFramesInteractive) {
   ViewerState plain(study, ct, nullptr, scene);
   ViewerScript one = ViewerScript::parse("drag 3d 0.5 0\n", "t");
   one.step(plain);
-  EXPECT_FALSE(plain.scriptedInteraction());
+  EXPECT_FALSE(plain.requests().scriptedInteraction());
   EXPECT_NEAR(plain.view3d().camera.azimuthDeg - start, 90.0, 1e-9);
 }
 

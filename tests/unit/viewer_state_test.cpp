@@ -183,8 +183,8 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   state.key('P', false);
   EXPECT_NE(state.presetName(), preset);
   state.key('S', false);
-  EXPECT_EQ(state.takeScreenshotRequest(), std::filesystem::path("mvw-screenshot.png"));
-  EXPECT_EQ(state.takeScreenshotRequest(), std::nullopt);
+  EXPECT_EQ(state.requests().takeScreenshotRequest(), std::filesystem::path("mvw-screenshot.png"));
+  EXPECT_EQ(state.requests().takeScreenshotRequest(), std::nullopt);
   renderAll(state);
   state.key('X', false);  // unbound: nothing to redraw
   EXPECT_FALSE(state.anyDirty());
@@ -530,7 +530,7 @@ TEST_F(ViewerStateTest, FailedRegistrationSaysWhy) {
     EXPECT_EQ(state.finishRegistration(), std::nullopt);
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  EXPECT_EQ(state.status(), "registration failed: no overlap");
+  EXPECT_EQ(state.requests().status(), "registration failed: no overlap");
   EXPECT_EQ(state.registration(), "none");
 }
 
