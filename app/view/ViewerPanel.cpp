@@ -274,7 +274,7 @@ void ViewerPanel::drawControls() {
     state_.setSegmentOutlines(outlines);
   }
   // The rotating 3D view, as `mvw render --orbit` (keys O and K).
-  const Orbit orbit = state_.orbit();
+  const Orbit orbit = state_.orbit().mode();
   if (ImGui::Button(orbit == Orbit::Spin ? "stop spin (O)" : "spin (O)"))
     state_.toggleOrbit(Orbit::Spin);
   ImGui::SameLine();

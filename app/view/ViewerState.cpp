@@ -319,24 +319,10 @@ ColorMap ViewerState::colormap(ColorTarget target) const {
   return view3d_.overlayColors ? view3d_.overlayColors->map : ColorMap::HotMetal;
 }
 
-void ViewerState::setOrbit(Orbit orbit) {
-  orbit_ = orbit;
-  orbitAzimuths_.clear();
-  orbitStep_ = 0;
-  if (orbit == Orbit::Off) return;
-  // The same angles `mvw render --orbit` renders, from the azimuth shown now.
-  config::ViewConfig v;
-  v.azimuth = view3d_.camera.azimuthDeg;
-  v.orbit = kOrbitFrames;
-  v.orbitMode = orbit == Orbit::Spin ? config::OrbitMode::Spin : config::OrbitMode::Rock;
-  v.orbitRangeDeg = kRockRangeDeg;
-  orbitAzimuths_ = config::orbitAzimuths(v);
-}
-
 void ViewerState::advanceOrbit() {
-  if (orbit_ == Orbit::Off || orbitAzimuths_.empty()) return;
-  orbitStep_ = (orbitStep_ + 1) % orbitAzimuths_.size();
-  view3d_.camera.azimuthDeg = orbitAzimuths_[orbitStep_];
+  const std::optional<double> azimuth = orbit_.advance();
+  if (!azimuth) return;
+  view3d_.camera.azimuthDeg = *azimuth;
   markDirty(k3d);
 }
 

@@ -19,6 +19,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "RegistrationWorker.h"
+#include "ViewerOrbit.h"
 #include "ViewerRequests.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/ColorMap.h"
@@ -33,9 +34,6 @@ namespace mvw::app {
 
 enum Pane { k3d = 0, kAxial, kCoronal, kSagittal, kPaneCount };
 enum class MouseButton { Left = 0, Right = 1, Middle = 2 };
-// The rotating 3D view: off, a full turn (spin) or back and forth (rock), about the patient's
-// long axis as `mvw render --orbit` turns.
-enum class Orbit { Off, Spin, Rock };
 // Which image a colour map chooser sets: the 3D pane's projection, the MPR panes' anatomy, or
 // the functional overlay (MPR) and fusion (3D).
 enum class ColorTarget { View3d, Mpr, Overlay };
@@ -130,15 +128,13 @@ class ViewerState {
   void setGlyphLabel(int label, config::LabelGlyphKind kind);
   const std::map<int, std::string>& labelNames() const { return labelNames_; }
 
-  // The rotating 3D view: spin turns 360 degrees in kOrbitFrames frames, rock swings +-30
-  // degrees about the azimuth it started from; switching it off stops at the angle shown (so
-  // a reader can stop where a finding shows best). The same toggle again switches it off.
-  static constexpr int kOrbitFrames = 90;
-  static constexpr double kRockRangeDeg = 30.0;
-  void setOrbit(Orbit orbit);
-  void toggleOrbit(Orbit orbit) { setOrbit(orbit_ == orbit ? Orbit::Off : orbit); }
-  Orbit orbit() const { return orbit_; }
-  // The window calls this once per drawn frame: the next step of the orbit (the 3D pane dirty).
+  // The rotating 3D view (ViewerOrbit), from the azimuth shown now; the same toggle again
+  // switches it off.
+  void setOrbit(Orbit orbit) { orbit_.start(orbit, view3d_.camera.azimuthDeg); }
+  void toggleOrbit(Orbit orbit) { setOrbit(orbit_.mode() == orbit ? Orbit::Off : orbit); }
+  const ViewerOrbit& orbit() const { return orbit_; }
+  // The window calls this once per drawn frame: the 3D camera to the orbit's next azimuth
+  // (the 3D pane dirty).
   void advanceOrbit();
 
   // Rendering: the window loop sets each pane's size, renders the panes that need it with
@@ -277,9 +273,7 @@ class ViewerState {
   std::optional<std::pair<int, glm::dvec3>> cursor_;
   config::Measurements measurements_;
   std::vector<SphereStatistics> sphereStats_;  // one per measurements_.spheres
-  Orbit orbit_ = Orbit::Off;
-  std::vector<double> orbitAzimuths_;
-  std::size_t orbitStep_ = 0;
+  ViewerOrbit orbit_;
   glm::dvec3 crosshair_{0.0};
   int maximised_ = -1;
   ViewerRequests requests_;

@@ -318,7 +318,7 @@ TEST_F(ViewerScriptRun, ColormapAndOrbitActOnTheState) {
   EXPECT_TRUE(s.step(state));
   EXPECT_EQ(state.colormap(ColorTarget::View3d), ColorMap::HotIron);
   EXPECT_TRUE(s.step(state));
-  EXPECT_EQ(state.orbit(), Orbit::Spin);
+  EXPECT_EQ(state.orbit().mode(), Orbit::Spin);
 }
 
 TEST(ViewerScriptGlyphLabel, BadLabelsAndKindsNameTheLine) {

@@ -540,47 +540,6 @@ TEST_F(ViewerStateTest, FailedRegistrationSaysWhy) {
 namespace mvw::app {
 namespace {
 
-TEST_F(ViewerStateTest, SpinAndRockToggleAndTurnAboutTheLongAxis) {
-  ViewerState state(study, pet, nullptr, sceneOf(pet));
-  renderAll(state);
-  state.drag(k3d, 0.1, 0.0, MouseButton::Left, false);  // azimuth 18
-  const double start = state.view3d().camera.azimuthDeg;
-  EXPECT_DOUBLE_EQ(start, 18.0);
-  state.key('O', false);
-  EXPECT_EQ(state.orbit(), Orbit::Spin);
-  renderAll(state);
-  state.advanceOrbit();
-  EXPECT_TRUE(state.needsRender(k3d));
-  EXPECT_FALSE(state.needsRender(kAxial));  // the MPR panes stay as they are
-  EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, start + 360.0 / ViewerState::kOrbitFrames);
-  for (int k = 1; k < ViewerState::kOrbitFrames / 2; ++k) state.advanceOrbit();
-  EXPECT_NEAR(state.view3d().camera.azimuthDeg, start + 180.0, 1e-9);     // half way round
-  EXPECT_EQ(state.view3d().camera.view, render::StandardView::Anterior);  // up stays S
-  state.key('O', false);                                                  // off: stops where it is
-  EXPECT_EQ(state.orbit(), Orbit::Off);
-  state.advanceOrbit();
-  EXPECT_NEAR(state.view3d().camera.azimuthDeg, start + 180.0, 1e-9);
-
-  // Rock: +-30 degrees about where it starts, a quarter of the way at the top of the swing.
-  state.key('K', false);
-  EXPECT_EQ(state.orbit(), Orbit::Rock);
-  for (int k = 0; k < ViewerState::kOrbitFrames / 4; ++k) state.advanceOrbit();
-  const double top = state.view3d().camera.azimuthDeg - (start + 180.0);
-  EXPECT_NEAR(top,
-              ViewerState::kRockRangeDeg *
-                  std::sin(2 * M_PI * (ViewerState::kOrbitFrames / 4) / ViewerState::kOrbitFrames),
-              1e-9);
-  EXPECT_GT(top, 29.0);
-  state.key('O', false);  // the other toggle switches over
-  EXPECT_EQ(state.orbit(), Orbit::Spin);
-  state.drag(k3d, 0.1, 0.0, MouseButton::Left, false);  // the reader takes the camera
-  EXPECT_EQ(state.orbit(), Orbit::Off);
-  state.key('K', false);
-  state.key('R', false);
-  EXPECT_EQ(state.orbit(), Orbit::Off);
-  EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, 0.0);
-}
-
 TEST_F(ViewerStateTest, ColourMapChoosersReachThePanes) {
   ViewerState state(study, ct, &pet, sceneOf(ct));
   EXPECT_EQ(state.colormap(ColorTarget::View3d), ColorMap::Grey);
