@@ -135,7 +135,7 @@ int runViewer(ViewerOptions options) {
   session.attach(renderer);
   ViewerScene scene;
   if (functional) {
-    scene.registration = ViewerState::describePlacement(
+    scene.registration = ViewerRegistration::describePlacement(
         config::toString(session.config().registration.method), session.placement()->report);
     scene.functionalRange = renderer.functionalRange();
     scene.anatomicalFromFunctional = session.anatomicalFromFunctional();
@@ -185,7 +185,7 @@ int runViewer(ViewerOptions options) {
       lastSwap = now;
     }
     ++frames;
-    if (!state.anyDirty() && script.empty() && !state.registering())
+    if (!state.anyDirty() && script.empty() && !state.registration().running())
       glfwWaitEventsTimeout(0.05);  // idle: no busy loop
   }
   return 0;

@@ -352,13 +352,13 @@ void ViewerPanel::drawControls() {
       state_.markDirty(k3d);
     }
     if (state_.study().functionalKind == config::FunctionalKind::Labels) glyphLabelPicker(state_);
-    const std::string& registration = state_.registration();
+    const std::string& registration = state_.registration().description();
     ImGui::TextWrapped("registration: %s",
                        registration == "none" ? "none (world coordinates)" : registration.c_str());
-    if (state_.registering())
-      ImGui::Text("registering (mutual information)... %.1f s", state_.registrationSeconds());
+    if (state_.registration().running())
+      ImGui::Text("registering (mutual information)... %.1f s", state_.registration().seconds());
     else if (ImGui::Button("re-run registration (rigid MI)"))
-      state_.startRegistration();
+      state_.registration().start();
   }
   ImGui::Separator();
   const glm::dvec3 c = state_.crosshair();

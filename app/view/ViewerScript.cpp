@@ -297,10 +297,10 @@ bool ViewerScript::step(ViewerState& state) {
       state.setGlyphLabel(c.label, c.labelKind);
       break;
     case Kind::Register:
-      state.startRegistration();
+      state.registration().start();
       break;
     case Kind::WaitRegistration:
-      if (state.registering()) --next_;  // stay on this line until the worker is done
+      if (state.registration().running()) --next_;  // stay on this line until the worker is done
       break;
     case Kind::Roi:
     case Kind::Ruler:

@@ -107,7 +107,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       anatomical_(anatomical),
       functional_(functional),
       scene_(std::move(scene)),
-      registration_(scene_.registration) {
+      registration_(anatomical, functional, scene_.registration) {
   const mvw::study::ModalityDefaults defaults =
       mvw::study::modalityDefaults(anatomical_, scene_.valueRange);
   presetName_ = defaults.preset;
@@ -140,10 +140,6 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       labelNames_ = io::readLabelTable(*table);
   for (const config::SphereMeasurement& sphere : study_.measurements.spheres) addSphere(sphere);
   for (const config::RulerMeasurement& ruler : study_.measurements.rulers) addRuler(ruler);
-  job_ = [this](std::stop_token) {
-    // registerRigid cannot be interrupted: a stop request waits for it to end.
-    return resampling::registerRigid(anatomical_, *functional_);
-  };
 }
 
 const char* ViewerState::paneName(int pane) { return kPaneNames[pane]; }
@@ -152,14 +148,6 @@ std::optional<int> ViewerState::paneNamed(const std::string& name) {
   for (int p = 0; p < kPaneCount; ++p)
     if (name == kPaneNames[p]) return p;
   return std::nullopt;
-}
-
-std::string ViewerState::describePlacement(const std::string& method,
-                                           const nlohmann::json& report) {
-  std::string text = method;
-  if (report.contains("mutual_information"))
-    text += ", MI " + std::to_string(report["mutual_information"].get<double>());
-  return text;
 }
 
 std::span<const RenderMode> ViewerState::modes3d() { return k3dModes; }
@@ -426,25 +414,15 @@ void ViewerState::dump(int pane, const std::filesystem::path& file) const {
   io::writePng(pane_(pane).raw, file);
 }
 
-void ViewerState::startRegistration() {
-  if (!functional_) return;
-  worker_.start(job_);
-}
-
 std::optional<glm::dmat4> ViewerState::finishRegistration() {
-  std::optional<RegistrationWorker::Outcome> outcome = worker_.finish();
+  std::optional<RegistrationWorker::Outcome> outcome = registration_.finish();
   if (!outcome) return std::nullopt;
   if (!outcome->result) {
     requests_.setStatus("registration failed: " + outcome->error);
     return std::nullopt;
   }
-  const resampling::RegistrationResult& r = *outcome->result;
-  registration_ = "rigid (re-run), MI " +
-                  std::to_string(r.levels.empty() ? 0.0 : r.levels.back().metricEnd) +
-                  (r.converged ? ", converged" : ", NOT converged") + ", " +
-                  std::to_string(r.seconds).substr(0, 4) + " s";
   markAllDirty();
-  scene_.anatomicalFromFunctional = r.transform.fixedFromMoving();
+  scene_.anatomicalFromFunctional = outcome->result->transform.fixedFromMoving();
   for (std::size_t i = 0; i < sphereStats_.size(); ++i)  // the functional ROI moved with it
     sphereStats_[i] = computeStatistics(measurements_.spheres[i]);
   return scene_.anatomicalFromFunctional;

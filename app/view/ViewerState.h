@@ -16,10 +16,9 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
-#include <nlohmann/json_fwd.hpp>
 
-#include "RegistrationWorker.h"
 #include "ViewerOrbit.h"
+#include "ViewerRegistration.h"
 #include "ViewerRequests.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/ColorMap.h"
@@ -99,8 +98,6 @@ class ViewerState {
 
   static const char* paneName(int pane);                         // 3d, axial, coronal, sagittal
   static std::optional<int> paneNamed(const std::string& name);  // the inverse
-  // The panel's line for the study's placement (placeFunctional's report).
-  static std::string describePlacement(const std::string& method, const nlohmann::json& report);
   // "CT", "PET" (DICOM's PT), "MR", ...: the volume's modality, `fallback` where none is named.
   static std::string volumeName(const Volume& volume, const char* fallback);
   // The 3D pane's modes, in the order of the keys 1-5.
@@ -171,16 +168,13 @@ class ViewerState {
   ViewerRequests& requests() { return requests_; }
   const ViewerRequests& requests() const { return requests_; }
 
-  // Registration re-run in the background (rigid MI, as `mvw register`).
-  void startRegistration();
-  bool registering() const { return worker_.running(); }
-  double registrationSeconds() const { return worker_.seconds(); }
-  // Once a re-run has ended: the new anatomicalFromFunctional for the renderer (nothing if
-  // it failed: the status says why).
+  // The registration re-run in the background (rigid MI, as `mvw register`).
+  ViewerRegistration& registration() { return registration_; }
+  const ViewerRegistration& registration() const { return registration_; }
+  // The window calls this once per frame: once a re-run has ended, the new
+  // anatomicalFromFunctional for the renderer (the panes redraw, the functional ROI statistics
+  // follow it); nothing while it runs or if it failed (the status line says why).
   std::optional<glm::dmat4> finishRegistration();
-  const std::string& registration() const { return registration_; }
-  // For tests: the job startRegistration runs instead of registerRigid.
-  void setRegistrationJob(RegistrationWorker::Job job) { job_ = std::move(job); }
 
   // What the panel shows and edits.
   const config::StudyConfig& study() const { return study_; }
@@ -277,9 +271,8 @@ class ViewerState {
   glm::dvec3 crosshair_{0.0};
   int maximised_ = -1;
   ViewerRequests requests_;
-  std::string registration_;
-  RegistrationWorker::Job job_;
-  RegistrationWorker worker_;  // last: joined before anything its job reads goes away
+  // Last: destroyed first, so a running re-run is waited for while everything else is there.
+  ViewerRegistration registration_;
 };
 
 }  // namespace mvw::app

@@ -202,21 +202,21 @@ TEST_F(ViewerScriptRun, WaitRegistrationHoldsUntilTheWorkerEnds) {
   Volume pet = ct;
   ViewerState state(study, ct, &pet, scene);
   std::atomic<bool> release{false};
-  state.setRegistrationJob([&release](std::stop_token stop) {
+  state.registration().setJob([&release](std::stop_token stop) {
     while (!release && !stop.stop_requested())
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     return resampling::RegistrationResult{};
   });
   ViewerScript s = ViewerScript::parse("register\nwait-registration\nkey 2\n", "t");
   s.step(state);
-  EXPECT_TRUE(state.registering());
+  EXPECT_TRUE(state.registration().running());
   for (int frame = 0; frame < 5; ++frame) {
     s.step(state);
     state.finishRegistration();
   }
   EXPECT_EQ(state.view3d().mode, render::RenderMode::Composite);  // still waiting
   release = true;
-  while (state.registering()) {
+  while (state.registration().running()) {
     state.finishRegistration();
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }

@@ -201,8 +201,8 @@ TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
   EXPECT_FALSE(state.view3d().glyphs);
   EXPECT_FALSE(state.view3d().fusion);
   EXPECT_FALSE(state.anyDirty());
-  state.startRegistration();  // nothing to register
-  EXPECT_FALSE(state.registering());
+  state.registration().start();  // nothing to register
+  EXPECT_FALSE(state.registration().running());
 }
 
 TEST_F(ViewerStateTest, MprPanesShareTheFunctionalWindowOfTheThreeDPane) {
@@ -445,93 +445,10 @@ TEST_F(ViewerStateTest, MeasurementsAndOutlinesAreSavedAndRestored) {
   EXPECT_TRUE(defaults.renderSettings(kAxial).segmentOutlines);
 }
 
-TEST(ViewerStateText, PanesAndPlacement) {
+TEST(ViewerStateText, PaneNames) {
   for (int p = 0; p < kPaneCount; ++p)
     EXPECT_EQ(ViewerState::paneNamed(ViewerState::paneName(p)), p);
   EXPECT_EQ(ViewerState::paneNamed("oblique"), std::nullopt);
-  EXPECT_EQ(ViewerState::describePlacement("none", nlohmann::json::object()), "none");
-  EXPECT_EQ(ViewerState::describePlacement("rigid", {{"mutual_information", 0.5}}),
-            "rigid, MI 0.500000");
-}
-
-// A job that runs until the worker's thread is asked to stop (as a destructor does).
-RegistrationWorker::Job untilStopped(std::atomic<bool>* started) {
-  return [started](std::stop_token stop) {
-    *started = true;
-    while (!stop.stop_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    return resampling::RegistrationResult{};
-  };
-}
-
-void waitFor(const std::atomic<bool>& flag) {
-  while (!flag) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-}
-
-// With a std::thread member, each of these called std::terminate (a joinable thread destroyed).
-TEST_F(ViewerStateTest, DestroyedWhileRegisteringWaitsForTheWorker) {
-  std::atomic<bool> started{false};
-  {
-    ViewerState state(study, ct, &pet, sceneOf(ct));
-    state.setRegistrationJob(untilStopped(&started));
-    state.startRegistration();
-    EXPECT_TRUE(state.registering());
-    waitFor(started);
-  }
-  SUCCEED();
-}
-
-TEST_F(ViewerStateTest, ScriptErrorWhileRegisteringUnwindsCleanly) {
-  const auto dir = test::scratchDir();
-  std::atomic<bool> started{false};
-  const ViewerScript script = ViewerScript::parse(
-      "register\nsave-config " + (dir / "missing" / "folder" / "state.json").string() + "\n",
-      dir / "script");
-  auto run = [&] {
-    ViewerState state(study, ct, &pet, sceneOf(ct));
-    state.setRegistrationJob(untilStopped(&started));
-    ViewerScript s = script;
-    EXPECT_TRUE(s.step(state));  // register
-    EXPECT_TRUE(state.registering());
-    waitFor(started);
-    s.step(state);  // save-config into a folder that does not exist: throws
-  };
-  EXPECT_THROW(run(), std::exception);
-}
-
-TEST_F(ViewerStateTest, FinishedRegistrationMovesTheFunctionalVolume) {
-  ViewerState state(study, ct, &pet, sceneOf(ct));
-  renderAll(state);
-  const glm::dmat4 moved = glm::translate(glm::dmat4(1.0), glm::dvec3(1.0, 2.0, 3.0));
-  state.setRegistrationJob([moved](std::stop_token) {
-    resampling::RegistrationResult r;
-    r.transform = resampling::Transform(moved);
-    r.converged = true;
-    r.seconds = 1.25;
-    return r;
-  });
-  state.startRegistration();
-  std::optional<glm::dmat4> placed;
-  while (state.registering() && !(placed = state.finishRegistration()))
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  ASSERT_TRUE(placed);
-  EXPECT_EQ(*placed, moved);
-  EXPECT_FALSE(state.registering());
-  EXPECT_EQ(state.registration(), "rigid (re-run), MI 0.000000, converged, 1.25 s");
-  EXPECT_TRUE(state.needsRender(k3d) && state.needsRender(kAxial));
-}
-
-TEST_F(ViewerStateTest, FailedRegistrationSaysWhy) {
-  ViewerState state(study, ct, &pet, sceneOf(ct));
-  state.setRegistrationJob([](std::stop_token) -> resampling::RegistrationResult {
-    throw std::runtime_error("no overlap");
-  });
-  state.startRegistration();
-  while (state.registering()) {
-    EXPECT_EQ(state.finishRegistration(), std::nullopt);
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  EXPECT_EQ(state.requests().status(), "registration failed: no overlap");
-  EXPECT_EQ(state.registration(), "none");
 }
 
 }  // namespace
