@@ -304,23 +304,23 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Roi:
     case Kind::Ruler:
-      state.beginMeasurement(c.pane, c.kind == Kind::Roi ? MprTool::Sphere : MprTool::Ruler, c.x,
-                             c.y);
-      state.moveMeasurement(c.x1, c.y1);
-      state.endMeasurement();
+      state.measurements().beginGesture(
+          c.pane, c.kind == Kind::Roi ? MprTool::Sphere : MprTool::Ruler, c.x, c.y);
+      state.measurements().moveGesture(c.x1, c.y1);
+      state.measurements().endGesture();
       break;
     case Kind::Hover:
       state.setCursor(c.pane, c.x, c.y);
       break;
     case Kind::Sphere:
-      state.addSphere(c.sphere);
+      state.measurements().addSphere(c.sphere);
       state.setCrosshair({c.sphere.centre[0], c.sphere.centre[1], c.sphere.centre[2]});
       break;
     case Kind::RoiStats:
-      state.writeSphereStatistics(c.file);
+      state.measurements().writeSphereStatistics(c.file);
       break;
     case Kind::ClearMeasurements:
-      state.clearMeasurements();
+      state.measurements().clear();
       break;
     case Kind::Quit:
       state.requests().requestQuit();

@@ -4,13 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
-#include <limits>
 
-#include <nlohmann/json.hpp>
-
-#include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
-#include "mvw/io/AtomicFile.h"
 #include "mvw/io/LabelTable.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/render/TransferFunction.h"
@@ -73,32 +68,6 @@ std::string formatValue(double v, const std::string& unit) {
   return unit.empty() ? std::string(buf) : std::string(buf) + " " + unit;
 }
 
-glm::dvec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
-std::array<double, 3> arr(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-
-nlohmann::json statsJson(const std::optional<study::RoiStats>& s, const std::string& problem) {
-  nlohmann::json j;
-  if (!s) {
-    j["problem"] = problem;
-    return j;
-  }
-  j["voxels"] = s->voxels;
-  j["voxels_no_data"] = s->noData;
-  j["volume_ml"] = s->volumeMl;
-  j["unit"] = s->unit;
-  if (s->voxels) {
-    j["max"] = s->max;
-    j["max_at_lps_mm"] = {s->maxAt.x, s->maxAt.y, s->maxAt.z};
-    j["mean"] = s->mean;
-    j["sd"] = s->sd;
-  }
-  if (s->peak) {
-    j["peak"] = *s->peak;
-    j["peak_at_lps_mm"] = {s->peakAt.x, s->peakAt.y, s->peakAt.z};
-  }
-  return j;
-}
-
 }  // namespace
 
 ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomical,
@@ -107,6 +76,9 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       anatomical_(anatomical),
       functional_(functional),
       scene_(std::move(scene)),
+      // The measurements see the panes through this state's PaneGeometry (asked nothing of it
+      // until the state is built).
+      measurements_(*this, anatomical, functional, scene_.anatomicalFromFunctional),
       registration_(anatomical, functional, scene_.registration) {
   const mvw::study::ModalityDefaults defaults =
       mvw::study::modalityDefaults(anatomical_, scene_.valueRange);
@@ -138,8 +110,10 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   if (study_.functionalKind == config::FunctionalKind::Labels && study_.functional)
     if (auto table = io::labelTableBeside(study_.functional->path))
       labelNames_ = io::readLabelTable(*table);
-  for (const config::SphereMeasurement& sphere : study_.measurements.spheres) addSphere(sphere);
-  for (const config::RulerMeasurement& ruler : study_.measurements.rulers) addRuler(ruler);
+  for (const config::SphereMeasurement& sphere : study_.measurements.spheres)
+    measurements_.addSphere(sphere);
+  for (const config::RulerMeasurement& ruler : study_.measurements.rulers)
+    measurements_.addRuler(ruler);
 }
 
 const char* ViewerState::paneName(int pane) { return kPaneNames[pane]; }
@@ -406,7 +380,7 @@ void ViewerState::saveConfig(const std::filesystem::path& file) const {
   }
   study.render.views.clear();
   for (int p = 0; p < kPaneCount; ++p) study.render.views.push_back(viewConfigOf(p));
-  study.measurements = measurements_;
+  study.measurements = measurements_.all();
   config::writeStudyConfig(study, file);
 }
 
@@ -423,8 +397,7 @@ std::optional<glm::dmat4> ViewerState::finishRegistration() {
   }
   markAllDirty();
   scene_.anatomicalFromFunctional = outcome->result->transform.fixedFromMoving();
-  for (std::size_t i = 0; i < sphereStats_.size(); ++i)  // the functional ROI moved with it
-    sphereStats_[i] = computeStatistics(measurements_.spheres[i]);
+  measurements_.setPlacement(scene_.anatomicalFromFunctional);  // the functional ROIs move
   return scene_.anatomicalFromFunctional;
 }
 
@@ -453,130 +426,6 @@ std::string ViewerState::readout(const glm::dvec3& world) const {
             (p.functionalInside ? formatValue(p.functional, functional_->metadata().unit)
                                 : std::string("outside"));
   return text;
-}
-
-SphereStatistics ViewerState::computeStatistics(const config::SphereMeasurement& sphere) const {
-  SphereStatistics out;
-  auto one = [&](const Volume& v, const glm::dvec3& centre, std::optional<study::RoiStats>& stats,
-                 std::string& problem) {
-    try {
-      study::StatsOptions options;
-      options.peak = study::isSuvUnit(v.metadata().unit);  // as `mvw stats` asks
-      stats = study::roiStatistics(v, study::sphereVoxels(v, {centre, sphere.radiusMm}), options);
-    } catch (const InputError& e) {
-      problem = e.problem();
-    }
-  };
-  one(anatomical_, vec(sphere.centre), out.anatomical, out.anatomicalProblem);
-  if (functional_) {
-    // A rigid placement keeps the radius; the centre moves into the functional world.
-    out.functionalCentre = glm::dvec3(glm::inverse(scene_.anatomicalFromFunctional) *
-                                      glm::dvec4(vec(sphere.centre), 1.0));
-    one(*functional_, out.functionalCentre, out.functional, out.functionalProblem);
-  }
-  return out;
-}
-
-void ViewerState::addSphere(const config::SphereMeasurement& sphere) {
-  measurements_.spheres.push_back(sphere);
-  sphereStats_.push_back(computeStatistics(sphere));
-}
-
-void ViewerState::addRuler(const config::RulerMeasurement& ruler) {
-  measurements_.rulers.push_back(ruler);
-}
-
-void ViewerState::clearMeasurements() {
-  measurements_ = {};
-  sphereStats_.clear();
-  pending_.reset();
-}
-
-double ViewerState::rulerLengthMm(const config::RulerMeasurement& r) {
-  return glm::distance(vec(r.from), vec(r.to));
-}
-
-void ViewerState::beginMeasurement(int pane, MprTool tool, double x, double y) {
-  if (pane == k3d || tool == MprTool::Crosshair) return;
-  const glm::dvec3 p = onPlane(pane, x, y);
-  pending_ = Gesture{pane, tool, p, p};
-}
-
-void ViewerState::moveMeasurement(double x, double y) {
-  if (pending_) pending_->to = onPlane(pending_->pane, x, y);
-}
-
-void ViewerState::endMeasurement() {
-  if (!pending_) return;
-  const Gesture g = *std::exchange(pending_, std::nullopt);
-  const double length = glm::distance(g.from, g.to);
-  if (length <= 0.0) return;  // a click: nothing to measure
-  if (g.tool == MprTool::Sphere)
-    addSphere({arr(g.from), length});
-  else
-    addRuler({arr(g.from), arr(g.to)});
-}
-
-std::optional<config::SphereMeasurement> ViewerState::pendingSphere() const {
-  if (!pending_ || pending_->tool != MprTool::Sphere) return std::nullopt;
-  return config::SphereMeasurement{arr(pending_->from),
-                                   glm::distance(pending_->from, pending_->to)};
-}
-
-std::optional<config::RulerMeasurement> ViewerState::pendingRuler() const {
-  if (!pending_ || pending_->tool != MprTool::Ruler) return std::nullopt;
-  return config::RulerMeasurement{arr(pending_->from), arr(pending_->to)};
-}
-
-glm::dvec2 ViewerState::toPane(int pane, const glm::dvec3& world) const {
-  const glm::dvec4 c = pane_(pane).camera.clipFromWorld * glm::dvec4(world, 1.0);
-  return {(c.x / c.w + 1.0) * 0.5, (1.0 - c.y / c.w) * 0.5};
-}
-
-std::optional<PaneCircle> ViewerState::paneCircle(int pane,
-                                                  const config::SphereMeasurement& sphere) const {
-  if (pane == k3d || !pane_(pane).rendered) return std::nullopt;
-  const render::Camera& cam = pane_(pane).camera;
-  const glm::dvec3 centre = vec(sphere.centre);
-  const double d = glm::dot(centre - crosshair_, cam.forward);  // from the pane's plane
-  if (std::abs(d) >= sphere.radiusMm) return std::nullopt;
-  PaneCircle c;
-  c.radiusMm = std::sqrt(sphere.radiusMm * sphere.radiusMm - d * d);
-  const glm::dvec3 onPlane = centre - d * cam.forward;
-  c.centre = toPane(pane, onPlane);
-  c.radius = glm::abs(glm::dvec2(toPane(pane, onPlane + c.radiusMm * cam.right).x - c.centre.x,
-                                 toPane(pane, onPlane + c.radiusMm * cam.up).y - c.centre.y));
-  return c;
-}
-
-PaneSegment ViewerState::paneSegment(int pane, const config::RulerMeasurement& ruler) const {
-  PaneSegment s;
-  if (pane == k3d || !pane_(pane).rendered) return s;
-  const render::Camera& cam = pane_(pane).camera;
-  s.from = toPane(pane, vec(ruler.from));
-  s.to = toPane(pane, vec(ruler.to));
-  const double half = 0.5 * anatomical_.smallestSpacing();
-  s.inPlane = std::abs(glm::dot(vec(ruler.from) - crosshair_, cam.forward)) <= half &&
-              std::abs(glm::dot(vec(ruler.to) - crosshair_, cam.forward)) <= half;
-  return s;
-}
-
-void ViewerState::writeSphereStatistics(const std::filesystem::path& file) const {
-  nlohmann::json out = nlohmann::json::array();
-  for (std::size_t i = 0; i < sphereStats_.size(); ++i) {
-    const config::SphereMeasurement& s = measurements_.spheres[i];
-    const SphereStatistics& st = sphereStats_[i];
-    nlohmann::json j;
-    j["sphere"] = {s.centre[0], s.centre[1], s.centre[2], s.radiusMm};
-    j["anatomical"] = statsJson(st.anatomical, st.anatomicalProblem);
-    if (functional_) {
-      j["functional"] = statsJson(st.functional, st.functionalProblem);
-      j["functional_centre_lps_mm"] = {st.functionalCentre.x, st.functionalCentre.y,
-                                       st.functionalCentre.z};
-    }
-    out.push_back(j);
-  }
-  io::writeTextAtomically(file, out.dump(2) + "\n");
 }
 
 }  // namespace mvw::app

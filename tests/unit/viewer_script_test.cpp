@@ -299,7 +299,7 @@ TEST_F(ViewerScriptRun, SphereMovesTheCrosshairAndRoiStatsWritesItsStatistics) {
       "sphere 2 2 2 1.5\nroi-stats " + (dir / "stats.json").string() + "\nclear-measurements\n",
       "t");
   EXPECT_TRUE(s.step(state));
-  ASSERT_EQ(state.measurements().spheres.size(), 1u);
+  ASSERT_EQ(state.measurements().all().spheres.size(), 1u);
   EXPECT_EQ(state.crosshair(), glm::dvec3(2.0, 2.0, 2.0));
   EXPECT_TRUE(s.step(state));
   std::ifstream in(dir / "stats.json");
@@ -309,7 +309,7 @@ TEST_F(ViewerScriptRun, SphereMovesTheCrosshairAndRoiStatsWritesItsStatistics) {
   // Centres within 1.5 mm: the centre, its 6 face and 12 edge neighbours.
   EXPECT_EQ(j[0]["anatomical"]["voxels"], 19);
   EXPECT_TRUE(s.step(state));
-  EXPECT_TRUE(state.measurements().spheres.empty());
+  EXPECT_TRUE(state.measurements().all().spheres.empty());
 }
 
 TEST_F(ViewerScriptRun, ColormapAndOrbitActOnTheState) {
