@@ -135,7 +135,7 @@ int runViewer(ViewerOptions options) {
   session.attach(renderer);
   ViewerScene scene;
   if (functional) {
-    scene.registration = ViewerState::describePlacement(
+    scene.registration = ViewerRegistration::describePlacement(
         config::toString(session.config().registration.method), session.placement()->report);
     scene.functionalRange = renderer.functionalRange();
     scene.anatomicalFromFunctional = session.anatomicalFromFunctional();
@@ -151,14 +151,14 @@ int runViewer(ViewerOptions options) {
   auto lastSwap = std::chrono::steady_clock::now();
 
   int frames = 0;
-  while (!glfwWindowShouldClose(context.window()) && !state.quitRequested()) {
+  while (!glfwWindowShouldClose(context.window()) && !state.requests().quitRequested()) {
     glfwPollEvents();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     if (auto anatomicalFromFunctional = state.finishRegistration())
       session.attach(renderer, *anatomicalFromFunctional);
-    const bool dragging = panel.draw() || state.scriptedInteraction();
+    const bool dragging = panel.draw() || state.requests().scriptedInteraction();
     const int divisor = state.dragDivisor();  // the one this frame renders with
     state.advanceOrbit();  // one step per drawn frame while the 3D view spins or rocks
     const Render3d rendered3d = renderDirtyPanes(state, renderer, textures, dragging);
@@ -166,12 +166,12 @@ int runViewer(ViewerOptions options) {
     framebuffer.clear({0.08f, 0.08f, 0.1f, 1.0f});
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     // Scripts act on a frame that is fully drawn; so do screenshots (the back buffer).
-    if (!script.empty() && frames > 1 && !script.step(state)) state.requestQuit();
-    if (auto file = state.takeScreenshotRequest()) {
+    if (!script.empty() && frames > 1 && !script.step(state)) state.requests().requestQuit();
+    if (auto file = state.requests().takeScreenshotRequest()) {
       io::writePng(framebuffer.read(), *file);
-      state.setStatus("saved " + file->string());
+      state.requests().setStatus("saved " + file->string());
     }
-    if (auto shot = state.takePaneScreenshotRequest())
+    if (auto shot = state.requests().takePaneScreenshotRequest())
       io::writePng(
           paneOf(framebuffer.read(), state.paneOrigin(shot->first), state.paneSize(shot->first)),
           shot->second);
@@ -185,7 +185,7 @@ int runViewer(ViewerOptions options) {
       lastSwap = now;
     }
     ++frames;
-    if (!state.anyDirty() && script.empty() && !state.registering())
+    if (!state.anyDirty() && script.empty() && !state.registration().running())
       glfwWaitEventsTimeout(0.05);  // idle: no busy loop
   }
   return 0;

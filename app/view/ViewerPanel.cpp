@@ -116,11 +116,12 @@ void ViewerPanel::drawMeasurements(int pane, ImVec2 pos, ImVec2 size) {
                   pos.y + static_cast<float>(f.y) * size.y);
   };
   draw->PushClipRect(pos, ImVec2(pos.x + size.x, pos.y + size.y), true);
-  std::vector<config::SphereMeasurement> spheres = state_.measurements().spheres;
+  const ViewerMeasurements& measurements = state_.measurements();
+  std::vector<config::SphereMeasurement> spheres = measurements.all().spheres;
   const std::size_t saved = spheres.size();
-  if (auto p = state_.pendingSphere()) spheres.push_back(*p);
+  if (auto p = measurements.pendingSphere()) spheres.push_back(*p);
   for (std::size_t i = 0; i < spheres.size(); ++i) {
-    const auto c = state_.paneCircle(pane, spheres[i]);
+    const auto c = measurements.paneCircle(pane, spheres[i]);
     if (!c) continue;
     const ImVec2 centre = at(c->centre);
     const float rx = static_cast<float>(c->radius.x) * size.x;
@@ -132,17 +133,17 @@ void ViewerPanel::drawMeasurements(int pane, ImVec2 pos, ImVec2 size) {
     boxedText(draw, ImVec2(centre.x + rx * 0.72f + 4, centre.y - rx * 0.72f - 14), kRoiTextColour,
               label);
   }
-  std::vector<config::RulerMeasurement> rulers = state_.measurements().rulers;
-  if (auto p = state_.pendingRuler()) rulers.push_back(*p);
+  std::vector<config::RulerMeasurement> rulers = measurements.all().rulers;
+  if (auto p = measurements.pendingRuler()) rulers.push_back(*p);
   for (const config::RulerMeasurement& r : rulers) {
-    const PaneSegment seg = state_.paneSegment(pane, r);
+    const PaneSegment seg = measurements.paneSegment(pane, r);
     if (!seg.inPlane) continue;  // a ruler shows on the slice it was drawn on
     const ImVec2 a = at(seg.from), b = at(seg.to);
     draw->AddLine(a, b, IM_COL32(0, 0, 0, 200), 4.0f);
     draw->AddLine(a, b, kRulerColour, 2.0f);
     for (const ImVec2& e : {a, b}) draw->AddCircleFilled(e, 3.0f, kRulerColour);
     boxedText(draw, ImVec2((a.x + b.x) * 0.5f + 6, (a.y + b.y) * 0.5f - 16), kRulerColour,
-              number(ViewerState::rulerLengthMm(r), "%.1f") + " mm");
+              number(ViewerMeasurements::rulerLengthMm(r), "%.1f") + " mm");
   }
   draw->PopClipRect();
 }
@@ -164,16 +165,19 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
   ImGuiIO& io = ImGui::GetIO();
   const ImVec2 mouse = io.MousePos;
   const double fx = (mouse.x - pos.x) / size.x, fy = (mouse.y - pos.y) / size.y;
+  ViewerMeasurements& measurements = state_.measurements();
   if (ImGui::IsItemHovered()) {
     if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) state_.toggleMaximised(pane);
     if (io.MouseWheel != 0.0f) state_.wheel(pane, io.MouseWheel);
     // The tool, or Shift (sphere) / Alt (ruler) whatever the tool: a measurement starts.
-    const MprTool tool = io.KeyShift ? MprTool::Sphere : io.KeyAlt ? MprTool::Ruler : state_.tool();
+    const MprTool tool = io.KeyShift ? MprTool::Sphere
+                         : io.KeyAlt ? MprTool::Ruler
+                                     : measurements.tool();
     if (pane != k3d && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.KeyCtrl) {
       if (tool == MprTool::Crosshair)
         state_.click(pane, fx, fy);
       else
-        state_.beginMeasurement(pane, tool, fx, fy);
+        measurements.beginGesture(pane, tool, fx, fy);
     }
     // Only a moving mouse sets the cursor: a still one leaves it where a script's hover put it,
     // and a pointer that merely rests over a pane when the window opens shows no readout there
@@ -185,8 +189,8 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
     if (ImGui::IsItemActive() && ImGui::IsMouseDragging(b, 0.0f)) {
       const ImVec2 d = io.MouseDelta;
       if (d.x != 0 || d.y != 0) {
-        if (pane != k3d && b == 0 && state_.measuring())
-          state_.moveMeasurement(fx, fy);
+        if (pane != k3d && b == 0 && measurements.measuring())
+          measurements.moveGesture(fx, fy);
         else if (pane != k3d && b == 0 && !io.KeyCtrl)
           state_.click(pane, fx, fy);
         else
@@ -194,7 +198,8 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
         dragging_ = true;
       }
     }
-  if (state_.measuring() && ImGui::IsMouseReleased(ImGuiMouseButton_Left)) state_.endMeasurement();
+  if (measurements.measuring() && ImGui::IsMouseReleased(ImGuiMouseButton_Left))
+    measurements.endGesture();
   if (pane != k3d && !texture.empty()) {
     drawMeasurements(pane, pos, size);
     // The values under the cursor, both volumes with their units, by the cursor on its pane.
@@ -274,7 +279,7 @@ void ViewerPanel::drawControls() {
     state_.setSegmentOutlines(outlines);
   }
   // The rotating 3D view, as `mvw render --orbit` (keys O and K).
-  const Orbit orbit = state_.orbit();
+  const Orbit orbit = state_.orbit().mode();
   if (ImGui::Button(orbit == Orbit::Spin ? "stop spin (O)" : "spin (O)"))
     state_.toggleOrbit(Orbit::Spin);
   ImGui::SameLine();
@@ -352,13 +357,13 @@ void ViewerPanel::drawControls() {
       state_.markDirty(k3d);
     }
     if (state_.study().functionalKind == config::FunctionalKind::Labels) glyphLabelPicker(state_);
-    const std::string& registration = state_.registration();
+    const std::string& registration = state_.registration().description();
     ImGui::TextWrapped("registration: %s",
                        registration == "none" ? "none (world coordinates)" : registration.c_str());
-    if (state_.registering())
-      ImGui::Text("registering (mutual information)... %.1f s", state_.registrationSeconds());
+    if (state_.registration().running())
+      ImGui::Text("registering (mutual information)... %.1f s", state_.registration().seconds());
     else if (ImGui::Button("re-run registration (rigid MI)"))
-      state_.startRegistration();
+      state_.registration().start();
   }
   ImGui::Separator();
   const glm::dvec3 c = state_.crosshair();
@@ -370,15 +375,16 @@ void ViewerPanel::drawControls() {
   }
   // Measurements on the MPR panes: the mouse tool, the spheres' statistics, the rulers.
   ImGui::Separator();
-  int tool = static_cast<int>(state_.tool());
+  ViewerMeasurements& measurements = state_.measurements();
+  int tool = static_cast<int>(measurements.tool());
   ImGui::Text("MPR mouse");
   const char* tools[] = {"crosshair", "sphere ROI", "ruler"};
   for (int t = 0; t < 3; ++t) {
     ImGui::SameLine();
-    if (ImGui::RadioButton(tools[t], &tool, t)) state_.setTool(static_cast<MprTool>(tool));
+    if (ImGui::RadioButton(tools[t], &tool, t)) measurements.setTool(static_cast<MprTool>(tool));
   }
-  const auto& spheres = state_.measurements().spheres;
-  const auto& stats = state_.sphereStatistics();
+  const auto& spheres = measurements.all().spheres;
+  const auto& stats = measurements.sphereStatistics();
   for (std::size_t i = 0; i < spheres.size(); ++i) {
     const config::SphereMeasurement& s = spheres[i];
     ImGui::TextColored(ImVec4(0.3f, 1.0f, 0.5f, 1.0f), "ROI %zu: r %.1f mm at %.1f, %.1f, %.1f",
@@ -389,12 +395,12 @@ void ViewerPanel::drawControls() {
       statsLine(ViewerState::volumeName(*functional, "functional").c_str(), stats[i].functional,
                 stats[i].functionalProblem);
   }
-  const auto& rulers = state_.measurements().rulers;
+  const auto& rulers = measurements.all().rulers;
   for (std::size_t i = 0; i < rulers.size(); ++i)
     ImGui::TextColored(ImVec4(1.0f, 0.86f, 0.25f, 1.0f), "ruler %zu: %.1f mm", i + 1,
-                       ViewerState::rulerLengthMm(rulers[i]));
+                       ViewerMeasurements::rulerLengthMm(rulers[i]));
   if ((!spheres.empty() || !rulers.empty()) && ImGui::Button("clear measurements"))
-    state_.clearMeasurements();
+    measurements.clear();
   ImGui::Separator();
   ImGui::TextWrapped(
       "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom. MPR: left "
@@ -403,7 +409,8 @@ void ViewerPanel::drawControls() {
       "view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
       "fusion, P next preset, O spin, K rock, R reset, S screenshot, Ctrl+S save state as a "
       "study config.");
-  if (!state_.status().empty()) ImGui::TextWrapped("%s", state_.status().c_str());
+  if (const std::string& status = state_.requests().status(); !status.empty())
+    ImGui::TextWrapped("%s", status.c_str());
 }
 
 bool ViewerPanel::draw() {

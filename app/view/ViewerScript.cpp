@@ -232,7 +232,7 @@ void ViewerScript::dragIncrement(ViewerState& state) {
   const Command& d = commands_[*dragging_];
   --dragFramesLeft_;
   state.drag(d.pane, d.x / d.frames, d.y / d.frames, d.button, false);
-  state.setScriptedInteraction(true);
+  state.requests().setScriptedInteraction(true);
 }
 
 bool ViewerScript::step(ViewerState& state) {
@@ -244,7 +244,7 @@ bool ViewerScript::step(ViewerState& state) {
       return true;
     }
     dragging_.reset();
-    state.setScriptedInteraction(false);
+    state.requests().setScriptedInteraction(false);
   }
   if (wait_ > 0) {
     --wait_;
@@ -276,10 +276,10 @@ bool ViewerScript::step(ViewerState& state) {
       wait_ = c.frames;
       break;
     case Kind::Screenshot:
-      state.requestScreenshot(c.file);
+      state.requests().requestScreenshot(c.file);
       break;
     case Kind::PaneScreenshot:
-      state.requestPaneScreenshot(c.pane, c.file);
+      state.requests().requestPaneScreenshot(c.pane, c.file);
       break;
     case Kind::SaveConfig:
       state.saveConfig(c.file);
@@ -297,33 +297,33 @@ bool ViewerScript::step(ViewerState& state) {
       state.setGlyphLabel(c.label, c.labelKind);
       break;
     case Kind::Register:
-      state.startRegistration();
+      state.registration().start();
       break;
     case Kind::WaitRegistration:
-      if (state.registering()) --next_;  // stay on this line until the worker is done
+      if (state.registration().running()) --next_;  // stay on this line until the worker is done
       break;
     case Kind::Roi:
     case Kind::Ruler:
-      state.beginMeasurement(c.pane, c.kind == Kind::Roi ? MprTool::Sphere : MprTool::Ruler, c.x,
-                             c.y);
-      state.moveMeasurement(c.x1, c.y1);
-      state.endMeasurement();
+      state.measurements().beginGesture(
+          c.pane, c.kind == Kind::Roi ? MprTool::Sphere : MprTool::Ruler, c.x, c.y);
+      state.measurements().moveGesture(c.x1, c.y1);
+      state.measurements().endGesture();
       break;
     case Kind::Hover:
       state.setCursor(c.pane, c.x, c.y);
       break;
     case Kind::Sphere:
-      state.addSphere(c.sphere);
+      state.measurements().addSphere(c.sphere);
       state.setCrosshair({c.sphere.centre[0], c.sphere.centre[1], c.sphere.centre[2]});
       break;
     case Kind::RoiStats:
-      state.writeSphereStatistics(c.file);
+      state.measurements().writeSphereStatistics(c.file);
       break;
     case Kind::ClearMeasurements:
-      state.clearMeasurements();
+      state.measurements().clear();
       break;
     case Kind::Quit:
-      state.requestQuit();
+      state.requests().requestQuit();
       break;
   }
   return true;

@@ -4,13 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
-#include <limits>
 
-#include <nlohmann/json.hpp>
-
-#include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
-#include "mvw/io/AtomicFile.h"
 #include "mvw/io/LabelTable.h"
 #include "mvw/io/PngWriter.h"
 #include "mvw/render/TransferFunction.h"
@@ -73,32 +68,6 @@ std::string formatValue(double v, const std::string& unit) {
   return unit.empty() ? std::string(buf) : std::string(buf) + " " + unit;
 }
 
-glm::dvec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
-std::array<double, 3> arr(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-
-nlohmann::json statsJson(const std::optional<study::RoiStats>& s, const std::string& problem) {
-  nlohmann::json j;
-  if (!s) {
-    j["problem"] = problem;
-    return j;
-  }
-  j["voxels"] = s->voxels;
-  j["voxels_no_data"] = s->noData;
-  j["volume_ml"] = s->volumeMl;
-  j["unit"] = s->unit;
-  if (s->voxels) {
-    j["max"] = s->max;
-    j["max_at_lps_mm"] = {s->maxAt.x, s->maxAt.y, s->maxAt.z};
-    j["mean"] = s->mean;
-    j["sd"] = s->sd;
-  }
-  if (s->peak) {
-    j["peak"] = *s->peak;
-    j["peak_at_lps_mm"] = {s->peakAt.x, s->peakAt.y, s->peakAt.z};
-  }
-  return j;
-}
-
 }  // namespace
 
 ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomical,
@@ -107,7 +76,10 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       anatomical_(anatomical),
       functional_(functional),
       scene_(std::move(scene)),
-      registration_(scene_.registration) {
+      // The measurements see the panes through this state's PaneGeometry (asked nothing of it
+      // until the state is built).
+      measurements_(*this, anatomical, functional, scene_.anatomicalFromFunctional),
+      registration_(anatomical, functional, scene_.registration) {
   const mvw::study::ModalityDefaults defaults =
       mvw::study::modalityDefaults(anatomical_, scene_.valueRange);
   presetName_ = defaults.preset;
@@ -138,12 +110,10 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   if (study_.functionalKind == config::FunctionalKind::Labels && study_.functional)
     if (auto table = io::labelTableBeside(study_.functional->path))
       labelNames_ = io::readLabelTable(*table);
-  for (const config::SphereMeasurement& sphere : study_.measurements.spheres) addSphere(sphere);
-  for (const config::RulerMeasurement& ruler : study_.measurements.rulers) addRuler(ruler);
-  job_ = [this](std::stop_token) {
-    // registerRigid cannot be interrupted: a stop request waits for it to end.
-    return resampling::registerRigid(anatomical_, *functional_);
-  };
+  for (const config::SphereMeasurement& sphere : study_.measurements.spheres)
+    measurements_.addSphere(sphere);
+  for (const config::RulerMeasurement& ruler : study_.measurements.rulers)
+    measurements_.addRuler(ruler);
 }
 
 const char* ViewerState::paneName(int pane) { return kPaneNames[pane]; }
@@ -152,14 +122,6 @@ std::optional<int> ViewerState::paneNamed(const std::string& name) {
   for (int p = 0; p < kPaneCount; ++p)
     if (name == kPaneNames[p]) return p;
   return std::nullopt;
-}
-
-std::string ViewerState::describePlacement(const std::string& method,
-                                           const nlohmann::json& report) {
-  std::string text = method;
-  if (report.contains("mutual_information"))
-    text += ", MI " + std::to_string(report["mutual_information"].get<double>());
-  return text;
 }
 
 std::span<const RenderMode> ViewerState::modes3d() { return k3dModes; }
@@ -256,7 +218,7 @@ void ViewerState::key(char key, bool ctrl) {
   } else if (key == 'S' && ctrl) {
     saveConfig("mvw-view-state.json");
   } else if (key == 'S') {
-    requestScreenshot("mvw-screenshot.png");
+    requests_.requestScreenshot("mvw-screenshot.png");
   } else {
     return;
   }
@@ -319,24 +281,10 @@ ColorMap ViewerState::colormap(ColorTarget target) const {
   return view3d_.overlayColors ? view3d_.overlayColors->map : ColorMap::HotMetal;
 }
 
-void ViewerState::setOrbit(Orbit orbit) {
-  orbit_ = orbit;
-  orbitAzimuths_.clear();
-  orbitStep_ = 0;
-  if (orbit == Orbit::Off) return;
-  // The same angles `mvw render --orbit` renders, from the azimuth shown now.
-  config::ViewConfig v;
-  v.azimuth = view3d_.camera.azimuthDeg;
-  v.orbit = kOrbitFrames;
-  v.orbitMode = orbit == Orbit::Spin ? config::OrbitMode::Spin : config::OrbitMode::Rock;
-  v.orbitRangeDeg = kRockRangeDeg;
-  orbitAzimuths_ = config::orbitAzimuths(v);
-}
-
 void ViewerState::advanceOrbit() {
-  if (orbit_ == Orbit::Off || orbitAzimuths_.empty()) return;
-  orbitStep_ = (orbitStep_ + 1) % orbitAzimuths_.size();
-  view3d_.camera.azimuthDeg = orbitAzimuths_[orbitStep_];
+  const std::optional<double> azimuth = orbit_.advance();
+  if (!azimuth) return;
+  view3d_.camera.azimuthDeg = *azimuth;
   markDirty(k3d);
 }
 
@@ -407,10 +355,6 @@ void ViewerState::rendered(int pane, const render::Camera& camera, Image raw, bo
   p.dirty = interacting && pane == k3d;  // refine when the drag ends
 }
 
-std::optional<std::filesystem::path> ViewerState::takeScreenshotRequest() {
-  return std::exchange(screenshot_, std::nullopt);
-}
-
 config::ViewConfig ViewerState::viewConfigOf(int pane) const {
   config::ViewConfig v =
       mvw::study::describeView(renderSettings(pane), std::string("view-") + kPaneNames[pane],
@@ -436,7 +380,7 @@ void ViewerState::saveConfig(const std::filesystem::path& file) const {
   }
   study.render.views.clear();
   for (int p = 0; p < kPaneCount; ++p) study.render.views.push_back(viewConfigOf(p));
-  study.measurements = measurements_;
+  study.measurements = measurements_.all();
   config::writeStudyConfig(study, file);
 }
 
@@ -444,27 +388,16 @@ void ViewerState::dump(int pane, const std::filesystem::path& file) const {
   io::writePng(pane_(pane).raw, file);
 }
 
-void ViewerState::startRegistration() {
-  if (!functional_) return;
-  worker_.start(job_);
-}
-
 std::optional<glm::dmat4> ViewerState::finishRegistration() {
-  std::optional<RegistrationWorker::Outcome> outcome = worker_.finish();
+  std::optional<RegistrationWorker::Outcome> outcome = registration_.finish();
   if (!outcome) return std::nullopt;
   if (!outcome->result) {
-    status_ = "registration failed: " + outcome->error;
+    requests_.setStatus("registration failed: " + outcome->error);
     return std::nullopt;
   }
-  const resampling::RegistrationResult& r = *outcome->result;
-  registration_ = "rigid (re-run), MI " +
-                  std::to_string(r.levels.empty() ? 0.0 : r.levels.back().metricEnd) +
-                  (r.converged ? ", converged" : ", NOT converged") + ", " +
-                  std::to_string(r.seconds).substr(0, 4) + " s";
   markAllDirty();
-  scene_.anatomicalFromFunctional = r.transform.fixedFromMoving();
-  for (std::size_t i = 0; i < sphereStats_.size(); ++i)  // the functional ROI moved with it
-    sphereStats_[i] = computeStatistics(measurements_.spheres[i]);
+  scene_.anatomicalFromFunctional = outcome->result->transform.fixedFromMoving();
+  measurements_.setPlacement(scene_.anatomicalFromFunctional);  // the functional ROIs move
   return scene_.anatomicalFromFunctional;
 }
 
@@ -493,130 +426,6 @@ std::string ViewerState::readout(const glm::dvec3& world) const {
             (p.functionalInside ? formatValue(p.functional, functional_->metadata().unit)
                                 : std::string("outside"));
   return text;
-}
-
-SphereStatistics ViewerState::computeStatistics(const config::SphereMeasurement& sphere) const {
-  SphereStatistics out;
-  auto one = [&](const Volume& v, const glm::dvec3& centre, std::optional<study::RoiStats>& stats,
-                 std::string& problem) {
-    try {
-      study::StatsOptions options;
-      options.peak = study::isSuvUnit(v.metadata().unit);  // as `mvw stats` asks
-      stats = study::roiStatistics(v, study::sphereVoxels(v, {centre, sphere.radiusMm}), options);
-    } catch (const InputError& e) {
-      problem = e.problem();
-    }
-  };
-  one(anatomical_, vec(sphere.centre), out.anatomical, out.anatomicalProblem);
-  if (functional_) {
-    // A rigid placement keeps the radius; the centre moves into the functional world.
-    out.functionalCentre = glm::dvec3(glm::inverse(scene_.anatomicalFromFunctional) *
-                                      glm::dvec4(vec(sphere.centre), 1.0));
-    one(*functional_, out.functionalCentre, out.functional, out.functionalProblem);
-  }
-  return out;
-}
-
-void ViewerState::addSphere(const config::SphereMeasurement& sphere) {
-  measurements_.spheres.push_back(sphere);
-  sphereStats_.push_back(computeStatistics(sphere));
-}
-
-void ViewerState::addRuler(const config::RulerMeasurement& ruler) {
-  measurements_.rulers.push_back(ruler);
-}
-
-void ViewerState::clearMeasurements() {
-  measurements_ = {};
-  sphereStats_.clear();
-  pending_.reset();
-}
-
-double ViewerState::rulerLengthMm(const config::RulerMeasurement& r) {
-  return glm::distance(vec(r.from), vec(r.to));
-}
-
-void ViewerState::beginMeasurement(int pane, MprTool tool, double x, double y) {
-  if (pane == k3d || tool == MprTool::Crosshair) return;
-  const glm::dvec3 p = onPlane(pane, x, y);
-  pending_ = Gesture{pane, tool, p, p};
-}
-
-void ViewerState::moveMeasurement(double x, double y) {
-  if (pending_) pending_->to = onPlane(pending_->pane, x, y);
-}
-
-void ViewerState::endMeasurement() {
-  if (!pending_) return;
-  const Gesture g = *std::exchange(pending_, std::nullopt);
-  const double length = glm::distance(g.from, g.to);
-  if (length <= 0.0) return;  // a click: nothing to measure
-  if (g.tool == MprTool::Sphere)
-    addSphere({arr(g.from), length});
-  else
-    addRuler({arr(g.from), arr(g.to)});
-}
-
-std::optional<config::SphereMeasurement> ViewerState::pendingSphere() const {
-  if (!pending_ || pending_->tool != MprTool::Sphere) return std::nullopt;
-  return config::SphereMeasurement{arr(pending_->from),
-                                   glm::distance(pending_->from, pending_->to)};
-}
-
-std::optional<config::RulerMeasurement> ViewerState::pendingRuler() const {
-  if (!pending_ || pending_->tool != MprTool::Ruler) return std::nullopt;
-  return config::RulerMeasurement{arr(pending_->from), arr(pending_->to)};
-}
-
-glm::dvec2 ViewerState::toPane(int pane, const glm::dvec3& world) const {
-  const glm::dvec4 c = pane_(pane).camera.clipFromWorld * glm::dvec4(world, 1.0);
-  return {(c.x / c.w + 1.0) * 0.5, (1.0 - c.y / c.w) * 0.5};
-}
-
-std::optional<PaneCircle> ViewerState::paneCircle(int pane,
-                                                  const config::SphereMeasurement& sphere) const {
-  if (pane == k3d || !pane_(pane).rendered) return std::nullopt;
-  const render::Camera& cam = pane_(pane).camera;
-  const glm::dvec3 centre = vec(sphere.centre);
-  const double d = glm::dot(centre - crosshair_, cam.forward);  // from the pane's plane
-  if (std::abs(d) >= sphere.radiusMm) return std::nullopt;
-  PaneCircle c;
-  c.radiusMm = std::sqrt(sphere.radiusMm * sphere.radiusMm - d * d);
-  const glm::dvec3 onPlane = centre - d * cam.forward;
-  c.centre = toPane(pane, onPlane);
-  c.radius = glm::abs(glm::dvec2(toPane(pane, onPlane + c.radiusMm * cam.right).x - c.centre.x,
-                                 toPane(pane, onPlane + c.radiusMm * cam.up).y - c.centre.y));
-  return c;
-}
-
-PaneSegment ViewerState::paneSegment(int pane, const config::RulerMeasurement& ruler) const {
-  PaneSegment s;
-  if (pane == k3d || !pane_(pane).rendered) return s;
-  const render::Camera& cam = pane_(pane).camera;
-  s.from = toPane(pane, vec(ruler.from));
-  s.to = toPane(pane, vec(ruler.to));
-  const double half = 0.5 * anatomical_.smallestSpacing();
-  s.inPlane = std::abs(glm::dot(vec(ruler.from) - crosshair_, cam.forward)) <= half &&
-              std::abs(glm::dot(vec(ruler.to) - crosshair_, cam.forward)) <= half;
-  return s;
-}
-
-void ViewerState::writeSphereStatistics(const std::filesystem::path& file) const {
-  nlohmann::json out = nlohmann::json::array();
-  for (std::size_t i = 0; i < sphereStats_.size(); ++i) {
-    const config::SphereMeasurement& s = measurements_.spheres[i];
-    const SphereStatistics& st = sphereStats_[i];
-    nlohmann::json j;
-    j["sphere"] = {s.centre[0], s.centre[1], s.centre[2], s.radiusMm};
-    j["anatomical"] = statsJson(st.anatomical, st.anatomicalProblem);
-    if (functional_) {
-      j["functional"] = statsJson(st.functional, st.functionalProblem);
-      j["functional_centre_lps_mm"] = {st.functionalCentre.x, st.functionalCentre.y,
-                                       st.functionalCentre.z};
-    }
-    out.push_back(j);
-  }
-  io::writeTextAtomically(file, out.dump(2) + "\n");
 }
 
 }  // namespace mvw::app

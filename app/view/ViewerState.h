@@ -1,9 +1,12 @@
 #pragma once
 // What `mvw view` shows and how input changes it, without a window or GL: the four panes
-// (3D and the axial, coronal and sagittal MPR), the 3D mode and preset, the linked
-// crosshair, the MPR window/level, the camera maths of dragging, clicking and the wheel, the
-// saved state, and the background registration. The mouse, the keyboard, the panel and the
-// --script interpreter all act through this class; the window loop renders what it asks for.
+// (3D and the axial, coronal and sagittal MPR) and their frames, the 3D settings, mode and
+// preset, the linked crosshair, the MPR window/level and colour maps, the camera maths of
+// dragging, clicking and the wheel, the values under the cursor, and the saved state. The
+// mouse, the keyboard, the panel and the --script interpreter all act through this class; the
+// window loop renders what it asks for. It owns the parts with jobs of their own, each reached
+// by its accessor: requests() (what the window loop acts on), measurements() (ROIs and rulers,
+// which see the panes through PaneGeometry), registration() (the re-run) and orbit().
 #include <array>
 #include <filesystem>
 #include <map>
@@ -11,14 +14,16 @@
 #include <span>
 #include <string>
 #include <utility>
-#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
-#include <nlohmann/json_fwd.hpp>
 
-#include "RegistrationWorker.h"
+#include "PaneGeometry.h"
+#include "ViewerMeasurements.h"
+#include "ViewerOrbit.h"
+#include "ViewerRegistration.h"
+#include "ViewerRequests.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/ColorMap.h"
 #include "mvw/core/Image.h"
@@ -26,15 +31,10 @@
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/VolumeRenderer.h"
-#include "mvw/study/RoiStatistics.h"
 
 namespace mvw::app {
 
-enum Pane { k3d = 0, kAxial, kCoronal, kSagittal, kPaneCount };
 enum class MouseButton { Left = 0, Right = 1, Middle = 2 };
-// The rotating 3D view: off, a full turn (spin) or back and forth (rock), about the patient's
-// long axis as `mvw render --orbit` turns.
-enum class Orbit { Off, Spin, Rock };
 // Which image a colour map chooser sets: the 3D pane's projection, the MPR panes' anatomy, or
 // the functional overlay (MPR) and fusion (3D).
 enum class ColorTarget { View3d, Mpr, Overlay };
@@ -61,47 +61,19 @@ struct ViewerProbe {
   glm::dvec3 at{0.0};  // the anatomical voxel's centre, LPS mm
 };
 
-// What the mouse does on an MPR pane: move the crosshair (the default), draw a sphere ROI
-// (press: the centre on the plane; the drag's length: the radius in mm) or a ruler (press: one
-// end, release: the other). Shift-drag draws a sphere and Alt-drag a ruler whatever the tool.
-enum class MprTool { Crosshair, Sphere, Ruler };
-
-// A sphere ROI's statistics in each volume, by study::roiStatistics (as `mvw stats --sphere`):
-// the anatomical one in its unit, the functional one (in SUV with SUVpeak for PET) at the
-// sphere's centre moved by the placement into the functional volume's world. An ROI that
-// holds no voxel centre of a volume says so instead.
-struct SphereStatistics {
-  std::optional<study::RoiStats> anatomical, functional;
-  std::string anatomicalProblem, functionalProblem;
-  glm::dvec3 functionalCentre{0.0};
-};
-
-// A sphere or a ruler as one pane shows it: in fractions of the pane (y down).
-struct PaneCircle {
-  glm::dvec2 centre{0.0};
-  glm::dvec2 radius{0.0};  // x and y radii in fractions of the pane's width and height
-  double radiusMm = 0.0;   // of the circle the plane cuts
-};
-struct PaneSegment {
-  glm::dvec2 from{0.0}, to{0.0};
-  bool inPlane = false;  // both ends lie on the pane's plane (within half a slice)
-};
-
-class ViewerState {
+class ViewerState : public PaneGeometry {
  public:
   // The 3D pane opens on the study's first 3D view as `mvw render` would render it; the MPR
   // panes take the first MPR view's window. The study and the volumes must outlive the state
   // (a running registration reads them).
   ViewerState(const config::StudyConfig& study, const Volume& anatomical, const Volume* functional,
               ViewerScene scene);
-  ~ViewerState() = default;  // a running registration is waited for, never abandoned
+  ~ViewerState() override = default;  // a running registration is waited for, never abandoned
   ViewerState(const ViewerState&) = delete;
   ViewerState& operator=(const ViewerState&) = delete;
 
   static const char* paneName(int pane);                         // 3d, axial, coronal, sagittal
   static std::optional<int> paneNamed(const std::string& name);  // the inverse
-  // The panel's line for the study's placement (placeFunctional's report).
-  static std::string describePlacement(const std::string& method, const nlohmann::json& report);
   // "CT", "PET" (DICOM's PT), "MR", ...: the volume's modality, `fallback` where none is named.
   static std::string volumeName(const Volume& volume, const char* fallback);
   // The 3D pane's modes, in the order of the keys 1-5.
@@ -129,15 +101,13 @@ class ViewerState {
   void setGlyphLabel(int label, config::LabelGlyphKind kind);
   const std::map<int, std::string>& labelNames() const { return labelNames_; }
 
-  // The rotating 3D view: spin turns 360 degrees in kOrbitFrames frames, rock swings +-30
-  // degrees about the azimuth it started from; switching it off stops at the angle shown (so
-  // a reader can stop where a finding shows best). The same toggle again switches it off.
-  static constexpr int kOrbitFrames = 90;
-  static constexpr double kRockRangeDeg = 30.0;
-  void setOrbit(Orbit orbit);
-  void toggleOrbit(Orbit orbit) { setOrbit(orbit_ == orbit ? Orbit::Off : orbit); }
-  Orbit orbit() const { return orbit_; }
-  // The window calls this once per drawn frame: the next step of the orbit (the 3D pane dirty).
+  // The rotating 3D view (ViewerOrbit), from the azimuth shown now; the same toggle again
+  // switches it off.
+  void setOrbit(Orbit orbit) { orbit_.start(orbit, view3d_.camera.azimuthDeg); }
+  void toggleOrbit(Orbit orbit) { setOrbit(orbit_.mode() == orbit ? Orbit::Off : orbit); }
+  const ViewerOrbit& orbit() const { return orbit_; }
+  // The window calls this once per drawn frame: the 3D camera to the orbit's next azimuth
+  // (the 3D pane dirty).
   void advanceOrbit();
 
   // Rendering: the window loop sets each pane's size, renders the panes that need it with
@@ -170,36 +140,6 @@ class ViewerState {
   // Files.
   void saveConfig(const std::filesystem::path& file) const;      // every pane as a study view
   void dump(int pane, const std::filesystem::path& file) const;  // the pane as rendered, raw
-  // A screenshot is taken by the window once the frame is fully drawn.
-  void requestScreenshot(std::filesystem::path file) { screenshot_ = std::move(file); }
-  std::optional<std::filesystem::path> takeScreenshotRequest();
-  // The pane as the window shows it (its rectangle of the framebuffer: the render with its
-  // annotations, and the crosshair on an MPR pane), taken as the whole-window screenshot is.
-  void requestPaneScreenshot(int pane, std::filesystem::path file) {
-    paneScreenshot_ = {pane, std::move(file)};
-  }
-  std::optional<std::pair<int, std::filesystem::path>> takePaneScreenshotRequest() {
-    return std::exchange(paneScreenshot_, std::nullopt);
-  }
-  // A scripted drag in progress (ViewerScript's drag-frames): its frames are interactive, as
-  // the frames of a mouse drag are.
-  void setScriptedInteraction(bool on) { scriptedInteraction_ = on; }
-  bool scriptedInteraction() const { return scriptedInteraction_; }
-  void requestQuit() { quit_ = true; }
-  bool quitRequested() const { return quit_; }
-  void setStatus(std::string status) { status_ = std::move(status); }
-  const std::string& status() const { return status_; }
-
-  // Registration re-run in the background (rigid MI, as `mvw register`).
-  void startRegistration();
-  bool registering() const { return worker_.running(); }
-  double registrationSeconds() const { return worker_.seconds(); }
-  // Once a re-run has ended: the new anatomicalFromFunctional for the renderer (nothing if
-  // it failed: the status says why).
-  std::optional<glm::dmat4> finishRegistration();
-  const std::string& registration() const { return registration_; }
-  // For tests: the job startRegistration runs instead of registerRigid.
-  void setRegistrationJob(RegistrationWorker::Job job) { job_ = std::move(job); }
 
   // What the panel shows and edits.
   const config::StudyConfig& study() const { return study_; }
@@ -211,12 +151,13 @@ class ViewerState {
   const std::string& presetName() const { return presetName_; }
   double mprWindow() const { return mprWindow_; }
   double mprLevel() const { return mprLevel_; }
-  const glm::dvec3& crosshair() const { return crosshair_; }
   int maximised() const { return maximised_; }  // -1: all four panes
-  const render::Camera& paneCamera(int pane) const { return pane_(pane).camera; }
-  bool paneRendered(int pane) const { return pane_(pane).rendered; }
-  // The world point under (x, y) of an MPR pane, on its plane through the crosshair.
-  glm::dvec3 onPlane(int pane, double x, double y) const;
+  // The panes' geometry (PaneGeometry): the last frames' cameras, the crosshair, and the world
+  // point under (x, y) of an MPR pane, on its plane through the crosshair.
+  const glm::dvec3& crosshair() const override { return crosshair_; }
+  const render::Camera& paneCamera(int pane) const override { return pane_(pane).camera; }
+  bool paneRendered(int pane) const override { return pane_(pane).rendered; }
+  glm::dvec3 onPlane(int pane, double x, double y) const override;
   ViewerProbe probe(const glm::dvec3& world) const;
   // The cursor over an MPR pane (the readout's point, on the pane's plane); the mouse moves it,
   // and so does the script's hover.
@@ -226,37 +167,29 @@ class ViewerState {
   // "anatomical" / "functional"; "outside" where the point is outside a volume).
   std::string readout(const glm::dvec3& world) const;
 
-  // Measurements (saved with the state as the study's "measurements", restored on opening).
   // The crosshair to a point (the MPR panes then cut it), e.g. to an ROI's centre.
   void setCrosshair(const glm::dvec3& world) { crosshair_ = world, markMprDirty(); }
   void setSegmentOutlines(bool on) { segmentOutlines_ = on, markMprDirty(); }
   bool segmentOutlines() const { return segmentOutlines_; }
-  void setTool(MprTool tool) { tool_ = tool; }
-  MprTool tool() const { return tool_; }
-  // A mouse gesture on an MPR pane with a tool other than the crosshair: press, moves (the
-  // pending sphere or ruler follows), release (it is added; a sphere of radius 0 is not).
-  void beginMeasurement(int pane, MprTool tool, double x, double y);
-  void moveMeasurement(double x, double y);
-  void endMeasurement();
-  bool measuring() const { return pending_.has_value(); }
-  // The pending gesture's sphere (radius so far) or ruler, for the panes to draw.
-  std::optional<config::SphereMeasurement> pendingSphere() const;
-  std::optional<config::RulerMeasurement> pendingRuler() const;
-  void addSphere(const config::SphereMeasurement& sphere);  // statistics computed at once
-  void addRuler(const config::RulerMeasurement& ruler);
-  void clearMeasurements();
-  const config::Measurements& measurements() const { return measurements_; }
-  const std::vector<SphereStatistics>& sphereStatistics() const { return sphereStats_; }
-  static double rulerLengthMm(const config::RulerMeasurement& ruler);
-  // Where a sphere cuts the pane's plane (nothing where it misses it), where a ruler lies.
-  std::optional<PaneCircle> paneCircle(int pane, const config::SphereMeasurement& sphere) const;
-  PaneSegment paneSegment(int pane, const config::RulerMeasurement& ruler) const;
-  // Every sphere's statistics as `mvw stats --json` names the fields (tests compare the two).
-  void writeSphereStatistics(const std::filesystem::path& file) const;
+
+  // The parts with jobs of their own.
+  // What the window loop acts on once a frame is drawn (screenshots, quit), the status line.
+  ViewerRequests& requests() { return requests_; }
+  const ViewerRequests& requests() const { return requests_; }
+  // The sphere ROIs and rulers on the MPR panes, and the mouse tool that draws them (saved
+  // with the state as the study's "measurements", restored on opening).
+  ViewerMeasurements& measurements() { return measurements_; }
+  const ViewerMeasurements& measurements() const { return measurements_; }
+  // The registration re-run in the background (rigid MI, as `mvw register`).
+  ViewerRegistration& registration() { return registration_; }
+  const ViewerRegistration& registration() const { return registration_; }
+  // The window calls this once per frame: once a re-run has ended, the new
+  // anatomicalFromFunctional for the renderer (the panes redraw, the functional ROI statistics
+  // follow it); nothing while it runs or if it failed (the status line says why).
+  std::optional<glm::dmat4> finishRegistration();
 
  private:
   int dragDivisor_ = 2;
-  bool scriptedInteraction_ = false;
   struct PaneState {
     bool dirty = true;
     bool rendered = false;
@@ -269,13 +202,6 @@ class ViewerState {
   const PaneState& pane_(int pane) const { return panes_[static_cast<std::size_t>(pane)]; }
   void markMprDirty();
   config::ViewConfig viewConfigOf(int pane) const;
-  SphereStatistics computeStatistics(const config::SphereMeasurement& sphere) const;
-  glm::dvec2 toPane(int pane, const glm::dvec3& world) const;
-  struct Gesture {
-    int pane = kAxial;
-    MprTool tool = MprTool::Sphere;
-    glm::dvec3 from{0.0}, to{0.0};
-  };
 
   const config::StudyConfig& study_;
   const Volume& anatomical_;
@@ -288,23 +214,14 @@ class ViewerState {
   std::map<int, std::string> labelNames_;
   std::optional<ColorTable> mprColors_;  // the MPR panes' anatomy; none: grey
   bool segmentOutlines_ = true;          // the MPR panes outline the study's segmentation
-  MprTool tool_ = MprTool::Crosshair;
-  std::optional<Gesture> pending_;
   std::optional<std::pair<int, glm::dvec3>> cursor_;
-  config::Measurements measurements_;
-  std::vector<SphereStatistics> sphereStats_;  // one per measurements_.spheres
-  Orbit orbit_ = Orbit::Off;
-  std::vector<double> orbitAzimuths_;
-  std::size_t orbitStep_ = 0;
+  ViewerMeasurements measurements_;  // after scene_: it starts from scene_'s placement
+  ViewerOrbit orbit_;
   glm::dvec3 crosshair_{0.0};
   int maximised_ = -1;
-  bool quit_ = false;
-  std::string status_;
-  std::optional<std::filesystem::path> screenshot_;
-  std::optional<std::pair<int, std::filesystem::path>> paneScreenshot_;
-  std::string registration_;
-  RegistrationWorker::Job job_;
-  RegistrationWorker worker_;  // last: joined before anything its job reads goes away
+  ViewerRequests requests_;
+  // Last: destroyed first, so a running re-run is waited for while everything else is there.
+  ViewerRegistration registration_;
 };
 
 }  // namespace mvw::app

@@ -166,10 +166,10 @@ TEST_F(ViewerScriptRun, OneLinePerFrameAndWaitsCountFrames) {
   EXPECT_TRUE(s.step(state));  // key 3
   EXPECT_EQ(state.view3d().mode, render::RenderMode::Mip);
   EXPECT_TRUE(s.step(state));
-  EXPECT_EQ(state.takeScreenshotRequest(), std::filesystem::path("a.png"));
-  EXPECT_FALSE(state.quitRequested());
+  EXPECT_EQ(state.requests().takeScreenshotRequest(), std::filesystem::path("a.png"));
+  EXPECT_FALSE(state.requests().quitRequested());
   EXPECT_TRUE(s.step(state));
-  EXPECT_TRUE(state.quitRequested());
+  EXPECT_TRUE(state.requests().quitRequested());
   EXPECT_FALSE(s.step(state));  // the end
 }
 
@@ -181,12 +181,12 @@ TEST_F(ViewerScriptRun, DragFramesSpreadsTheDragAndMarksItsFramesInteractive) {
   ViewerScript s = ViewerScript::parse("drag-frames 3d 0.5 0 4\nkey 3\n", "t");
   for (int frame = 1; frame <= 4; ++frame) {
     EXPECT_TRUE(s.step(state));
-    EXPECT_TRUE(state.scriptedInteraction()) << "frame " << frame;
+    EXPECT_TRUE(state.requests().scriptedInteraction()) << "frame " << frame;
     EXPECT_NEAR(state.view3d().camera.azimuthDeg - start, 0.5 * 180.0 * frame / 4.0, 1e-9);
     EXPECT_EQ(state.view3d().mode, render::RenderMode::Composite);  // not yet the next line
   }
   EXPECT_TRUE(s.step(state));  // the drag ends, and the next line runs in the same step
-  EXPECT_FALSE(state.scriptedInteraction());
+  EXPECT_FALSE(state.requests().scriptedInteraction());
   EXPECT_NEAR(state.view3d().camera.azimuthDeg - start, 90.0, 1e-9);
   EXPECT_EQ(state.view3d().mode, render::RenderMode::Mip);
   EXPECT_FALSE(s.step(state));
@@ -194,7 +194,7 @@ TEST_F(ViewerScriptRun, DragFramesSpreadsTheDragAndMarksItsFramesInteractive) {
   ViewerState plain(study, ct, nullptr, scene);
   ViewerScript one = ViewerScript::parse("drag 3d 0.5 0\n", "t");
   one.step(plain);
-  EXPECT_FALSE(plain.scriptedInteraction());
+  EXPECT_FALSE(plain.requests().scriptedInteraction());
   EXPECT_NEAR(plain.view3d().camera.azimuthDeg - start, 90.0, 1e-9);
 }
 
@@ -202,21 +202,21 @@ TEST_F(ViewerScriptRun, WaitRegistrationHoldsUntilTheWorkerEnds) {
   Volume pet = ct;
   ViewerState state(study, ct, &pet, scene);
   std::atomic<bool> release{false};
-  state.setRegistrationJob([&release](std::stop_token stop) {
+  state.registration().setJob([&release](std::stop_token stop) {
     while (!release && !stop.stop_requested())
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     return resampling::RegistrationResult{};
   });
   ViewerScript s = ViewerScript::parse("register\nwait-registration\nkey 2\n", "t");
   s.step(state);
-  EXPECT_TRUE(state.registering());
+  EXPECT_TRUE(state.registration().running());
   for (int frame = 0; frame < 5; ++frame) {
     s.step(state);
     state.finishRegistration();
   }
   EXPECT_EQ(state.view3d().mode, render::RenderMode::Composite);  // still waiting
   release = true;
-  while (state.registering()) {
+  while (state.registration().running()) {
     state.finishRegistration();
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
@@ -299,7 +299,7 @@ TEST_F(ViewerScriptRun, SphereMovesTheCrosshairAndRoiStatsWritesItsStatistics) {
       "sphere 2 2 2 1.5\nroi-stats " + (dir / "stats.json").string() + "\nclear-measurements\n",
       "t");
   EXPECT_TRUE(s.step(state));
-  ASSERT_EQ(state.measurements().spheres.size(), 1u);
+  ASSERT_EQ(state.measurements().all().spheres.size(), 1u);
   EXPECT_EQ(state.crosshair(), glm::dvec3(2.0, 2.0, 2.0));
   EXPECT_TRUE(s.step(state));
   std::ifstream in(dir / "stats.json");
@@ -309,7 +309,7 @@ TEST_F(ViewerScriptRun, SphereMovesTheCrosshairAndRoiStatsWritesItsStatistics) {
   // Centres within 1.5 mm: the centre, its 6 face and 12 edge neighbours.
   EXPECT_EQ(j[0]["anatomical"]["voxels"], 19);
   EXPECT_TRUE(s.step(state));
-  EXPECT_TRUE(state.measurements().spheres.empty());
+  EXPECT_TRUE(state.measurements().all().spheres.empty());
 }
 
 TEST_F(ViewerScriptRun, ColormapAndOrbitActOnTheState) {
@@ -318,7 +318,19 @@ TEST_F(ViewerScriptRun, ColormapAndOrbitActOnTheState) {
   EXPECT_TRUE(s.step(state));
   EXPECT_EQ(state.colormap(ColorTarget::View3d), ColorMap::HotIron);
   EXPECT_TRUE(s.step(state));
-  EXPECT_EQ(state.orbit(), Orbit::Spin);
+  EXPECT_EQ(state.orbit().mode(), Orbit::Spin);
+}
+
+TEST(ViewerScriptGlyphLabel, BadLabelsAndKindsNameTheLine) {
+  for (const char* line : {"glyph-label 0 bumps", "glyph-label 2.5 bumps", "glyph-label 3 spikes",
+                           "glyph-label 3", "glyph-label 16384 none"}) {
+    try {
+      ViewerScript::parse(line, "s.txt");
+      ADD_FAILURE() << line;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("line 1: glyph-label"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -1,64 +1,26 @@
 // The viewer's state without a window or GL: what input does to the panes, the camera maths,
-// the saved state, and the background registration (which must never terminate the process).
+// the MPR window and colour maps, the readout, and the saved state. Its parts have their own
+// tests: viewer_measurements_test, viewer_orbit_test, viewer_registration_test and
+// viewer_requests_test.
 #include "ViewerState.h"
 
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <fstream>
-#include <stdexcept>
-#include <thread>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
-#include <nlohmann/json.hpp>
 
 #include "TestUtil.h"
 #include "ViewerScript.h"
+#include "ViewerTestUtil.h"
 #include "mvw/config/StudyConfig.h"
-#include "mvw/core/Error.h"
 
 namespace mvw::app {
 namespace {
 
 using render::RenderMode;
 
-// Intentional odd, anisotropic grid: a wrong axis or spacing shows in the wheel and click maths.
-Volume makeVolume(const std::string& modality, double lo, double hi) {
-  Volume v({9, 7, 5}, 1, ScalarType::Int16,
-           makeWorldFromIndex({-4.0, -3.0, -2.0}, {1.0, 1.0, 2.5}, glm::dmat3(1.0)));
-  v.setValue(0, 0, 0, 0, lo);
-  v.setValue(8, 6, 4, 0, hi);
-  v.metadata().modality = modality;
-  v.metadata().unit = modality == "CT" ? "HU" : "";
-  return v;
-}
-
-ViewerScene sceneOf(const Volume& v) {
-  ViewerScene s;
-  s.centre = v.worldFromIndexPoint(glm::dvec3(v.dimensions() - 1) * 0.5);
-  s.radius = 10.0;
-  s.valueRange = v.valueRange();
-  return s;
-}
-
-// Every pane sized and rendered once, with the cameras the renderer would report.
-void renderAll(ViewerState& state) {
-  for (int p = 0; p < kPaneCount; ++p) {
-    state.setPaneSize(p, {64, 48});
-    const render::RenderSettings s = state.renderSettings(p);
-    state.rendered(p,
-                   render::makeCamera(s.camera, state.scene().centre, state.scene().radius, s.size),
-                   Image(s.size.x, s.size.y), false);
-  }
-}
-
-class ViewerStateTest : public ::testing::Test {
- protected:
-  config::StudyConfig study;
-  Volume ct = makeVolume("CT", -1000.0, 2000.0);
-  Volume pet = makeVolume("PT", 0.0, 10.0);
-};
+using ViewerStateTest = ViewerFixture;
 
 TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
@@ -217,8 +179,8 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   state.key('P', false);
   EXPECT_NE(state.presetName(), preset);
   state.key('S', false);
-  EXPECT_EQ(state.takeScreenshotRequest(), std::filesystem::path("mvw-screenshot.png"));
-  EXPECT_EQ(state.takeScreenshotRequest(), std::nullopt);
+  EXPECT_EQ(state.requests().takeScreenshotRequest(), std::filesystem::path("mvw-screenshot.png"));
+  EXPECT_EQ(state.requests().takeScreenshotRequest(), std::nullopt);
   renderAll(state);
   state.key('X', false);  // unbound: nothing to redraw
   EXPECT_FALSE(state.anyDirty());
@@ -235,8 +197,8 @@ TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
   EXPECT_FALSE(state.view3d().glyphs);
   EXPECT_FALSE(state.view3d().fusion);
   EXPECT_FALSE(state.anyDirty());
-  state.startRegistration();  // nothing to register
-  EXPECT_FALSE(state.registering());
+  state.registration().start();  // nothing to register
+  EXPECT_FALSE(state.registration().running());
 }
 
 TEST_F(ViewerStateTest, MprPanesShareTheFunctionalWindowOfTheThreeDPane) {
@@ -346,273 +308,10 @@ TEST_F(ViewerStateTest, ReadoutShowsBothValuesWhereTheRendererSamplesThem) {
   EXPECT_EQ(moved.readout({1.0, -1.0, 3.0}), "CT 0 HU | PET 5 SUVbw");
 }
 
-// A sphere drawn on an MPR pane: centre where the drag starts (on the pane's plane), radius
-// the drag's length in mm; its statistics are roiStatistics over sphereVoxels in each volume
-// (the functional one at the centre moved by the placement), and a click draws nothing.
-TEST_F(ViewerStateTest, SphereRoiDrawnByADragHasTheStatsOfMvwStats) {
-  for (int k = 0; k < 5; ++k)
-    for (int j = 0; j < 7; ++j)
-      for (int i = 0; i < 9; ++i) {
-        ct.setValue(i, j, k, 0, i * 10 + j + k * 100);
-        pet.setValue(i, j, k, 0, 0.1 * (i + j + k));
-      }
-  pet.metadata().unit = "SUVbw";
-  ViewerScene scene = sceneOf(ct);
-  scene.anatomicalFromFunctional = glm::translate(glm::dmat4(1.0), glm::dvec3(1.0, 0.0, 0.0));
-  ViewerState state(study, ct, &pet, scene);
-  renderAll(state);
-  state.beginMeasurement(kAxial, MprTool::Sphere, 0.5, 0.5);
-  EXPECT_TRUE(state.measuring());
-  state.moveMeasurement(0.5, 0.5);
-  state.endMeasurement();  // a click
-  EXPECT_TRUE(state.measurements().spheres.empty());
-  state.beginMeasurement(kAxial, MprTool::Sphere, 0.5, 0.5);
-  state.moveMeasurement(0.6, 0.5);
-  ASSERT_TRUE(state.pendingSphere().has_value());
-  state.endMeasurement();
-  ASSERT_EQ(state.measurements().spheres.size(), 1u);
-  const config::SphereMeasurement& sphere = state.measurements().spheres[0];
-  const glm::dvec3 centre = state.onPlane(kAxial, 0.5, 0.5);
-  EXPECT_EQ(glm::dvec3(sphere.centre[0], sphere.centre[1], sphere.centre[2]), centre);
-  EXPECT_NEAR(sphere.radiusMm, glm::distance(centre, state.onPlane(kAxial, 0.6, 0.5)), 1e-12);
-  EXPECT_GT(sphere.radiusMm, 1.0);
-
-  const SphereStatistics& st = state.sphereStatistics().at(0);
-  study::StatsOptions hu;
-  const study::RoiStats a =
-      study::roiStatistics(ct, study::sphereVoxels(ct, {centre, sphere.radiusMm}), hu);
-  ASSERT_TRUE(st.anatomical.has_value());
-  EXPECT_EQ(st.anatomical->voxels, a.voxels);
-  EXPECT_EQ(st.anatomical->mean, a.mean);
-  EXPECT_EQ(st.anatomical->sd, a.sd);
-  EXPECT_EQ(st.anatomical->max, a.max);
-  EXPECT_FALSE(st.anatomical->peak.has_value());  // HU: no SUVpeak
-  study::StatsOptions suv;
-  suv.peak = true;
-  const glm::dvec3 fc = centre - glm::dvec3(1.0, 0.0, 0.0);
-  const study::RoiStats f =
-      study::roiStatistics(pet, study::sphereVoxels(pet, {fc, sphere.radiusMm}), suv);
-  ASSERT_TRUE(st.functional.has_value());
-  EXPECT_EQ(st.functionalCentre, fc);
-  EXPECT_EQ(st.functional->voxels, f.voxels);
-  EXPECT_EQ(st.functional->mean, f.mean);
-  ASSERT_TRUE(st.functional->peak.has_value());
-  EXPECT_EQ(*st.functional->peak, *f.peak);
-  EXPECT_EQ(st.functional->unit, "SUVbw");
-
-  // A sphere outside the volumes says so instead of statistics.
-  state.addSphere({{500.0, 0.0, 0.0}, 2.0});
-  EXPECT_FALSE(state.sphereStatistics().at(1).anatomical.has_value());
-  EXPECT_FALSE(state.sphereStatistics().at(1).anatomicalProblem.empty());
-}
-
-// The circle a sphere cuts from each MPR pane's plane (through the crosshair); a ruler's ends
-// on its pane, shown only on the plane it lies in.
-TEST_F(ViewerStateTest, SpheresAndRulersOnThePanes) {
-  ViewerState state(study, ct, nullptr, sceneOf(ct));
-  renderAll(state);
-  const glm::dvec3 c = state.crosshair();
-  const glm::dvec3 forward = state.paneCamera(kAxial).forward;
-  const config::SphereMeasurement sphere{
-      {c.x + 3 * forward.x, c.y + 3 * forward.y, c.z + 3 * forward.z}, 5.0};
-  const auto axial = state.paneCircle(kAxial, sphere);
-  ASSERT_TRUE(axial.has_value());
-  EXPECT_NEAR(axial->radiusMm, 4.0, 1e-9);  // sqrt(5^2 - 3^2)
-  EXPECT_NEAR(axial->centre.x, 0.5, 1e-9);
-  EXPECT_NEAR(axial->centre.y, 0.5, 1e-9);
-  // 4 mm over the pane's width in mm (the camera's extent along `right`).
-  const double widthMm =
-      glm::distance(state.onPlane(kAxial, 0.0, 0.5), state.onPlane(kAxial, 1.0, 0.5));
-  EXPECT_NEAR(axial->radius.x, 4.0 / widthMm, 1e-9);
-  EXPECT_FALSE(state.paneCircle(kAxial, {sphere.centre, 2.9}).has_value());  // misses the plane
-  EXPECT_FALSE(state.paneCircle(k3d, sphere).has_value());
-
-  state.beginMeasurement(kCoronal, MprTool::Ruler, 0.25, 0.5);
-  state.moveMeasurement(0.75, 0.5);
-  state.endMeasurement();
-  ASSERT_EQ(state.measurements().rulers.size(), 1u);
-  const config::RulerMeasurement& r = state.measurements().rulers[0];
-  EXPECT_NEAR(ViewerState::rulerLengthMm(r),
-              glm::distance(state.onPlane(kCoronal, 0.25, 0.5), state.onPlane(kCoronal, 0.75, 0.5)),
-              1e-12);
-  const PaneSegment seg = state.paneSegment(kCoronal, r);
-  EXPECT_TRUE(seg.inPlane);
-  EXPECT_NEAR(seg.from.x, 0.25, 1e-9);
-  EXPECT_NEAR(seg.to.x, 0.75, 1e-9);
-  state.wheel(kCoronal, 2);  // two slices on: the ruler stays, on its own slice
-  EXPECT_FALSE(state.paneSegment(kCoronal, r).inPlane);
-  EXPECT_EQ(state.measurements().rulers.size(), 1u);
-}
-
-// The spheres and rulers are saved with the state (the study's "measurements") and a state
-// opened from the saved file has them, with the same statistics; so has segmentation_outlines.
-TEST_F(ViewerStateTest, MeasurementsAndOutlinesAreSavedAndRestored) {
-  const auto dir = test::scratchDir();
-  ct.metadata().sourcePath = (dir / "ct.nii.gz").string();
-  std::ofstream(ct.metadata().sourcePath) << "";
-  for (int i = 0; i < 9; ++i) ct.setValue(i, 3, 2, 0, 7.0 * i);
-  ViewerState state(study, ct, nullptr, sceneOf(ct));
-  renderAll(state);
-  state.addSphere({{0.5, 0.0, 0.0}, 2.5});
-  state.addRuler({{-3.0, -2.0, 0.0}, {3.0, 2.0, 0.0}});
-  state.setSegmentOutlines(false);
-  EXPECT_FALSE(state.renderSettings(kAxial).segmentOutlines);
-  state.saveConfig(dir / "saved.json");
-
-  const config::StudyConfig saved = config::loadStudyConfig(dir / "saved.json");
-  EXPECT_EQ(saved.measurements, state.measurements());
-  EXPECT_FALSE(saved.render.views[1].segmentationOutlines);
-  ViewerState reopened(saved, ct, nullptr, sceneOf(ct));
-  EXPECT_EQ(reopened.measurements(), state.measurements());
-  EXPECT_FALSE(reopened.renderSettings(kAxial).segmentOutlines);
-  ASSERT_EQ(reopened.sphereStatistics().size(), 1u);
-  ASSERT_TRUE(reopened.sphereStatistics()[0].anatomical.has_value());
-  EXPECT_EQ(reopened.sphereStatistics()[0].anatomical->voxels,
-            state.sphereStatistics()[0].anatomical->voxels);
-  EXPECT_EQ(reopened.sphereStatistics()[0].anatomical->mean,
-            state.sphereStatistics()[0].anatomical->mean);
-  EXPECT_GT(reopened.sphereStatistics()[0].anatomical->voxels, 0u);
-  reopened.clearMeasurements();
-  EXPECT_TRUE(reopened.measurements().spheres.empty());
-  EXPECT_TRUE(reopened.sphereStatistics().empty());
-  ViewerState defaults(study, ct, nullptr, sceneOf(ct));
-  EXPECT_TRUE(defaults.renderSettings(kAxial).segmentOutlines);
-}
-
-TEST(ViewerStateText, PanesAndPlacement) {
+TEST(ViewerStateText, PaneNames) {
   for (int p = 0; p < kPaneCount; ++p)
     EXPECT_EQ(ViewerState::paneNamed(ViewerState::paneName(p)), p);
   EXPECT_EQ(ViewerState::paneNamed("oblique"), std::nullopt);
-  EXPECT_EQ(ViewerState::describePlacement("none", nlohmann::json::object()), "none");
-  EXPECT_EQ(ViewerState::describePlacement("rigid", {{"mutual_information", 0.5}}),
-            "rigid, MI 0.500000");
-}
-
-// A job that runs until the worker's thread is asked to stop (as a destructor does).
-RegistrationWorker::Job untilStopped(std::atomic<bool>* started) {
-  return [started](std::stop_token stop) {
-    *started = true;
-    while (!stop.stop_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    return resampling::RegistrationResult{};
-  };
-}
-
-void waitFor(const std::atomic<bool>& flag) {
-  while (!flag) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-}
-
-// With a std::thread member, each of these called std::terminate (a joinable thread destroyed).
-TEST_F(ViewerStateTest, DestroyedWhileRegisteringWaitsForTheWorker) {
-  std::atomic<bool> started{false};
-  {
-    ViewerState state(study, ct, &pet, sceneOf(ct));
-    state.setRegistrationJob(untilStopped(&started));
-    state.startRegistration();
-    EXPECT_TRUE(state.registering());
-    waitFor(started);
-  }
-  SUCCEED();
-}
-
-TEST_F(ViewerStateTest, ScriptErrorWhileRegisteringUnwindsCleanly) {
-  const auto dir = test::scratchDir();
-  std::atomic<bool> started{false};
-  const ViewerScript script = ViewerScript::parse(
-      "register\nsave-config " + (dir / "missing" / "folder" / "state.json").string() + "\n",
-      dir / "script");
-  auto run = [&] {
-    ViewerState state(study, ct, &pet, sceneOf(ct));
-    state.setRegistrationJob(untilStopped(&started));
-    ViewerScript s = script;
-    EXPECT_TRUE(s.step(state));  // register
-    EXPECT_TRUE(state.registering());
-    waitFor(started);
-    s.step(state);  // save-config into a folder that does not exist: throws
-  };
-  EXPECT_THROW(run(), std::exception);
-}
-
-TEST_F(ViewerStateTest, FinishedRegistrationMovesTheFunctionalVolume) {
-  ViewerState state(study, ct, &pet, sceneOf(ct));
-  renderAll(state);
-  const glm::dmat4 moved = glm::translate(glm::dmat4(1.0), glm::dvec3(1.0, 2.0, 3.0));
-  state.setRegistrationJob([moved](std::stop_token) {
-    resampling::RegistrationResult r;
-    r.transform = resampling::Transform(moved);
-    r.converged = true;
-    r.seconds = 1.25;
-    return r;
-  });
-  state.startRegistration();
-  std::optional<glm::dmat4> placed;
-  while (state.registering() && !(placed = state.finishRegistration()))
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  ASSERT_TRUE(placed);
-  EXPECT_EQ(*placed, moved);
-  EXPECT_FALSE(state.registering());
-  EXPECT_EQ(state.registration(), "rigid (re-run), MI 0.000000, converged, 1.25 s");
-  EXPECT_TRUE(state.needsRender(k3d) && state.needsRender(kAxial));
-}
-
-TEST_F(ViewerStateTest, FailedRegistrationSaysWhy) {
-  ViewerState state(study, ct, &pet, sceneOf(ct));
-  state.setRegistrationJob([](std::stop_token) -> resampling::RegistrationResult {
-    throw std::runtime_error("no overlap");
-  });
-  state.startRegistration();
-  while (state.registering()) {
-    EXPECT_EQ(state.finishRegistration(), std::nullopt);
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  EXPECT_EQ(state.status(), "registration failed: no overlap");
-  EXPECT_EQ(state.registration(), "none");
-}
-
-}  // namespace
-}  // namespace mvw::app
-
-namespace mvw::app {
-namespace {
-
-TEST_F(ViewerStateTest, SpinAndRockToggleAndTurnAboutTheLongAxis) {
-  ViewerState state(study, pet, nullptr, sceneOf(pet));
-  renderAll(state);
-  state.drag(k3d, 0.1, 0.0, MouseButton::Left, false);  // azimuth 18
-  const double start = state.view3d().camera.azimuthDeg;
-  EXPECT_DOUBLE_EQ(start, 18.0);
-  state.key('O', false);
-  EXPECT_EQ(state.orbit(), Orbit::Spin);
-  renderAll(state);
-  state.advanceOrbit();
-  EXPECT_TRUE(state.needsRender(k3d));
-  EXPECT_FALSE(state.needsRender(kAxial));  // the MPR panes stay as they are
-  EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, start + 360.0 / ViewerState::kOrbitFrames);
-  for (int k = 1; k < ViewerState::kOrbitFrames / 2; ++k) state.advanceOrbit();
-  EXPECT_NEAR(state.view3d().camera.azimuthDeg, start + 180.0, 1e-9);     // half way round
-  EXPECT_EQ(state.view3d().camera.view, render::StandardView::Anterior);  // up stays S
-  state.key('O', false);                                                  // off: stops where it is
-  EXPECT_EQ(state.orbit(), Orbit::Off);
-  state.advanceOrbit();
-  EXPECT_NEAR(state.view3d().camera.azimuthDeg, start + 180.0, 1e-9);
-
-  // Rock: +-30 degrees about where it starts, a quarter of the way at the top of the swing.
-  state.key('K', false);
-  EXPECT_EQ(state.orbit(), Orbit::Rock);
-  for (int k = 0; k < ViewerState::kOrbitFrames / 4; ++k) state.advanceOrbit();
-  const double top = state.view3d().camera.azimuthDeg - (start + 180.0);
-  EXPECT_NEAR(top,
-              ViewerState::kRockRangeDeg *
-                  std::sin(2 * M_PI * (ViewerState::kOrbitFrames / 4) / ViewerState::kOrbitFrames),
-              1e-9);
-  EXPECT_GT(top, 29.0);
-  state.key('O', false);  // the other toggle switches over
-  EXPECT_EQ(state.orbit(), Orbit::Spin);
-  state.drag(k3d, 0.1, 0.0, MouseButton::Left, false);  // the reader takes the camera
-  EXPECT_EQ(state.orbit(), Orbit::Off);
-  state.key('K', false);
-  state.key('R', false);
-  EXPECT_EQ(state.orbit(), Orbit::Off);
-  EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, 0.0);
 }
 
 TEST_F(ViewerStateTest, ColourMapChoosersReachThePanes) {
@@ -709,18 +408,6 @@ TEST_F(ViewerStateTest, ChosenGlyphLabelsReachTheRendererAndAreSaved) {
   EXPECT_TRUE(saved.render.views[1].glyphLabels.empty());  // an MPR pane draws no glyphs
   ViewerState reopened(saved, ct, &atlas, scene);
   EXPECT_EQ(reopened.view3d().glyphLabels, expected);
-}
-
-TEST(ViewerScriptGlyphLabel, BadLabelsAndKindsNameTheLine) {
-  for (const char* line : {"glyph-label 0 bumps", "glyph-label 2.5 bumps", "glyph-label 3 spikes",
-                           "glyph-label 3", "glyph-label 16384 none"}) {
-    try {
-      ViewerScript::parse(line, "s.txt");
-      ADD_FAILURE() << line;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("line 1: glyph-label"), std::string::npos) << e.what();
-    }
-  }
 }
 
 }  // namespace
