@@ -29,7 +29,7 @@ bool skipHook(RayState s, float t, vec3 tex) { return !blockVisible(tex); }
 
 // One sample: 0 the ray goes on, 1 it ends (early termination), 2 (only with glyphs = false)
 // this sample needs the glyph code: nothing is composited, and the ray goes on from this
-// sample in the loop that runs it (see MVW_SPLIT_LOOP below).
+// sample in the full loop, which runs it (RAY_MIDDLE_LOOP below).
 int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, const bool glyphs) {
   float u = clamp(value * uTransferRange.x + uTransferRange.y, 0.0, 1.0);
   vec4 g = vec4(0.0);
@@ -91,7 +91,7 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 
 #if defined(MVW_GLYPHS)
 // The ray runs without the glyph code until its first sample that needs it, then with it
-// (MVW_MIDDLE_LOOP, then the full loop), and the glyph map position is computed per sample in
+// (RAY_MIDDLE_LOOP, then the full loop), and the glyph map position is computed per sample in
 // that last loop only: carried through one loop as ray state (six floats), the glyph ray cost
 // composite DVR 1.35x the frame without glyphs on llvmpipe even with no attribute in view
 // (register pressure in every iteration); split, 1.07x then
@@ -100,13 +100,13 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
 // pixels are the same, bit for bit: below the window the glyph code returns the anatomy's
 // normal. Before both, the lean loop (below) passes the transparent samples, and both hand the
 // ray back to it at the next one.
-#define MVW_MIDDLE_LOOP
+#define RAY_MIDDLE_LOOP
 int middleSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   return compositeSample(s, t, tex, value, ray, false);
 }
 #endif
 // The ray runs a lean loop up to its first sample the table does not leave transparent, then
-// the full one from that sample on (MVW_SPLIT_LOOP): the lean loop reads the value alone and
+// the full one from that sample on (RAY_LEAN_LOOP): the lean loop reads the value alone and
 // asks whether it lies between the first and the last table entry with some opacity (no table
 // lookup), without the gradient, the shading and the compositing. llvmpipe runs every
 // part of a loop body on every iteration, and most samples in a visible block are transparent
@@ -116,17 +116,17 @@ int middleSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) 
 // so the 1D table's entries answer for it. The value comes from the intensity texture alone
 // (one channel; the packed texture's A holds the same texel).
 // The full loop hands the ray back to the lean one at its next sample outside those values
-// (MVW_HAND_BACK): behind a thin bone most samples are transparent (on the Cranium CT's bone
+// (RAY_HAND_BACK): behind a thin bone most samples are transparent (on the Cranium CT's bone
 // preset more than half of the full loop's), and in the lean loop they cost a one-channel
 // fetch and a comparison instead of the packed fetch, the table, the shading and the
 // compositing. The same samples, the same pixels.
-#define MVW_SPLIT_LOOP
-#define MVW_HAND_BACK
+#define RAY_LEAN_LOOP
+#define RAY_HAND_BACK
 bool handBackHook(float value) { return value < uVisibleValues.x || value > uVisibleValues.y; }
-float plainSampleValue(vec3 tex) {
+float leanSampleValue(vec3 tex) {
   return textureLod(uIntensity, storedTexture(tex), 0.0).r * uValueMapping.x + uValueMapping.y;
 }
-int plainSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
+int leanSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   return value >= uVisibleValues.x && value <= uVisibleValues.y ? 2 : 0;
 }
 

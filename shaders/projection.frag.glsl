@@ -25,7 +25,7 @@ struct RayState {
   float value;
   float depth;
   int count;
-  float bound;  // MIP: the ray's maximum is at least this (MVW_PREPASS)
+  float bound;  // MIP: the ray's maximum is at least this (RAY_PREPASS)
   // Depth cue, per ray: beta(t) = cue0 - cue1 t (eq. 3 with z' = a z + b) and the emission
   // phi = clamp(v * scale + offset): the loop then multiplies and adds, and never divides
   // (a division per sample cost the cue a third of plain MIP's time on llvmpipe).
@@ -59,7 +59,7 @@ void setupHook(inout RayState s, Ray ray) {
 }
 
 #if defined(MVW_MIP) && !defined(MVW_DEPTH_CUE) && !defined(MVW_NEAREST)
-// Before the ray proper, every MVW_PREPASS_STRIDE-th of its samples: their maximum, less a
+// Before the ray proper, every PREPASS_STRIDE-th of its samples: their maximum, less a
 // margin, bounds the ray's maximum from below, so blocks whose maximum lies under it are
 // skipped from the start. The maximum so far alone skips no block before the ray has met
 // the brightest structure (in front of a skull: all of the air and the skin). The margin (a
@@ -70,11 +70,11 @@ void setupHook(inout RayState s, Ray ray) {
 // nearest-neighbour sampling (MVW_NEAREST): were the compiler to evaluate the same expression
 // differently in the two loops (a fused multiply-add in one only), a sample there could read
 // another voxel altogether, which no margin short of the value range covers.
-#define MVW_PREPASS
-#define MVW_PREPASS_STRIDE 16.0
+#define RAY_PREPASS
+#define PREPASS_STRIDE 16.0
 void prepassHook(inout RayState s, float t0, float tEnd) {
   float m = s.value;
-  for (float n = 0.0; n < float(uMaxSteps); n += MVW_PREPASS_STRIDE) {
+  for (float n = 0.0; n < float(uMaxSteps); n += PREPASS_STRIDE) {
     float t = sampleDistance(t0, n);  // the ray's own sample n
     if (t > tEnd) break;
     m = max(m, sampleValue(textureAt(t)));

@@ -1,26 +1,59 @@
-// The ray-caster template. A mode file defines the hooks, then includes this file:
-//   void setupHook(inout RayState s, Ray ray)              before the first sample
+// The ray-caster template. A mode file includes raycast/common.glsl, declares RayState, defines
+// the hooks and the loop macros it uses, then includes this file. The hooks:
+//   void setupHook(inout RayState s, Ray ray)                 every mode; before the first sample
+//   void prepassHook(inout RayState s, float t0, float tEnd)  with RAY_PREPASS; after setupHook,
+//                          before the first loop (t0: sample 0's distance, tEnd: the box's exit)
+//   bool skipHook(RayState s, float t, vec3 tex)  every mode; in every loop, first thing per
+//                          sample: true, nothing in this block can change the result (the loop
+//                          skips to the block's exit)
 //   bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray)
-//                                                          per sample; false ends the ray
-//                                                          (early termination)
-//   void finishHook(inout RayState s, Ray ray, vec2 span)  writes fragColor and fragDepth
-//   bool skipHook(RayState s, float t, vec3 tex)           true: nothing in this block can
-//                                                          change the result (skip to its exit)
-//   int plainSampleHook(...)  (only where the mode defines MVW_SPLIT_LOOP) like sampleHook
-//                             without its costly part: 0 go on, 1 end the ray, 2 hand this
-//                             sample and the rest of the ray over to sampleHook
-//   float plainSampleValue(vec3 tex)  (with MVW_SPLIT_LOOP) the value plainSampleHook gets
-//   bool handBackHook(float value)  (where the mode also defines MVW_HAND_BACK or
-//                             MVW_MIDDLE_LOOP) true: a sample of this value leaves the ray
-//                             state as it is (sampleHook would do nothing), so the loop hands
-//                             the rest of the ray back to the plain one
-//   int middleSampleHook(...)  (only with MVW_MIDDLE_LOOP, which needs MVW_SPLIT_LOOP) run
-//                             between the plain loop and the full one: 0 go on, 1 end the ray,
-//                             2 hand this sample and the rest of the ray over to sampleHook
+//                          every mode; the full loop's sample: false ends the ray (early
+//                          termination)
+//   void finishHook(inout RayState s, Ray ray, vec2 span)  every mode; writes fragColor and
+//                          fragDepth
+//   float leanSampleValue(vec3 tex)  with RAY_LEAN_LOOP; the value the lean loop reads (it may
+//                          read less than sampleValue: one channel, not the packed texel)
+//   int leanSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray)
+//                          with RAY_LEAN_LOOP; the lean loop's sample, sampleHook without its
+//                          costly part: 0 go on, 1 end the ray, 2 hand this sample and the rest
+//                          of the ray over (to the middle loop, else the full loop)
+//   int middleSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray)
+//                          with RAY_MIDDLE_LOOP; the middle loop's sample: 0 go on, 1 end the
+//                          ray, 2 hand this sample and the rest of the ray over to the full loop
+//   bool handBackHook(float value)  with RAY_HAND_BACK or RAY_MIDDLE_LOOP; true: a sample of
+//                          this value leaves the ray state as it is (sampleHook would do
+//                          nothing), so the loop passes it and hands the ray back to the lean loop
+// The loop macros (RAY_*, defined by the mode file; MVW_* are the variants C++ defines):
+//   RAY_LEAN_LOOP    the ray starts in the lean loop and runs in rounds (below)
+//   RAY_MIDDLE_LOOP  a middle loop between the lean and the full loop; needs RAY_LEAN_LOOP
+//   RAY_HAND_BACK    the full loop hands the ray back to the lean loop; needs RAY_LEAN_LOOP
+//   RAY_PREPASS      prepassHook runs before the first loop
+// Without RAY_LEAN_LOOP the full loop alone runs the whole ray. With it, in rounds ([...]:
+// only with its macro):
+//
+//   setupHook -> [prepassHook] -> lean loop --2--> [middle loop] --2--> full loop
+//                                   ^                   |                  |
+//                                   |   handBackHook    |                  | handBackHook
+//                                   +-------------------+------------------+ [RAY_HAND_BACK]
+//   Any loop ends the ray (-> finishHook) at 1 or false from its hook, the box's exit or
+//   uMaxSteps; a sample handed over (2) is sampled again by the next loop, one handed back
+//   is passed, so every round advances by a sample at least.
+//
 // RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
-#if defined(MVW_MIDDLE_LOOP) && !defined(MVW_SPLIT_LOOP)
-#error "MVW_MIDDLE_LOOP runs inside MVW_SPLIT_LOOP's rounds: define both"
+#if !defined(MVW_RAYCAST_COMMON)
+#error "include raycast/common.glsl before raycast/template.glsl"
+#endif
+#if defined(RAY_HAND_BACK) && !defined(RAY_LEAN_LOOP)
+#error "RAY_HAND_BACK hands the ray back to the lean loop: define RAY_LEAN_LOOP (and leanSampleValue, leanSampleHook) too"
+#endif
+#if defined(RAY_MIDDLE_LOOP) && !defined(RAY_LEAN_LOOP)
+#error "RAY_MIDDLE_LOOP runs between the lean loop and the full loop: define RAY_LEAN_LOOP (and leanSampleValue, leanSampleHook) too"
+#endif
+// The loop macros' names before they got their own prefix: a mode file still using them
+// would otherwise compile, and its rays run in the full loop alone (the same pixels, slower).
+#if defined(MVW_SPLIT_LOOP) || defined(MVW_HAND_BACK) || defined(MVW_MIDDLE_LOOP) || defined(MVW_PREPASS)
+#error "the loop macros are RAY_LEAN_LOOP, RAY_HAND_BACK, RAY_MIDDLE_LOOP and RAY_PREPASS (and plainSampleHook, plainSampleValue are leanSampleHook, leanSampleValue)"
 #endif
 void main() {
   Ray ray = makeRay();
@@ -36,19 +69,21 @@ void main() {
     // computed afresh (not summed step by step): no rounding builds up along a long ray, and a
     // mode's pre-pass over every k-th sample reads the very samples the ray will.
     float t0 = span.x + (uJitter ? jitterOffset() : 0.5) * uStep;
-#if defined(MVW_PREPASS)
+#if defined(RAY_PREPASS)
     prepassHook(s, t0, span.y);
 #endif
     int i = 0;
     float n = 0.0;  // whole numbers, exact in a float up to 2^24 samples
     bool rest = true;
-#if defined(MVW_SPLIT_LOOP)
-    // Rounds of the plain loop up to a sample it hands over, (MVW_MIDDLE_LOOP) the middle
-    // loop, then the full loop from the sample handed over on, until the full loop ends the ray
-    // or (MVW_HAND_BACK) meets a sample that changes nothing and hands the ray back. A ray
-    // through a thin bone thus crosses the transparent tissue behind it in the plain loop
-    // again, not in the full one (which llvmpipe runs whole for every sample). Every round
-    // advances by a sample at least.
+    // Each loop spells out its first lines, the sample's distance, the box's end and the skip,
+    // and the full loop is written out twice (in rounds, and alone): as one function returning
+    // what to do, composite and MIP took 4-5 % longer.
+#if defined(RAY_LEAN_LOOP)
+    // Rounds of the lean loop up to a sample it hands over, (RAY_MIDDLE_LOOP) the middle loop,
+    // then the full loop from the sample handed over on, until the full loop ends the ray or
+    // (RAY_HAND_BACK) meets a sample that changes nothing and hands the ray back. A ray through
+    // a thin bone thus crosses the transparent tissue behind it in the lean loop again, not in
+    // the full one (which llvmpipe runs whole for every sample).
     while (rest) {
       bool handed = false;
       for (; i < uMaxSteps; ++i, n += 1.0) {
@@ -59,7 +94,7 @@ void main() {
           n += skipSteps(t, tex);
           continue;
         }
-        int next = plainSampleHook(s, t, tex, plainSampleValue(tex), ray);
+        int next = leanSampleHook(s, t, tex, leanSampleValue(tex), ray);
         if (next == 1) rest = false;
         if (next != 0) {
           handed = true;
@@ -67,13 +102,10 @@ void main() {
         }
       }
       if (!handed) break;
-#endif
-#if defined(MVW_MIDDLE_LOOP)
-      // The middle loop, from the sample the plain loop handed over: it hands the ray back to
-      // the plain loop at the next sample that changes nothing, passing it, and on to the full
+#if defined(RAY_MIDDLE_LOOP)
+      // The middle loop, from the sample the lean loop handed over: it hands the ray back to
+      // the lean loop at the next sample that changes nothing, passing it, and on to the full
       // loop at a sample middleSampleHook leaves to sampleHook (2), not passing it.
-      // (Each loop spells out its first lines, the sample's distance, the box's end and the
-      // skip: as one function returning what to do, composite and MIP took 4-5 % longer.)
       bool toFull = false;
       for (; rest && i < uMaxSteps; ++i, n += 1.0) {
         float t = sampleDistance(t0, n);
@@ -102,6 +134,7 @@ void main() {
       if (i >= uMaxSteps) rest = false;
       if (!toFull) continue;
 #endif
+      // The full loop, the same as the one below but for the hand-back.
       for (; rest && i < uMaxSteps; ++i, n += 1.0) {
         float t = sampleDistance(t0, n);
         if (t > span.y) {
@@ -109,14 +142,12 @@ void main() {
           break;
         }
         vec3 tex = textureAt(t);
-        // Tested per sample: caching the test once per block entered left ring artefacts on
-        // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
         if (skipHook(s, t, tex)) {
           n += skipSteps(t, tex);
           continue;
         }
         float value = sampleValue(tex);
-#if defined(MVW_HAND_BACK)
+#if defined(RAY_HAND_BACK)
         if (handBackHook(value)) {
           ++i;
           n += 1.0;
@@ -129,8 +160,29 @@ void main() {
         }
       }
       if (i >= uMaxSteps) rest = false;
-#if defined(MVW_SPLIT_LOOP)
     }
+#else
+    // The full loop alone, the whole ray.
+    for (; rest && i < uMaxSteps; ++i, n += 1.0) {
+      float t = sampleDistance(t0, n);
+      if (t > span.y) {
+        rest = false;
+        break;
+      }
+      vec3 tex = textureAt(t);
+      // Tested per sample: caching the test once per block entered left ring artefacts on
+      // isosurfaces of ch2better (iso 60); the cause was not pinned down, so no caching.
+      if (skipHook(s, t, tex)) {
+        n += skipSteps(t, tex);
+        continue;
+      }
+      float value = sampleValue(tex);
+      if (!sampleHook(s, t, tex, value, ray)) {
+        rest = false;
+        break;
+      }
+    }
+    if (i >= uMaxSteps) rest = false;
 #endif
   }
   finishHook(s, ray, span);

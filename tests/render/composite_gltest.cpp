@@ -67,7 +67,7 @@ TEST(Raycast, RenderingTwiceGivesIdenticalPixels) {
 // gradient from the packed texture), three presets, eight directions, shading on. (The visible
 // box one block short on its high side: 2875 values differ, by up to 59.) With the floor the
 // full loop never hands a ray back to the lean one, so this also checks the hand-back
-// (MVW_HAND_BACK) against rays that stay in the full loop (passing one more sample at each
+// (RAY_HAND_BACK) against rays that stay in the full loop (passing one more sample at each
 // hand-back: 3797 values differ, by up to 4).
 TEST(Raycast, EmptySpaceSkippingLeavesOutNoVisibleSample) {
   const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));

@@ -1,6 +1,8 @@
 #pragma once
 // The ray caster's GL programs (internal to mvw_render), compiled on first use and kept: one
 // per mode and compile-time variant, so a feature that is off costs nothing in the ray loop.
+#include <bitset>
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -10,15 +12,41 @@
 
 namespace mvw::render::detail {
 
+// How the volume's textures hold it (VolumeTextures), the same for every program of a
+// renderer: the gradient in a texture of its own; packed with the intensity's texels
+// (VolumeTextures::packed), so that composite's trilinear samples read value and gradient in
+// one fetch; taken from the intensity on the fly (MVW_GRADIENT_ON_THE_FLY); or on the fly from
+// a volume whose slices are folded into its texture (VolumeTextures::foldRuns, MVW_FOLDED),
+// which never has a gradient texture. Count: how many there are.
+enum class VolumeLayout { Gradient, PackedGradient, OnTheFly, FoldedOnTheFly, Count };
+
+// A program's compile-time variants (#define MVW_... 1 from C++), one bit each; a mode ignores
+// the ones it has no use for. Count: how many there are.
+enum class RaycastVariant {
+  DepthCue,  // MIP
+  Nearest,   // nearest-neighbour samples: MIP, and composite with the packed gradient
+  Tf2d,      // composite
+  Fusion,    // composite: the functional colour blended in
+  Glyphs,    // composite and isosurface, and the four below only with it
+  GlyphSimple,
+  GlyphConcave,
+  GlyphBoth,
+  GlyphPaper,
+  ImageColormap,  // MIP, MinIP, average, MPR
+  Count
+};
+using RaycastVariants = std::bitset<static_cast<std::size_t>(RaycastVariant::Count)>;
+
+// What a program is compiled from: shader paths under shaders/ and the defines ("NAME VALUE")
+// prepended to both, in that order.
+struct RaycastSource {
+  std::string vertex, fragment;
+  std::vector<std::string> defines;
+};
+
 class RaycastPrograms {
  public:
-  // gradientOnTheFly: composite and isosurface take the gradient from the intensity
-  // (MVW_GRADIENT_ON_THE_FLY) instead of the gradient texture; packedGradient: the texture
-  // holds the intensity too (VolumeTextures::packed), and composite's trilinear samples read
-  // value and gradient in one fetch; folded: the volume's slices are folded into its texture
-  // (VolumeTextures::foldRuns, MVW_FOLDED).
-  RaycastPrograms(bool gradientOnTheFly, bool packedGradient, bool folded)
-      : gradientOnTheFly_(gradientOnTheFly), packedGradient_(packedGradient), folded_(folded) {}
+  explicit RaycastPrograms(VolumeLayout layout) : layout_(layout) {}
   // The program for a ray-cast mode (not the shell modes) with the variants `settings` and
   // `fusion` (the functional colour blended in) ask for.
   const ShaderProgram& forMode(RenderMode mode, const RenderSettings& settings, bool fusion);
@@ -28,12 +56,18 @@ class RaycastPrograms {
   // vertices; otherwise (MPR) a triangle over the viewport, 3 vertices.
   static bool usesBoxProxy(RenderMode mode);
 
+  // The variants `settings` and `fusion` ask for, whatever the mode.
+  static RaycastVariants variants(const RenderSettings& settings, bool fusion);
+  // forMode's program, from the mode, the layout and the variants alone: no setting reaches
+  // a define but through a variant, so every() cannot miss one.
+  static RaycastSource source(RenderMode mode, VolumeLayout layout, RaycastVariants variants);
+  // Every distinct program forMode and beta can make: each ray-cast mode under each layout
+  // with each combination of variants, each set of defines once.
+  static std::vector<RaycastSource> every();
+
  private:
-  const ShaderProgram& cached(const std::string& key, const std::string& vertex,
-                              const std::string& fragment, const std::vector<std::string>& defines);
-  bool gradientOnTheFly_;
-  bool packedGradient_;
-  bool folded_;
+  const ShaderProgram& cached(const std::string& key, const RaycastSource& source);
+  VolumeLayout layout_;
   std::map<std::string, ShaderProgram> programs_;
 };
 

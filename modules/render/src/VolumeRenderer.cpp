@@ -37,6 +37,13 @@ GlContext& madeCurrent(GlContext& context) {
   return context;
 }
 
+// A folded volume's gradient is always taken on the fly, and one on the fly is never packed.
+detail::VolumeLayout layoutOf(const detail::VolumeTextures& volume) {
+  if (volume.foldRuns() > 1) return detail::VolumeLayout::FoldedOnTheFly;
+  if (volume.gradientSource() == GradientSource::OnTheFly) return detail::VolumeLayout::OnTheFly;
+  return volume.packed() ? detail::VolumeLayout::PackedGradient : detail::VolumeLayout::Gradient;
+}
+
 }  // namespace
 
 struct VolumeRenderer::Impl {
@@ -65,8 +72,7 @@ struct VolumeRenderer::Impl {
         crop(v),
         defaultStep(defaultStepMm(v)),
         blocks(v),
-        programs(volume.gradientSource() == GradientSource::OnTheFly, volume.packed(),
-                 volume.foldRuns() > 1),
+        programs(layoutOf(volume)),
         vao(detail::makeVertexArray()) {}
 
   Camera cameraFor(const RenderSettings& s) const;
