@@ -23,13 +23,19 @@ namespace mvw::fuzz {
 // what exceeds the limit before allocating it (ReadOptions::maxBytes).
 inline constexpr std::size_t kMaxBytes = std::size_t(64) << 20;
 
+// The harness's inputs as files, in a folder of the process's own, removed when it exits.
 inline const std::filesystem::path& scratch() {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("mvw-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
+  struct Folder {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("mvw-fuzz-" + std::to_string(::getpid()));
+    Folder() { std::filesystem::create_directories(path); }
+    ~Folder() {
+      std::error_code ec;
+      std::filesystem::remove_all(path, ec);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
 }
 
 inline std::filesystem::path writeInput(const std::uint8_t* data, std::size_t size,

@@ -1,5 +1,6 @@
 #pragma once
 // Shared helpers for the unit tests: a scratch folder per test and the sample-data root.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -12,10 +13,13 @@ namespace mvw::test {
 
 // Named by the process too: two checkouts' test runs on one machine (or CTest's parallel
 // jobs) never share a folder.
+// A parameterised test's names hold '/' ("Formats/RoundTrip", "X/0"): replaced, so the folder
+// is one level under the temporary folder and removing it leaves nothing behind.
 inline std::filesystem::path scratchDirOf(const ::testing::TestInfo& info) {
-  return std::filesystem::temp_directory_path() /
-         ("mvw-test-" + std::string(info.test_suite_name()) + "-" + info.name() + "-" +
-          std::to_string(::getpid()));
+  std::string name = "mvw-test-" + std::string(info.test_suite_name()) + "-" + info.name() + "-" +
+                     std::to_string(::getpid());
+  std::replace(name.begin(), name.end(), '/', '_');
+  return std::filesystem::temp_directory_path() / name;
 }
 
 // Removes a test's scratch folder when the test ends; a failed test's folder stays for a look,
