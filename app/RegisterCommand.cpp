@@ -16,7 +16,7 @@
 
 #include "CliChecks.h"
 #include "mvw/core/Error.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/resampling/RegistrationQa.h"

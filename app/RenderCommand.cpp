@@ -23,7 +23,7 @@
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/MovieWriter.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/SegmentLegend.h"

@@ -19,7 +19,7 @@
 #include "ViewerState.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/DisplayTexture.h"
 #include "mvw/render/VolumeRenderer.h"

@@ -7,7 +7,7 @@
 
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/LabelTable.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/render/TransferFunction.h"
 #include "mvw/study/Caption.h"
 #include "mvw/study/ModalityDefaults.h"

@@ -20,7 +20,7 @@
 
 #include "../unit/TestUtil.h"
 #include "mvw/core/GlyphDefaults.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/render/Framing.h"

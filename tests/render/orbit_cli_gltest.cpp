@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "../unit/TestUtil.h"
 #include "mvw/io/ColorPalettes.h"
 #include "mvw/io/MovieWriter.h"
+#include "mvw/io/Png.h"
 
 namespace mvw {
 namespace {
@@ -56,9 +56,21 @@ fs::path writeStudy(const fs::path& dir, const std::string& view) {
   return file;
 }
 
+// A PNG as BGRA (OpenCV's channel order, as the checks below spell colours), read by io::readPng.
 cv::Mat png(const fs::path& file) {
-  cv::Mat m = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
-  EXPECT_FALSE(m.empty()) << file;
+  Image image;
+  try {
+    image = io::readPng(file);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what();
+    return cv::Mat();
+  }
+  cv::Mat m(image.height, image.width, CV_8UC4);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint8_t* p = image.pixel(x, y);
+      m.at<cv::Vec4b>(y, x) = cv::Vec4b(p[2], p[1], p[0], p[3]);
+    }
   return m;
 }
 

@@ -11,7 +11,7 @@
 #include "../unit/TestUtil.h"
 #include "RenderTestUtil.h"
 #include "mvw/core/Orientation.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/render/Framing.h"

@@ -15,7 +15,7 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Image.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/validate/Validator.h"
 
 namespace mvw::validate {

@@ -1,25 +1,101 @@
 #include "mvw/io/MovieWriter.h"
 
+#include <dlfcn.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <string>
+#include <vector>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
-
+#include "movie/MoviePlugin.h"
 #include "mvw/core/Error.h"
 
 namespace mvw::io {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Where libmvw-movie.so is looked for, in order: $MVW_MOVIE_PLUGIN (the file itself), beside
+// the running executable's prefix (<bin>/../<libdir>/mvw: an installed or relocated mvw, and
+// this build tree's app/ and tests/), then the build tree and the install prefix this copy of
+// mvw_io was built for (a program embedding the installed libraries). $MVW_MOVIE_PLUGIN, when
+// set, is the only place tried.
+std::vector<fs::path> pluginCandidates() {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("MVW_MOVIE_PLUGIN"); env && *env) candidates.emplace_back(env);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    candidates.push_back(exe.parent_path().parent_path() / MVW_INSTALL_LIBDIR / "mvw" /
+                         MVW_MOVIE_PLUGIN_FILE);
+    candidates.push_back(exe.parent_path().parent_path() / "lib" / "mvw" / MVW_MOVIE_PLUGIN_FILE);
+  }
+  candidates.emplace_back(MVW_MOVIE_PLUGIN_BUILD_PATH);
+  candidates.emplace_back(MVW_MOVIE_PLUGIN_INSTALL_PATH);
+  return candidates;
+}
+
+// The plugin, loaded once per process and never unloaded; throws mvw::Error naming `file`
+// (the movie asked for) and every place looked in when it cannot be loaded.
+const MvwMovieApi& moviePlugin(const fs::path& file) {
+  static const MvwMovieApi* api = nullptr;
+  static std::string failure;
+  static const bool loaded = [] {
+    std::string tried;
+    const char* chosen = std::getenv("MVW_MOVIE_PLUGIN");
+    for (const fs::path& candidate : pluginCandidates()) {
+      std::error_code ec;
+      if (!fs::is_regular_file(candidate, ec)) {
+        if (chosen && *chosen) {  // a plugin named by the user is the only one tried
+          failure = "MVW_MOVIE_PLUGIN names " + candidate.string() + ", which is not a file";
+          return false;
+        }
+        tried += (tried.empty() ? "" : ", ") + candidate.string();
+        continue;
+      }
+      void* handle = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!handle) {
+        const char* why = ::dlerror();
+        failure = "mvw's movie plugin " + candidate.string() +
+                  " does not load: " + (why ? why : "unknown reason");
+        return false;
+      }
+      using Entry = const MvwMovieApi* (*)();
+      const auto entry = reinterpret_cast<Entry>(::dlsym(handle, "mvw_movie_api"));
+      api = entry ? entry() : nullptr;
+      if (!api || api->abi != kMvwMovieAbi) {
+        failure = "mvw's movie plugin " + candidate.string() + " is of another mvw build";
+        api = nullptr;
+        return false;
+      }
+      return true;
+    }
+    failure = std::string("mvw's movie plugin (") + MVW_MOVIE_PLUGIN_FILE +
+              ") is not installed; looked in " + tried;
+    return false;
+  }();
+  if (!loaded) throw Error(file.string() + ": cannot encode or decode a movie: " + failure);
+  return *api;
+}
+
+std::string pluginReason(const MvwMovieApi& api) {
+  const char* why = api.lastError();
+  return why && *why ? std::string(" (") + why + ")" : std::string();
+}
+
+}  // namespace
+
 struct MovieWriter::Impl {
   fs::path path, tmp;
   int width = 0, height = 0;  // of the frames given
   int frames = 0;
   bool finished = false;
-  cv::VideoWriter writer;
+  const MvwMovieApi* api = nullptr;
+  void* writer = nullptr;            // the plugin's; closed by finish() or the destructor
+  std::vector<std::uint8_t> padded;  // a frame of the even size
 };
 
 MovieWriter::MovieWriter(const fs::path& path, int width, int height, double fps)
@@ -29,11 +105,11 @@ MovieWriter::MovieWriter(const fs::path& path, int width, int height, double fps
   m.width = width;
   m.height = height;
   const std::string ext = path.extension().string();
-  int fourcc = 0;
+  const char* fourcc = nullptr;
   if (ext == ".mp4")
-    fourcc = cv::VideoWriter::fourcc('m', 'p', '4', 'v');
+    fourcc = "mp4v";
   else if (ext == ".avi")
-    fourcc = cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
+    fourcc = "MJPG";
   else
     throw Error(path.string() + ": a movie is .mp4 or .avi");
   if (width <= 0 || height <= 0 || width > 8192 || height > 8192)
@@ -41,15 +117,17 @@ MovieWriter::MovieWriter(const fs::path& path, int width, int height, double fps
   // The temporary keeps the extension: the container is chosen by it.
   m.tmp =
       path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
-  const cv::Size size(width + width % 2, height + height % 2);
-  if (!m.writer.open(m.tmp.string(), cv::CAP_FFMPEG, fourcc, fps, size) || !m.writer.isOpened())
-    throw Error(path.string() + ": OpenCV has no working " + ext.substr(1) +
-                " encoder (its FFmpeg backend did not open the file)");
+  m.api = &moviePlugin(path);
+  m.padded.resize(static_cast<std::size_t>(width + width % 2) * (height + height % 2) * 4);
+  m.writer = m.api->openWriter(m.tmp.c_str(), fourcc, fps, width + width % 2, height + height % 2);
+  if (!m.writer)
+    throw Error(path.string() + ": OpenCV has no working " + ext.substr(1) + " encoder" +
+                pluginReason(*m.api));
 }
 
 MovieWriter::~MovieWriter() {
   if (impl_->finished) return;
-  impl_->writer.release();
+  if (impl_->writer) impl_->api->closeWriter(impl_->writer);
   std::error_code ec;
   fs::remove(impl_->tmp, ec);
 }
@@ -60,19 +138,24 @@ void MovieWriter::add(const Image& frame) {
     throw Error(m.path.string() + ": a frame of " + std::to_string(frame.width) + " x " +
                 std::to_string(frame.height) + " in a movie of " + std::to_string(m.width) + " x " +
                 std::to_string(m.height));
-  const cv::Mat rgba(frame.height, frame.width, CV_8UC4,
-                     const_cast<std::uint8_t*>(frame.rgba.data()));
-  cv::Mat bgr, padded;
-  cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
-  cv::copyMakeBorder(bgr, padded, 0, m.height % 2, 0, m.width % 2, cv::BORDER_REPLICATE);
-  m.writer.write(padded);
+  // An odd size is padded by repeating the last column and row.
+  const int w = width(), h = height();
+  const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
+  for (int y = 0; y < h; ++y) {
+    std::uint8_t* out = m.padded.data() + static_cast<std::size_t>(y) * w * 4;
+    std::memcpy(out, frame.pixel(0, std::min(y, frame.height - 1)), row);
+    if (w != frame.width) std::memcpy(out + row, out + row - 4, 4);
+  }
+  if (!m.api->writeFrame(m.writer, m.padded.data(), w, h))
+    throw Error(m.path.string() + ": the movie encoder refused a frame" + pluginReason(*m.api));
   ++m.frames;
 }
 
 void MovieWriter::finish() {
   Impl& m = *impl_;
   if (m.finished) return;
-  m.writer.release();
+  m.api->closeWriter(m.writer);
+  m.writer = nullptr;
   std::error_code ec;
   if (!fs::exists(m.tmp, ec) || fs::file_size(m.tmp, ec) == 0)
     throw Error(m.path.string() + ": the movie encoder wrote nothing");
@@ -86,14 +169,10 @@ int MovieWriter::width() const { return impl_->width + impl_->width % 2; }
 int MovieWriter::height() const { return impl_->height + impl_->height % 2; }
 
 MovieInfo readMovieInfo(const fs::path& path) {
-  cv::VideoCapture capture(path.string(), cv::CAP_FFMPEG);
-  if (!capture.isOpened()) throw Error(path.string() + ": cannot open the movie");
+  const MvwMovieApi& api = moviePlugin(path);
   MovieInfo info;
-  cv::Mat frame;
-  while (capture.read(frame)) {
-    if (info.frames == 0) info.width = frame.cols, info.height = frame.rows;
-    ++info.frames;
-  }
+  if (!api.probe(path.c_str(), &info.frames, &info.width, &info.height))
+    throw Error(path.string() + ": cannot open the movie" + pluginReason(api));
   return info;
 }
 

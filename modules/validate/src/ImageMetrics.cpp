@@ -7,7 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 
 namespace mvw::validate {
 

@@ -15,12 +15,13 @@
 #include <vector>
 
 #include <zlib.h>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "Format.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
+#include "mvw/io/Png.h"
 #include "mvw/study/StudyLoader.h"
 #include "mvw/validate/Checksums.h"
 #include "mvw/validate/ImageMetrics.h"
@@ -84,17 +85,22 @@ std::optional<std::string> pngStructureProblem(const fs::path& file) {
   }
 }
 
-// An image file as 8-bit BGR, empty when it cannot be read (`why`, when given, receives the
-// reason where one is known): OpenCV throws (rather than returning empty) for a header
-// claiming more pixels than it will decode, e.g. 100000^2.
+// An image file as 8-bit BGR (alpha dropped, 16-bit samples by their high byte), empty when it
+// cannot be read (`why`, when given, receives the reason where one is known). io::readPng
+// refuses a header claiming more pixels than it will decode, e.g. 100000^2.
 cv::Mat readImage(const fs::path& file, std::string* why = nullptr) {
   if (const auto problem = pngStructureProblem(file)) {
     if (why) *why = *problem;
     return cv::Mat();
   }
   try {
-    return cv::imread(file.string(), cv::IMREAD_COLOR);
-  } catch (const cv::Exception&) {
+    Image image = io::readPng(file);
+    const cv::Mat rgba(image.height, image.width, CV_8UC4, image.rgba.data());
+    cv::Mat bgr;
+    cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
+    return bgr;
+  } catch (const InputError& e) {
+    if (why) *why = e.problem();
     return cv::Mat();
   }
 }

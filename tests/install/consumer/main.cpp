@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "mvw/core/Error.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/render/GlContext.h"
 #include "mvw/render/VolumeRenderer.h"

@@ -1,6 +1,7 @@
 #pragma once
 // A movie of rendered frames (a rotating MIP): MPEG-4 Part 2 ('mp4v') in .mp4, or Motion JPEG
-// in .avi, through OpenCV's VideoWriter (FFmpeg backend). The file appears whole or not at all:
+// in .avi, through OpenCV's VideoWriter (FFmpeg backend) in the plugin libmvw-movie.so, loaded on
+// first use (src/movie/MoviePlugin.h). The file appears whole or not at all:
 // it is written under a temporary name and renamed by finish(); a writer destroyed before
 // finish() removes it. MPEG-4 needs even sizes, so an odd width or height is padded by one
 // column or row repeating the last one (both formats, so a movie's size does not depend on it).
