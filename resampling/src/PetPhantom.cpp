@@ -77,10 +77,12 @@ Volume uptakeFromCt(const Volume& ct, double fwhmMm) {
   for (const auto& [offset, radius] :
        {std::pair{glm::dvec3(25, 15, 20), 9.0}, std::pair{glm::dvec3(-20, -25, 5), 7.0}}) {
     const glm::dvec3 centre = mid + offset;
+    // worldFromIndexPoint's own arithmetic, inlined: this loop visits every CT voxel.
+    const glm::dmat4& world = ct.worldFromIndex();
     for (int k = 0; k < d.z; ++k)
       for (int j = 0; j < d.y; ++j)
         for (int i = 0; i < d.x; ++i)
-          if (glm::length(ct.worldFromIndexPoint({i, j, k}) - centre) < radius)
+          if (glm::length(glm::dvec3(world * glm::dvec4(i, j, k, 1.0)) - centre) < radius)
             p[u.linearIndex(i, j, k)] = 4.0f;
   }
   blur(u, fwhmMm / 2.3548);
