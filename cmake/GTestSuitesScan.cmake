@@ -3,11 +3,15 @@
 # tests and writes OUT, a CTest script with one add_test per suite.
 #   cmake -D EXE=... -D OUT=... -D TIMEOUT=600 [-D LABELS=gl,data] [-D SKIP_REGULAR_EXPRESSION=RE]
 #         -P GTestSuitesScan.cmake
+# No list is left behind a failure, so the next CTest run scans again.
+macro(refuse why)
+  file(REMOVE ${OUT})
+  message(FATAL_ERROR "${why}")
+endmacro()
 execute_process(COMMAND ${EXE} --gtest_list_tests
                 OUTPUT_VARIABLE listing ERROR_VARIABLE errors RESULT_VARIABLE rc TIMEOUT 60)
 if(NOT rc EQUAL 0)
-  file(REMOVE ${OUT})
-  message(FATAL_ERROR "${EXE} --gtest_list_tests failed (${rc}):\n${errors}")
+  refuse("${EXE} --gtest_list_tests failed (${rc}):\n${errors}")
 endif()
 string(REPLACE "\n" ";" lines "${listing}")
 set(suites "")
@@ -20,8 +24,7 @@ foreach(line IN LISTS lines)
 endforeach()
 list(REMOVE_DUPLICATES suites)
 if(NOT suites)
-  file(REMOVE ${OUT})
-  message(FATAL_ERROR "${EXE} lists no test suite")
+  refuse("${EXE} lists no test suite")
 endif()
 string(REPLACE "," ";" LABELS "${LABELS}")
 set(script "# Written by cmake/GTestSuitesScan.cmake from ${EXE} --gtest_list_tests.\n")
