@@ -27,9 +27,11 @@ struct CliRun {
 };
 
 // mvw with `args` (a shell-quoted string); stderr captured.
-CliRun mvw(const std::string& args, const fs::path& dir) {
+// `env`, when given, is "NAME=VALUE" set for that run only.
+CliRun mvw(const std::string& args, const fs::path& dir, const std::string& env = "") {
   const fs::path err = dir / "stderr.txt";
-  const std::string cmd = std::string(MVW_BINARY) + " " + args + " > /dev/null 2> " + err.string();
+  const std::string cmd = (env.empty() ? std::string() : "env " + env + " ") +
+                          std::string(MVW_BINARY) + " " + args + " > /dev/null 2> " + err.string();
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -210,6 +212,14 @@ TEST(OrbitCli, BadInputIsRefusedWithNothingWritten) {
   const fs::path dir = test::scratchDir();
   const fs::path study = writeStudy(dir, kMip);
   const fs::path out = dir / "out";
+  // A movie plugin that is not there (MVW_MOVIE_PLUGIN set wrong): one message, exit 2, no output.
+  {
+    const CliRun r = mvw("render " + study.string() + " -o " + out.string() + " --orbit 4", dir,
+                         "MVW_MOVIE_PLUGIN=" + (dir / "no-such-plugin.so").string());
+    EXPECT_EQ(r.rc, 2) << r.err;
+    EXPECT_NE(r.err.find("MVW_MOVIE_PLUGIN names"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
   for (const char* n : {"0", "1", "-3", "100000", "abc", "2.5", "99999999999999999999"}) {
     const CliRun r = mvw("render " + study.string() + " -o " + out.string() + " --orbit " + n, dir);
     EXPECT_EQ(r.rc, 2) << n << ": " << r.err;

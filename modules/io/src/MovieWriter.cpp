@@ -38,7 +38,7 @@ std::vector<fs::path> pluginCandidates() {
   return candidates;
 }
 
-// The plugin, loaded once per process and never unloaded; throws mvw::Error naming `file`
+// The plugin, loaded once per process and never unloaded; throws mvw::InputError naming `file`
 // (the movie asked for) and every place looked in when it cannot be loaded.
 const MvwMovieApi& moviePlugin(const fs::path& file) {
   static const MvwMovieApi* api = nullptr;
@@ -77,7 +77,8 @@ const MvwMovieApi& moviePlugin(const fs::path& file) {
               ") is not installed; looked in " + tried;
     return false;
   }();
-  if (!loaded) throw Error(file.string() + ": cannot encode or decode a movie: " + failure);
+  // The user's set-up (an install without the plugin, a wrong MVW_MOVIE_PLUGIN): exit 2.
+  if (!loaded) throw InputError(file, "cannot encode or decode a movie: " + failure);
   return *api;
 }
 
