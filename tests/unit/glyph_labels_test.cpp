@@ -29,12 +29,12 @@ TEST(GlyphLabels, ChosenByNumberOrAtlasName) {
   const auto labels = planViews(study).at(0).settings.glyphLabels;
   ASSERT_EQ(labels.size(), 2u);
   // nlohmann::json keeps object keys sorted: "38" before "Hippocampus_L".
-  EXPECT_EQ(labels[0], (render::LabelGlyph{38, true, "Hippocampus_R"}));
-  EXPECT_EQ(labels[1], (render::LabelGlyph{37, false, "Hippocampus_L"}));
+  EXPECT_EQ(labels[0], (render::LabelGlyph{38, GlyphKind::Dimples, "Hippocampus_R"}));
+  EXPECT_EQ(labels[1], (render::LabelGlyph{37, GlyphKind::Bumps, "Hippocampus_L"}));
   const auto legend = glyphLegend(planViews(study).at(0), "", {0, 116});
   ASSERT_EQ(legend.entries.size(), 2u);
   EXPECT_EQ(legend.entries[1].label, "37 Hippocampus_L");
-  EXPECT_TRUE(legend.entries[0].dimple);
+  EXPECT_EQ(legend.entries[0].kind, GlyphKind::Dimples);
 
   // planViews' refusal of the study as it stands ("" and a failure when it plans the views).
   auto refusal = [&study](const char* accepted) {

@@ -394,8 +394,8 @@ TEST_F(ViewerStateTest, ChosenGlyphLabelsReachTheRendererAndAreSaved) {
   while (script.step(state)) {
   }
   EXPECT_TRUE(state.needsRender(k3d) || !state.paneRendered(k3d));
-  const std::vector<render::LabelGlyph> expected = {{2, true, "Precentral_R"},
-                                                    {3, false, "Frontal_Sup_L"}};
+  const std::vector<render::LabelGlyph> expected = {{2, GlyphKind::Dimples, "Precentral_R"},
+                                                    {3, GlyphKind::Bumps, "Frontal_Sup_L"}};
   EXPECT_EQ(state.view3d().glyphLabels, expected);
   ASSERT_TRUE(state.view3d().glyphs);
   EXPECT_EQ(state.glyphLegend(k3d, state.renderSettings(k3d)).entries.size(), 2u);
