@@ -52,9 +52,11 @@ vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
   float size = mix(uGlyphMinSize, 1.0, clamp(a - 2.0 * kind, 0.0, 1.0));
   float r2 = uGlyphRadiusMm * uGlyphRadiusMm;
   // The apparent radius: the size's, at most the chord the surface cuts (as for bumps below).
+  // A glyph the surface only grazes (its chord under 0.6 of the apparent radius) is left out:
+  // too small for its shape to be read, it would only be a speck of some kind.
   float rho2 = min(size * size * r2, r2 - h * h);
   float t2 = dot(tw, tw);
-  if (rho2 <= 0.0 || t2 >= rho2) return nO;
+  if (rho2 < 0.36 * size * size * r2 || t2 >= rho2) return nO;
   vec3 tv = tw * inversesqrt(rho2);  // |tv| < 1: the position on the glyph's disc
   float r = sqrt(t2 / rho2);
   vec3 radial = tv / max(r, 1e-4);

@@ -34,13 +34,13 @@
 namespace mvw::render {
 namespace {
 
-constexpr double kSphereMm = 70.0, kBandMm = 22.0, kLabelVoxelMm = 4.0;
-constexpr int kBands = 6, kImage = 400, kTile = 20;
-constexpr int kFeatures = 12;
+constexpr double kSphereMm = 70.0, kBandMm = 18.0, kLabelVoxelMm = 4.0;
+constexpr int kBands = 6, kImage = 600;
+constexpr int kFeatures = 22;  // see describe
 using Features = std::array<double, kFeatures>;
 
 struct Tile {
-  int truth = 0;   // the band (label - 1)
+  int truth = 0;   // the kind meant where the glyph lies (its band's)
   int render = 0;  // which render it came from
   Features f{};
 };
@@ -60,56 +60,84 @@ double grey(const Image& im, int x, int y) {
   return (p[0] + p[1] + p[2]) / 3.0;
 }
 
-// Shading statistics of one tile of D = glyph render - plain render (grey levels): how much
-// of it is darkened or brightened and how strongly, how thin the dark marks are, how often a
-// row or column crosses a mark, and how the gradient of D is oriented (one direction:
-// ridges; two at right angles: crosses; none: round glyphs).
-Features describe(const std::vector<double>& d, int w, int x0, int y0) {
-  constexpr double t = 6.0;
-  Features f{};
-  int dark = 0, bright = 0, thick = 0, crossings = 0;
-  double sumD = 0.0, sumAbs = 0.0, jxx = 0.0, jyy = 0.0, jxy = 0.0;
-  std::array<double, 4> orient{};  // gradient energy at 0, 45, 90, 135 degrees
-  auto at = [&](int x, int y) { return d[std::size_t(y) * w + x]; };
-  for (int y = y0; y < y0 + kTile; ++y)
-    for (int x = x0; x < x0 + kTile; ++x) {
-      const double v = at(x, y);
-      dark += v <= -t, bright += v >= t;
-      sumD += v, sumAbs += std::abs(v);
-      if (v <= -t && at(x - 1, y) <= -t && at(x + 1, y) <= -t && at(x, y - 1) <= -t &&
-          at(x, y + 1) <= -t)
-        ++thick;
-      crossings += (v <= -t) != (at(x + 1, y) <= -t);
-      crossings += (v <= -t) != (at(x, y + 1) <= -t);
-      const double gx = at(x + 1, y) - at(x - 1, y), gy = at(x, y + 1) - at(x, y - 1);
-      jxx += gx * gx, jyy += gy * gy, jxy += gx * gy;
-      const double e = gx * gx + gy * gy;
-      if (e > 0.0) {
-        const double a = std::atan2(gy, gx);  // -pi .. pi; orientation mod pi in 4 bins
-        const int bin = int(std::lround(std::fmod(a + 2.0 * M_PI, M_PI) / (M_PI / 4))) % 4;
-        orient[std::size_t(bin)] += e;
-      }
+// One glyph's patch: a connected blob of changed pixels (D = glyph render - plain render, grey
+// levels; |D| >= 4, joined across one-pixel seams such as a ridge's crest, where the normal is
+// the surface's own). Described in its own frame, so that the view and the light's strength
+// matter little: how much of its disc is changed, how elongated it is, how the change is
+// spread over three rings from its centre, how it varies around the centre (2 and 4 fold:
+// bars and crosses), its signed balance and the side the light brightens (bumps vs dimples).
+Features describe(const std::vector<double>& d, int w, const std::vector<int>& pixels,
+                  double glyphRadiusPx) {
+  double cx = 0.0, cy = 0.0;
+  for (int p : pixels) cx += p % w, cy += p / w;
+  cx /= pixels.size(), cy /= pixels.size();
+  double sxx = 0.0, syy = 0.0, sxy = 0.0, sumAbs = 0.0, sumD = 0.0, light = 0.0;
+  std::array<double, 3> ringAbs{}, ringChanged{}, ringCount{};
+  std::array<double, 16> sector{};
+  const double rho = std::sqrt(pixels.size() / M_PI);
+  for (int p : pixels) {
+    const double x = p % w - cx, y = p / w - cy, v = d[std::size_t(p)];
+    sxx += x * x, syy += y * y, sxy += x * y;
+    sumAbs += std::abs(v), sumD += v;
+    light += v * (-x - y) / std::sqrt(2.0) / rho;  // toward the upper left (image y down)
+    const double r = std::sqrt(x * x + y * y) / rho;
+    const int ring = r < 0.4 ? 0 : r < 0.75 ? 1 : 2;
+    ringAbs[std::size_t(ring)] += std::abs(v), ringCount[std::size_t(ring)] += 1.0;
+    const bool changed = std::abs(v) >= 4.0;
+    ringChanged[std::size_t(ring)] += changed;
+    if (changed && r > 0.25) {
+      const int s = int((std::atan2(y, x) + M_PI) / (2.0 * M_PI) * 16.0) % 16;
+      sector[std::size_t(s)] += 1.0;
     }
-  const double n = kTile * kTile;
-  const double energy = orient[0] + orient[1] + orient[2] + orient[3] + 1e-9;
-  const double coherence =
-      std::sqrt((jxx - jyy) * (jxx - jyy) + 4.0 * jxy * jxy) / (jxx + jyy + 1e-9);
-  std::array<double, 4> o = orient;
-  std::sort(o.begin(), o.end());
-  // The strongest pair of orientations at right angles against the other pair.
-  const double pair = std::max(orient[0] + orient[2], orient[1] + orient[3]) / energy;
-  f = {dark / n,
-       bright / n,
-       sumD / n / 40.0,
-       sumAbs / n / 40.0,
-       dark > 0 ? double(thick) / dark : 0.0,
-       crossings / (2.0 * n),
-       coherence,
-       o[3] / energy,
-       pair,
-       std::sqrt(jxx + jyy) / n / 10.0,
-       dark + bright > 0 ? double(bright) / (dark + bright) : 0.0,
-       sumAbs > 0 ? sumD / sumAbs : 0.0};
+  }
+  const double tr = sxx + syy, det = sxx * syy - sxy * sxy;
+  const double root = std::sqrt(std::max(tr * tr / 4.0 - det, 0.0));
+  const double elongation = std::sqrt(std::max(tr / 2.0 - root, 0.0) / (tr / 2.0 + root + 1e-9));
+  auto harmonic = [&](int m) {
+    double c = 0.0, s = 0.0, total = 0.0;
+    for (int i = 0; i < 16; ++i) {
+      const double a = (i + 0.5) * 2.0 * M_PI / 16.0;
+      c += sector[std::size_t(i)] * std::cos(m * a), s += sector[std::size_t(i)] * std::sin(m * a);
+      total += sector[std::size_t(i)];
+    }
+    return total > 0.0 ? std::sqrt(c * c + s * s) / total : 0.0;
+  };
+  const double meanAbs = sumAbs / pixels.size() + 1e-9;
+  // The signed and the absolute change in five rings of the glyph's disc, against the mean.
+  std::array<double, 5> profile{}, profileAbs{}, profileN{};
+  for (int p : pixels) {
+    const double x = p % w - cx, y = p / w - cy, v = d[std::size_t(p)];
+    const int ring = std::min(4, int(std::sqrt(x * x + y * y) / rho * 4.0));
+    profile[std::size_t(ring)] += v, profileAbs[std::size_t(ring)] += std::abs(v);
+    profileN[std::size_t(ring)] += 1.0;
+  }
+  for (int i = 0; i < 5; ++i) {
+    profile[std::size_t(i)] /= std::max(profileN[std::size_t(i)], 1.0) * meanAbs;
+    profileAbs[std::size_t(i)] /= std::max(profileN[std::size_t(i)], 1.0) * meanAbs;
+  }
+  Features f{};
+  f = {elongation,
+       ringAbs[0] / std::max(ringCount[0], 1.0) / meanAbs,
+       ringAbs[1] / std::max(ringCount[1], 1.0) / meanAbs,
+       ringAbs[2] / std::max(ringCount[2], 1.0) / meanAbs,
+       ringChanged[0] / std::max(ringCount[0], 1.0),
+       ringChanged[1] / std::max(ringCount[1], 1.0),
+       ringChanged[2] / std::max(ringCount[2], 1.0),
+       harmonic(2),
+       harmonic(4),
+       sumD / sumAbs,
+       light / (sumAbs + 1e-9),
+       rho / glyphRadiusPx,
+       profile[0],
+       profile[1],
+       profile[2],
+       profile[3],
+       profile[4],
+       profileAbs[0],
+       profileAbs[1],
+       profileAbs[2],
+       profileAbs[3],
+       profileAbs[4]};
   return f;
 }
 
@@ -120,7 +148,7 @@ struct Result {
 
 // k nearest neighbours (k = 7, features scaled by their spread) among the tiles of the other
 // renders, assigning each tile the kind of the band most of them came from.
-Result classify(const std::vector<Tile>& tiles, const std::vector<int>& kindOfBand, int kinds) {
+Result classify(const std::vector<Tile>& tiles, int kinds) {
   Features mean{}, spread{};
   for (const Tile& t : tiles)
     for (int i = 0; i < kFeatures; ++i) mean[i] += t.f[i] / tiles.size();
@@ -128,6 +156,11 @@ Result classify(const std::vector<Tile>& tiles, const std::vector<int>& kindOfBa
     for (int i = 0; i < kFeatures; ++i)
       spread[i] += (t.f[i] - mean[i]) * (t.f[i] - mean[i]) / tiles.size();
   for (double& s : spread) s = std::sqrt(s) + 1e-9;
+  // Three cues a reader looks at first weigh more: the side the light brightens (bumps against
+  // dimples), and the two- and four-fold pattern around the centre (bars, crosses).
+  spread[10] /= 3.0, spread[7] /= 2.0, spread[8] /= 2.0;
+  std::vector<double> count(std::size_t(kinds), 1e-9);
+  for (const Tile& t : tiles) count[std::size_t(t.truth)] += 1.0;
   Result r;
   r.confusion.assign(std::size_t(kinds), std::vector<int>(std::size_t(kinds), 0));
   for (const Tile& t : tiles) {
@@ -139,14 +172,17 @@ Result classify(const std::vector<Tile>& tiles, const std::vector<int>& kindOfBa
         const double d = (t.f[i] - o.f[i]) / spread[i];
         d2 += d * d;
       }
-      near.emplace_back(d2, kindOfBand[std::size_t(o.truth)]);
+      near.emplace_back(d2, o.truth);
     }
     const std::size_t k = std::min<std::size_t>(7, near.size());
     std::partial_sort(near.begin(), near.begin() + long(k), near.end());
+    // Each neighbour's vote weighs 1 / (its kind's share of the tiles): a kind with many
+    // glyphs in view (bars split, a band seen face-on) does not outvote the others.
     std::vector<double> votes(std::size_t(kinds), 0.0);
-    for (std::size_t i = 0; i < k; ++i) votes[std::size_t(near[i].second)] += 1.0 / (1.0 + i);
+    for (std::size_t i = 0; i < k; ++i)
+      votes[std::size_t(near[i].second)] += 1.0 / count[std::size_t(near[i].second)];
     const int assigned = int(std::max_element(votes.begin(), votes.end()) - votes.begin());
-    const int truth = kindOfBand[std::size_t(t.truth)];
+    const int truth = t.truth;
     ++r.confusion[std::size_t(truth)][std::size_t(assigned)];
     r.right += assigned == truth, ++r.total;
   }
@@ -176,7 +212,8 @@ struct Scene {
 
 // Renders every view of `kinds` (kind per band) and returns the tiles; writes the renders.
 std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>& kindOfBand,
-                          glm::dvec2 light, const std::string& tag, double* spacingOut) {
+                          const std::vector<GlyphKind>& meant, glm::dvec2 light,
+                          const std::string& tag, int renderBase, double* spacingOut) {
   struct View {
     std::string name;
     RenderMode mode;
@@ -207,9 +244,10 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
     s.transfer = {"step", false, {{-0.5, c}, {0.5, glm::vec4(glm::vec3(c), 0.1f)}}};
     // The product's default glyph size for a 4 mm label voxel at this scale.
     const double perPixel = 2.0 * renderer.radius() / s.camera.zoom / s.size.x;
-    double spacing = study::defaultGlyphSpacingMm(kLabelVoxelMm, perPixel, s.glyphMinSize);
-    if (const char* px = std::getenv("MVW_KIND_PX"))
-      spacing = std::max(spacing, std::atof(px) * perPixel / (0.5 * kBlueNoiseDiameterFraction));
+    double spacing =
+        study::defaultGlyphSpacingMm(kLabelVoxelMm, perPixel, s.glyphMinSize, /*kinds=*/true);
+    if (const char* px = std::getenv("MVW_KIND_PX"))  // measuring the glyph size: radius, px
+      spacing = std::atof(px) * perPixel / (0.5 * kBlueNoiseDiameterFraction);
     *spacingOut = spacing;
     s.glyphMap = blueNoiseGlyphMap(spacing, kBlueNoiseDiameterFraction * spacing, 1);
     s.glyphDiameterMm = kBlueNoiseDiameterFraction * spacing;
@@ -243,19 +281,48 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
         const glm::dvec3 hit = ray.origin + (-bq - std::sqrt(disc)) * ray.direction;
         // Away from grazing rims (where a tile spans a great depth), and inside a band by
         // more than a glyph's radius.
-        if (glm::dot(glm::normalize(hit), -ray.direction) < 0.3) continue;
+        if (glm::dot(glm::normalize(hit), -ray.direction) < 0.5) continue;
         band[std::size_t(y) * kImage + x] = bandAt(hit.z, 0.5 * spacing);
       }
-    for (int y0 = 1; y0 + kTile < kImage - 1; y0 += kTile)
-      for (int x0 = 1; x0 + kTile < kImage - 1; x0 += kTile) {
-        const int b = band[std::size_t(y0) * kImage + x0];
-        bool one = b >= 0;
-        for (int y = y0 - 1; y <= y0 + kTile && one; ++y)
-          for (int x = x0 - 1; x <= x0 + kTile && one; ++x)
-            one = band[std::size_t(y) * kImage + x] == b;
-        if (!one) continue;
-        tiles.push_back({b, int(v), describe(d, kImage, x0, y0)});
+    // The blobs: changed pixels grown by one pixel, 8-connected.
+    const double glyphRadiusPx = 0.5 * s.glyphDiameterMm / perPixel;
+    std::vector<char> grown(d.size(), 0);
+    for (int y = 1; y < kImage - 1; ++y)
+      for (int x = 1; x < kImage - 1; ++x)
+        if (std::abs(d[std::size_t(y) * kImage + x]) >= 4.0)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) grown[std::size_t(y + dy) * kImage + x + dx] = 1;
+    std::vector<char> seen(d.size(), 0);
+    for (int start = 0; start < kImage * kImage; ++start) {
+      if (!grown[std::size_t(start)] || seen[std::size_t(start)]) continue;
+      std::vector<int> blob = {start}, stack = {start};
+      seen[std::size_t(start)] = 1;
+      bool edge = false;
+      while (!stack.empty()) {
+        const int p = stack.back();
+        stack.pop_back();
+        const int x = p % kImage, y = p / kImage;
+        edge |= x == 0 || y == 0 || x == kImage - 1 || y == kImage - 1;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = x + dx, yy = y + dy;
+            if (xx < 0 || yy < 0 || xx >= kImage || yy >= kImage) continue;
+            const int q = yy * kImage + xx;
+            if (grown[std::size_t(q)] && !seen[std::size_t(q)])
+              seen[std::size_t(q)] = 1, blob.push_back(q), stack.push_back(q);
+          }
       }
+      // One glyph: not a speck, not several run together.
+      const double area = double(blob.size()), disc = M_PI * glyphRadiusPx * glyphRadiusPx;
+      if (edge || area < 0.25 * disc || area > 1.6 * disc) continue;
+      double cx = 0.0, cy = 0.0;
+      for (int p : blob) cx += p % kImage, cy += p / kImage;
+      const int c = int(std::lround(cy / area)) * kImage + int(std::lround(cx / area));
+      const int b = band[std::size_t(c)];
+      if (b < 0) continue;
+      tiles.push_back({int(meant[std::size_t(b)]), renderBase + int(v),
+                       describe(d, kImage, blob, glyphRadiusPx)});
+    }
   }
   return tiles;
 }
@@ -268,13 +335,34 @@ TEST(GlyphKinds, AReaderTellsTheKindsApartFromTheRenderAlone) {
   std::vector<std::string> names;
   for (int k = 0; k < kGlyphKindCount; ++k) names.push_back(glyphKindName(GlyphKind(k)));
   // drawn: the kind each band is rendered with; meant: the kind the reader should read there.
+  // Each set three times, its kinds turned by two bands, so that every kind is seen both near the
+  // sphere's equator and towards a pole.
   auto run = [&](const std::vector<GlyphKind>& drawn, const std::vector<GlyphKind>& meant,
                  glm::dvec2 light, const std::string& tag, const char* title) {
     double spacing = 0.0;
-    const std::vector<Tile> tiles = tilesOf(renderer, drawn, light, tag, &spacing);
-    std::vector<int> kindOfBand;
-    for (GlyphKind k : meant) kindOfBand.push_back(int(k));
-    const Result r = classify(tiles, kindOfBand, kGlyphKindCount);
+    std::vector<Tile> tiles;
+    for (int shift : {0, 2, 4}) {
+      std::vector<GlyphKind> d, m;
+      for (int b = 0; b < kBands; ++b)
+        d.push_back(drawn[std::size_t((b + shift) % kBands)]),
+            m.push_back(meant[std::size_t((b + shift) % kBands)]);
+      const std::vector<Tile> t =
+          tilesOf(renderer, d, m, light, tag + std::to_string(shift), 4 * shift, &spacing);
+      tiles.insert(tiles.end(), t.begin(), t.end());
+    }
+    const Result r = classify(tiles, kGlyphKindCount);
+    if (std::getenv("MVW_KIND_FEATURES"))  // the features' means per kind, for a closer look
+      for (int k = 0; k < kGlyphKindCount; ++k) {
+        Features mean{};
+        int n = 0;
+        for (const Tile& t : tiles)
+          if (t.truth == k) {
+            ++n;
+            for (int i = 0; i < kFeatures; ++i) mean[std::size_t(i)] += t.f[std::size_t(i)];
+          }
+        std::printf("\n%-8s", names[std::size_t(k)].c_str());
+        for (double x : mean) std::printf(" %6.2f", n ? x / n : 0.0);
+      }
     std::printf("\n[%s] glyph spacing %.2f mm (the product's default), %zu tiles", tag.c_str(),
                 spacing, tiles.size());
     print(r, names, title);
@@ -283,14 +371,19 @@ TEST(GlyphKinds, AReaderTellsTheKindsApartFromTheRenderAlone) {
   const std::vector<GlyphKind> all = {GlyphKind::Bumps,  GlyphKind::Dimples, GlyphKind::Rings,
                                       GlyphKind::Ridges, GlyphKind::Cones,   GlyphKind::Crosses};
   const Result lit = run(all, all, {-0.8, 0.8}, "lit", "six kinds, light from the upper left");
-  const Result head = run(all, all, {0.0, 0.0}, "headlight", "six kinds, headlight (the default)");
+  // Under a headlight bumps and dimples shade alike (mirror images about the surface normal
+  // make the same angle with the line of sight): the headlight set is the five other kinds.
+  const std::vector<GlyphKind> five = {GlyphKind::Bumps,  GlyphKind::Bumps, GlyphKind::Rings,
+                                       GlyphKind::Ridges, GlyphKind::Cones, GlyphKind::Crosses};
+  const Result head =
+      run(five, five, {0.0, 0.0}, "headlight", "five kinds, headlight (the default light)");
   // Two kinds made the same: the crosses' band drawn as rings, still meant as crosses.
   std::vector<GlyphKind> same = all;
   same[5] = GlyphKind::Rings;
   const Result merged = run(same, all, {-0.8, 0.8}, "same", "crosses drawn as rings (must fail)");
   EXPECT_GE(lit.right, 0.9 * lit.total);
   EXPECT_LT(merged.right, 0.9 * merged.total);
-  (void)head;
+  EXPECT_GE(head.right, 0.9 * head.total);
 }
 
 }  // namespace

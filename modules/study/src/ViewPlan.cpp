@@ -145,11 +145,16 @@ std::vector<render::LabelGlyph> chosenLabels(const config::StudyConfig& study,
 
 }  // namespace
 
-double defaultGlyphSpacingMm(double functionalVoxelMm, double mmPerPixel, double minSize) {
+double defaultGlyphSpacingMm(double functionalVoxelMm, double mmPerPixel, double minSize,
+                             bool kinds) {
   // The weakest bump (minSize glyph radii, the glyph kBlueNoiseDiameterFraction of the
-  // spacing) must be kGlyphMinBumpPixels in radius on the image.
+  // spacing) must be kGlyphMinBumpPixels in radius on the image; with kinds, a full-size
+  // glyph kGlyphKindRadiusPixels.
   const double radiusPerSpacing = 0.5 * kBlueNoiseDiameterFraction * std::max(minSize, 0.2);
-  const double visible = kGlyphMinBumpPixels * mmPerPixel / radiusPerSpacing;
+  double visible = kGlyphMinBumpPixels * mmPerPixel / radiusPerSpacing;
+  if (kinds)
+    visible =
+        std::max(visible, kGlyphKindRadiusPixels * mmPerPixel / (0.5 * kBlueNoiseDiameterFraction));
   return std::min(std::max(functionalVoxelMm, visible), std::max(kGlyphSpacingMm, visible));
 }
 
@@ -162,7 +167,8 @@ void applyGlyphScale(PlannedView& view, const Volume& anatomy, const Volume& fun
       2.0 * render::framingSphere(anatomy).radius / std::max(s.camera.zoom, 1e-3) / pixels;
   const glm::dvec3 fv = functional.spacing();
   const double voxel = std::max({fv.x, fv.y, fv.z});
-  setBlueNoiseMap(s, v, defaultGlyphSpacingMm(voxel, mmPerPixel, v.glyphMinSize));
+  setBlueNoiseMap(
+      s, v, defaultGlyphSpacingMm(voxel, mmPerPixel, v.glyphMinSize, render::usesGlyphKinds(s)));
 }
 
 ColorTable colorTable(ColorMap map) {
