@@ -317,8 +317,8 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
       if (edge || area < 0.25 * disc || area > 1.6 * disc) continue;
       double cx = 0.0, cy = 0.0;
       for (int p : blob) cx += p % kImage, cy += p / kImage;
-      const int c = int(std::lround(cy / area)) * kImage + int(std::lround(cx / area));
-      const int b = band[std::size_t(c)];
+      const int middle = int(std::lround(cy / area)) * kImage + int(std::lround(cx / area));
+      const int b = band[std::size_t(middle)];
       if (b < 0) continue;
       tiles.push_back({int(meant[std::size_t(b)]), renderBase + int(v),
                        describe(d, kImage, blob, glyphRadiusPx)});
