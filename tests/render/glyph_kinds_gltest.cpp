@@ -190,8 +190,8 @@ Result classify(const std::vector<Tile>& tiles, int kinds) {
 }
 
 void print(const Result& r, const std::vector<std::string>& names, const char* title) {
-  std::printf("\n%s: %d of %d tiles (%.1f %%) assigned to their band's kind\n%-9s", title, r.right,
-              r.total, 100.0 * r.right / std::max(r.total, 1), "truth \\ as");
+  std::printf("\n%s: %d of %d glyph patches (%.1f %%) assigned to their band's kind\n%-9s", title,
+              r.right, r.total, 100.0 * r.right / std::max(r.total, 1), "truth \\ as");
   for (const std::string& n : names) std::printf(" %8s", n.c_str());
   std::printf("\n");
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -363,8 +363,8 @@ TEST(GlyphKinds, AReaderTellsTheKindsApartFromTheRenderAlone) {
         std::printf("\n%-8s", names[std::size_t(k)].c_str());
         for (double x : mean) std::printf(" %6.2f", n ? x / n : 0.0);
       }
-    std::printf("\n[%s] glyph spacing %.2f mm (the product's default), %zu tiles", tag.c_str(),
-                spacing, tiles.size());
+    std::printf("\n[%s] glyph spacing %.2f mm (the product's default), %zu glyph patches",
+                tag.c_str(), spacing, tiles.size());
     print(r, names, title);
     return r;
   };
