@@ -143,9 +143,13 @@ struct ViewPainter {
     if (!view.config.annotate) return f;
     const Volume* functional = session.functional();
     render::annotate(f.image, f.camera, caption);
-    if (functional)
-      render::drawGlyphLegend(f.image, mvw::study::glyphLegend(view, functional->metadata().unit,
-                                                               renderer.functionalRange()));
+    if (functional) {
+      render::GlyphLegend legend =
+          mvw::study::glyphLegend(view, functional->metadata().unit, renderer.functionalRange());
+      // Glyph kinds (issue 40): each icon drawn by the view's own glyph shading.
+      if (render::usesGlyphKinds(settings)) renderer.renderGlyphIcons(settings, legend);
+      render::drawGlyphLegend(f.image, legend);
+    }
     if (overlayShown) {
       auto [flo, fhi] = renderer.functionalRange();
       if (settings.functionalHigh > settings.functionalLow)
@@ -258,6 +262,25 @@ nlohmann::json viewRecord(const ViewPainter& paint, const render::RenderedFrame&
         {"seed", v.config.glyphSeed},
         {"map_size", v.config.glyphMapSize},
         {"map_diameter", v.config.glyphMapDiameter}};
+  if (v.settings.glyphs && session.functional()) {
+    // What the legend shows (issue 40): per entry its label, glyph kind, size and value.
+    nlohmann::json entries = nlohmann::json::array();
+    const render::GlyphLegend legend = mvw::study::glyphLegend(
+        v, session.functional()->metadata().unit, paint.renderer.functionalRange());
+    for (const render::GlyphLegendEntry& e : legend.entries) {
+      nlohmann::json entry = {{"label", e.label},
+                              {"kind", e.size > 0 ? glyphKindName(e.kind) : "none"},
+                              {"size", e.size}};
+      if (e.value) entry["value"] = *e.value;
+      entries.push_back(entry);
+    }
+    r["glyphs"]["legend"] = {{"title", legend.title}, {"entries", entries}};
+    if (!v.settings.glyphClassKinds.empty()) {
+      nlohmann::json kinds = nlohmann::json::array();
+      for (GlyphKind k : v.settings.glyphClassKinds) kinds.push_back(glyphKindName(k));
+      r["glyphs"]["class_kinds"] = kinds;
+    }
+  }
   if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
   if (v.settings.functionalHigh > v.settings.functionalLow)
     r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};

@@ -91,7 +91,10 @@ Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     if (p == k3d) rendered3d = {f.milliseconds, s.size};
     Image shown = f.image;
     render::annotate(shown, f.camera, state.caption(p, s));
-    render::drawGlyphLegend(shown, state.glyphLegend(p, s));
+    render::GlyphLegend legend = state.glyphLegend(p, s);
+    // Glyph kinds (issue 40): each icon drawn by the view's own glyph shading.
+    if (render::usesGlyphKinds(s)) renderer.renderGlyphIcons(s, legend);
+    render::drawGlyphLegend(shown, legend);
     drawColourBar(shown, state, renderer, s);
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting, f.milliseconds);

@@ -52,17 +52,18 @@ void glyphLabelPicker(ViewerState& state) {
     const int top = std::clamp(int(state.scene().functionalRange.second), 0, 255);
     for (int n = 1; n <= top; ++n) labels.emplace_back(n, "");
   }
-  const char* kinds[] = {"bumps", "dimples", "none"};  // config::LabelGlyphKind's order
+  // config::LabelGlyphKind's order: bumps, dimples, none, then the other kinds (issue 40).
+  const char* kinds[] = {"bumps", "dimples", "none", "rings", "ridges", "cones", "crosses"};
   ImGui::BeginChild("glyph-label-list", ImVec2(0, 180), true);
   for (const auto& [n, name] : labels) {
     const std::string text = std::to_string(n) + (name.empty() ? "" : " " + name);
     if (!filter.PassFilter(text.c_str())) continue;
     const auto it = std::find_if(chosen.begin(), chosen.end(),
                                  [n = n](const render::LabelGlyph& g) { return g.label == n; });
-    int kind = it == chosen.end() ? 2 : (it->dimple ? 1 : 0);
+    int kind = it == chosen.end() ? 2 : static_cast<int>(config::labelGlyphKind(it->kind));
     ImGui::PushID(n);
     ImGui::SetNextItemWidth(90);
-    if (ImGui::Combo("##kind", &kind, kinds, 3))
+    if (ImGui::Combo("##kind", &kind, kinds, IM_ARRAYSIZE(kinds)))
       state.setGlyphLabel(n, static_cast<config::LabelGlyphKind>(kind));
     ImGui::SameLine();
     ImGui::TextUnformatted(text.c_str());
@@ -344,7 +345,7 @@ void ViewerPanel::drawControls() {
       ImGui::BulletText("%s  %s", e.label.c_str(),
                         e.size <= 0 ? "no glyph"
                                     : (std::to_string(int(std::lround(100 * e.size))) + " % " +
-                                       (e.dimple ? "dimple" : "bump"))
+                                       glyphKindName(e.kind))
                                           .c_str());
     int method = v.glyphSizeControl ? 0 : 1;
     const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};

@@ -163,14 +163,11 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
               std::to_string(kMaxGlyphLabel));
     c.label = static_cast<int>(label);
     const std::string kind = in.word("kind");
-    if (kind == "bumps")
-      c.labelKind = config::LabelGlyphKind::Bumps;
-    else if (kind == "dimples")
-      c.labelKind = config::LabelGlyphKind::Dimples;
-    else if (kind == "none")
-      c.labelKind = config::LabelGlyphKind::None;
-    else
-      in.fail("glyph-label: unknown kind '" + kind + "' (bumps, dimples, none)");
+    const std::optional<config::LabelGlyphKind> k = config::parseLabelGlyphKind(kind);
+    if (!k)
+      in.fail("glyph-label: unknown kind '" + kind +
+              "' (bumps, dimples, rings, ridges, cones, crosses, none)");
+    c.labelKind = *k;
   } else if (cmd == "register") {
     c.kind = Kind::Register;
   } else if (cmd == "wait-registration") {

@@ -15,7 +15,8 @@
 //   colormap 3d|mpr|overlay NAME        a colour map chooser (grey, grey-inverted, hot-iron, pet,
 //                                       hot-metal-blue, pet-20-step, hot-metal)
 //   orbit spin|rock|off                 the rotating 3D view (keys O and K toggle it)
-//   glyph-label N bumps|dimples|none    what label N of a label map gets (the panel's picker)
+//   glyph-label N KIND|none             what label N of a label map gets (the panel's picker;
+//                                       KIND: bumps, dimples, rings, ridges, cones, crosses)
 //   register | wait-registration        re-run the registration in the background | wait for it
 //   roi PANE x0 y0 x1 y1                a sphere ROI drawn by a drag: centre at (x0, y0) on the
 //                                       pane's plane, radius the distance to (x1, y1), in mm

@@ -231,7 +231,7 @@ void ViewerState::setGlyphLabel(int label, config::LabelGlyphKind kind) {
   if (kind != config::LabelGlyphKind::None) {
     render::LabelGlyph g;
     g.label = label;
-    g.dimple = kind == config::LabelGlyphKind::Dimples;
+    g.kind = *config::glyphKindOf(kind);
     if (auto it = labelNames_.find(label); it != labelNames_.end()) g.name = it->second;
     chosen.insert(std::upper_bound(chosen.begin(), chosen.end(), g,
                                    [](const auto& a, const auto& b) { return a.label < b.label; }),

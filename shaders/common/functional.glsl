@@ -23,6 +23,10 @@ uniform int uFunctionalClasses;
 // bump, just above 0: a dimple under the "both" shading, 0: none; labels past the table: none).
 uniform sampler1D uLabelGlyphs;
 uniform int uLabelGlyphCount;
+// Glyph kinds for the classes (issue 40; the MVW_GLYPH_KINDS shading): class c of kind k is
+// written as 2 k + its size; past the list's end the last kind. 0 kinds: sizes only.
+uniform int uClassKinds[16];
+uniform int uClassKindCount;
 
 // 0 .. 1 over uFunctionalRange, or by class (0 outside the functional volume).
 float functionalFraction(vec3 world) {
@@ -35,9 +39,18 @@ float functionalFraction(vec3 world) {
   }
   if (uFunctionalClasses > 0) {
     int label = int(round(v));
-    return label <= 0 ? 0.0 : float(label % uFunctionalClasses + 1) / float(uFunctionalClasses);
+    if (label <= 0) return 0.0;
+    int c = label % uFunctionalClasses;
+    float size = float(c + 1) / float(uFunctionalClasses);
+    if (uClassKindCount > 0) return 2.0 * float(uClassKinds[min(c, uClassKindCount - 1)]) + size;
+    return size;
   }
-  return clamp((v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x), 0.0, 1.0);
+  float u = clamp((v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x), 0.0, 1.0);
+  // An ordinal attribute in classes (issue 40): the window cut into uClassKindCount equal
+  // ranges, range c of kind uClassKinds[c], the size still u.
+  if (uClassKindCount > 0 && u > 0.0)
+    return 2.0 * float(uClassKinds[min(int(u * float(uClassKindCount)), uClassKindCount - 1)]) + u;
+  return u;
 }
 
 // Colour fusion: the functional colour map blended over an anatomy colour where the attribute

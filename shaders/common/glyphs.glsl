@@ -30,6 +30,65 @@ uniform float uGlyphAlpha;
 // paper's own size rule and shading, so its figures can be reproduced (otherwise: the
 // extensions below, marked "beyond the paper").
 
+#if defined(MVW_GLYPH_KINDS)
+// Glyph kinds (issue 40, beyond the paper: "more complexly shaped volumetric normal glyphs"):
+// the attribute is 2 k + size for kind k (mvw::GlyphKind's order), read at the glyph's foot
+// (the point of the surface's tangent plane under its centre), so a whole glyph takes one kind
+// even where the labels beside it differ. Worked in world mm (the map is rotated and scaled).
+uniform mat3 uWorldFromGlyph;  // the inverse of uGlyphFromWorld
+uniform float uGlyphRadiusMm;
+// The attribute at the anatomical voxel nearest `world`, not interpolated: a kind must not
+// blend with its neighbour's (raycast/common.glsl).
+float glyphAttributeNearest(vec3 world);
+
+// d: from the glyph's centre to the sample (map voxels); p: the sample (map voxels).
+vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
+  vec3 dw = uWorldFromGlyph * d;
+  float h = dot(dw, frame);
+  vec3 tw = dw - h * frame;  // along the surface, from the glyph's foot
+  float a = glyphAttributeNearest(uWorldFromGlyph * p - tw);
+  if (a <= 0.0) return nO;
+  float kind = floor(a * 0.5);
+  float size = mix(uGlyphMinSize, 1.0, clamp(a - 2.0 * kind, 0.0, 1.0));
+  float r2 = uGlyphRadiusMm * uGlyphRadiusMm;
+  // The apparent radius: the size's, at most the chord the surface cuts (as for bumps below).
+  // A glyph the surface only grazes (its chord under 0.6 of the apparent radius) is left out:
+  // too small for its shape to be read, it would only be a speck of some kind.
+  float rho2 = min(size * size * r2, r2 - h * h);
+  float t2 = dot(tw, tw);
+  if (rho2 < 0.36 * size * size * r2 || t2 >= rho2) return nO;
+  vec3 tv = tw * inversesqrt(rho2);  // |tv| < 1: the position on the glyph's disc
+  float r = sqrt(t2 / rho2);
+  vec3 radial = tv / max(r, 1e-4);
+  int k = int(kind);
+  if (k == 0) return sqrt(max(1.0 - r * r, 0.0)) * frame + tv;  // bumps: a hemisphere
+  if (k == 1) return sqrt(max(1.0 - r * r, 0.0)) * frame - tv;  // dimples: a bowl
+  if (k == 2) {
+    // Rings: a torus of tube radius 0.4 around r = 0.6, the centre left flat.
+    float q = (r - 0.6) * 2.5;
+    if (abs(q) >= 1.0) return nO;
+    return sqrt(1.0 - q * q) * frame + q * radial;
+  }
+  if (k == 4) return 0.6 * frame + 0.8 * radial;  // cones: a constant 53 degree tilt
+  // Ridges and crosses: bars (half-cylinders) across the disc, one along the patient's S axis
+  // (L where the surface faces within 60 degrees of S), crosses with a second at right angles.
+  vec3 e = vec3(0.0, 0.0, 1.0) - frame.z * frame;
+  if (dot(e, e) < 0.25) e = vec3(1.0, 0.0, 0.0) - frame.x * frame;
+  e = normalize(e);
+  vec3 b = cross(frame, e);
+  float across = dot(tv, b) * 2.5;  // bar half-width 0.4 of the disc's radius
+  if (k == 5) {
+    float along = dot(tv, e) * 2.5;
+    if (abs(along) < abs(across)) {
+      across = along;
+      b = e;
+    }
+  }
+  if (abs(across) >= 1.0) return nO;
+  return sqrt(1.0 - across * across) * frame + across * b;
+}
+#endif
+
 // nO: the unit outward surface normal of the anatomy at `world`; u: the functional attribute
 // there, mapped to 0..1 (the gradient texture's alpha: see raycast/common.glsl).
 // On a software rasteriser every line below runs for every sample (branches are masks, not
@@ -61,6 +120,9 @@ vec3 glyphNormalMapped(vec3 p, vec3 nO, vec3 frame, float u) {
   float d2 = dot(d, d);
   float r2 = uGlyphRadius * uGlyphRadius;
   if (d2 >= r2) return nO;     // A >= 1: outside the glyph
+#if defined(MVW_GLYPH_KINDS)
+  return glyphKindNormal(p, d, nO, frame);
+#endif
   vec3 nG = d * inversesqrt(max(d2, 1e-12));  // the glyph normal, away from its centre
 #if defined(MVW_GLYPH_SIMPLE)
   return normalize(nO + beta * nG);  // eq. (1): N = N_O + beta N_G

@@ -170,6 +170,19 @@ float sampleAttribute(vec3 tex) { return textureLod(uAttribute, storedTexture(te
 #else
 float sampleAttribute(vec3 tex) { return 0.0; }
 #endif
+#if defined(MVW_GLYPH_KINDS)
+// The glyph attribute at the voxel nearest `world` (common/glyphs.glsl: a glyph's kind): the
+// texture coordinate snapped to the texel's centre, where the linear filter returns the texel.
+float glyphAttributeNearest(vec3 world) {
+  vec3 tex = toTexture(world);
+  tex = (floor(tex * uVolume.dimensions) + 0.5) / uVolume.dimensions;
+#if defined(MVW_PACKED_GRADIENT) || defined(MVW_GRADIENT_ON_THE_FLY)
+  return sampleAttribute(tex);
+#else
+  return textureLod(uGradient, tex, 0.0).a;
+#endif
+}
+#endif
 #if defined(MVW_GRADIENT_ON_THE_FLY)
 // Central differences of the trilinear intensity one voxel either side along i, j, k, turned
 // into a world gradient (unit/mm): no gradient volume in memory, six samples per call.

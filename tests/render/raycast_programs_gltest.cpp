@@ -30,7 +30,7 @@ std::string describe(const RaycastSource& s) {
 }
 
 // One program per mode, layout and combination of variants, compiled and linked as the
-// renderer does (ShaderProgram), each named on failure by its files and defines. About 440
+// renderer does (ShaderProgram), each named on failure by its files and defines. About 820
 // programs, mostly composite with glyphs: a variant that no view in the golden suite uses
 // breaks here, not in a user's first frame.
 TEST(RaycastPrograms, EveryProgramCompilesAndLinks) {

@@ -41,8 +41,8 @@ TEST(GlyphLegend, SizesFollowTheAttributeWindow) {
   v.settings.glyphConvexity = GlyphConvexity::Both;
   const render::GlyphLegend both = glyphLegend(v, "SUVbw", {0, 20});
   ASSERT_EQ(both.entries.size(), 5u);
-  EXPECT_TRUE(both.entries[1].dimple);
-  EXPECT_FALSE(both.entries[4].dimple);
+  EXPECT_EQ(both.entries[1].kind, GlyphKind::Dimples);
+  EXPECT_EQ(both.entries[4].kind, GlyphKind::Bumps);
   v.settings.glyphs = false;
   EXPECT_TRUE(glyphLegend(v, "SUVbw", {0, 20}).entries.empty());
 }

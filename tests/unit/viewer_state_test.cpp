@@ -389,13 +389,13 @@ TEST_F(ViewerStateTest, ChosenGlyphLabelsReachTheRendererAndAreSaved) {
   renderAll(state);
   state.key('G', false);  // glyphs on: the config writes the glyphs object only then
   ViewerScript script = ViewerScript::parse(
-      "glyph-label 3 bumps\nglyph-label 2 dimples\nglyph-label 1 bumps\nglyph-label 1 none\n",
+      "glyph-label 3 rings\nglyph-label 2 dimples\nglyph-label 1 bumps\nglyph-label 1 none\n",
       dir / "labels.txt");
   while (script.step(state)) {
   }
   EXPECT_TRUE(state.needsRender(k3d) || !state.paneRendered(k3d));
-  const std::vector<render::LabelGlyph> expected = {{2, true, "Precentral_R"},
-                                                    {3, false, "Frontal_Sup_L"}};
+  const std::vector<render::LabelGlyph> expected = {{2, GlyphKind::Dimples, "Precentral_R"},
+                                                    {3, GlyphKind::Rings, "Frontal_Sup_L"}};
   EXPECT_EQ(state.view3d().glyphLabels, expected);
   ASSERT_TRUE(state.view3d().glyphs);
   EXPECT_EQ(state.glyphLegend(k3d, state.renderSettings(k3d)).entries.size(), 2u);
@@ -403,7 +403,7 @@ TEST_F(ViewerStateTest, ChosenGlyphLabelsReachTheRendererAndAreSaved) {
   const config::StudyConfig saved = config::loadStudyConfig(dir / "saved.json");
   ASSERT_EQ(saved.render.views.size(), 4u);
   const std::vector<config::LabelChoice> written = {{"2", config::LabelGlyphKind::Dimples},
-                                                    {"3", config::LabelGlyphKind::Bumps}};
+                                                    {"3", config::LabelGlyphKind::Rings}};
   EXPECT_EQ(saved.render.views[0].glyphLabels, written);
   EXPECT_TRUE(saved.render.views[1].glyphLabels.empty());  // an MPR pane draws no glyphs
   ViewerState reopened(saved, ct, &atlas, scene);

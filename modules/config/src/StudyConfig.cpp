@@ -134,31 +134,61 @@ const FieldTable<ViewConfig>& glyphTable() {
             "labels",
             "Label maps: only these labels get glyphs, by number (\"38\") or by name in the "
             "atlas's label table (\"Hippocampus_L\").",
-            {"object", "label: \"bumps\", \"dimples\" or \"none\"", "every label", {}},
+            {"object",
+             "label: \"bumps\", \"dimples\", \"rings\", \"ridges\", \"cones\", "
+             "\"crosses\" or \"none\"",
+             "every label",
+             {}},
             [](const json& v, ViewConfig& out, const Where& w) {
               if (!v.is_object() || v.empty())
                 w.bad(
-                    "must be an object of labels (number or name) and \"bumps\" | "
-                    "\"dimples\" | \"none\"");
+                    "must be an object of labels (number or name) and a glyph kind (bumps, "
+                    "dimples, rings, ridges, cones, crosses) or \"none\"");
               out.glyphLabels.clear();
               for (const auto& [label, kind] : v.items()) {
                 const Where item{w.file, w.key + "." + label};
-                const std::string k = readString(kind, item);
-                if (k != "bumps" && k != "dimples" && k != "none")
-                  item.bad("must be \"bumps\", \"dimples\" or \"none\"");
-                out.glyphLabels.push_back({label, k == "bumps"     ? LabelGlyphKind::Bumps
-                                                  : k == "dimples" ? LabelGlyphKind::Dimples
-                                                                   : LabelGlyphKind::None});
+                const std::optional<LabelGlyphKind> k = parseLabelGlyphKind(readString(kind, item));
+                if (!k)
+                  item.bad(
+                      "must be \"bumps\", \"dimples\", \"rings\", \"ridges\", \"cones\", "
+                      "\"crosses\" or \"none\"");
+                out.glyphLabels.push_back({label, *k});
               }
             },
             [](const ViewConfig& in, json& j, const char* k) {
               if (in.glyphLabels.empty()) return;
               json o = json::object();
-              for (const LabelChoice& c : in.glyphLabels)
-                o[c.label] = c.kind == LabelGlyphKind::Bumps     ? "bumps"
-                             : c.kind == LabelGlyphKind::Dimples ? "dimples"
-                                                                 : "none";
+              for (const LabelChoice& c : in.glyphLabels) o[c.label] = toString(c.kind);
               j[k] = o;
+            })
+        .add(
+            "class_kinds",
+            "Glyph kind per class: with functional_classes, of each label class in class "
+            "order (the last one past the list's end); else the window cut into equal ranges, "
+            "one kind each.",
+            {"array",
+             "\"bumps\" | \"dimples\" | \"rings\" | \"ridges\" | \"cones\" | "
+             "\"crosses\"",
+             "every class bumps",
+             {}},
+            [](const json& v, ViewConfig& out, const Where& w) {
+              if (!v.is_array() || v.empty())
+                w.bad(
+                    "must be a non-empty array of glyph kinds (bumps, dimples, rings, ridges, "
+                    "cones, crosses)");
+              out.glyphClassKinds.clear();
+              for (std::size_t i = 0; i < v.size(); ++i) {
+                const Where item{w.file, w.key + "[" + std::to_string(i) + "]"};
+                const std::optional<GlyphKind> k = parseGlyphKind(readString(v[i], item));
+                if (!k) item.bad("must be bumps, dimples, rings, ridges, cones or crosses");
+                out.glyphClassKinds.push_back(*k);
+              }
+            },
+            [](const ViewConfig& in, json& j, const char* k) {
+              if (in.glyphClassKinds.empty()) return;
+              json a = json::array();
+              for (GlyphKind c : in.glyphClassKinds) a.push_back(glyphKindName(c));
+              j[k] = a;
             });
     return g;
   }();
@@ -397,6 +427,56 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
 json viewConfigJson(const ViewConfig& v) { return viewTable().write(v); }
 
 std::string toString(OrbitMode mode) { return detail::nameOf(kOrbitModes, mode); }
+
+std::string toString(LabelGlyphKind kind) {
+  const std::optional<GlyphKind> g = glyphKindOf(kind);
+  return g ? glyphKindName(*g) : "none";
+}
+
+std::optional<LabelGlyphKind> parseLabelGlyphKind(const std::string& name) {
+  if (name == "none") return LabelGlyphKind::None;
+  const std::optional<GlyphKind> g = parseGlyphKind(name);
+  if (!g) return std::nullopt;
+  return labelGlyphKind(*g);
+}
+
+std::optional<GlyphKind> glyphKindOf(LabelGlyphKind kind) {
+  switch (kind) {
+    case LabelGlyphKind::Bumps:
+      return GlyphKind::Bumps;
+    case LabelGlyphKind::Dimples:
+      return GlyphKind::Dimples;
+    case LabelGlyphKind::Rings:
+      return GlyphKind::Rings;
+    case LabelGlyphKind::Ridges:
+      return GlyphKind::Ridges;
+    case LabelGlyphKind::Cones:
+      return GlyphKind::Cones;
+    case LabelGlyphKind::Crosses:
+      return GlyphKind::Crosses;
+    case LabelGlyphKind::None:
+      break;
+  }
+  return std::nullopt;
+}
+
+LabelGlyphKind labelGlyphKind(GlyphKind kind) {
+  switch (kind) {
+    case GlyphKind::Bumps:
+      return LabelGlyphKind::Bumps;
+    case GlyphKind::Dimples:
+      return LabelGlyphKind::Dimples;
+    case GlyphKind::Rings:
+      return LabelGlyphKind::Rings;
+    case GlyphKind::Ridges:
+      return LabelGlyphKind::Ridges;
+    case GlyphKind::Cones:
+      return LabelGlyphKind::Cones;
+    case GlyphKind::Crosses:
+      return LabelGlyphKind::Crosses;
+  }
+  return LabelGlyphKind::None;
+}
 
 std::optional<OrbitMode> parseOrbitMode(const std::string& name) {
   return detail::parseName(kOrbitModes, name);

@@ -148,6 +148,18 @@ void drawGlyphLegend(Image& image, const GlyphLegend& legend) {
   const glm::dvec3 light = glm::normalize(glm::dvec3(-0.6, -0.6, 1.0));  // image y points down
   for (const GlyphLegendEntry& e : legend.entries) {
     const int cx = pad + radius, cy = y + radius;
+    if (!e.icon.rgba.empty() && e.size > 0.0) {
+      // The glyph as the view's shader draws it (issue 40), scaled to the icon's square.
+      cv::Mat icon(e.icon.height, e.icon.width, CV_8UC4,
+                   const_cast<std::uint8_t*>(e.icon.rgba.data()));
+      cv::Mat scaled;
+      cv::resize(icon, scaled, {2 * radius + 1, 2 * radius + 1}, 0, 0, cv::INTER_AREA);
+      const cv::Rect box(cx - radius, cy - radius, 2 * radius + 1, 2 * radius + 1);
+      if ((box & cv::Rect(0, 0, m.cols, m.rows)) == box) scaled.copyTo(m(box));
+      text(e.label, {cx + radius + static_cast<int>(6 * scale), cy + static_cast<int>(5 * scale)});
+      y += row;
+      continue;
+    }
     // The icon's square: mid grey, the bump shaded on it with the renderer's light direction.
     cv::rectangle(m, {cx - radius, cy - radius}, {cx + radius, cy + radius},
                   cv::Scalar(110, 110, 110, 255), cv::FILLED);
@@ -157,7 +169,7 @@ void drawGlyphLegend(Image& image, const GlyphLegend& legend) {
         const double q = (dx * dx + dy * dy) / (r * r);
         if (q > 1.0) continue;
         glm::dvec3 n(dx / r, dy / r, std::sqrt(1.0 - q));
-        if (e.dimple) n.x = -n.x, n.y = -n.y;
+        if (e.kind == GlyphKind::Dimples) n.x = -n.x, n.y = -n.y;
         const double shade = 255.0 * std::clamp(0.2 + 0.8 * glm::dot(n, light), 0.0, 1.0);
         auto* px = m.ptr<cv::Vec4b>(cy + dy, cx + dx);
         (*px)[0] = (*px)[1] = (*px)[2] = static_cast<unsigned char>(shade);

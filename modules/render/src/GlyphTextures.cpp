@@ -46,15 +46,22 @@ void GlyphTextures::uploadMap(const GlyphMapSettings& g) {
 // its own (VolumeTextures::betaTarget).
 void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures& functional,
                                glm::vec2 window, int classes, const std::vector<LabelGlyph>& labels,
+                               const std::vector<GlyphKind>& classKinds, bool kinds,
                                const ShaderProgram& p, GLuint vao) {
   // Chosen labels: a table over label numbers, 1 for a bump, just above 0 for a dimple (the
-  // "both" shading: beta = 2u - 1), 0 for none.
+  // "both" shading: beta = 2u - 1), 0 for none; with kinds, 2 k + 1 for kind k at full size.
   std::vector<float> table;
   for (const LabelGlyph& l : labels)
     if (l.label > 0) table.resize(std::max<std::size_t>(table.size(), std::size_t(l.label) + 1));
   for (const LabelGlyph& l : labels)
-    if (l.label > 0) table[std::size_t(l.label)] = l.dimple ? 1e-3f : 1.0f;
-  const BetaKey key{functional.generation(), window.x, window.y, classes, table};
+    if (l.label > 0)
+      table[std::size_t(l.label)] = kinds ? 2.0f * float(static_cast<int>(l.kind)) + 1.0f
+                                    : l.kind == GlyphKind::Dimples ? 1e-3f
+                                                                   : 1.0f;
+  std::vector<int> kindCodes;
+  for (GlyphKind k : classKinds) kindCodes.push_back(static_cast<int>(k));
+  if (kindCodes.size() > 16) kindCodes.resize(16);  // uClassKinds[16]; the last one repeats
+  const BetaKey key{functional.generation(), window.x, window.y, classes, table, kindCodes};
   if (betaKey_ == key) return;
   // First: made on first use, the target binds itself to the active unit, which must not
   // replace the functional volume bound below (it did, and glyphs had no attribute wherever
@@ -73,6 +80,9 @@ void GlyphTextures::updateBeta(VolumeTextures& volume, const FunctionalTextures&
   }
   glUniform1i(p.uniform("uLabelGlyphs"), 1);  // never unit 0, the 3D functional volume's
   glUniform1i(p.uniform("uLabelGlyphCount"), GLint(table.size()));
+  glUniform1i(p.uniform("uClassKindCount"), GLint(kindCodes.size()));
+  if (!kindCodes.empty())
+    glUniform1iv(p.uniform("uClassKinds"), GLsizei(kindCodes.size()), kindCodes.data());
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_3D, functional.texture());
   glUniform1i(p.uniform("uFunctional"), 0);
@@ -126,6 +136,9 @@ void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm, doubl
   const double voxelsPerMm = settings_.diameter / diameterMm;
   const glm::mat3 glyphFromWorld(voxelsPerMm * glyphMapRotation(settings_.placement));
   glUniformMatrix3fv(p.uniform("uGlyphFromWorld"), 1, GL_FALSE, glm::value_ptr(glyphFromWorld));
+  const glm::mat3 worldFromGlyph(glm::inverse(glm::dmat3(glyphFromWorld)));  // glyph kinds
+  glUniformMatrix3fv(p.uniform("uWorldFromGlyph"), 1, GL_FALSE, glm::value_ptr(worldFromGlyph));
+  glUniform1f(p.uniform("uGlyphRadiusMm"), float(radius_ / voxelsPerMm));
   glUniform1f(p.uniform("uGlyphMapSize"), float(settings_.size));
   glUniform1f(p.uniform("uGlyphInvMapSize"), float(1.0 / settings_.size));
   glUniform1f(p.uniform("uGlyphRadius"), float(radius_));

@@ -25,9 +25,13 @@ class GlyphTextures {
   // The functional attribute through `window` and `classes`, written into the alpha of the
   // volume's gradient texture with `betaProgram` (beta.frag.glsl) one slice at a time, unless
   // the gradient already holds it. Leaves the default framebuffer bound.
-  // `labels` (when not empty) chooses which labels get glyphs, bumps or dimples.
+  // `labels` (when not empty) chooses which labels get glyphs, bumps or dimples. With `kinds`
+  // (the MVW_GLYPH_KINDS shading) a label or class of kind k is written as 2 k + its size (the
+  // size in 0..1; shaders/common/glyphs.glsl reads both back), the classes' kinds from
+  // `classKinds` (the last one past its end).
   void updateBeta(VolumeTextures& volume, const FunctionalTextures& functional, glm::vec2 window,
                   int classes, const std::vector<LabelGlyph>& labels,
+                  const std::vector<GlyphKind>& classKinds, bool kinds,
                   const ShaderProgram& betaProgram, GLuint vao);
 
   // The glyph centres' uniform block and the map's scale, for glyphs of diameterMm; the DVR
@@ -48,6 +52,7 @@ class GlyphTextures {
     float low, high;
     int classes;
     std::vector<float> labels;
+    std::vector<int> classKinds;
     bool operator==(const BetaKey&) const = default;
   };
   std::optional<BetaKey> betaKey_;

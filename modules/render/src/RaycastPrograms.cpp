@@ -37,9 +37,12 @@ RaycastVariants RaycastPrograms::variants(const RenderSettings& s, bool fusion) 
   set(RaycastVariant::Glyphs, s.glyphs);
   set(RaycastVariant::GlyphSimple, !s.glyphSizeControl);
   // Chosen labels carry their own kind (bump or dimple) through the "both" shading.
-  const bool both = s.glyphConvexity == GlyphConvexity::Both || !s.glyphLabels.empty();
-  set(RaycastVariant::GlyphConcave, !both && s.glyphConvexity == GlyphConvexity::Dimples);
+  // Other kinds (issue 40): the kinds' shading, each glyph's kind read at its foot.
+  const bool kinds = usesGlyphKinds(s);
+  const bool both = !kinds && (s.glyphConvexity == GlyphConvexity::Both || !s.glyphLabels.empty());
+  set(RaycastVariant::GlyphConcave, !kinds && !both && s.glyphConvexity == GlyphConvexity::Dimples);
   set(RaycastVariant::GlyphBoth, both);
+  set(RaycastVariant::GlyphKinds, kinds);
   set(RaycastVariant::GlyphPaper, s.glyphMap.placement == GlyphPlacement::Paper);
   set(RaycastVariant::ImageColormap, s.imageColors.has_value());
   return v;
@@ -65,6 +68,7 @@ RaycastSource RaycastPrograms::source(RenderMode mode, VolumeLayout layout, Rayc
     if (has(v, RaycastVariant::GlyphConcave)) defines.push_back("MVW_GLYPH_CONCAVE 1");
     if (has(v, RaycastVariant::GlyphBoth)) defines.push_back("MVW_GLYPH_BOTH 1");
     if (has(v, RaycastVariant::GlyphPaper)) defines.push_back("MVW_GLYPH_PAPER 1");
+    if (has(v, RaycastVariant::GlyphKinds)) defines.push_back("MVW_GLYPH_KINDS 1");
   }
   switch (mode) {
     case RenderMode::Composite:

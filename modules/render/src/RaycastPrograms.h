@@ -32,6 +32,7 @@ enum class RaycastVariant {
   GlyphConcave,
   GlyphBoth,
   GlyphPaper,
+  GlyphKinds,     // issue 40: glyph kinds other than bumps and dimples
   ImageColormap,  // MIP, MinIP, average, MPR
   Count
 };

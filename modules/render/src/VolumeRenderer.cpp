@@ -15,6 +15,7 @@
 #include "BoxProxy.h"
 #include "FunctionalTextures.h"
 #include "GlObjects.h"
+#include "GlyphIcons.h"
 #include "GlyphTextures.h"
 #include "RaycastPrograms.h"
 #include "RenderTarget.h"
@@ -64,6 +65,7 @@ struct VolumeRenderer::Impl {
   // The view's colour map (RenderSettings::imageColors), uploaded when it changes.
   detail::Texture imageColormap;
   std::optional<ColorTable> imageTable;
+  std::unique_ptr<detail::GlyphIcons> icons;  // made on the first legend with icons
 
   Impl(GlContext& c, const Volume& v, GradientSource gradient)
       : context(madeCurrent(c)),
@@ -150,7 +152,8 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   if (s.glyphs) {
     glyphs.uploadMap(s.glyphMap);
     glyphs.updateBeta(volume, functional, functionalWindow, s.functionalClasses, s.glyphLabels,
-                      programs.beta(), vao.id());
+                      usesGlyphKinds(s) ? s.glyphClassKinds : std::vector<GlyphKind>{},
+                      usesGlyphKinds(s), programs.beta(), vao.id());
   }
 
   target.bind(s.size);
@@ -325,6 +328,13 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayCo
   glActiveTexture(GL_TEXTURE0);
 }
 
+bool usesGlyphKinds(const RenderSettings& s) {
+  if (s.glyphLabels.empty() && !s.glyphClassKinds.empty()) return true;
+  for (const LabelGlyph& l : s.glyphLabels)
+    if (l.kind != GlyphKind::Bumps && l.kind != GlyphKind::Dimples) return true;
+  return false;
+}
+
 bool showsImageColors(const RenderSettings& s) { return s.imageColors && takesImageColors(s.mode); }
 
 VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume, GradientSource gradient)
@@ -374,6 +384,12 @@ glm::dvec3 VolumeRenderer::centre() const { return impl_->framing.centre; }
 double VolumeRenderer::radius() const { return impl_->framing.radius; }
 
 FramingSphere VolumeRenderer::framing() const { return impl_->framing; }
+
+void VolumeRenderer::renderGlyphIcons(const RenderSettings& view, GlyphLegend& legend, int pixels) {
+  Impl& m = *impl_;
+  if (!m.icons) m.icons = std::make_unique<detail::GlyphIcons>();
+  m.icons->fill(m.context, view, legend, pixels);
+}
 
 void VolumeRenderer::setFunctional(const Volume& functional,
                                    const glm::dmat4& anatomicalFromFunctional) {

@@ -55,42 +55,75 @@ render::GlyphLegend glyphLegend(const PlannedView& v, const std::string& unit,
   // blends at full size; eqs. (2)-(3) run from the minimum size to 1 (paper: from 0).
   const bool paper = s.glyphMap.placement == render::GlyphPlacement::Paper;
   const bool both = s.glyphConvexity == GlyphConvexity::Both || !s.glyphLabels.empty();
-  auto bump = [&](double u, std::string label) {
+  auto bump = [&](double u, std::string label, std::optional<double> value) {
     const double beta = both ? 2.0 * u - 1.0 : u;
     const double size =
         !s.glyphSizeControl ? (beta == 0.0 ? 0.0 : 1.0)
         : paper             ? std::abs(beta)
                 : (beta == 0.0 ? 0.0 : s.glyphMinSize + (1.0 - s.glyphMinSize) * std::abs(beta));
     const bool dimple = s.glyphConvexity == GlyphConvexity::Dimples || (both && beta < 0.0);
-    legend.entries.push_back({std::move(label), size, dimple});
+    legend.entries.push_back(
+        {std::move(label), size, dimple ? GlyphKind::Dimples : GlyphKind::Bumps, {}, value});
   };
   if (!s.glyphLabels.empty()) {
     legend.title = "glyphs: chosen labels";
     for (const render::LabelGlyph& l : s.glyphLabels) {
       if (legend.entries.size() == 10) {
-        legend.entries.push_back(
-            {"... " + std::to_string(s.glyphLabels.size() - 10) + " more", 0.0, false});
+        legend.entries.push_back({"... " + std::to_string(s.glyphLabels.size() - 10) + " more",
+                                  0.0,
+                                  {},
+                                  {},
+                                  std::nullopt});
         break;
       }
       legend.entries.push_back(
-          {std::to_string(l.label) + (l.name.empty() ? "" : " " + l.name), 1.0, l.dimple});
+          {std::to_string(l.label) + (l.name.empty() ? "" : " " + l.name) +
+               (render::usesGlyphKinds(s) ? std::string("  ") + glyphKindName(l.kind) : ""),
+           1.0,
+           l.kind,
+           {},
+           double(l.label)});
     }
     return legend;
   }
   if (s.functionalClasses > 0) {
     const int k = s.functionalClasses;
     legend.title = "glyphs: label mod " + std::to_string(k);
-    for (int c = 0; c < std::min(k, 8); ++c)
-      bump(double(c + 1) / k, "labels " + std::to_string(c) + " mod " + std::to_string(k));
+    for (int c = 0; c < std::min(k, 8); ++c) {
+      bump(double(c + 1) / k, "labels " + std::to_string(c) + " mod " + std::to_string(k),
+           double(c == 0 ? k : c));     // a label of the class
+      if (render::usesGlyphKinds(s)) {  // issue 40: each class its kind as well as its size
+        const GlyphKind kind =
+            s.glyphClassKinds[std::min<std::size_t>(c, s.glyphClassKinds.size() - 1)];
+        legend.entries.back().kind = kind;
+        legend.entries.back().label += std::string("  ") + glyphKindName(kind);
+      }
+    }
     return legend;
   }
   double lo = s.functionalLow, hi = s.functionalHigh;
   if (!(hi > lo)) lo = range.first, hi = range.second;
   legend.title = "glyphs: " + (unit.empty() ? std::string("attribute") : unit);
-  bump(0.0, "<= " + number(lo) + "  none");
+  legend.low = lo, legend.high = hi;
+  if (render::usesGlyphKinds(s)) {
+    // An ordinal attribute in classes (issue 40): the window's equal ranges, each its kind,
+    // the icon at the range's middle (the size the window gives there).
+    const int n = int(s.glyphClassKinds.size());
+    bump(0.0, "<= " + number(lo) + "  none", std::nullopt);
+    for (int c = 0; c < n; ++c) {
+      const double a = lo + (hi - lo) * c / n, b = lo + (hi - lo) * (c + 1) / n;
+      const double u = (c + 0.5) / n;
+      const GlyphKind kind = s.glyphClassKinds[std::size_t(c)];
+      bump(u, number(a) + " - " + number(b) + (c + 1 == n ? "+" : "") + "  " + glyphKindName(kind),
+           lo + u * (hi - lo));
+      legend.entries.back().kind = kind;
+    }
+    return legend;
+  }
+  bump(0.0, "<= " + number(lo) + "  none", std::nullopt);
   const std::vector<double> steps =
       both ? std::vector<double>{1e-3, 0.25, 0.75, 1.0} : std::vector<double>{1e-3, 0.5, 1.0};
-  for (double u : steps) bump(u, number(lo + u * (hi - lo)));
+  for (double u : steps) bump(u, number(lo + u * (hi - lo)), lo + u * (hi - lo));
   legend.entries[1].label = "> " + number(lo);  // just above the low end
   return legend;
 }

@@ -137,7 +137,7 @@ std::vector<render::LabelGlyph> chosenLabels(const config::StudyConfig& study,
       throw InputError(study.file, where + "label " + std::to_string(g.label) + " is above " +
                                        std::to_string(kMaxGlyphLabel));
     if (c.kind == config::LabelGlyphKind::None) continue;
-    g.dimple = c.kind == config::LabelGlyphKind::Dimples;
+    g.kind = *config::glyphKindOf(c.kind);
     out.push_back(std::move(g));
   }
   return out;
@@ -145,11 +145,16 @@ std::vector<render::LabelGlyph> chosenLabels(const config::StudyConfig& study,
 
 }  // namespace
 
-double defaultGlyphSpacingMm(double functionalVoxelMm, double mmPerPixel, double minSize) {
+double defaultGlyphSpacingMm(double functionalVoxelMm, double mmPerPixel, double minSize,
+                             bool kinds) {
   // The weakest bump (minSize glyph radii, the glyph kBlueNoiseDiameterFraction of the
-  // spacing) must be kGlyphMinBumpPixels in radius on the image.
+  // spacing) must be kGlyphMinBumpPixels in radius on the image; with kinds, a full-size
+  // glyph kGlyphKindRadiusPixels.
   const double radiusPerSpacing = 0.5 * kBlueNoiseDiameterFraction * std::max(minSize, 0.2);
-  const double visible = kGlyphMinBumpPixels * mmPerPixel / radiusPerSpacing;
+  double visible = kGlyphMinBumpPixels * mmPerPixel / radiusPerSpacing;
+  if (kinds)
+    visible =
+        std::max(visible, kGlyphKindRadiusPixels * mmPerPixel / (0.5 * kBlueNoiseDiameterFraction));
   return std::min(std::max(functionalVoxelMm, visible), std::max(kGlyphSpacingMm, visible));
 }
 
@@ -162,7 +167,8 @@ void applyGlyphScale(PlannedView& view, const Volume& anatomy, const Volume& fun
       2.0 * render::framingSphere(anatomy).radius / std::max(s.camera.zoom, 1e-3) / pixels;
   const glm::dvec3 fv = functional.spacing();
   const double voxel = std::max({fv.x, fv.y, fv.z});
-  setBlueNoiseMap(s, v, defaultGlyphSpacingMm(voxel, mmPerPixel, v.glyphMinSize));
+  setBlueNoiseMap(
+      s, v, defaultGlyphSpacingMm(voxel, mmPerPixel, v.glyphMinSize, render::usesGlyphKinds(s)));
 }
 
 ColorTable colorTable(ColorMap map) {
@@ -352,6 +358,7 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.segmentOutlines = v.segmentationOutlines;
     s.fusion = v.fusion;
     s.functionalClasses = v.functionalClasses;
+    s.glyphClassKinds = v.glyphClassKinds;
     if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
     if (v.fusion && !study.functional)
       throw InputError(study.file,
@@ -475,8 +482,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   // that draw glyphs, kept while glyphs are switched off.
   if (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface)
     for (const render::LabelGlyph& l : s.glyphLabels)
-      v.glyphLabels.push_back({std::to_string(l.label), l.dimple ? config::LabelGlyphKind::Dimples
-                                                                 : config::LabelGlyphKind::Bumps});
+      v.glyphLabels.push_back({std::to_string(l.label), config::labelGlyphKind(l.kind)});
   const bool blueNoise = s.glyphMap.placement == render::GlyphPlacement::BlueNoise;
   v.glyphPlacement = blueNoise ? config::GlyphPlacement::BlueNoise : config::GlyphPlacement::Paper;
   if (blueNoise)  // the map's scale, back in mm
@@ -499,6 +505,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.segmentationOutlines = s.segmentOutlines;
   v.fusion = s.fusion;
   v.functionalClasses = s.functionalClasses;
+  v.glyphClassKinds = s.glyphClassKinds;
   v.overlayOpacity = s.overlayOpacity;
   v.overlayThreshold = s.overlayThreshold;
   // Only where the mode shows it: a saved composite view with a colormap would not load.

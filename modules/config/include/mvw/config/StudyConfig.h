@@ -66,7 +66,14 @@ using mvw::kPaperGlyphDiameterMm;
 
 // A label chosen for glyphs (issue 15 item 4): by number ("37") or by its name in the atlas's
 // label table ("Hippocampus_L"), and what it gets.
-enum class LabelGlyphKind { Bumps, Dimples, None };
+// Bumps and dimples first, then None, then the other glyph kinds (mvw::GlyphKind; issue 40).
+enum class LabelGlyphKind { Bumps, Dimples, None, Rings, Ridges, Cones, Crosses };
+// Its config name ("bumps", ..., "none"), and back (nullopt: not a kind).
+std::string toString(LabelGlyphKind kind);
+std::optional<LabelGlyphKind> parseLabelGlyphKind(const std::string& name);
+// The glyph kind a chosen label gets (None has none).
+std::optional<GlyphKind> glyphKindOf(LabelGlyphKind kind);
+LabelGlyphKind labelGlyphKind(GlyphKind kind);
 struct LabelChoice {
   std::string label;
   LabelGlyphKind kind = LabelGlyphKind::Bumps;
@@ -116,6 +123,10 @@ struct ViewConfig {
   // glyphs.labels {"Hippocampus_L": "bumps", "38": "dimples", ...}: only these labels get
   // glyphs ("bumps" | "dimples" | "none"); names come from the atlas's label table.
   std::vector<LabelChoice> glyphLabels;
+  // glyphs.class_kinds ["bumps", "rings", ...] (issue 40): with functional_classes K, class c
+  // (label L with L mod K = c) takes kind c of this list (the last one past its end), as well
+  // as its size; without, the attribute window is cut into as many equal ranges as kinds.
+  std::vector<GlyphKind> glyphClassKinds;
   std::optional<double> window, level;
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.

@@ -12,6 +12,10 @@ inline constexpr double kGlyphSpacingMm = 5.0;
 inline constexpr double kBlueNoiseDiameterFraction = 0.85;
 // The weakest bump's apparent radius on the image (pixels) that the default spacing keeps.
 inline constexpr double kGlyphMinBumpPixels = 1.5;
+// Glyph kinds (issue 40): a shape is read, not only a bump seen, so the default spacing keeps
+// a full-size glyph this many pixels in radius (measured: GlyphKinds in
+// tests/render/glyph_kinds_gltest.cpp; docs/user-guide/glyphs.md#glyph-kinds).
+inline constexpr double kGlyphKindRadiusPixels = 12.0;
 // The paper's own map (16 random glyphs of 32 voxels in 128^3) on the patient.
 inline constexpr double kPaperGlyphDiameterMm = 6.0;
 // Beyond the paper: the apparent bump radius just above the attribute window's low end, in

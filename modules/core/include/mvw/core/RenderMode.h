@@ -34,4 +34,21 @@ bool isShellMode(RenderMode mode);
 // below the attribute window's middle, bumps above). Config names: convex, concave, both.
 enum class GlyphConvexity { Bumps, Dimples, Both };
 
+// The shapes a glyph can take (issue 40: a nominal attribute's classes told apart by shape),
+// each a normal-map glyph (the shading normal perturbed, no geometry): bumps (hemispheres),
+// dimples (bumps inverted), rings (a torus with a flat centre), ridges (a bar across the glyph,
+// running along the patient's S axis where the surface allows, else L), cones (a constant
+// tilt: a flat-shaded point), crosses (two bars at right angles). Config names: the plurals.
+enum class GlyphKind { Bumps, Dimples, Rings, Ridges, Cones, Crosses };
+inline constexpr int kGlyphKindCount = 6;
+inline const char* glyphKindName(GlyphKind k) {
+  constexpr const char* names[] = {"bumps", "dimples", "rings", "ridges", "cones", "crosses"};
+  return names[static_cast<int>(k)];
+}
+inline std::optional<GlyphKind> parseGlyphKind(const std::string& name) {
+  for (int i = 0; i < kGlyphKindCount; ++i)
+    if (name == glyphKindName(static_cast<GlyphKind>(i))) return static_cast<GlyphKind>(i);
+  return std::nullopt;
+}
+
 }  // namespace mvw

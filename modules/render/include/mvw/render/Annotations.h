@@ -1,11 +1,13 @@
 #pragma once
 // Text and marks burned into headless renders (OpenCV Hershey fonts): orientation labels at
 // the four edges, a scale bar in mm (orthographic views), and a caption (mode, window/level).
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mvw/core/ColorMap.h"
 #include "mvw/core/Image.h"
+#include "mvw/core/RenderMode.h"
 #include "mvw/render/Camera.h"
 
 namespace mvw::render {
@@ -26,11 +28,18 @@ void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
 struct GlyphLegendEntry {
   std::string label;
   double size = 1.0;
-  bool dimple = false;
+  GlyphKind kind = GlyphKind::Bumps;
+  // The glyph as the view's shader draws it (issue 40: VolumeRenderer::renderGlyphIcon), drawn
+  // instead of the hand-shaded bump when present.
+  Image icon;
+  // The attribute value the entry stands for (the functional volume's unit, or the label
+  // number), from which the icon is rendered; none: no icon (a hand-shaded bump).
+  std::optional<double> value;
 };
 struct GlyphLegend {
   std::string title;
   std::vector<GlyphLegendEntry> entries;
+  double low = 0.0, high = 0.0;  // the attribute window the entries' values go through
 };
 
 // The legend at the top-left corner: its title, then per entry a shaded bump (lit from the

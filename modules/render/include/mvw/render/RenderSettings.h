@@ -23,13 +23,20 @@ namespace mvw::render {
 // A label chosen for glyphs: its number, a bump or a dimple, and its atlas name (if any).
 struct LabelGlyph {
   int label = 0;
-  bool dimple = false;
+  GlyphKind kind = GlyphKind::Bumps;
   std::string name;
   bool operator==(const LabelGlyph&) const = default;
 };
 
+// Whether glyphs take the kinds' shading (MVW_GLYPH_KINDS, issue 40): a chosen label's kind
+// other than bumps and dimples, or kinds for the classes. Bumps and dimples alone keep the
+// "both" shading they always had, pixel for pixel.
+struct RenderSettings;
+bool usesGlyphKinds(const RenderSettings& s);
+
 // The modes and glyph kinds are the study config's vocabulary too (mvw/core/RenderMode.h).
 using mvw::GlyphConvexity;
+using mvw::GlyphKind;
 using mvw::parseRenderMode;
 using mvw::RenderMode;
 using mvw::toString;
@@ -94,6 +101,11 @@ struct RenderSettings {
   std::vector<LabelGlyph> glyphLabels;
   // Nominal attribute (labels): K > 0 maps label L > 0 to glyph size (L mod K + 1) / K.
   int functionalClasses = 0;
+  // Glyph kinds for classes (issue 40): with functionalClasses, class c (labels) takes
+  // glyphClassKinds[c] (the last one past the end); without, the attribute window is cut into
+  // glyphClassKinds.size() equal ranges, range c of kind c (an ordinal attribute in classes).
+  // Empty: bumps (and the convexity) as before.
+  std::vector<GlyphKind> glyphClassKinds;
   // Functional colour overlay, when the renderer holds a functional volume: on MPR by
   // default (overlay), on composite and isosurface renders when asked (fusion: the colour
   // map blended into the anatomy's colour before shading).

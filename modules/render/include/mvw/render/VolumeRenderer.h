@@ -15,6 +15,7 @@
 
 #include "mvw/core/Image.h"
 #include "mvw/core/Volume.h"
+#include "mvw/render/Annotations.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/GlContext.h"
@@ -75,6 +76,11 @@ class VolumeRenderer {
   void setSegmentation(const Volume& masks, const std::vector<glm::vec3>& colours,
                        const glm::dmat4& anatomicalFromSegmentation);
   std::pair<double, double> functionalRange() const;
+
+  // The glyph legend's icons (issue 40): every entry with a value gets its glyph as `view`'s
+  // glyph shading draws it, on a plane through one glyph's centre facing the camera, with the
+  // view's light, colours, map and attribute mapping (pixels square).
+  void renderGlyphIcons(const RenderSettings& view, GlyphLegend& legend, int pixels = 64);
 
  private:
   struct Impl;

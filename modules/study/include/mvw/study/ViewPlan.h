@@ -71,7 +71,10 @@ void applyGlyphScale(PlannedView& view, const Volume& anatomy, const Volume& fun
 // in radius at mmPerPixel, and no coarser than kGlyphSpacingMm unless the scale demands it,
 // so that a 10 mm region above the window carries at least three bumps where the image can
 // show them.
-double defaultGlyphSpacingMm(double functionalVoxelMm, double mmPerPixel, double minSize);
+// With glyph kinds (kinds), no finer than makes a full-size glyph kGlyphKindRadiusPixels in
+// radius: a shape must be read.
+double defaultGlyphSpacingMm(double functionalVoxelMm, double mmPerPixel, double minSize,
+                             bool kinds = false);
 
 // The inverse of planViews for one view: the config that plans back to `settings` (the
 // viewer saves its panes this way). preset: its name, "" for the modality's default.
