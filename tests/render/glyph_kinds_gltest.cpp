@@ -25,7 +25,7 @@
 
 #include "RenderTestUtil.h"
 #include "mvw/core/GlyphDefaults.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/VolumeRenderer.h"
