@@ -41,17 +41,30 @@ float functionalFraction(vec3 world) {
 }
 
 // Colour fusion: the functional colour map blended over an anatomy colour where the attribute
-// exceeds the threshold (MPR overlay, and DVR / isosurface fusion).
+// exceeds the threshold (MPR overlay, and DVR / isosurface fusion; the fused projections blend
+// the functional projection of a whole ray, projection.frag.glsl).
 uniform sampler1D uColormap;
 uniform float uOverlayOpacity;
 uniform float uOverlayThreshold;  // 0..1 of the functional range
 
+// The value at `world` as a fraction of uFunctionalRange (not clamped: the threshold and the
+// mean see it as it is), and whether `world` lies inside the functional volume's box.
+float overlayFraction(vec3 world, out bool inside) {
+  float v = functionalValue(world, inside);
+  return (v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
+}
+
+// The colour map at the fraction u (clamped to 0..1) blended over `anatomy` with the overlay's
+// opacity.
+vec3 blendOverlay(vec3 anatomy, float u) {
+  return mix(anatomy, textureLod(uColormap, clamp(u, 0.0, 1.0), 0.0).rgb, uOverlayOpacity);
+}
+
 vec3 fuseColour(vec3 anatomy, vec3 world) {
   bool inside;
-  float v = functionalValue(world, inside);
-  float u = (v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
+  float u = overlayFraction(world, inside);
   if (!inside || u <= uOverlayThreshold) return anatomy;
-  return mix(anatomy, textureLod(uColormap, clamp(u, 0.0, 1.0), 0.0).rgb, uOverlayOpacity);
+  return blendOverlay(anatomy, u);
 }
 
 #endif

@@ -21,6 +21,11 @@ namespace mvw::study {
 
 namespace {
 
+// The modes whose functional projection the config chooses (fusion_projection).
+bool fusesByMean(render::RenderMode mode) {
+  return mode == render::RenderMode::MinIp || mode == render::RenderMode::Average;
+}
+
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
@@ -356,6 +361,11 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     if (v.fusion && !study.functional)
       throw InputError(study.file,
                        "view '" + v.name + "': fusion needs a functional volume in the study");
+    s.fusionProjection = v.fusionProjection;
+    if (v.fusionProjection == FusionProjection::Mean && !fusesByMean(s.mode))
+      throw InputError(study.file, "view '" + v.name +
+                                       "': fusion_projection mean is for minip and average views "
+                                       "(a fused mip shows the functional maximum)");
     s.overlayOpacity = static_cast<float>(v.overlayOpacity);
     s.overlayThreshold = static_cast<float>(v.overlayThreshold);
     const render::StandardView along = standardView(v.view);
@@ -498,6 +508,8 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.overlay = s.overlay;
   v.segmentationOutlines = s.segmentOutlines;
   v.fusion = s.fusion;
+  // Only where the mode takes it, as the colour map below.
+  if (fusesByMean(s.mode)) v.fusionProjection = s.fusionProjection;
   v.functionalClasses = s.functionalClasses;
   v.overlayOpacity = s.overlayOpacity;
   v.overlayThreshold = s.overlayThreshold;
