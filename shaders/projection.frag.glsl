@@ -48,6 +48,9 @@ struct RayState {
   // with MVW_FUSION_MEAN the sum of the fractions over fusedCount samples inside the volume.
   float fused;
   int fusedCount;
+  // The ray in the functional volume's texture coordinates (uFunctionalFromWorld is affine):
+  // sample t lies at fusedOrigin + t fusedDir, one multiply-add per sample, not a matrix.
+  vec3 fusedOrigin, fusedDir;
 #endif
 };
 
@@ -82,6 +85,8 @@ void setupHook(inout RayState s, Ray ray) {
 #endif
 #if defined(MVW_FUSION)
   s.fusedCount = 0;
+  s.fusedOrigin = (uFunctionalFromWorld * vec4(ray.origin, 1.0)).xyz;
+  s.fusedDir = (uFunctionalFromWorld * vec4(ray.dir, 0.0)).xyz;
 #endif
 }
 
@@ -138,7 +143,7 @@ bool skipHook(RayState s, float t, vec3 tex) { return false; }
 // The functional volume at the ray's sample t (see the top of this file).
 void fuseSample(inout RayState s, float t, Ray ray) {
   bool inside;
-  float u = overlayFraction(ray.origin + t * ray.dir, inside);
+  float u = overlayFractionAt(s.fusedOrigin + t * s.fusedDir, inside);
 #if defined(MVW_FUSION_MEAN)
   if (inside) {
     s.fused += u;
