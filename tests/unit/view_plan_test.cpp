@@ -132,6 +132,15 @@ TEST(ViewPlan, FusionProjectionIsForMinipAndAverage) {
               std::string::npos)
         << e.what();
   }
+  // --mode mip over a fused average with the mean: the mip's maximum, not a refusal.
+  ViewOverrides o;
+  o.mode = "mip";
+  const PlannedView overridden =
+      planViews(studyWith({{"mode", "average"}, {"fusion", true}, {"fusion_projection", "mean"}}),
+                o)
+          .at(0);
+  EXPECT_EQ(overridden.settings.mode, RenderMode::Mip);
+  EXPECT_EQ(overridden.settings.fusionProjection, FusionProjection::Max);
   config::StudyConfig none = studyWith({{"mode", "mip"}, {"fusion", true}});
   none.functional.reset();
   EXPECT_THROW(planViews(none), InputError);

@@ -260,6 +260,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     // A mode overridden to one without an image colour map drops the view's.
     if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
     if (colormap && takesImageColors(v.mode)) v.colormap = *colormap;
+    // And one whose fused projection is always the maximum drops the view's functional mean.
+    if (o.mode && !fusesByMean(v.mode)) v.fusionProjection = FusionProjection::Max;
     if (overlayColormap) v.overlayColormap = *overlayColormap;
     // --orbit turns the views that can turn about the long axis (not those looking along it).
     const render::StandardView sight = standardView(v.view);
