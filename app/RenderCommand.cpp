@@ -246,7 +246,20 @@ nlohmann::json viewRecord(const ViewPainter& paint, const render::RenderedFrame&
     std::snprintf(text, sizeof text,
                   "iso %g lies above the volume's maximum %g: the isosurface is empty",
                   v.settings.isoValue, hi);
-    r["notes"] = {text};
+    r["notes"].push_back(text);
+    std::cerr << "mvw render: note: view '" << v.config.name << "': " << text << "\n";
+  }
+  // Fusion asked of a mode that cannot show it: drawn without, and said (the caption and the
+  // colour bar name no fusion either).
+  if (v.settings.fusion && !takesFusion(v.settings.mode)) {
+    const std::string text =
+        v.settings.mode == render::RenderMode::Mpr
+            ? "fusion is for composite, isosurface, mip, minip and average views: an mpr view "
+              "shows the functional volume as its overlay (\"overlay\")"
+            : toString(v.settings.mode) +
+                  " cannot fuse the functional volume (its shells are the anatomy's alone): drawn "
+                  "without; fusion is for composite, isosurface, mip, minip and average views";
+    r["notes"].push_back(text);
     std::cerr << "mvw render: note: view '" << v.config.name << "': " << text << "\n";
   }
   if (v.settings.glyphs)
@@ -392,14 +405,12 @@ void runRender(const RenderOptions& o) {
   std::vector<std::string> orbits;  // views whose frames and movie wait in staging
   for (const mvw::study::PlannedView& v : session.views(renderer)) {
     const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
-    const ViewPainter paint{
-        renderer,
-        session,
-        v,
-        shown,
-        mvw::study::viewCaption(v, shown),
-        session.functional() &&
-            (v.settings.mode == render::RenderMode::Mpr ? v.settings.overlay : v.settings.fusion)};
+    const ViewPainter paint{renderer,
+                            session,
+                            v,
+                            shown,
+                            mvw::study::viewCaption(v, shown),
+                            render::showsFunctional(v.settings, session.functional() != nullptr)};
     render::RenderedFrame frame = paint(v.settings);
     nlohmann::json record = viewRecord(paint, frame);
     if (v.config.orbit > 0) {

@@ -3,6 +3,19 @@
 // MVW_AVERAGE.
 #include "raycast/common.glsl"
 #include "common/colormap.glsl"
+#include "common/functional.glsl"
+
+// Colour fusion (MVW_FUSION): over the anatomy's projection in its colour map, the functional
+// volume's own projection along the same ray, in the overlay's colour map with its opacity
+// (common/functional.glsl). One pass: the functional volume is sampled at the ray's very
+// samples, through its own geometry and the registration (uFunctionalFromWorld), as
+// composite's fusion samples it. Its projection is the maximum of its fractions above the
+// overlay threshold (MIP always; minip and average by default), depth-cued with the anatomy's
+// cue, before the maximum (MVW_DEPTH_CUE: a hot lesion in front reads brighter than one
+// behind); or the mean of its fractions over the samples inside it, shown where the mean
+// exceeds the threshold (MVW_FUSION_MEAN, minip and average). A compile-time variant: the
+// fused program visits every sample (a block the anatomy's extremes skip may hold the
+// functional maximum), the plain ones keep their skipping.
 
 uniform vec2 uWindowLevel;  // window width, level (centre), in the volume's unit
 
@@ -30,6 +43,15 @@ struct RayState {
   // phi = clamp(v * scale + offset): the loop then multiplies and adds, and never divides
   // (a division per sample cost the cue a third of plain MIP's time on llvmpipe).
   float cue0, cue1, scale, offset;
+#if defined(MVW_FUSION)
+  // The functional projection: the largest (cued) fraction above the threshold, -1 for none;
+  // with MVW_FUSION_MEAN the sum of the fractions over fusedCount samples inside the volume.
+  float fused;
+  int fusedCount;
+  // The ray in the functional volume's texture coordinates (uFunctionalFromWorld is affine):
+  // sample t lies at fusedOrigin + t fusedDir, one multiply-add per sample, not a matrix.
+  vec3 fusedOrigin, fusedDir;
+#endif
 };
 
 void setupHook(inout RayState s, Ray ray) {
@@ -56,9 +78,19 @@ void setupHook(inout RayState s, Ray ray) {
   s.depth = -1.0;
   s.count = 0;
   s.bound = s.value;
+#if defined(MVW_FUSION_MEAN)
+  s.fused = 0.0;
+#elif defined(MVW_FUSION)
+  s.fused = -1.0;
+#endif
+#if defined(MVW_FUSION)
+  s.fusedCount = 0;
+  s.fusedOrigin = (uFunctionalFromWorld * vec4(ray.origin, 1.0)).xyz;
+  s.fusedDir = (uFunctionalFromWorld * vec4(ray.dir, 0.0)).xyz;
+#endif
 }
 
-#if defined(MVW_MIP) && !defined(MVW_DEPTH_CUE) && !defined(MVW_NEAREST)
+#if defined(MVW_MIP) && !defined(MVW_DEPTH_CUE) && !defined(MVW_NEAREST) && !defined(MVW_FUSION)
 // Before the ray proper, every PREPASS_STRIDE-th of its samples: their maximum, less a
 // margin, bounds the ray's maximum from below, so blocks whose maximum lies under it are
 // skipped from the start. The maximum so far alone skips no block before the ray has met
@@ -87,8 +119,11 @@ void prepassHook(inout RayState s, float t0, float tEnd) {
 // block leaves its range): a block whose maximum cannot beat the ray's maximum so far (MIP; with
 // the depth cue, that maximum's emission under the cue at this sample, which only falls along
 // the ray), or whose minimum cannot go below its minimum (MinIP), holds no sample that changes
-// the result; ties keep the first sample, so none is lost. Average reads every sample.
-#if defined(MVW_MIP) && defined(MVW_DEPTH_CUE)
+// the result; ties keep the first sample, so none is lost. Average reads every sample, and so
+// does a fused projection (the anatomy's block grid knows nothing of the functional volume).
+#if defined(MVW_FUSION)
+bool skipHook(RayState s, float t, vec3 tex) { return false; }
+#elif defined(MVW_MIP) && defined(MVW_DEPTH_CUE)
 bool skipHook(RayState s, float t, vec3 tex) {
   return max(s.cue0 - s.cue1 * t, 0.0) * clamp(blockRange(tex).y * s.scale + s.offset, 0.0, 1.0) <=
          s.value;
@@ -104,7 +139,32 @@ bool skipHook(RayState s, float t, vec3 tex) { return blockRange(tex).x >= s.val
 bool skipHook(RayState s, float t, vec3 tex) { return false; }
 #endif
 
+#if defined(MVW_FUSION)
+// The functional volume at the ray's sample t (see the top of this file).
+void fuseSample(inout RayState s, float t, Ray ray) {
+  bool inside;
+  float u = overlayFractionAt(s.fusedOrigin + t * s.fusedDir, inside);
+#if defined(MVW_FUSION_MEAN)
+  if (inside) {
+    s.fused += u;
+    s.fusedCount++;
+  }
+#else
+  if (inside && u > uOverlayThreshold) {
+    float phi = clamp(u, 0.0, 1.0);
+#if defined(MVW_DEPTH_CUE)
+    phi *= max(s.cue0 - s.cue1 * t, 0.0);  // eq. (3): beta(z') phi(z), before the maximum
+#endif
+    s.fused = max(s.fused, phi);
+  }
+#endif
+}
+#endif
+
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
+#if defined(MVW_FUSION)
+  fuseSample(s, t, ray);
+#endif
 #if defined(MVW_MIP)
 #if defined(MVW_DEPTH_CUE)
   value = (s.cue0 - s.cue1 * t) * clamp(value * s.scale + s.offset, 0.0, 1.0);  // eq. (3): beta(z') phi(z)
@@ -135,7 +195,14 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
   // eq. (3): the background term beta0 Phi[0] competes in the maximum.
   grey = clamp(max(v, uCue.x * dot(uBackground, vec3(1.0 / 3.0))), 0.0, 1.0);
 #endif
-  fragColor = vec4(imageColour(grey), 1.0);
+  vec3 colour = imageColour(grey);
+#if defined(MVW_FUSION_MEAN)
+  float mean = s.fusedCount > 0 ? s.fused / float(s.fusedCount) : 0.0;
+  if (s.fusedCount > 0 && mean > uOverlayThreshold) colour = blendOverlay(colour, mean);
+#elif defined(MVW_FUSION)
+  if (s.fused >= 0.0) colour = blendOverlay(colour, s.fused);
+#endif
+  fragColor = vec4(colour, 1.0);
   fragDepth = s.depth;
 }
 

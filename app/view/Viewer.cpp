@@ -58,8 +58,7 @@ class ImGuiSession {
 void drawColourBar(Image& shown, const ViewerState& state, const render::VolumeRenderer& renderer,
                    const render::RenderSettings& s) {
   const Volume* functional = state.functional();
-  const bool overlayShown =
-      functional && (s.mode == render::RenderMode::Mpr ? s.overlay : s.fusion);
+  const bool overlayShown = render::showsFunctional(s, functional != nullptr);
   if (overlayShown) {
     auto [flo, fhi] = renderer.functionalRange();
     if (s.functionalHigh > s.functionalLow) flo = s.functionalLow, fhi = s.functionalHigh;

@@ -323,6 +323,16 @@ void ViewerPanel::drawControls() {
     if (ImGui::Checkbox("glyphs (G)", &glyphs)) v.glyphs = glyphs, state_.markDirty(k3d);
     ImGui::SameLine();
     if (ImGui::Checkbox("colour fusion (F)", &fusion)) v.fusion = fusion, state_.markDirty(k3d);
+    // A fused minip or average: the functional maximum along the ray, or its mean.
+    if (v.fusion &&
+        (v.mode == render::RenderMode::MinIp || v.mode == render::RenderMode::Average)) {
+      ImGui::SameLine();
+      bool mean = v.fusionProjection == render::FusionProjection::Mean;
+      if (ImGui::Checkbox("functional mean", &mean)) {
+        v.fusionProjection = mean ? render::FusionProjection::Mean : render::FusionProjection::Max;
+        state_.markDirty(k3d);
+      }
+    }
     if (v.glyphMap.placement == render::GlyphPlacement::BlueNoise) {
       // The blue-noise spacing (the diameter follows at its default fraction) and the size range.
       float spacing = float(render::blueNoiseSpacing(v.glyphMap.size) * v.glyphDiameterMm /

@@ -200,7 +200,13 @@ void ViewerState::key(char key, bool ctrl) {
     view3d_.cueContrast = view3d_.depthCue ? 0.33 : 1.0;
   } else if (key == 'G' && functional_) {
     view3d_.glyphs = !view3d_.glyphs;
-  } else if (key == 'F' && functional_) {
+  } else if (key == 'F') {
+    // Said on the status line, not toggled: a fusion the image could not show.
+    if (!functional_) return requests_.setStatus("colour fusion needs a functional volume");
+    if (!render::takesFusion(view3d_.mode))
+      return requests_.setStatus(toString(view3d_.mode) +
+                                 " cannot fuse the functional volume: colour fusion is for "
+                                 "composite, isosurface, mip, minip and average");
     view3d_.fusion = !view3d_.fusion;
   } else if (key == 'P') {
     const auto names = render::transferPresetNames();

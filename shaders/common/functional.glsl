@@ -9,11 +9,15 @@ uniform sampler3D uFunctional;        // R32F, physical values
 uniform mat4 uFunctionalFromWorld;
 uniform vec2 uFunctionalRange;        // values mapped to 0 .. 1 (colour map, glyph beta)
 
-// The value at `world`, and whether `world` lies inside the functional volume's box.
-float functionalValue(vec3 world, out bool inside) {
-  vec3 tex = (uFunctionalFromWorld * vec4(world, 1.0)).xyz;
+// The value at functional texture coordinates `tex`, and whether they lie inside its box.
+float functionalValueAt(vec3 tex, out bool inside) {
   inside = all(greaterThanEqual(tex, vec3(0.0))) && all(lessThanEqual(tex, vec3(1.0)));
   return inside ? textureLod(uFunctional, tex, 0.0).r : 0.0;
+}
+
+// The value at `world`, and whether `world` lies inside the functional volume's box.
+float functionalValue(vec3 world, out bool inside) {
+  return functionalValueAt((uFunctionalFromWorld * vec4(world, 1.0)).xyz, inside);
 }
 
 // Nominal attributes (atlas labels): with uFunctionalClasses = K > 0 a label L > 0 maps to
@@ -54,17 +58,31 @@ float functionalFraction(vec3 world) {
 }
 
 // Colour fusion: the functional colour map blended over an anatomy colour where the attribute
-// exceeds the threshold (MPR overlay, and DVR / isosurface fusion).
+// exceeds the threshold (MPR overlay, and DVR / isosurface fusion; the fused projections blend
+// the functional projection of a whole ray, projection.frag.glsl).
 uniform sampler1D uColormap;
 uniform float uOverlayOpacity;
 uniform float uOverlayThreshold;  // 0..1 of the functional range
 
+// The value at functional texture coordinates `tex` as a fraction of uFunctionalRange (not
+// clamped: the threshold and the mean see it as it is), and whether `tex` lies inside the
+// functional volume's box.
+float overlayFractionAt(vec3 tex, out bool inside) {
+  float v = functionalValueAt(tex, inside);
+  return (v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
+}
+
+// The colour map at the fraction u (clamped to 0..1) blended over `anatomy` with the overlay's
+// opacity.
+vec3 blendOverlay(vec3 anatomy, float u) {
+  return mix(anatomy, textureLod(uColormap, clamp(u, 0.0, 1.0), 0.0).rgb, uOverlayOpacity);
+}
+
 vec3 fuseColour(vec3 anatomy, vec3 world) {
   bool inside;
-  float v = functionalValue(world, inside);
-  float u = (v - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
+  float u = overlayFractionAt((uFunctionalFromWorld * vec4(world, 1.0)).xyz, inside);
   if (!inside || u <= uOverlayThreshold) return anatomy;
-  return mix(anatomy, textureLod(uColormap, clamp(u, 0.0, 1.0), 0.0).rgb, uOverlayOpacity);
+  return blendOverlay(anatomy, u);
 }
 
 #endif

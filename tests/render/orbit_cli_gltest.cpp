@@ -162,13 +162,28 @@ TEST(OrbitCli, FusionOrbitsWithItsOverlayColourMap) {
                        << R"(" }, "functional": { "path": ")"
                        << test::sampleData("derived/pet_like.nii.gz").string() << R"(" },
       "render": { "views": [ { "name": "fused", "mode": "composite", "preset": "ct-skin",
-        "fusion": true, "overlay_colormap": "pet", "width": 48, "height": 48 } ] } })";
+        "fusion": true, "overlay_colormap": "pet", "width": 48, "height": 48 },
+      { "name": "fused-mip", "mode": "mip", "fusion": true, "overlay_colormap": "pet",
+        "overlay_threshold": 0.3, "depth_cue": { "amount": 0.66, "contrast": 0.33 },
+        "annotate": false,
+        "width": 48, "height": 48 } ] } })";
   ASSERT_TRUE(
       ran("render " + study.string() + " -o " + (dir / "spin").string() + " --orbit 4", dir));
   ASSERT_TRUE(
       ran("render " + study.string() + " -o " + (dir / "back").string() + " --azimuth 180", dir));
   EXPECT_TRUE(
       samePixels(png(dir / "spin" / "fused" / "frame-002.png"), png(dir / "back" / "fused.png")));
+  // The fused, depth-cued MIP turns too (issue 41), its frames in colour where the PET is hot
+  // (two lesions of a few pixels each at 48 x 48).
+  const cv::Mat fusedMip = png(dir / "spin" / "fused-mip" / "frame-002.png");
+  EXPECT_TRUE(samePixels(fusedMip, png(dir / "back" / "fused-mip.png")));
+  int coloured = 0;
+  for (int y = 0; y < fusedMip.rows; ++y)
+    for (int x = 0; x < fusedMip.cols; ++x) {
+      const cv::Vec4b p = fusedMip.at<cv::Vec4b>(y, x);
+      coloured += p[0] != p[1] || p[1] != p[2];
+    }
+  EXPECT_GT(coloured, 5) << "the fused MIP's frame shows no functional colour";
   ASSERT_TRUE(ran("render " + study.string() + " -o " + (dir / "hot").string() +
                       " --overlay-colormap hot-metal",
                   dir));

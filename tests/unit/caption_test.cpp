@@ -22,6 +22,22 @@ TEST(Caption, SaysWhatTheViewShows) {
       planViews(studyWith({{"preset", "ct-skin"}, {"glyphs", {{"convexity", "concave"}}}})).at(0);
   EXPECT_EQ(viewCaption(glyphs, {}), "composite  ct-skin  glyphs sized concave");
 }
+
+// A fusion is named only where the image shows one (issue 41): the fused projections say which
+// functional projection they lay over the anatomy's; a shell mode, which cannot fuse, says none.
+TEST(Caption, NamesAFusionOnlyWhereTheImageShowsIt) {
+  PlannedView mip = planViews(studyWith({{"mode", "mip"}, {"fusion", true}})).at(0);
+  EXPECT_EQ(viewCaption(mip, {400, 40}), "mip  W 400 L 40  + colour fusion (functional max)");
+  PlannedView average =
+      planViews(studyWith({{"mode", "average"}, {"fusion", true}, {"fusion_projection", "mean"}}))
+          .at(0);
+  EXPECT_EQ(viewCaption(average, {400, 40}),
+            "average  W 400 L 40  + colour fusion (functional mean)");
+  PlannedView shells = planViews(studyWith({{"mode", "shells-mip"}, {"fusion", true}})).at(0);
+  EXPECT_EQ(viewCaption(shells, {}).find("fusion"), std::string::npos) << viewCaption(shells, {});
+  PlannedView plain = planViews(studyWith({{"mode", "mip"}})).at(0);
+  EXPECT_EQ(viewCaption(plain, {400, 40}), "mip  W 400 L 40");
+}
 // The legend says what the bump sizes mean: none at or below the window, then the minimum
 // size just above its low end up to full size at its high end (dimples below the middle for
 // "both").

@@ -72,6 +72,7 @@ ViewConfig fullySet() {
   v.overlay = false;
   v.segmentationOutlines = false;
   v.fusion = true;
+  v.fusionProjection = FusionProjection::Mean;
   v.overlayOpacity = 0.7;
   v.overlayThreshold = 0.1;
   v.colormap = ColorMap::HotIron;
@@ -138,6 +139,7 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.overlay, a.overlay);
   EXPECT_EQ(b.segmentationOutlines, a.segmentationOutlines);
   EXPECT_EQ(b.fusion, a.fusion);
+  EXPECT_EQ(b.fusionProjection, a.fusionProjection);
   EXPECT_EQ(b.overlayOpacity, a.overlayOpacity);
   EXPECT_EQ(b.overlayThreshold, a.overlayThreshold);
   EXPECT_EQ(b.colormap, a.colormap);

@@ -112,5 +112,39 @@ TEST(ViewPlan, GlyphsNeedAFunctionalVolumeAndASurfaceMode) {
                InputError);
 }
 
+// fusion_projection (issue 41): kept by describeView where the mode takes it (minip,
+// average), refused where it does not (a fused mip takes the functional maximum), and fusion
+// needs a functional volume.
+TEST(ViewPlan, FusionProjectionIsForMinipAndAverage) {
+  for (const char* mode : {"minip", "average"}) {
+    const config::StudyConfig study =
+        studyWith({{"mode", mode}, {"fusion", true}, {"fusion_projection", "mean"}});
+    const PlannedView p = planViews(study).at(0);
+    EXPECT_EQ(p.settings.fusionProjection, FusionProjection::Mean) << mode;
+    EXPECT_EQ(describeView(p.settings, "view", "").fusionProjection, FusionProjection::Mean)
+        << mode;
+  }
+  try {
+    planViews(studyWith({{"mode", "mip"}, {"fusion", true}, {"fusion_projection", "mean"}}));
+    ADD_FAILURE() << "no InputError for fusion_projection mean on a mip view";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("fusion_projection mean is for minip and average"),
+              std::string::npos)
+        << e.what();
+  }
+  // --mode mip over a fused average with the mean: the mip's maximum, not a refusal.
+  ViewOverrides o;
+  o.mode = "mip";
+  const PlannedView overridden =
+      planViews(studyWith({{"mode", "average"}, {"fusion", true}, {"fusion_projection", "mean"}}),
+                o)
+          .at(0);
+  EXPECT_EQ(overridden.settings.mode, RenderMode::Mip);
+  EXPECT_EQ(overridden.settings.fusionProjection, FusionProjection::Max);
+  config::StudyConfig none = studyWith({{"mode", "mip"}, {"fusion", true}});
+  none.functional.reset();
+  EXPECT_THROW(planViews(none), InputError);
+}
+
 }  // namespace
 }  // namespace mvw::study

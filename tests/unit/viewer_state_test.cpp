@@ -189,6 +189,27 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   EXPECT_DOUBLE_EQ(state.view3d().camera.azimuthDeg, 0.0);
 }
 
+// Issue 41: the fusion key works in every projection of the 3D pane, and the caption says so
+// only while it is on; the spin keeps it.
+TEST_F(ViewerStateTest, FusionKeyFusesTheProjections) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  for (char mode : {'3', '4', '5'}) {
+    renderAll(state);
+    state.key(mode, false);
+    state.key('F', false);
+    EXPECT_TRUE(state.view3d().fusion) << mode;
+    EXPECT_TRUE(state.needsRender(k3d));
+    const std::string caption = state.caption(k3d, state.renderSettings(k3d));
+    EXPECT_NE(caption.find("+ colour fusion (functional max)"), std::string::npos) << caption;
+    state.key('O', false);  // spin: the fused settings turn
+    EXPECT_TRUE(state.renderSettings(k3d).fusion);
+    state.key('O', false);
+    state.key('F', false);
+    EXPECT_FALSE(state.view3d().fusion) << mode;
+    EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)).find("fusion"), std::string::npos);
+  }
+}
+
 TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
   renderAll(state);
@@ -197,6 +218,7 @@ TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
   EXPECT_FALSE(state.view3d().glyphs);
   EXPECT_FALSE(state.view3d().fusion);
   EXPECT_FALSE(state.anyDirty());
+  EXPECT_EQ(state.requests().status(), "colour fusion needs a functional volume");
   state.registration().start();  // nothing to register
   EXPECT_FALSE(state.registration().running());
 }

@@ -59,6 +59,9 @@ const EnumNames<RegistrationMethod> kRegistrations = {{RegistrationMethod::None,
                                                       {RegistrationMethod::Affine, "affine"},
                                                       {RegistrationMethod::File, "file"}};
 
+const EnumNames<FusionProjection> kFusionProjections = {{FusionProjection::Max, "max"},
+                                                        {FusionProjection::Mean, "mean"}};
+
 const EnumNames<OrbitMode> kOrbitModes = {{OrbitMode::Spin, "spin"}, {OrbitMode::Rock, "rock"}};
 
 EnumNames<ColorMap> colorMaps() {
@@ -329,7 +332,15 @@ const FieldTable<ViewConfig>& viewTable() {
                  &V::overlay)
         .boolean("segmentation_outlines", "MPR: outline the segments of the study's segmentation.",
                  &V::segmentationOutlines)
-        .boolean("fusion", "Composite and isosurface: blend the functional colour in.", &V::fusion)
+        .boolean("fusion",
+                 "Composite and isosurface: blend the functional colour in; mip, minip and "
+                 "average: the functional volume's projection along each ray in the overlay "
+                 "colour map over the anatomy's.",
+                 &V::fusion)
+        .enumeration("fusion_projection",
+                     "Fused minip and average views: the functional projection along each ray, "
+                     "the maximum of its samples or their mean (a fused mip takes the maximum).",
+                     &V::fusionProjection, kFusionProjections)
         .number("shells", "shells-mip, shells-sum, shells-lit: the number of isosurface shells.",
                 &V::shells, 1, 256)
         .add(

@@ -38,6 +38,11 @@ bool isShellMode(RenderMode mode) {
          mode == RenderMode::ShellLit;
 }
 
+bool takesFusion(RenderMode mode) {
+  return mode == RenderMode::Composite || mode == RenderMode::Isosurface ||
+         mode == RenderMode::Mip || mode == RenderMode::MinIp || mode == RenderMode::Average;
+}
+
 std::vector<std::string> renderModeNames() {
   std::vector<std::string> out;
   for (const auto& [m, n] : kModeNames) out.push_back(n);

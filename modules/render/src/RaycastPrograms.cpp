@@ -34,6 +34,7 @@ RaycastVariants RaycastPrograms::variants(const RenderSettings& s, bool fusion) 
   set(RaycastVariant::Nearest, !s.linear);
   set(RaycastVariant::Tf2d, s.gradientOpacityHigh > 0.0);
   set(RaycastVariant::Fusion, fusion);
+  set(RaycastVariant::FusionMean, s.fusionProjection == FusionProjection::Mean);
   set(RaycastVariant::Glyphs, s.glyphs);
   set(RaycastVariant::GlyphSimple, !s.glyphSizeControl);
   // Chosen labels carry their own kind (bump or dimple) through the "both" shading.
@@ -61,6 +62,14 @@ RaycastSource RaycastPrograms::source(RenderMode mode, VolumeLayout layout, Rayc
   if (mode == RenderMode::Composite) {
     if (has(v, RaycastVariant::Tf2d)) defines.push_back("MVW_TF2D 1");
     if (has(v, RaycastVariant::Fusion)) defines.push_back("MVW_FUSION 1");
+  }
+  // The fused projections: a program of their own, so that the plain ones keep their skipping.
+  const bool projection =
+      mode == RenderMode::Mip || mode == RenderMode::MinIp || mode == RenderMode::Average;
+  if (projection && has(v, RaycastVariant::Fusion)) {
+    defines.push_back("MVW_FUSION 1");
+    if (mode != RenderMode::Mip && has(v, RaycastVariant::FusionMean))
+      defines.push_back("MVW_FUSION_MEAN 1");
   }
   if (shaded && has(v, RaycastVariant::Glyphs)) {
     defines.push_back("MVW_GLYPHS 1");

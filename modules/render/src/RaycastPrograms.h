@@ -23,11 +23,12 @@ enum class VolumeLayout { Gradient, PackedGradient, OnTheFly, FoldedOnTheFly, Co
 // A program's compile-time variants (#define MVW_... 1 from C++), one bit each; a mode ignores
 // the ones it has no use for. Count: how many there are.
 enum class RaycastVariant {
-  DepthCue,  // MIP
-  Nearest,   // nearest-neighbour samples: MIP, and composite with the packed gradient
-  Tf2d,      // composite
-  Fusion,    // composite: the functional colour blended in
-  Glyphs,    // composite and isosurface, and the four below only with it
+  DepthCue,    // MIP
+  Nearest,     // nearest-neighbour samples: MIP, and composite with the packed gradient
+  Tf2d,        // composite
+  Fusion,      // composite: the functional colour blended in; mip, minip, average: its projection
+  FusionMean,  // minip, average with Fusion: the functional projection is the mean, not the max
+  Glyphs,      // composite and isosurface, and the four below only with it
   GlyphSimple,
   GlyphConcave,
   GlyphBoth,

@@ -157,7 +157,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   }
 
   target.bind(s.size);
-  const bool fusion = functional.present() && (s.mode == RenderMode::Mpr ? s.overlay : s.fusion);
+  const bool fusion = showsFunctional(s, functional.present());
   const ShaderProgram& p = programs.forMode(s.mode, s, fusion);
   p.use();
   setVolumeUniforms(p);
@@ -336,6 +336,14 @@ bool usesGlyphKinds(const RenderSettings& s) {
 }
 
 bool showsImageColors(const RenderSettings& s) { return s.imageColors && takesImageColors(s.mode); }
+
+bool showsFusion(const RenderSettings& s, bool hasFunctional) {
+  return hasFunctional && s.fusion && takesFusion(s.mode);
+}
+
+bool showsFunctional(const RenderSettings& s, bool hasFunctional) {
+  return s.mode == RenderMode::Mpr ? hasFunctional && s.overlay : showsFusion(s, hasFunctional);
+}
 
 VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume, GradientSource gradient)
     : impl_(std::make_unique<Impl>(context, volume, gradient)) {}

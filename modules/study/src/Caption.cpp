@@ -24,7 +24,18 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
     caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
                (s.glyphLabels.empty() ? config::toString(v.config.glyphConvexity)
                                       : std::string("by chosen label"));
-  if (s.fusion) caption += "  + colour fusion";
+  // Only where the image shows it (a planned view with fusion has a functional volume): MPR
+  // shows its overlay, and the shell modes cannot fuse.
+  if (render::showsFusion(s, true)) {
+    caption += "  + colour fusion";
+    const bool projection = s.mode == render::RenderMode::Mip ||
+                            s.mode == render::RenderMode::MinIp ||
+                            s.mode == render::RenderMode::Average;
+    if (projection)
+      caption += s.mode != render::RenderMode::Mip && s.fusionProjection == FusionProjection::Mean
+                     ? " (functional mean)"
+                     : " (functional max)";
+  }
   const bool shells = isShellMode(s.mode);
   if (shells) caption += "  " + std::to_string(s.shellCount) + " shells";
   if ((s.mode == render::RenderMode::Mip || shells) && s.depthCue) {

@@ -152,7 +152,10 @@ struct ViewConfig {
   double slabMm = 0.0;                    // mpr: thick-slab MIP thickness, 0 = single plane
   bool overlay = true;                    // mpr: show the functional volume when there is one
   bool segmentationOutlines = true;       // mpr: outline the study's segmentation's segments
-  bool fusion = false;                    // composite / isosurface: blend the functional colour in
+  // composite / isosurface: blend the functional colour in; mip / minip / average: lay the
+  // functional volume's projection over the anatomy's (minip / average: its max or mean).
+  bool fusion = false;
+  FusionProjection fusionProjection = FusionProjection::Max;
   double overlayOpacity = 0.5;
   double overlayThreshold = 0.25;  // fraction of the functional value range
   // Colour maps: the image of mip / minip / average / mpr views ("colormap"; grey-inverted also

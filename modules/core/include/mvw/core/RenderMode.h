@@ -30,6 +30,16 @@ std::vector<std::string> renderModeNames();
 // The paper's discrete modes (isosurface shells drawn as triangles, not ray cast).
 bool isShellMode(RenderMode mode);
 
+// Whether a mode can blend the functional volume in (colour fusion): composite and isosurface
+// colour the anatomy where they sample it; mip, minip and average lay the functional volume's
+// own projection along each ray over the anatomy's. MPR shows it as its overlay instead; the
+// shell modes draw isosurface triangles of the anatomy alone and cannot.
+bool takesFusion(RenderMode mode);
+
+// A fused minip or average view's functional projection along each ray: the maximum of its
+// samples or their mean (a fused MIP always takes the maximum). Config names: max, mean.
+enum class FusionProjection { Max, Mean };
+
 // Volumetric normal glyphs (Seipel 2007): convex bumps, concave dimples, or both (dimples
 // below the attribute window's middle, bumps above). Config names: convex, concave, both.
 enum class GlyphConvexity { Bumps, Dimples, Both };

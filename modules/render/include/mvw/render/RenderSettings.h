@@ -108,9 +108,13 @@ struct RenderSettings {
   std::vector<GlyphKind> glyphClassKinds;
   // Functional colour overlay, when the renderer holds a functional volume: on MPR by
   // default (overlay), on composite and isosurface renders when asked (fusion: the colour
-  // map blended into the anatomy's colour before shading).
+  // map blended into the anatomy's colour before shading), and on mip, minip and average ones
+  // (fusion: the functional volume's own projection along each ray, in the colour map over the
+  // anatomy's projection; takesFusion in mvw/core/RenderMode.h).
   bool overlay = true;
   bool fusion = false;
+  // Fused minip and average: the functional projection (its maximum or mean along the ray).
+  FusionProjection fusionProjection = FusionProjection::Max;
   float overlayOpacity = 0.5f;
   float overlayThreshold = 0.25f;  // fraction of the functional range
   // MPR: outline the segments of a segmentation set with setSegmentation, in their colours.
@@ -126,5 +130,13 @@ struct RenderSettings {
 // Whether `settings` colours its image (a colour map on a mode that takes one).
 using mvw::takesImageColors;
 bool showsImageColors(const RenderSettings& settings);
+
+// Whether a render of `settings` shows the functional volume in colour, given whether the
+// renderer holds one: MPR its overlay, a mode that takes fusion when asked. What captions and
+// colour bars go by, so that they name nothing the image does not show.
+using mvw::FusionProjection;
+using mvw::takesFusion;
+bool showsFusion(const RenderSettings& settings, bool hasFunctional);
+bool showsFunctional(const RenderSettings& settings, bool hasFunctional);
 
 }  // namespace mvw::render
