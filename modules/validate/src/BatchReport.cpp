@@ -1,5 +1,6 @@
 #include "mvw/validate/BatchReport.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -60,6 +61,12 @@ std::string num(const nlohmann::json& v) {
   if (!v.is_number()) return "";
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v.get<double>());
+  return buf;
+}
+
+std::string oneDecimal(const nlohmann::json& v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v.is_number() ? v.get<double>() : 0.0);
   return buf;
 }
 
@@ -137,7 +144,8 @@ BatchReportCounts writeBatchReport(const fs::path& out) {
              : status == "failed" ? "failed"
                                   : "notrun")
          << "\"><h2>" << html(id) << " <small>" << status << (task.empty() ? "" : " · " + task)
-         << (seconds.empty() ? "" : " · " + seconds + " s") << "</small></h2>\n";
+         << (seconds.empty() ? "" : " · " + oneDecimal(marker["seconds"]) + " s")
+         << "</small></h2>\n";
     if (status == "failed") {
       body << "<p class=\"message\">exit " << exitCode << ": " << html(message) << " (<a href=\""
            << html(id) << "/log.txt\">log</a>)</p>\n";
@@ -145,8 +153,20 @@ BatchReportCounts writeBatchReport(const fs::path& out) {
                << ": " << html(message) << "</li>\n";
     }
     if (status == "done" && done.contains("outputs")) {
-      for (const auto& [file, sum] : done["outputs"].items()) {
-        if (fs::path(file).extension() != ".png") continue;
+      // The views in the study config's order (render.json lists them so), then any other image
+      // (the registration's QA picture) by name.
+      std::vector<std::string> images;
+      const nlohmann::json render = readJson(dir / "render.json");
+      if (render.is_object() && render.contains("views") && render["views"].is_array())
+        for (const auto& v : render["views"])
+          if (v.is_object() && v.contains("file") && v["file"].is_string() &&
+              done["outputs"].contains(v["file"].get<std::string>()))
+            images.push_back(v["file"]);
+      for (const auto& [file, sum] : done["outputs"].items())
+        if (fs::path(file).extension() == ".png" &&
+            std::find(images.begin(), images.end(), file) == images.end())
+          images.push_back(file);
+      for (const std::string& file : images) {
         body << "<figure><a href=\"" << html(id + "/" + file) << "\"><img loading=\"lazy\" src=\""
              << html(id + "/" + file) << "\"></a><figcaption>"
              << html(fs::path(file).stem().string()) << "</figcaption></figure>\n";
