@@ -10,8 +10,7 @@
 #include <iosfwd>
 #include <map>
 #include <string>
-
-#include <nlohmann/json.hpp>
+#include <vector>
 
 #include "mvw/validate/BatchManifest.h"
 
