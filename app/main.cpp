@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "BatchCommand.h"
 #include "BenchCommand.h"
 #include "ConfigCommand.h"
 #include "ConvertCommand.h"
@@ -22,6 +23,7 @@
 #include "ValidateCommand.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Version.h"
+#include "mvw/validate/BatchSlurm.h"
 #include "view/ViewCommand.h"
 
 int main(int argc, char** argv) {
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
   mvw::app::addViewCommand(app);
   mvw::app::addValidateCommand(app);
   mvw::app::addConfigCommand(app);
+  mvw::app::addBatchCommand(app);
   // Every number option is finite: NaN passes any range check (comparisons with it are false)
   // and inf overflows what it scales.
   const CLI::Validator finite(
@@ -63,6 +66,10 @@ int main(int argc, char** argv) {
     // A command line mvw cannot use: one message in mvw's own form, exit 2.
     std::cerr << "mvw: error: " << e.what() << " (mvw COMMAND --help lists the options)\n";
     return 2;
+  } catch (const mvw::validate::SchedulerError& e) {
+    // A server that could not be reached or refused: neither the user's input nor mvw's fault.
+    std::cerr << "mvw: error: " << e.what() << "\n";
+    return 3;
   } catch (const mvw::InputError& e) {
     std::cerr << "mvw: error: " << e.what() << "\n";
     return 2;

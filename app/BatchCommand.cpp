@@ -1,0 +1,141 @@
+#include "BatchCommand.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "mvw/core/Error.h"
+#include "mvw/core/Version.h"
+#include "mvw/io/AtomicFile.h"
+#include "mvw/validate/BatchManifest.h"
+#include "mvw/validate/BatchReport.h"
+#include "mvw/validate/BatchRun.h"
+#include "mvw/validate/BatchSlurm.h"
+
+namespace mvw::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BatchOptions {
+  std::string manifest, out, shard, partition, time, mem;
+  int shards = 0, jobs = 1, tasks = 0, throttle = 0;
+  double timeoutS = 3600.0;
+  bool submit = false;
+};
+
+// The children run this very binary.
+fs::path selfExecutable() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw Error("cannot find mvw's own executable (/proc/self/exe): " + ec.message());
+  return self;
+}
+
+}  // namespace
+
+void addBatchCommand(CLI::App& app) {
+  auto opt = std::make_shared<BatchOptions>();
+  CLI::App* batch = app.add_subcommand(
+      "batch",
+      "Cohorts: a manifest of studies run one by one (resumable), sharded for Slurm "
+      "or Kubernetes, and its report");
+  batch->require_subcommand(1);
+
+  CLI::App* run = batch->add_subcommand(
+      "run",
+      "Run the studies of a manifest (or of one shard of it) into OUT/<id>/, skipping "
+      "those already done");
+  run->add_option("manifest", opt->manifest, "Cohort manifest (.csv: id,study,task,... or .json)")
+      ->required();
+  run->add_option("-o,--output", opt->out, "Output folder")->required();
+  run->add_option("--shard", opt->shard,
+                  "I/N: run shard I of N (default: SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT)");
+  run->add_option("--shards", opt->shards,
+                  "N shards, this one JOB_COMPLETION_INDEX (a Kubernetes Indexed Job)")
+      ->check(CLI::Range(1, 100000));
+  run->add_option("--jobs,-j", opt->jobs, "Studies at once")->check(CLI::Range(1, 256));
+  run->add_option("--timeout", opt->timeoutS, "Seconds a study may take before it is killed")
+      ->check(CLI::Range(1.0, 7 * 24 * 3600.0));
+  run->callback([opt] {
+    const validate::BatchShard shard = validate::resolveBatchShard(opt->shard, opt->shards);
+    const validate::BatchManifest manifest = validate::loadBatchManifest(opt->manifest);
+    validate::BatchRunOptions o;
+    o.out = opt->out;
+    o.shard = shard;
+    o.jobs = opt->jobs;
+    o.timeoutS = opt->timeoutS;
+    o.mvwExecutable = selfExecutable();
+    o.version = kVersion;
+    const validate::BatchRunCounts counts = validate::runBatch(manifest, o, std::cout);
+    // A failed study is neither bad input to this command nor an internal fault: exit 1, the
+    // studies said why (mvw batch report lists them).
+    if (counts.failed) std::exit(1);
+  });
+
+  CLI::App* report = batch->add_subcommand(
+      "report",
+      "Merge OUT's results into OUT/summary.csv, OUT/stats.csv and OUT/index.html; "
+      "exit 0 only when every study is done");
+  report->add_option("output", opt->out, "Output folder of mvw batch run")->required();
+  report->callback([opt] {
+    const validate::BatchReportCounts c = validate::writeBatchReport(opt->out);
+    std::cout << "batch report: " << c.done << " done, " << c.failed << " failed, " << c.notRun
+              << " not run; " << (fs::path(opt->out) / "index.html").string() << "\n";
+    if (c.failed || c.notRun) std::exit(1);
+  });
+
+  CLI::App* slurm = batch->add_subcommand(
+      "slurm",
+      "Write OUT/batch.sbatch, a Slurm array job of N tasks each running one shard; "
+      "--submit submits it");
+  slurm->add_option("manifest", opt->manifest, "Cohort manifest")->required();
+  slurm->add_option("-o,--output", opt->out, "Output folder")->required();
+  slurm->add_option("--tasks", opt->tasks, "Array tasks (shards)")
+      ->required()
+      ->check(CLI::Range(1, 100000));
+  slurm->add_option("--jobs,-j", opt->jobs, "Studies at once in each task (its CPUs)")
+      ->check(CLI::Range(1, 256));
+  slurm->add_option("--partition", opt->partition, "Slurm partition");
+  slurm->add_option("--time", opt->time, "Time limit of each task (e.g. 01:00:00)");
+  slurm->add_option("--mem", opt->mem, "Memory of each task (e.g. 8G)");
+  slurm->add_option("--throttle", opt->throttle, "At most K tasks at once (the array's %K)")
+      ->check(CLI::Range(1, 100000));
+  slurm->add_flag("--submit", opt->submit, "Submit with sbatch and print the job id");
+  slurm->callback([opt] {
+    // The manifest is checked now, not by N failing tasks later.
+    validate::loadBatchManifest(opt->manifest);
+    validate::SlurmJobOptions o;
+    o.manifest = opt->manifest;
+    o.out = opt->out;
+    o.mvwExecutable = selfExecutable();
+    o.tasks = opt->tasks;
+    o.jobs = opt->jobs;
+    o.throttle = opt->throttle;
+    o.partition = opt->partition;
+    o.time = opt->time;
+    o.mem = opt->mem;
+    std::error_code ec;
+    fs::create_directories(fs::path(opt->out) / "logs", ec);
+    if (ec) throw InputError(opt->out, "cannot be made as the output folder: " + ec.message());
+    const fs::path script = fs::path(opt->out) / "batch.sbatch";
+    io::writeTextAtomically(script, validate::slurmScript(o));
+    fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+    if (!opt->submit) {
+      std::cout << script.string() << "\n";
+      return;
+    }
+    const std::string id = validate::submitSlurmScript(script);
+    std::cout << "Submitted array job " << id << " (" << opt->tasks
+              << " tasks): " << script.string() << "\n";
+  });
+}
+
+}  // namespace mvw::app

@@ -1,0 +1,51 @@
+#pragma once
+// A cohort manifest for `mvw batch`: one line per study, its id, its study config and the work
+// to do (render, stats or register), with more columns for the command's options. CSV with the
+// header `id,study,task` (then option columns, named as the option without its dashes), or the
+// same as JSON (`{"studies": [{"id": ..., "study": ..., "task": ..., "options": {...}}]}`).
+// Every bad row is refused on load, naming the file and the line: nothing runs from a manifest
+// that is wrong anywhere.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mvw::validate {
+
+struct BatchStudy {
+  std::string id;                                            // also its output folder's name
+  std::filesystem::path study;                               // the study config, absolute
+  std::string task;                                          // render | stats | register
+  std::vector<std::pair<std::string, std::string>> options;  // option name -> value ("" = flag)
+  std::string studyText;                                     // the study column as written
+  std::string line;    // the manifest line as written (its JSON object for JSON)
+  int lineNumber = 0;  // 1-based; the object's index + 1 for JSON
+};
+
+struct BatchManifest {
+  std::filesystem::path file;
+  std::vector<BatchStudy> studies;  // in manifest order
+};
+
+// Throws InputError naming the file and the line for: a missing or unreadable file, a wrong
+// header, a row with the wrong number of fields, an empty or unusable id, a duplicate id, an
+// unknown task, a study config that does not exist, a bad option column name.
+BatchManifest loadBatchManifest(const std::filesystem::path& file);
+
+// The tasks a manifest may name.
+const std::vector<std::string>& batchTasks();
+
+// Which part of the manifest one process runs: the studies whose index modulo count is index
+// (dealt in manifest order, so each shard gets every count-th study).
+struct BatchShard {
+  int index = 0;
+  int count = 1;
+};
+
+// The shard from `--shard I/N` when given, else from `--shards N` with Kubernetes'
+// JOB_COMPLETION_INDEX, else from SLURM_ARRAY_TASK_ID (minus SLURM_ARRAY_TASK_MIN when set) and
+// SLURM_ARRAY_TASK_COUNT, else the whole manifest. Throws InputError naming the option or the
+// variable when a value is not a whole number, or I is not in 0..N-1.
+BatchShard resolveBatchShard(const std::string& shardOption, int shardsOption);
+
+}  // namespace mvw::validate

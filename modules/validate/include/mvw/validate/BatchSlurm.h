@@ -1,0 +1,35 @@
+#pragma once
+// `mvw batch slurm`: a Slurm array job whose tasks each run one shard of the manifest
+// (`mvw batch run --shard ${SLURM_ARRAY_TASK_ID}/N`), with a log per task; optionally submitted
+// with sbatch.
+#include <filesystem>
+#include <string>
+
+#include "mvw/core/Error.h"
+
+namespace mvw::validate {
+
+struct SlurmJobOptions {
+  std::filesystem::path manifest, out, mvwExecutable;
+  int tasks = 1;
+  int jobs = 1;           // --jobs of each task, and its --cpus-per-task
+  int throttle = 0;       // at most this many tasks at once (the array's %K); 0 = no limit
+  std::string partition;  // "" = the cluster's default
+  std::string time;       // "" = the partition's default (e.g. 01:00:00)
+  std::string mem;        // "" = the partition's default (e.g. 8G)
+};
+
+// The sbatch script's text.
+std::string slurmScript(const SlurmJobOptions& options);
+
+// The scheduler could not be reached or refused the job: exit 3, naming the server.
+class SchedulerError : public Error {
+ public:
+  explicit SchedulerError(const std::string& message) : Error(message) {}
+};
+
+// Runs `sbatch --parsable script` and returns the job id. Throws InputError when sbatch is not
+// installed, SchedulerError (naming the controller from slurm.conf) when it fails.
+std::string submitSlurmScript(const std::filesystem::path& script);
+
+}  // namespace mvw::validate
