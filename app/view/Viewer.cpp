@@ -63,15 +63,17 @@ void drawColourBar(Image& shown, const ViewerState& state, const render::VolumeR
   if (overlayShown) {
     auto [flo, fhi] = renderer.functionalRange();
     if (s.functionalHigh > s.functionalLow) flo = s.functionalLow, fhi = s.functionalHigh;
+    const std::string name = ViewerState::volumeName(*functional, "functional");
     if (s.overlayColors)
-      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, *s.overlayColors);
+      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, *s.overlayColors, name);
     else
-      render::drawColourBar(shown, flo, fhi, functional->metadata().unit);
+      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, name);
   } else if (render::showsImageColors(s)) {
     const auto [lo, hi] = state.scene().valueRange;
     const WindowLevel w = windowOrFullRange(s.window, s.level, lo, hi);
     render::drawColourBar(shown, w.level - 0.5 * w.window, w.level + 0.5 * w.window,
-                          state.anatomical().metadata().unit, *s.imageColors);
+                          state.anatomical().metadata().unit, *s.imageColors,
+                          ViewerState::volumeName(state.anatomical(), "anatomical"));
   }
 }
 

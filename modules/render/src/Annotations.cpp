@@ -76,7 +76,7 @@ void annotate(Image& image, const Camera& camera, const std::string& caption) {
 namespace {
 
 // The bar in 256 colours (index 0 at the bottom), the range's ends and the unit beside it.
-void drawBar(Image& image, double lo, double hi, const std::string& unit,
+void drawBar(Image& image, double lo, double hi, const std::string& unit, const std::string& title,
              const std::vector<cv::Scalar>& colours) {
   cv::Mat m(image.height, image.width, CV_8UC4, image.rgba.data());
   const double scale = std::max(0.4, std::min(image.width, image.height) / 600.0);
@@ -108,25 +108,27 @@ void drawBar(Image& image, double lo, double hi, const std::string& unit,
     std::snprintf(buf, sizeof buf, "%.4g", v);
     text(buf, y);
   };
+  if (!title.empty()) text(title, top - static_cast<int>(24 * scale));
   label(hi, top - static_cast<int>(6 * scale));
   label(lo, bottom + static_cast<int>(16 * scale));
-  if (!unit.empty()) text(unit, bottom + static_cast<int>(32 * scale));
+  text(unit.empty() ? "no unit" : unit, bottom + static_cast<int>(32 * scale));
 }
 
 }  // namespace
 
-void drawColourBar(Image& image, double lo, double hi, const std::string& unit) {
+void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
+                   const std::string& title) {
   const auto lut = sampleTransferFunction(transferPreset("pet-hot-metal"), 0.0, 1.0, 256, 0.0, 1.0);
   std::vector<cv::Scalar> colours;
   for (const glm::vec4& c : lut) colours.emplace_back(255 * c.r, 255 * c.g, 255 * c.b, 255);
-  drawBar(image, lo, hi, unit, colours);
+  drawBar(image, lo, hi, unit, title, colours);
 }
 
 void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
-                   const ColorTable& table) {
+                   const ColorTable& table, const std::string& title) {
   std::vector<cv::Scalar> colours;
   for (const auto& c : table.rgb) colours.emplace_back(c[0], c[1], c[2], 255);
-  drawBar(image, lo, hi, unit, colours);
+  drawBar(image, lo, hi, unit, title, colours);
 }
 
 void drawGlyphLegend(Image& image, const GlyphLegend& legend) {

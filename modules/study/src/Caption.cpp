@@ -2,8 +2,25 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 namespace mvw::study {
+
+std::string volumeName(const Volume& v, const char* role) {
+  const VolumeMetadata& md = v.metadata();
+  const std::string modality = md.modality == "PT" ? "PET" : md.modality;
+  // The series description, or the file's name without its extensions (a DICOM folder's name
+  // where the series has no description).
+  std::string what = md.seriesDescription;
+  if (what.empty() && !md.sourcePath.empty()) {
+    std::filesystem::path file = std::filesystem::path(md.sourcePath).filename();
+    while (file.has_extension() && file.extension().string().size() <= 4) file = file.stem();
+    what = file.string();
+  }
+  if (what.size() > 24) what = what.substr(0, 22) + "..";
+  if (what.empty()) return modality.empty() ? role : modality;
+  return modality.empty() ? what : modality + " " + what;
+}
 
 std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   const render::RenderSettings& s = v.settings;
