@@ -50,12 +50,13 @@ void addViewCommand(CLI::App& app) {
       "Interactive viewer: 3D view + axial, coronal, sagittal MPR with a linked crosshair.\n"
       "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom; MPR left "
       "click/drag moves the\n"
-      "crosshair, wheel scrolls slices, right-drag or Ctrl-drag window/level, Shift-drag a sphere "
-      "ROI,\nAlt-drag a ruler (or the panel's MPR mouse tool); double-click maximises a view.\n"
+      "crosshair, wheel scrolls slices, Ctrl+wheel zooms, middle-drag pans (the MPR panes "
+      "together),\nright-drag or Ctrl-drag window/level, Shift-drag a sphere "
+      "ROI, Alt-drag a ruler (or the panel's MPR mouse tool);\ndouble-click maximises a view.\n"
       "Keys: 1 composite, 2 isosurface, 3 MIP, 4 MinIP, 5 average, D depth cue, G glyphs, F colour "
       "fusion,\n"
-      "P next preset, R reset, S screenshot, Ctrl+S save the state as a study config (mvw render "
-      "reproduces it).");
+      "P next preset, Z fit the MPR panes, X one screen pixel per voxel, R reset, S screenshot, "
+      "Ctrl+S save the state\nas a study config (mvw render reproduces it).");
   cmd->add_option("study", o->study, "Study config (.json)");
   cmd->add_option("--anatomical", o->anatomical,
                   "Anatomical volume (DICOM folder or file, NIfTI, MetaImage)");

@@ -168,7 +168,7 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
   ViewerMeasurements& measurements = state_.measurements();
   if (ImGui::IsItemHovered()) {
     if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) state_.toggleMaximised(pane);
-    if (io.MouseWheel != 0.0f) state_.wheel(pane, io.MouseWheel);
+    if (io.MouseWheel != 0.0f) state_.wheel(pane, io.MouseWheel, io.KeyCtrl);
     // The tool, or Shift (sphere) / Alt (ruler) whatever the tool: a measurement starts.
     const MprTool tool = io.KeyShift ? MprTool::Sphere
                          : io.KeyAlt ? MprTool::Ruler
@@ -404,11 +404,12 @@ void ViewerPanel::drawControls() {
   ImGui::Separator();
   ImGui::TextWrapped(
       "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom. MPR: left "
-      "click/drag moves the crosshair, wheel scrolls slices, right-drag or Ctrl-drag "
+      "click/drag moves the crosshair, wheel scrolls slices, Ctrl+wheel zooms and middle-drag "
+      "pans (the MPR panes together), right-drag or Ctrl-drag "
       "window/level, Shift-drag a sphere ROI, Alt-drag a ruler. Double-click maximises a "
       "view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
-      "fusion, P next preset, O spin, K rock, R reset, S screenshot, Ctrl+S save state as a "
-      "study config.");
+      "fusion, P next preset, O spin, K rock, Z fit the MPR panes, X one screen pixel per "
+      "voxel, R reset, S screenshot, Ctrl+S save state as a study config.");
   if (const std::string& status = state_.requests().status(); !status.empty())
     ImGui::TextWrapped("%s", status.c_str());
 }

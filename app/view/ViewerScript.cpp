@@ -70,7 +70,8 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
   if (cmd == "key") {
     c.kind = Kind::Key;
     const std::string k = in.word("key");
-    if (k.size() != 1) in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k)");
+    if (k.size() != 1)
+      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x)");
     c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
     if (in.more()) {
       const std::string mod = in.word("modifier");
@@ -108,6 +109,22 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
     c.kind = Kind::Wheel;
     c.pane = in.pane();
     c.x = in.number("notches");
+    if (in.more()) {
+      const std::string mod = in.word("modifier");
+      if (mod != "ctrl") in.fail("wheel: unknown modifier '" + mod + "' (ctrl)");
+      c.ctrl = true;
+    }
+  } else if (cmd == "zoom") {
+    c.kind = Kind::Zoom;
+    c.pane = in.pane();
+    c.x = in.number("factor");
+    if (!(c.x >= 0.01 && c.x <= 100)) in.fail("zoom: the factor must lie in 0.01 .. 100");
+  } else if (cmd == "pan") {
+    c.kind = Kind::Pan;
+    c.pane = in.pane();
+    c.x = in.number("dx");
+    c.y = in.number("dy");
+    if (!(std::abs(c.x) <= 1e5 && std::abs(c.y) <= 1e5)) in.fail("pan: dx and dy within +-1e5 mm");
   } else if (cmd == "wait") {
     c.kind = Kind::Wait;
     const double frames = in.number("frame count");
@@ -270,7 +287,13 @@ bool ViewerScript::step(ViewerState& state) {
       state.click(c.pane, c.x, c.y);
       break;
     case Kind::Wheel:
-      state.wheel(c.pane, c.x);
+      state.wheel(c.pane, c.x, c.ctrl);
+      break;
+    case Kind::Zoom:
+      state.zoomPane(c.pane, c.x);
+      break;
+    case Kind::Pan:
+      state.panPane(c.pane, c.x, c.y);
       break;
     case Kind::Wait:
       wait_ = c.frames;

@@ -1,12 +1,15 @@
 #pragma once
 // The viewer's --script (tests under Xvfb drive the window with it). One command per line:
-//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k)
+//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k, z, x)
 //   drag PANE dx dy [left|right|middle] a drag by fractions of the pane (default left)
 //   drag-frames PANE dx dy N [BUTTON]   the same drag spread over N frames, each one a frame of
 //                                       an interactive drag (the 3D pane renders coarse, as
 //                                       under the mouse), then the frame that refines
 //   click PANE x y                      a click at fractions of the pane (y down)
-//   wheel PANE n                        n wheel notches
+//   wheel PANE n [ctrl]                 n wheel notches (with Ctrl: an MPR pane zooms)
+//   zoom PANE FACTOR                    the pane's zoom times FACTOR (the MPR panes together)
+//   pan PANE dx dy                      the pane's picture moved dx mm right, dy mm up (the MPR
+//                                       panes together, by the same world displacement)
 //   wait FRAMES                         let FRAMES frames pass
 //   screenshot FILE                     the whole window as drawn, PNG
 //   screenshot-pane PANE FILE           the pane's rectangle of the window as drawn, PNG
@@ -49,6 +52,8 @@ class ViewerScript {
       DragFrames,
       Click,
       Wheel,
+      Zoom,
+      Pan,
       Wait,
       Screenshot,
       PaneScreenshot,
@@ -72,7 +77,7 @@ class ViewerScript {
     char key = 0;  // upper case
     bool ctrl = false;
     int pane = k3d;
-    double x = 0.0, y = 0.0;    // drag: dx, dy; click: x, y; wheel: x = notches
+    double x = 0.0, y = 0.0;    // drag, pan: dx, dy; click: x, y; wheel: x = notches; zoom: x
     double x1 = 0.0, y1 = 0.0;  // roi, ruler: where the drag ends
     config::SphereMeasurement sphere;
     MouseButton button = MouseButton::Left;

@@ -27,6 +27,8 @@ const StandardView kMprViews[3] = {StandardView::Inferior, StandardView::Anterio
 const RenderMode k3dModes[] = {RenderMode::Composite, RenderMode::Isosurface, RenderMode::Mip,
                                RenderMode::MinIp, RenderMode::Average};
 
+constexpr double kMinMprZoom = 0.1, kMaxMprZoom = 50.0;
+
 bool is3dMode(RenderMode mode) {
   return std::find(std::begin(k3dModes), std::end(k3dModes), mode) != std::end(k3dModes);
 }
@@ -65,7 +67,7 @@ double sampleLinear(const Volume& v, const glm::dvec3& world, bool* inside) {
 std::string formatValue(double v, const std::string& unit) {
   char buf[64];
   std::snprintf(buf, sizeof buf, std::abs(v) >= 100 ? "%.0f" : "%.3g", v);
-  return unit.empty() ? std::string(buf) : std::string(buf) + " " + unit;
+  return std::string(buf) + (unit.empty() ? " (no unit)" : " " + unit);
 }
 
 }  // namespace
@@ -105,8 +107,19 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
       mprColors_ = v.settings.imageColors;
       segmentOutlines_ = v.settings.segmentOutlines;
+      mprZoom_ = std::clamp(v.settings.camera.zoom, kMinMprZoom, kMaxMprZoom);
       break;
     }
+  // The linked pan from the MPR panes' saved pans (each sees the world pan's two in-plane
+  // components; every axis is seen by two of the three panes).
+  glm::dvec3 pan(0.0);
+  for (const mvw::study::PlannedView& v : planned)
+    if (v.settings.mode == RenderMode::Mpr && v.config.name.rfind("view-", 0) == 0) {
+      const render::Camera cam =
+          render::makeCamera(v.settings.camera, scene_.centre, scene_.radius, {64, 64});
+      pan += 0.5 * (cam.right * v.settings.camera.panMm.x + cam.up * v.settings.camera.panMm.y);
+    }
+  mprPan_ = pan;
   if (study_.functionalKind == config::FunctionalKind::Labels && study_.functional)
     if (auto table = io::labelTableBeside(study_.functional->path))
       labelNames_ = io::readLabelTable(*table);
@@ -126,9 +139,8 @@ std::optional<int> ViewerState::paneNamed(const std::string& name) {
 
 std::span<const RenderMode> ViewerState::modes3d() { return k3dModes; }
 
-std::string ViewerState::volumeName(const Volume& v, const char* fallback) {
-  const std::string& m = v.metadata().modality;
-  return m.empty() ? fallback : m == "PT" ? "PET" : m;
+std::string ViewerState::volumeName(const Volume& v, const char* role) {
+  return mvw::study::volumeName(v, role);
 }
 
 void ViewerState::markAllDirty() {
@@ -160,6 +172,12 @@ void ViewerState::drag(int pane, double dx, double dy, MouseButton button, bool 
     markDirty(k3d);
     return;
   }
+  if (button == MouseButton::Middle && !ctrl) {  // pan: the dragged point follows the mouse
+    const render::Camera& cam = pane_(pane).camera;
+    const double heightMm = 2.0 * cam.halfHeightMm;
+    panPane(pane, dx * heightMm * cam.aspect, -dy * heightMm);
+    return;
+  }
   if (button == MouseButton::Right || ctrl) {  // window / level, as workstation viewers do
     const auto [lo, hi] = scene_.valueRange;
     mprWindow_ = std::max(1e-3, mprWindow_ * std::exp(dx * 2.0));
@@ -180,7 +198,50 @@ void ViewerState::click(int pane, double x, double y) {
   markMprDirty();
 }
 
-void ViewerState::wheel(int pane, double steps) {
+void ViewerState::zoomPane(int pane, double factor) {
+  if (!(factor > 0) || !std::isfinite(factor)) return;
+  if (pane == k3d) {
+    view3d_.camera.zoom = std::clamp(view3d_.camera.zoom * factor, 0.1, 20.0);
+    markDirty(k3d);
+    return;
+  }
+  mprZoom_ = std::clamp(mprZoom_ * factor, kMinMprZoom, kMaxMprZoom);
+  markMprDirty();
+}
+
+void ViewerState::panPane(int pane, double rightMm, double upMm) {
+  if (pane == k3d) {
+    view3d_.camera.panMm += glm::dvec2(rightMm, upMm);
+    markDirty(k3d);
+    return;
+  }
+  render::CameraSettings plane;
+  plane.view = kMprViews[pane - 1];
+  const render::Camera cam = render::makeCamera(plane, scene_.centre, scene_.radius, {64, 64});
+  mprPan_ += cam.right * rightMm + cam.up * upMm;
+  markMprDirty();
+}
+
+void ViewerState::mprFit() {
+  mprZoom_ = 1.0;
+  mprPan_ = glm::dvec3(0.0);
+  markMprDirty();
+}
+
+void ViewerState::mprOneToOne() {
+  // makeCamera fits the framing sphere's diameter in the shorter side, divided by the zoom.
+  const glm::ivec2 size = glm::max(pane_(kAxial).size, glm::ivec2(8));
+  const double shorter = std::min(size.x, size.y);
+  mprZoom_ = std::clamp(2.0 * scene_.radius / (shorter * anatomical_.smallestSpacing()),
+                        kMinMprZoom, kMaxMprZoom);
+  markMprDirty();
+}
+
+void ViewerState::wheel(int pane, double steps, bool ctrl) {
+  if (pane != k3d && ctrl) {
+    zoomPane(pane, std::exp(0.1 * steps));
+    return;
+  }
   if (pane == k3d) {
     view3d_.camera.zoom = std::clamp(view3d_.camera.zoom * std::exp(0.1 * steps), 0.1, 20.0);
     markDirty(k3d);
@@ -211,10 +272,16 @@ void ViewerState::key(char key, bool ctrl) {
     setOrbit(Orbit::Off);
     view3d_.camera = render::CameraSettings{};
     crosshair_ = scene_.centre;
+    mprZoom_ = 1.0;
+    mprPan_ = glm::dvec3(0.0);
   } else if (key == 'O') {
     toggleOrbit(Orbit::Spin);
   } else if (key == 'K') {
     toggleOrbit(Orbit::Rock);
+  } else if (key == 'Z') {
+    mprFit();
+  } else if (key == 'X') {
+    mprOneToOne();
   } else if (key == 'S' && ctrl) {
     saveConfig("mvw-view-state.json");
   } else if (key == 'S') {
@@ -316,9 +383,11 @@ render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) c
     s.imageColors = mprColors_;
     s.overlayColors = view3d_.overlayColors;
     s.segmentOutlines = segmentOutlines_;
-    const glm::dvec3 forward =
-        render::makeCamera(s.camera, scene_.centre, scene_.radius, image.size).forward;
-    s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, forward);
+    s.camera.zoom = mprZoom_;
+    const render::Camera plane =
+        render::makeCamera(s.camera, scene_.centre, scene_.radius, glm::max(image.size, 1));
+    s.camera.panMm = {glm::dot(mprPan_, plane.right), glm::dot(mprPan_, plane.up)};
+    s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, plane.forward);
   }
   s.size = image.size;
   if (pane == k3d && interacting) {  // coarse while dragging

@@ -74,20 +74,34 @@ class ViewerState : public PaneGeometry {
 
   static const char* paneName(int pane);                         // 3d, axial, coronal, sagittal
   static std::optional<int> paneNamed(const std::string& name);  // the inverse
-  // "CT", "PET" (DICOM's PT), "MR", ...: the volume's modality, `fallback` where none is named.
-  static std::string volumeName(const Volume& volume, const char* fallback);
+  // The volume's name in readouts, statistics and colour bars (study::volumeName): "MR relCBF",
+  // "CT Cranium"; `role` ("anatomical", "functional") where it names neither.
+  static std::string volumeName(const Volume& volume, const char* role);
   // The 3D pane's modes, in the order of the keys 1-5.
   static std::span<const render::RenderMode> modes3d();
 
   // Input. Drags and clicks are in fractions of the pane (y down); steps are wheel notches.
   void drag(int pane, double dx, double dy, MouseButton button, bool ctrl);
   void click(int pane, double x, double y);
-  void wheel(int pane, double steps);
+  // The wheel: the 3D pane zooms; an MPR pane scrolls slices, or zooms with Ctrl.
+  void wheel(int pane, double steps, bool ctrl = false);
   // key: an upper-case letter or digit ('1'..'5' modes, 'D', 'G', 'F', 'P', 'R', 'S', 'O' spin,
-  // 'K' rock); other keys do nothing.
+  // 'K' rock, 'Z' MPR fit, 'X' MPR one screen pixel per voxel); other keys do nothing.
   void key(char key, bool ctrl);
   void toggleMaximised(int pane);
-  void setMode(render::RenderMode mode);  // one of modes3d()
+  // Zoom and pan (issue 36 item 1). The MPR panes are linked: one zoom, and one pan in world
+  // terms (a point moved into view on one pane is in view on the others); the 3D pane has its
+  // own camera. zoomPane multiplies the zoom (0.1 .. 50 for MPR, 0.1 .. 20 in 3D); panPane
+  // moves the picture right and up by millimetres on the pane. mprFit: the whole volume (zoom
+  // 1, no pan); mprOneToOne: one screen pixel per voxel of the anatomical volume's finest
+  // spacing on the axial pane, the pan kept.
+  void zoomPane(int pane, double factor);
+  void panPane(int pane, double rightMm, double upMm);
+  void mprFit();
+  void mprOneToOne();
+  double mprZoom() const { return mprZoom_; }
+  const glm::dvec3& mprPan() const { return mprPan_; }  // world mm the MPR pictures are moved
+  void setMode(render::RenderMode mode);                // one of modes3d()
   void setPreset(const std::string& name);
   void setMprWindow(double window, double level);
   // Colour maps (grey for the images and hot metal for the overlay are the defaults); the 3D
@@ -163,8 +177,9 @@ class ViewerState : public PaneGeometry {
   // and so does the script's hover.
   void setCursor(int pane, double x, double y) { cursor_ = {pane, onPlane(pane, x, y)}; }
   std::optional<std::pair<int, glm::dvec3>> cursor() const { return cursor_; }
-  // The readout at a point: "CT 45 HU | PET 3.21 SUVbw" (each volume by its modality, or
-  // "anatomical" / "functional"; "outside" where the point is outside a volume).
+  // The readout at a point: "CT Cranium 45 HU | PET WB 3.21 SUVbw" (each volume by
+  // volumeName, each value with its unit or "(no unit)"; "outside" where the point is outside
+  // a volume).
   std::string readout(const glm::dvec3& world) const;
 
   // The crosshair to a point (the MPR panes then cut it), e.g. to an ROI's centre.
@@ -211,6 +226,8 @@ class ViewerState : public PaneGeometry {
   render::RenderSettings view3d_;
   std::string presetName_;
   double mprWindow_ = 0, mprLevel_ = 0;
+  double mprZoom_ = 1.0;
+  glm::dvec3 mprPan_{0.0};
   std::map<int, std::string> labelNames_;
   std::optional<ColorTable> mprColors_;  // the MPR panes' anatomy; none: grey
   bool segmentOutlines_ = true;          // the MPR panes outline the study's segmentation

@@ -182,7 +182,7 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   EXPECT_EQ(state.requests().takeScreenshotRequest(), std::filesystem::path("mvw-screenshot.png"));
   EXPECT_EQ(state.requests().takeScreenshotRequest(), std::nullopt);
   renderAll(state);
-  state.key('X', false);  // unbound: nothing to redraw
+  state.key('Q', false);  // unbound: nothing to redraw
   EXPECT_FALSE(state.anyDirty());
   state.drag(k3d, 0.5, 0.0, MouseButton::Left, false);
   state.key('R', false);
@@ -263,6 +263,55 @@ TEST_F(ViewerStateTest, SavedStateReopensAsTheSameViews) {
   EXPECT_NEAR(reopened.mprLevel(), state.mprLevel(), 1e-6);
 }
 
+// Zoom and pan on the MPR panes (issue 36 item 1): linked, a point panned into view on one
+// pane is panned on the panes that share its axis, the keys fit and 1:1, and the state saves
+// and restores them.
+TEST_F(ViewerStateTest, MprPanesZoomAndPanTogether) {
+  const auto dir = test::scratchDir();
+  ct.metadata().sourcePath = (dir / "ct.nii.gz").string();
+  std::ofstream(ct.metadata().sourcePath) << "";
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  const glm::dvec3 crosshair = state.crosshair();
+  state.wheel(kAxial, 2.0, true);  // Ctrl+wheel: zoom, not a slice
+  EXPECT_EQ(state.crosshair(), crosshair);
+  for (int p = kAxial; p < kPaneCount; ++p)
+    EXPECT_NEAR(state.renderSettings(p).camera.zoom, std::exp(0.2), 1e-12) << p;
+  EXPECT_DOUBLE_EQ(state.renderSettings(k3d).camera.zoom, 1.0);
+  state.zoomPane(kCoronal, 2.0);
+  EXPECT_NEAR(state.mprZoom(), 2.0 * std::exp(0.2), 1e-12);
+
+  // The axial pane's picture 10 mm right, 4 mm up: the world moves by that much in its plane;
+  // the coronal pane shares its left-right axis, the sagittal its anterior-posterior one.
+  state.panPane(kAxial, 10.0, 4.0);
+  const auto panOf = [&](int p) { return state.renderSettings(p).camera.panMm; };
+  EXPECT_NEAR(panOf(kAxial).x, 10.0, 1e-9);
+  EXPECT_NEAR(panOf(kAxial).y, 4.0, 1e-9);
+  EXPECT_NEAR(std::abs(panOf(kCoronal).x), 10.0, 1e-9);
+  EXPECT_NEAR(panOf(kCoronal).y, 0.0, 1e-9);
+  EXPECT_NEAR(std::abs(panOf(kSagittal).x), 4.0, 1e-9);
+  EXPECT_NEAR(panOf(kSagittal).y, 0.0, 1e-9);
+  // A middle drag over half the pane's width moves the picture by half its width in mm.
+  renderAll(state);
+  const render::Camera& axial = state.paneCamera(kAxial);
+  const glm::dvec2 before = panOf(kAxial);
+  state.drag(kAxial, 0.5, 0.0, MouseButton::Middle, false);
+  EXPECT_NEAR(panOf(kAxial).x - before.x, axial.halfHeightMm * axial.aspect, 1e-9);
+
+  state.saveConfig(dir / "saved.json");
+  ViewerState reopened(config::loadStudyConfig(dir / "saved.json"), ct, nullptr, sceneOf(ct));
+  EXPECT_NEAR(reopened.mprZoom(), state.mprZoom(), 1e-9);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(reopened.mprPan()[a], state.mprPan()[a], 1e-9) << a;
+
+  state.key('Z', false);  // fit
+  EXPECT_DOUBLE_EQ(state.mprZoom(), 1.0);
+  EXPECT_EQ(state.mprPan(), glm::dvec3(0.0));
+  state.key('X', false);  // one screen pixel per voxel of the finest spacing (1 mm here)
+  renderAll(state);
+  const render::Camera& one = state.paneCamera(kAxial);
+  EXPECT_NEAR(2.0 * one.halfHeightMm / 48.0, ct.smallestSpacing(), 1e-9);
+}
+
 TEST_F(ViewerStateTest, DumpWritesThePaneAsRendered) {
   const auto dir = test::scratchDir();
   ViewerState state(study, ct, nullptr, sceneOf(ct));
@@ -306,6 +355,29 @@ TEST_F(ViewerStateTest, ReadoutShowsBothValuesWhereTheRendererSamplesThem) {
   ViewerState moved(study, ct, &pet, scene);
   EXPECT_EQ(moved.readout({1.0, -3.0, 3.0}), "CT 0 HU | PET outside");
   EXPECT_EQ(moved.readout({1.0, -1.0, 3.0}), "CT 0 HU | PET 5 SUVbw");
+}
+
+// Two volumes of one modality read apart (issue 36 item 3): each by its series description or
+// file name, and a value without a unit says so.
+TEST_F(ViewerStateTest, ReadoutNamesVolumesByDescriptionOrFileAndSaysNoUnit) {
+  Volume t1 = makeVolume("MR", 0.0, 500.0);
+  t1.metadata().seriesDescription = "mocoMEMPRAGE_220FOV RMS";
+  t1.metadata().unit = "";
+  Volume cbf = makeVolume("MR", 0.0, 900.0);
+  cbf.metadata().sourcePath = "/data/study/relCBF.nii.gz";
+  cbf.metadata().unit = "ml/100g/min";
+  t1.setValue(5, 3, 2, 0, 346.0);
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 9; ++i) cbf.setValue(i, j, k, 0, 314.0);
+  ViewerState state(study, t1, &cbf, sceneOf(t1));
+  EXPECT_EQ(state.readout({1.0, 0.0, 3.0}),
+            "MR mocoMEMPRAGE_220FOV RMS 346 (no unit) | MR relCBF 314 ml/100g/min");
+  EXPECT_EQ(ViewerState::volumeName(t1, "anatomical"), "MR mocoMEMPRAGE_220FOV RMS");
+  Volume bare = makeVolume("", 0.0, 1.0);
+  EXPECT_EQ(ViewerState::volumeName(bare, "functional"), "functional");
+  bare.metadata().seriesDescription = "a very long series description indeed";
+  EXPECT_EQ(ViewerState::volumeName(bare, "functional"), "a very long series des..");
 }
 
 TEST(ViewerStateText, PaneNames) {

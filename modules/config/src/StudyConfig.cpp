@@ -195,6 +195,8 @@ const FieldTable<ViewConfig>& viewTable() {
         .number("elevation", "Degrees about the view's right axis.", &V::elevation, -3600, 3600)
         .number("roll", "Degrees about the line of sight.", &V::roll, -3600, 3600)
         .number("zoom", "Magnification (1 fits the volume).", &V::zoom, 1e-3, 1e3)
+        .numbers("pan", "Picture moved on the screen [right, up] in mm (after the zoom).", &V::pan,
+                 -1e6, 1e6)
         .boolean("perspective", "Perspective instead of orthographic projection.", &V::perspective)
         .number("width", "Image width in pixels.", &V::width, 1, 8192)
         .number("height", "Image height in pixels.", &V::height, 1, 8192)

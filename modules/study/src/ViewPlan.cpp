@@ -282,6 +282,7 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.camera.elevationDeg = v.elevation;
     s.camera.rollDeg = v.roll;
     s.camera.zoom = v.zoom;
+    s.camera.panMm = {v.pan[0], v.pan[1]};
     s.camera.perspective = v.perspective;
     s.window = v.window.value_or(0.0);
     s.level = v.level.value_or(0.0);
@@ -441,6 +442,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.elevation = s.camera.elevationDeg;
   v.roll = s.camera.rollDeg;
   v.zoom = s.camera.zoom;
+  v.pan = {s.camera.panMm.x, s.camera.panMm.y};
   v.perspective = s.camera.perspective;
   v.width = s.size.x;
   v.height = s.size.y;

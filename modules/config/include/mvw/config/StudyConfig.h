@@ -85,6 +85,7 @@ struct ViewConfig {
   ViewName view = ViewName::Anterior;
   double azimuth = 0.0, elevation = 0.0, roll = 0.0;  // degrees
   double zoom = 1.0;
+  std::array<double, 2> pan{0.0, 0.0};  // [right, up] mm the picture is moved on the screen
   bool perspective = false;
   int width = 512, height = 512;
   std::string preset;                               // transfer function preset; "" = by modality
