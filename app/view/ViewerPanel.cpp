@@ -14,6 +14,7 @@
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/TransferFunction.h"
+#include "mvw/study/ModalityDefaults.h"
 
 namespace mvw::app {
 
@@ -224,6 +225,37 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
     draw->AddLine(ImVec2(cx, pos.y), ImVec2(cx, pos.y + size.y), IM_COL32(80, 200, 255, 160));
     draw->AddLine(ImVec2(pos.x, cy), ImVec2(pos.x + size.x, cy), IM_COL32(80, 200, 255, 160));
   }
+  // A pane that shows nothing says why, in the middle (one clause a line).
+  if (const std::string message = state_.emptyPaneMessage(pane); !message.empty()) {
+    // Word-wrapped to the pane, a new line after each "; ".
+    std::string why, line;
+    const float width = size.x - 16.0f;
+    std::size_t start = 0;
+    while (start < message.size()) {
+      // A parenthesis (a value range) stays on one line.
+      std::size_t end = message.find(message[start] == '(' ? ')' : ' ', start);
+      if (end != std::string::npos && message[start] == '(') end = message.find(' ', end);
+      if (end == std::string::npos) end = message.size();
+      const std::string word = message.substr(start, end - start);
+      const std::string longer = line.empty() ? word : line + " " + word;
+      if (!line.empty() && ImGui::CalcTextSize(longer.c_str()).x > width) {
+        why += line + "\n";
+        line = word;
+      } else {
+        line = longer;
+      }
+      if (!line.empty() && line.back() == ';') why += line + "\n", line.clear();
+      start = end + 1;
+    }
+    why += line;
+    const ImVec2 text = ImGui::CalcTextSize(why.c_str());
+    draw->PushClipRect(pos, ImVec2(pos.x + size.x, pos.y + size.y), true);
+    boxedText(
+        draw,
+        ImVec2(pos.x + std::max(4.0f, (size.x - text.x) * 0.5f), pos.y + (size.y - text.y) * 0.5f),
+        IM_COL32(255, 210, 80, 255), why);
+    draw->PopClipRect();
+  }
   ImGui::PopID();
 }
 
@@ -239,7 +271,7 @@ void ViewerPanel::drawControls() {
     if (modes[static_cast<std::size_t>(i)] == v.mode) mode = i;
   if (ImGui::Combo("3D mode", &mode, kModeLabels, static_cast<int>(modes.size())))
     state_.setMode(modes[static_cast<std::size_t>(mode)]);
-  const auto names = render::transferPresetNames();
+  const auto names = mvw::study::presetsFor(anatomical);  // no CT preset on a PET in SUV
   if (ImGui::BeginCombo("preset", state_.presetName().c_str())) {
     for (const auto& n : names)
       if (ImGui::Selectable(n.c_str(), n == state_.presetName())) state_.setPreset(n);
@@ -408,7 +440,8 @@ void ViewerPanel::drawControls() {
       "pans (the MPR panes together), right-drag or Ctrl-drag "
       "window/level, Shift-drag a sphere ROI, Alt-drag a ruler. Double-click maximises a "
       "view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
-      "fusion, P next preset, O spin, K rock, Z fit the MPR panes, X one screen pixel per "
+      "fusion, P next preset, O spin, K rock, Z fit the MPR panes, C centre them on the crosshair, "
+      "X one screen pixel per "
       "voxel, R reset, S screenshot, Ctrl+S save state as a study config.");
   if (const std::string& status = state_.requests().status(); !status.empty())
     ImGui::TextWrapped("%s", status.c_str());

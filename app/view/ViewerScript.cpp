@@ -71,7 +71,7 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
     c.kind = Kind::Key;
     const std::string k = in.word("key");
     if (k.size() != 1)
-      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x)");
+      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c)");
     c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
     if (in.more()) {
       const std::string mod = in.word("modifier");
@@ -114,6 +114,9 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       if (mod != "ctrl") in.fail("wheel: unknown modifier '" + mod + "' (ctrl)");
       c.ctrl = true;
     }
+  } else if (cmd == "iso") {
+    c.kind = Kind::Iso;
+    c.x = in.number("value");
   } else if (cmd == "zoom") {
     c.kind = Kind::Zoom;
     c.pane = in.pane();
@@ -288,6 +291,10 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Wheel:
       state.wheel(c.pane, c.x, c.ctrl);
+      break;
+    case Kind::Iso:
+      state.view3d().isoValue = c.x;
+      state.markAllDirty();
       break;
     case Kind::Zoom:
       state.zoomPane(c.pane, c.x);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iterator>
 
 #include "mvw/core/WindowLevel.h"
@@ -100,6 +101,12 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     if (!is3dMode(v.settings.mode)) continue;
     view3d_ = v.settings;
     presetName_ = v.presetName;
+    // A view in another mode carries the config's default isovalue (300, for HU): key 2 would
+    // show nothing on a volume that does not reach it (a PET in SUV), so the volume's own.
+    const auto [lo, hi] = scene_.valueRange;
+    if (v.settings.mode != RenderMode::Isosurface &&
+        !(view3d_.isoValue > lo && view3d_.isoValue < hi))
+      view3d_.isoValue = defaults.isoValue;
     break;
   }
   for (const mvw::study::PlannedView& v : planned)
@@ -107,14 +114,16 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
       mprColors_ = v.settings.imageColors;
       segmentOutlines_ = v.settings.segmentOutlines;
-      mprZoom_ = std::clamp(v.settings.camera.zoom, kMinMprZoom, kMaxMprZoom);
       break;
     }
-  // The linked pan from the MPR panes' saved pans (each sees the world pan's two in-plane
-  // components; every axis is seen by two of the three panes).
+  // A saved state's MPR panes (views named view-axial, ...): their zoom, and the linked pan
+  // from their pans (each sees the world pan's two in-plane components; every axis is seen by
+  // two of the three panes). A study's own MPR views keep their zoom for `mvw render`: it is
+  // set for their image's shape (a portrait whole body), not for the viewer's panes.
   glm::dvec3 pan(0.0);
   for (const mvw::study::PlannedView& v : planned)
     if (v.settings.mode == RenderMode::Mpr && v.config.name.rfind("view-", 0) == 0) {
+      mprZoom_ = std::clamp(v.settings.camera.zoom, kMinMprZoom, kMaxMprZoom);
       const render::Camera cam =
           render::makeCamera(v.settings.camera, scene_.centre, scene_.radius, {64, 64});
       pan += 0.5 * (cam.right * v.settings.camera.panMm.x + cam.up * v.settings.camera.panMm.y);
@@ -228,6 +237,12 @@ void ViewerState::mprFit() {
   markMprDirty();
 }
 
+void ViewerState::mprCentreOnCrosshair() {
+  // Each pane's centre is scene centre minus the pan (in its plane): the crosshair there.
+  mprPan_ = scene_.centre - crosshair_;
+  markMprDirty();
+}
+
 void ViewerState::mprOneToOne() {
   // makeCamera fits the framing sphere's diameter in the shorter side, divided by the zoom.
   const glm::ivec2 size = glm::max(pane_(kAxial).size, glm::ivec2(8));
@@ -264,7 +279,7 @@ void ViewerState::key(char key, bool ctrl) {
   } else if (key == 'F' && functional_) {
     view3d_.fusion = !view3d_.fusion;
   } else if (key == 'P') {
-    const auto names = render::transferPresetNames();
+    const auto names = mvw::study::presetsFor(anatomical_);
     auto it = std::find(names.begin(), names.end(), presetName_);
     presetName_ = it == names.end() || it + 1 == names.end() ? names.front() : *(it + 1);
     view3d_.transfer = render::transferPreset(presetName_);
@@ -280,6 +295,8 @@ void ViewerState::key(char key, bool ctrl) {
     toggleOrbit(Orbit::Rock);
   } else if (key == 'Z') {
     mprFit();
+  } else if (key == 'C') {
+    mprCentreOnCrosshair();
   } else if (key == 'X') {
     mprOneToOne();
   } else if (key == 'S' && ctrl) {
@@ -421,7 +438,35 @@ void ViewerState::rendered(int pane, const render::Camera& camera, Image raw, bo
   p.camera = camera;
   p.raw = std::move(raw);
   p.rendered = true;
+  // Empty: every pixel the same (the background a ray that meets nothing leaves).
+  p.empty = !p.raw.rgba.empty();
+  for (std::size_t i = 4; i < p.raw.rgba.size() && p.empty; i += 4)
+    p.empty = std::memcmp(p.raw.rgba.data(), p.raw.rgba.data() + i, 4) == 0;
   p.dirty = interacting && pane == k3d;  // refine when the drag ends
+}
+
+std::string ViewerState::emptyPaneMessage(int pane) const {
+  const PaneState& p = pane_(pane);
+  if (!p.rendered || !p.empty) return {};
+  const auto [lo, hi] = scene_.valueRange;
+  const std::string& unit = anatomical_.metadata().unit;
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.4g .. %.4g", lo, hi);
+  const std::string range = buf + (unit.empty() ? std::string(", no unit") : " " + unit);
+  if (pane == k3d && view3d_.mode == RenderMode::Isosurface &&
+      !(view3d_.isoValue > lo && view3d_.isoValue < hi)) {
+    char iso[32];
+    std::snprintf(iso, sizeof iso, "%g", view3d_.isoValue);
+    return std::string("Nothing to show: the isovalue ") + iso +
+           " lies outside the volume's values (" + range + "); set the iso value in the panel";
+  }
+  if (pane == k3d && view3d_.mode == RenderMode::Composite)
+    return "Nothing to show: the preset " + presetName_ + " makes every value of " + range +
+           " transparent; P: next preset";
+  if (pane == k3d)
+    return "Nothing to show with these settings (" + range + "); R resets the camera";
+  return "Nothing to show: the plane or the window leaves the pane empty (" + range +
+         "); Z fits the panes, R resets";
 }
 
 config::ViewConfig ViewerState::viewConfigOf(int pane) const {

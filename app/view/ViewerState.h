@@ -86,7 +86,8 @@ class ViewerState : public PaneGeometry {
   // The wheel: the 3D pane zooms; an MPR pane scrolls slices, or zooms with Ctrl.
   void wheel(int pane, double steps, bool ctrl = false);
   // key: an upper-case letter or digit ('1'..'5' modes, 'D', 'G', 'F', 'P', 'R', 'S', 'O' spin,
-  // 'K' rock, 'Z' MPR fit, 'X' MPR one screen pixel per voxel); other keys do nothing.
+  // 'K' rock, 'Z' MPR fit, 'X' MPR one screen pixel per voxel, 'C' MPR panes centred on the
+  // crosshair); other keys do nothing.
   void key(char key, bool ctrl);
   void toggleMaximised(int pane);
   // Zoom and pan (issue 36 item 1). The MPR panes are linked: one zoom, and one pan in world
@@ -99,6 +100,7 @@ class ViewerState : public PaneGeometry {
   void panPane(int pane, double rightMm, double upMm);
   void mprFit();
   void mprOneToOne();
+  void mprCentreOnCrosshair();  // the pan that puts the crosshair in every MPR pane's middle
   double mprZoom() const { return mprZoom_; }
   const glm::dvec3& mprPan() const { return mprPan_; }  // world mm the MPR pictures are moved
   void setMode(render::RenderMode mode);                // one of modes3d()
@@ -148,6 +150,10 @@ class ViewerState : public PaneGeometry {
   void rendered(int pane, const render::Camera& camera, Image raw, bool interacting,
                 double milliseconds = 0.0);
   bool anyDirty() const;
+  // Why the pane's last frame shows nothing (empty where it shows something): an isovalue
+  // outside the volume's values, a preset that makes them all transparent, a plane or window
+  // that leaves nothing; the panel writes it on the pane (issue 36 item 5).
+  std::string emptyPaneMessage(int pane) const;
   void markDirty(int pane) { panes_[static_cast<std::size_t>(pane)].dirty = true; }
   void markAllDirty();
 
@@ -208,6 +214,7 @@ class ViewerState : public PaneGeometry {
   struct PaneState {
     bool dirty = true;
     bool rendered = false;
+    bool empty = false;  // the last frame is one colour: nothing of the volume shows
     glm::ivec2 size{0};
     glm::ivec2 origin{0};
     render::Camera camera;  // of the last frame: clicks and the wheel move along its axes

@@ -303,6 +303,16 @@ TEST_F(ViewerStateTest, MprPanesZoomAndPanTogether) {
   EXPECT_NEAR(reopened.mprZoom(), state.mprZoom(), 1e-9);
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(reopened.mprPan()[a], state.mprPan()[a], 1e-9) << a;
 
+  // C: the crosshair in the middle of every MPR pane.
+  state.click(kAxial, 0.8, 0.3);
+  state.click(kCoronal, 0.8, 0.7);
+  state.key('C', false);
+  renderAll(state);
+  for (int p = kAxial; p < kPaneCount; ++p) {
+    const glm::dvec4 clip = state.paneCamera(p).clipFromWorld * glm::dvec4(state.crosshair(), 1.0);
+    EXPECT_NEAR(clip.x / clip.w, 0.0, 1e-9) << p;
+    EXPECT_NEAR(clip.y / clip.w, 0.0, 1e-9) << p;
+  }
   state.key('Z', false);  // fit
   EXPECT_DOUBLE_EQ(state.mprZoom(), 1.0);
   EXPECT_EQ(state.mprPan(), glm::dvec3(0.0));
@@ -310,6 +320,35 @@ TEST_F(ViewerStateTest, MprPanesZoomAndPanTogether) {
   renderAll(state);
   const render::Camera& one = state.paneCamera(kAxial);
   EXPECT_NEAR(2.0 * one.halfHeightMm / 48.0, ct.smallestSpacing(), 1e-9);
+}
+
+// No silent black panes (issue 36 item 5): a PET in SUV opens with its own isovalue (SUV 2.5,
+// not the config's 300 HU), P offers no CT preset, and a pane whose frame is one colour says why.
+TEST_F(ViewerStateTest, NoSilentEmptyPanes) {
+  Volume suv = makeVolume("PT", 0.0, 19.0);  // int16 voxels
+  suv.metadata().unit = "SUVbw";
+  ViewerState state(study, suv, nullptr, sceneOf(suv));
+  EXPECT_DOUBLE_EQ(state.view3d().isoValue, 2.5);
+  EXPECT_EQ(state.presetName(), "pet-hot-metal");
+  for (int i = 0; i < 6; ++i) {
+    state.key('P', false);
+    EXPECT_EQ(state.presetName().rfind("ct-", 0), std::string::npos) << state.presetName();
+  }
+  state.key('2', false);
+  state.view3d().isoValue = 300.0;
+  for (int p = 0; p < kPaneCount; ++p) state.setPaneSize(p, {64, 48});
+  const render::RenderSettings s = state.renderSettings(k3d);
+  const render::Camera cam =
+      render::makeCamera(s.camera, state.scene().centre, state.scene().radius, s.size);
+  state.rendered(k3d, cam, Image(64, 48), false);  // one colour: nothing shows
+  EXPECT_EQ(state.emptyPaneMessage(k3d),
+            "Nothing to show: the isovalue 300 lies outside the volume's values (0 .. 19 "
+            "SUVbw); set the iso value in the panel");
+  Image some(64, 48);
+  some.rgba[4 * 100] = 200;
+  state.rendered(k3d, cam, some, false);
+  EXPECT_EQ(state.emptyPaneMessage(k3d), "");
+  EXPECT_EQ(state.emptyPaneMessage(kAxial), "");  // not rendered yet
 }
 
 TEST_F(ViewerStateTest, DumpWritesThePaneAsRendered) {
@@ -374,6 +413,11 @@ TEST_F(ViewerStateTest, ReadoutNamesVolumesByDescriptionOrFileAndSaysNoUnit) {
   EXPECT_EQ(state.readout({1.0, 0.0, 3.0}),
             "MR mocoMEMPRAGE_220FOV RMS 346 (no unit) | MR relCBF 314 ml/100g/min");
   EXPECT_EQ(ViewerState::volumeName(t1, "anatomical"), "MR mocoMEMPRAGE_220FOV RMS");
+  Volume wholeBody = makeVolume("PT", 0.0, 1.0);
+  wholeBody.metadata().seriesDescription = "PET WB_0";  // not "PET PET WB_0"
+  EXPECT_EQ(ViewerState::volumeName(wholeBody, "anatomical"), "PET WB_0");
+  wholeBody.metadata().seriesDescription = "Petrous bone";
+  EXPECT_EQ(ViewerState::volumeName(wholeBody, "anatomical"), "PET Petrous bone");
   Volume bare = makeVolume("", 0.0, 1.0);
   EXPECT_EQ(ViewerState::volumeName(bare, "functional"), "functional");
   bare.metadata().seriesDescription = "a very long series description indeed";
