@@ -263,8 +263,16 @@ void ViewerPanel::drawControls() {
   render::RenderSettings& v = state_.view3d();
   const Volume& anatomical = state_.anatomical();
   const Volume* functional = state_.functional();
-  ImGui::Text("%s", state_.study().name.empty() ? "mvw view" : state_.study().name.c_str());
+  // The study's name wraps (a long one was cut at the panel's edge), and every control leaves
+  // room on its right for the longest label, at any font scale (issue 36 item 8: "overlay
+  // colou", "step mm (0 au" at the default width).
+  ImGui::TextWrapped("%s", state_.study().name.empty() ? "mvw view" : state_.study().name.c_str());
   ImGui::Separator();
+  float label = 0.0f;
+  for (const char* text : {"step mm (0 auto)", "glyph spacing mm", "overlay colours",
+                           "overlay opacity", "smallest bump", "glyph method", "MPR colours"})
+    label = std::max(label, ImGui::CalcTextSize(text).x);
+  ImGui::PushItemWidth(-(label + ImGui::GetStyle().ItemInnerSpacing.x + 2.0f));
   const auto modes = ViewerState::modes3d();
   int mode = 0;
   for (int i = 0; i < static_cast<int>(modes.size()); ++i)
@@ -411,8 +419,8 @@ void ViewerPanel::drawControls() {
   int tool = static_cast<int>(measurements.tool());
   ImGui::Text("MPR mouse");
   const char* tools[] = {"crosshair", "sphere ROI", "ruler"};
-  for (int t = 0; t < 3; ++t) {
-    ImGui::SameLine();
+  for (int t = 0; t < 3; ++t) {  // on a line of their own: beside the label "ruler" was cut
+    if (t > 0) ImGui::SameLine();
     if (ImGui::RadioButton(tools[t], &tool, t)) measurements.setTool(static_cast<MprTool>(tool));
   }
   const auto& spheres = measurements.all().spheres;
@@ -445,6 +453,7 @@ void ViewerPanel::drawControls() {
       "voxel, R reset, S screenshot, Ctrl+S save state as a study config.");
   if (const std::string& status = state_.requests().status(); !status.empty())
     ImGui::TextWrapped("%s", status.c_str());
+  ImGui::PopItemWidth();
 }
 
 bool ViewerPanel::draw() {
