@@ -55,7 +55,8 @@ void addViewCommand(CLI::App& app) {
       "ROI, Alt-drag a ruler (or the panel's MPR mouse tool);\ndouble-click maximises a view.\n"
       "Keys: 1 composite, 2 isosurface, 3 MIP, 4 MinIP, 5 average, D depth cue, G glyphs, F colour "
       "fusion,\n"
-      "P next preset, Z fit the MPR panes, C centre them on the crosshair, X one pixel per voxel, "
+      "P next preset, Z fit the MPR panes, C centre them on the crosshair, J jump\n(hottest voxel, "
+      "segments, ROIs), X one pixel per voxel, "
       "R reset, S screenshot, "
       "Ctrl+S save the state\nas a study config (mvw render reproduces it).");
   cmd->add_option("study", o->study, "Study config (.json)");

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -22,8 +23,10 @@
 #include "mvw/io/PngWriter.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/DisplayTexture.h"
+#include "mvw/render/SegmentLegend.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/render/WindowFramebuffer.h"
+#include "mvw/study/SegmentOverlay.h"
 #include "mvw/study/Session.h"
 
 namespace mvw::app {
@@ -83,7 +86,10 @@ struct Render3d {
   glm::ivec2 size{0};
 };
 
+// segments: the study's segmentation (null: none), whose legend the MPR panes show with the
+// outlines, as `mvw render` burns it in (app/RenderCommand.cpp).
 Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
+                          const mvw::study::SegmentOverlay* segments,
                           ViewerPanel::PaneTextures& textures, bool interacting) {
   Render3d rendered3d;
   for (int p = 0; p < kPaneCount; ++p) {
@@ -95,6 +101,12 @@ Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     render::annotate(shown, f.camera, state.caption(p, s));
     render::drawGlyphLegend(shown, state.glyphLegend(p, s));
     drawColourBar(shown, state, renderer, s);
+    if (segments && s.mode == render::RenderMode::Mpr && s.segmentOutlines) {
+      std::vector<render::LegendEntry> legend;
+      for (std::size_t i = 0; i < segments->names.size(); ++i)
+        legend.push_back({segments->names[i], segments->colours[i]});
+      render::drawSegmentLegend(shown, legend);
+    }
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting, f.milliseconds);
   }
@@ -142,6 +154,25 @@ int runViewer(ViewerOptions options) {
     scene.functionalRange = renderer.functionalRange();
     scene.anatomicalFromFunctional = session.anatomicalFromFunctional();
   }
+  if (const mvw::study::SegmentOverlay* segments = session.segments()) {
+    // Each segment's centre (the mean of its voxel centres), where the outlines put it.
+    const glm::dmat4 placed = mvw::study::anatomicalFromSegmentation(
+        *segments, functional, functional ? session.anatomicalFromFunctional() : glm::dmat4(1.0));
+    const Volume& masks = segments->masks;
+    const glm::ivec3 d = masks.dimensions();
+    for (int c = 0; c < masks.components(); ++c) {
+      glm::dvec3 sum(0.0);
+      double count = 0.0;
+      for (int k = 0; k < d.z; ++k)
+        for (int j = 0; j < d.y; ++j)
+          for (int i = 0; i < d.x; ++i)
+            if (masks.value(i, j, k, c) != 0.0) sum += glm::dvec3(i, j, k), count += 1.0;
+      if (count == 0.0) continue;
+      const glm::dvec3 world = masks.worldFromIndexPoint(sum / count);
+      scene.segmentCentres.push_back({segments->names[static_cast<std::size_t>(c)],
+                                      glm::dvec3(placed * glm::dvec4(world, 1.0))});
+    }
+  }
   scene.centre = renderer.centre();
   scene.radius = renderer.radius();
   scene.valueRange = renderer.valueRange();
@@ -163,7 +194,8 @@ int runViewer(ViewerOptions options) {
     const bool dragging = panel.draw() || state.requests().scriptedInteraction();
     const int divisor = state.dragDivisor();  // the one this frame renders with
     state.advanceOrbit();  // one step per drawn frame while the 3D view spins or rocks
-    const Render3d rendered3d = renderDirtyPanes(state, renderer, textures, dragging);
+    const Render3d rendered3d =
+        renderDirtyPanes(state, renderer, session.segments(), textures, dragging);
     ImGui::Render();
     framebuffer.clear({0.08f, 0.08f, 0.1f, 1.0f});
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

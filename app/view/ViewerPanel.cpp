@@ -449,6 +449,7 @@ void ViewerPanel::drawControls() {
       "window/level, Shift-drag a sphere ROI, Alt-drag a ruler. Double-click maximises a "
       "view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
       "fusion, P next preset, O spin, K rock, Z fit the MPR panes, C centre them on the crosshair, "
+      "J jump to the hottest voxel, segments, ROIs, "
       "X one screen pixel per "
       "voxel, R reset, S screenshot, Ctrl+S save state as a study config.");
   if (const std::string& status = state_.requests().status(); !status.empty())

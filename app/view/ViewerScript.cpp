@@ -71,7 +71,7 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
     c.kind = Kind::Key;
     const std::string k = in.word("key");
     if (k.size() != 1)
-      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c)");
+      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c, j)");
     c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
     if (in.more()) {
       const std::string mod = in.word("modifier");
@@ -114,6 +114,8 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       if (mod != "ctrl") in.fail("wheel: unknown modifier '" + mod + "' (ctrl)");
       c.ctrl = true;
     }
+  } else if (cmd == "jump") {
+    c.kind = Kind::Jump;
   } else if (cmd == "iso") {
     c.kind = Kind::Iso;
     c.x = in.number("value");
@@ -291,6 +293,9 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Wheel:
       state.wheel(c.pane, c.x, c.ctrl);
+      break;
+    case Kind::Jump:
+      state.jumpNext();
       break;
     case Kind::Iso:
       state.view3d().isoValue = c.x;

@@ -1,12 +1,14 @@
 #pragma once
 // The viewer's --script (tests under Xvfb drive the window with it). One command per line:
-//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k, z, x, c)
+//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k, z, x, c, j)
 //   drag PANE dx dy [left|right|middle] a drag by fractions of the pane (default left)
 //   drag-frames PANE dx dy N [BUTTON]   the same drag spread over N frames, each one a frame of
 //                                       an interactive drag (the 3D pane renders coarse, as
 //                                       under the mouse), then the frame that refines
 //   click PANE x y                      a click at fractions of the pane (y down)
 //   wheel PANE n [ctrl]                 n wheel notches (with Ctrl: an MPR pane zooms)
+//   jump                                the next place to read (key J): hottest voxel, segments,
+//                                       ROIs
 //   iso VALUE                           the 3D pane's isovalue (the panel's slider)
 //   zoom PANE FACTOR                    the pane's zoom times FACTOR (the MPR panes together)
 //   pan PANE dx dy                      the pane's picture moved dx mm right, dy mm up (the MPR
@@ -56,6 +58,7 @@ class ViewerScript {
       Zoom,
       Pan,
       Iso,
+      Jump,
       Wait,
       Screenshot,
       PaneScreenshot,

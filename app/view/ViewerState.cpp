@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iterator>
+#include <limits>
 
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/LabelTable.h"
@@ -243,6 +244,38 @@ void ViewerState::mprCentreOnCrosshair() {
   markMprDirty();
 }
 
+std::string ViewerState::jumpNext() {
+  if (!hottest_) {
+    const Volume& v = functional_ ? *functional_ : anatomical_;
+    const glm::ivec3 d = v.dimensions();
+    double best = -std::numeric_limits<double>::infinity();
+    glm::ivec3 at(0);
+    for (int k = 0; k < d.z; ++k)
+      for (int j = 0; j < d.y; ++j)
+        for (int i = 0; i < d.x; ++i)
+          if (const double x = v.value(i, j, k); x > best) best = x, at = {i, j, k};
+    hottest_ = v.worldFromIndexPoint(glm::dvec3(at));
+    if (functional_)
+      hottest_ = glm::dvec3(scene_.anatomicalFromFunctional * glm::dvec4(*hottest_, 1.0));
+  }
+  std::vector<std::pair<std::string, glm::dvec3>> places{{"the hottest voxel", *hottest_}};
+  for (const auto& s : scene_.segmentCentres)
+    places.push_back({"segment \"" + s.first + "\"", s.second});
+  const auto& spheres = measurements_.all().spheres;
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    places.push_back({"ROI " + std::to_string(i + 1),
+                      {spheres[i].centre[0], spheres[i].centre[1], spheres[i].centre[2]}});
+  const std::size_t n = nextJump_++ % places.size();
+  setCrosshair(places[n].second);
+  mprCentreOnCrosshair();
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "jump %zu/%zu: %s at %.1f, %.1f, %.1f mm LPS (J: next)", n + 1,
+                places.size(), places[n].first.c_str(), places[n].second.x, places[n].second.y,
+                places[n].second.z);
+  requests_.setStatus(buf);
+  return places[n].first;
+}
+
 void ViewerState::mprOneToOne() {
   // makeCamera fits the framing sphere's diameter in the shorter side, divided by the zoom.
   const glm::ivec2 size = glm::max(pane_(kAxial).size, glm::ivec2(8));
@@ -297,6 +330,8 @@ void ViewerState::key(char key, bool ctrl) {
     mprFit();
   } else if (key == 'C') {
     mprCentreOnCrosshair();
+  } else if (key == 'J') {
+    jumpNext();
   } else if (key == 'X') {
     mprOneToOne();
   } else if (key == 'S' && ctrl) {

@@ -49,6 +49,9 @@ struct ViewerScene {
   std::string registration = "none";  // how the functional volume was placed, for the panel
   // The placement the renderer draws the functional volume with (world LPS mm to world).
   glm::dmat4 anatomicalFromFunctional{1.0};
+  // Places the reader jumps to besides the hottest voxel and the ROIs: each segment of the
+  // study's segmentation by its name, at its centre (world LPS mm, where the outlines are).
+  std::vector<std::pair<std::string, glm::dvec3>> segmentCentres;
 };
 
 // The volumes' values under a world point (the panel's cursor readout): the anatomical voxel
@@ -87,7 +90,7 @@ class ViewerState : public PaneGeometry {
   void wheel(int pane, double steps, bool ctrl = false);
   // key: an upper-case letter or digit ('1'..'5' modes, 'D', 'G', 'F', 'P', 'R', 'S', 'O' spin,
   // 'K' rock, 'Z' MPR fit, 'X' MPR one screen pixel per voxel, 'C' MPR panes centred on the
-  // crosshair); other keys do nothing.
+  // crosshair, 'J' jump); other keys do nothing.
   void key(char key, bool ctrl);
   void toggleMaximised(int pane);
   // Zoom and pan (issue 36 item 1). The MPR panes are linked: one zoom, and one pan in world
@@ -101,6 +104,11 @@ class ViewerState : public PaneGeometry {
   void mprFit();
   void mprOneToOne();
   void mprCentreOnCrosshair();  // the pan that puts the crosshair in every MPR pane's middle
+  // Reading a PET (issue 36 item 4): the crosshair to the next of the hottest voxel (of the
+  // functional volume where there is one, else of the anatomical), each segment's centre and
+  // each sphere ROI's centre, in that order and round again; the MPR panes centre on it and the
+  // status line names it. Returns what it jumped to ("" when there is nothing).
+  std::string jumpNext();
   double mprZoom() const { return mprZoom_; }
   const glm::dvec3& mprPan() const { return mprPan_; }  // world mm the MPR pictures are moved
   void setMode(render::RenderMode mode);                // one of modes3d()
@@ -243,6 +251,8 @@ class ViewerState : public PaneGeometry {
   ViewerOrbit orbit_;
   glm::dvec3 crosshair_{0.0};
   int maximised_ = -1;
+  std::size_t nextJump_ = 0;
+  std::optional<glm::dvec3> hottest_;  // found on the first jump
   ViewerRequests requests_;
   // Last: destroyed first, so a running re-run is waited for while everything else is there.
   ViewerRegistration registration_;

@@ -110,7 +110,7 @@ TEST(ViewerScript, BadLinesNameTheLineAndTheProblem) {
   EXPECT_EQ(problemOf("wheel axial 2 3"), "line 1: wheel: unknown modifier '3' (ctrl)");
   EXPECT_EQ(problemOf("key"), "line 1: key: missing key");
   EXPECT_EQ(problemOf("key ctrl"),
-            "line 1: key: 'ctrl' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c)");
+            "line 1: key: 'ctrl' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c, j)");
   EXPECT_EQ(problemOf("key s shift"), "line 1: key: unknown modifier 'shift' (ctrl)");
   EXPECT_EQ(problemOf("wait -1"),
             "line 1: wait: the frame count must be a whole number from 0 to 1000000");

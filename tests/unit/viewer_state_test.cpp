@@ -351,6 +351,26 @@ TEST_F(ViewerStateTest, NoSilentEmptyPanes) {
   EXPECT_EQ(state.emptyPaneMessage(kAxial), "");  // not rendered yet
 }
 
+// Jumping through the places a PET reader looks at (issue 36 item 4): the hottest voxel, each
+// segment, each ROI, round again; the MPR panes centre on each.
+TEST_F(ViewerStateTest, JumpGoesToTheHottestVoxelSegmentsAndRois) {
+  ct.setValue(7, 2, 3, 0, 3000.0);  // the hottest voxel: (3, -1, 5.5) mm
+  ViewerScene scene = sceneOf(ct);
+  scene.segmentCentres = {{"Neoplasm, Primary", {1.0, 2.0, 3.0}}};
+  ViewerState state(study, ct, nullptr, scene);
+  state.measurements().addSphere({{{-2.0, 1.0, 0.5}}, 2.0});
+  EXPECT_EQ(state.jumpNext(), "the hottest voxel");
+  EXPECT_EQ(state.crosshair(), glm::dvec3(3.0, -1.0, 5.5));
+  EXPECT_EQ(state.mprPan(), state.scene().centre - state.crosshair());
+  EXPECT_EQ(state.requests().status(),
+            "jump 1/3: the hottest voxel at 3.0, -1.0, 5.5 mm LPS (J: next)");
+  EXPECT_EQ(state.jumpNext(), "segment \"Neoplasm, Primary\"");
+  EXPECT_EQ(state.crosshair(), glm::dvec3(1.0, 2.0, 3.0));
+  state.key('J', false);
+  EXPECT_EQ(state.crosshair(), glm::dvec3(-2.0, 1.0, 0.5));
+  EXPECT_EQ(state.jumpNext(), "the hottest voxel");  // round again
+}
+
 TEST_F(ViewerStateTest, DumpWritesThePaneAsRendered) {
   const auto dir = test::scratchDir();
   ViewerState state(study, ct, nullptr, sceneOf(ct));
