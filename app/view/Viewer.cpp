@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -59,8 +60,14 @@ class ImGuiSession {
 // tests/view/viewer-xvfb compares the panes as shown with annotated headless renders byte for
 // byte): the overlay's or fusion's map, else the image's own over its window; grey: none.
 void drawColourBar(Image& shown, const ViewerState& state, const render::VolumeRenderer& renderer,
-                   const render::RenderSettings& s) {
+                   const render::RenderSettings& s, bool functionalImage) {
   const Volume* functional = state.functional();
+  if (functionalImage) {  // the PET/CT layout's MIP: the functional volume's own window
+    render::drawColourBar(shown, s.level - 0.5 * s.window, s.level + 0.5 * s.window,
+                          functional->metadata().unit, *s.imageColors,
+                          ViewerState::volumeName(*functional, "functional"));
+    return;
+  }
   const bool overlayShown =
       functional && (s.mode == render::RenderMode::Mpr ? s.overlay : s.fusion);
   if (overlayShown) {
@@ -87,20 +94,24 @@ struct Render3d {
 };
 
 // segments: the study's segmentation (null: none), whose legend the MPR panes show with the
-// outlines, as `mvw render` burns it in (app/RenderCommand.cpp).
+// outlines, as `mvw render` burns it in (app/RenderCommand.cpp). functionalRenderer: a
+// renderer of the functional volume, made on first use, for the panes that show it as their
+// image (the PET/CT layout's MIP).
 Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
+                          const std::function<render::VolumeRenderer&()>& functionalRenderer,
                           const mvw::study::SegmentOverlay* segments,
                           ViewerPanel::PaneTextures& textures, bool interacting) {
   Render3d rendered3d;
   for (int p = 0; p < kPaneCount; ++p) {
     if (!state.needsRender(p)) continue;
     const render::RenderSettings s = state.renderSettings(p, interacting);
-    render::RenderedFrame f = renderer.render(s);
+    const bool functionalImage = state.paneShowsFunctional(p);
+    render::RenderedFrame f = (functionalImage ? functionalRenderer() : renderer).render(s);
     if (p == k3d) rendered3d = {f.milliseconds, s.size};
     Image shown = f.image;
     render::annotate(shown, f.camera, state.caption(p, s));
     render::drawGlyphLegend(shown, state.glyphLegend(p, s));
-    drawColourBar(shown, state, renderer, s);
+    drawColourBar(shown, state, renderer, s, functionalImage);
     if (segments && s.mode == render::RenderMode::Mpr && s.segmentOutlines) {
       std::vector<render::LegendEntry> legend;
       for (std::size_t i = 0; i < segments->names.size(); ++i)
@@ -180,6 +191,15 @@ int runViewer(ViewerOptions options) {
   ViewerPanel::PaneTextures textures;
   ViewerState state(session.config(), session.anatomical(), functional, scene);
   ViewerPanel panel(state, textures);
+  // The functional volume as an image of its own (the PET/CT layout's MIP), uploaded once the
+  // layout first asks for it.
+  std::unique_ptr<render::VolumeRenderer> functionalRendererHeld;
+  const std::function<render::VolumeRenderer&()> functionalRenderer =
+      [&]() -> render::VolumeRenderer& {
+    if (!functionalRendererHeld)
+      functionalRendererHeld = std::make_unique<render::VolumeRenderer>(context, *functional);
+    return *functionalRendererHeld;
+  };
 
   auto lastSwap = std::chrono::steady_clock::now();
 
@@ -194,8 +214,8 @@ int runViewer(ViewerOptions options) {
     const bool dragging = panel.draw() || state.requests().scriptedInteraction();
     const int divisor = state.dragDivisor();  // the one this frame renders with
     state.advanceOrbit();  // one step per drawn frame while the 3D view spins or rocks
-    const Render3d rendered3d =
-        renderDirtyPanes(state, renderer, session.segments(), textures, dragging);
+    const Render3d rendered3d = renderDirtyPanes(state, renderer, functionalRenderer,
+                                                 session.segments(), textures, dragging);
     ImGui::Render();
     framebuffer.clear({0.08f, 0.08f, 0.1f, 1.0f});
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

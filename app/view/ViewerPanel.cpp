@@ -269,10 +269,18 @@ void ViewerPanel::drawControls() {
   ImGui::TextWrapped("%s", state_.study().name.empty() ? "mvw view" : state_.study().name.c_str());
   ImGui::Separator();
   float label = 0.0f;
-  for (const char* text : {"step mm (0 auto)", "glyph spacing mm", "overlay colours",
-                           "overlay opacity", "smallest bump", "glyph method", "MPR colours"})
+  for (const char* text :
+       {"step mm (0 auto)", "glyph spacing mm", "overlay colours", "PET/MIP colours",
+        "overlay opacity", "smallest bump", "glyph method", "MPR colours"})
     label = std::max(label, ImGui::CalcTextSize(text).x);
   ImGui::PushItemWidth(-(label + ImGui::GetStyle().ItemInnerSpacing.x + 2.0f));
+  // The layout (key L): standard, or PET/CT (anatomical, functional, fused MPR of one plane
+  // and the functional volume's rotating MIP).
+  const char* layouts[] = {"standard", "PET/CT axial", "PET/CT coronal", "PET/CT sagittal"};
+  int layout = static_cast<int>(state_.layout());  // config::ViewerLayout's order
+  if (ImGui::Combo("layout (L)", &layout, layouts, 4))
+    state_.setLayout(static_cast<config::ViewerLayout>(layout));
+  if (state_.petCtLayout()) colormapCombo(state_, "PET/MIP colours", ColorTarget::Functional);
   const auto modes = ViewerState::modes3d();
   int mode = 0;
   for (int i = 0; i < static_cast<int>(modes.size()); ++i)
@@ -449,7 +457,7 @@ void ViewerPanel::drawControls() {
       "window/level, Shift-drag a sphere ROI, Alt-drag a ruler. Double-click maximises a "
       "view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
       "fusion, P next preset, O spin, K rock, Z fit the MPR panes, C centre them on the crosshair, "
-      "J jump to the hottest voxel, segments, ROIs, "
+      "J jump to the hottest voxel, segments, ROIs, L next layout (PET/CT), "
       "X one screen pixel per "
       "voxel, R reset, S screenshot, Ctrl+S save state as a study config.");
   if (const std::string& status = state_.requests().status(); !status.empty())
@@ -475,16 +483,18 @@ bool ViewerPanel::draw() {
     drawPane(state_.maximised(), origin, area);
   } else {
     const ImVec2 cell(area.x / 2 - 2, area.y / 2 - 2);
-    for (int p = 0; p < kPaneCount; ++p)
-      drawPane(p, ImVec2(origin.x + (p % 2) * (cell.x + 4), origin.y + (p / 2) * (cell.y + 4)),
+    for (int p = 0; p < kPaneCount; ++p) {
+      const int at = state_.paneCell(p);  // the PET/CT layout puts its panes in reading order
+      drawPane(p, ImVec2(origin.x + (at % 2) * (cell.x + 4), origin.y + (at / 2) * (cell.y + 4)),
                cell);
+    }
   }
   ImGui::End();
   if (!io.WantTextInput) {
     // GLFW's key codes for digits and letters are their ASCII upper-case characters.
-    for (int key :
-         {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5, GLFW_KEY_D, GLFW_KEY_G,
-          GLFW_KEY_F, GLFW_KEY_P, GLFW_KEY_R, GLFW_KEY_S, GLFW_KEY_O, GLFW_KEY_K})
+    for (int key : {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5, GLFW_KEY_D,
+                    GLFW_KEY_G, GLFW_KEY_F, GLFW_KEY_P, GLFW_KEY_R, GLFW_KEY_S, GLFW_KEY_O,
+                    GLFW_KEY_K, GLFW_KEY_Z, GLFW_KEY_X, GLFW_KEY_C, GLFW_KEY_J, GLFW_KEY_L})
       if (ImGui::IsKeyPressed(key, false)) state_.key(static_cast<char>(key), io.KeyCtrl);
   }
   return dragging_;

@@ -46,7 +46,9 @@ class LineReader {
   int pane() {
     const std::string t = word("pane");
     if (auto p = ViewerState::paneNamed(t)) return *p;
-    fail("unknown pane '" + t + "' (3d, axial, coronal, sagittal)");
+    fail("unknown pane '" + t +
+         "' (3d, axial, coronal, sagittal; in the PET/CT layout also mip, anatomical, "
+         "functional, fused)");
   }
   void end() const {
     if (more()) fail(command() + ": unexpected '" + tokens_[next_] + "'");
@@ -71,7 +73,7 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
     c.kind = Kind::Key;
     const std::string k = in.word("key");
     if (k.size() != 1)
-      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c, j)");
+      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c, j, l)");
     c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
     if (in.more()) {
       const std::string mod = in.word("modifier");
@@ -156,8 +158,10 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       c.target = ColorTarget::Mpr;
     else if (target == "overlay")
       c.target = ColorTarget::Overlay;
+    else if (target == "functional")
+      c.target = ColorTarget::Functional;
     else
-      in.fail("colormap: unknown target '" + target + "' (3d, mpr, overlay)");
+      in.fail("colormap: unknown target '" + target + "' (3d, mpr, overlay, functional)");
     const std::string name = in.word("colour map");
     const std::optional<ColorMap> map = parseColorMap(name);
     if (!map) {
@@ -166,6 +170,13 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       in.fail("colormap: unknown colour map '" + name + "' (" + names + ")");
     }
     c.colormap = *map;
+  } else if (cmd == "layout") {
+    c.kind = Kind::Layout;
+    const std::string name = in.word("layout");
+    const std::optional<config::ViewerLayout> layout = config::parseViewerLayout(name);
+    if (!layout)
+      in.fail("layout: unknown layout '" + name + "' (" + config::viewerLayoutList() + ")");
+    c.layout = *layout;
   } else if (cmd == "orbit") {
     c.kind = Kind::Orbit;
     const std::string mode = in.word("mode");
@@ -327,6 +338,9 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Orbit:
       state.setOrbit(c.orbit);
+      break;
+    case Kind::Layout:
+      state.setLayout(c.layout);
       break;
     case Kind::GlyphLabel:
       state.setGlyphLabel(c.label, c.labelKind);

@@ -1,6 +1,7 @@
 #pragma once
 // The viewer's --script (tests under Xvfb drive the window with it). One command per line:
-//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k, z, x, c, j)
+//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k, z, x, c, j,
+//                                       l)
 //   drag PANE dx dy [left|right|middle] a drag by fractions of the pane (default left)
 //   drag-frames PANE dx dy N [BUTTON]   the same drag spread over N frames, each one a frame of
 //                                       an interactive drag (the 3D pane renders coarse, as
@@ -20,7 +21,10 @@
 //   dump PANE FILE                      the pane's full-resolution render, without annotations
 //   colormap 3d|mpr|overlay NAME        a colour map chooser (grey, grey-inverted, hot-iron, pet,
 //                                       hot-metal-blue, pet-20-step, hot-metal)
+//   colormap functional NAME            the PET/CT layout's functional pane and MIP
 //   orbit spin|rock|off                 the rotating 3D view (keys O and K toggle it)
+//   layout NAME                         standard, pet-ct (axial), pet-ct-coronal, pet-ct-sagittal
+//                                       (key L cycles them; ViewerState::setLayout)
 //   glyph-label N bumps|dimples|none    what label N of a label map gets (the panel's picker)
 //   register | wait-registration        re-run the registration in the background | wait for it
 //   roi PANE x0 y0 x1 y1                a sphere ROI drawn by a drag: centre at (x0, y0) on the
@@ -32,7 +36,8 @@
 //   roi-stats FILE                      every sphere's statistics, JSON (mvw stats's fields)
 //   clear-measurements                  no sphere, no ruler
 //   quit
-// PANE: 3d, axial, coronal, sagittal. Blank lines and lines starting with # are skipped (each
+// PANE: 3d, axial, coronal, sagittal; or mip, anatomical, functional, fused (the same slots,
+// as the PET/CT layout shows them). Blank lines and lines starting with # are skipped (each
 // still takes a frame, as every line does). The whole script is checked when it is read, so a
 // typo is reported before the window opens, naming the file and the line.
 #include <cstddef>
@@ -66,6 +71,7 @@ class ViewerScript {
       Dump,
       Colormap,
       Orbit,
+      Layout,
       GlyphLabel,
       Register,
       WaitRegistration,
@@ -91,6 +97,7 @@ class ViewerScript {
     ColorTarget target = ColorTarget::View3d;
     ColorMap colormap = ColorMap::Grey;
     app::Orbit orbit = app::Orbit::Off;
+    config::ViewerLayout layout = config::ViewerLayout::Standard;
     int label = 0;  // glyph-label
     config::LabelGlyphKind labelKind = config::LabelGlyphKind::Bumps;
   };

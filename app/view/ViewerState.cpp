@@ -24,6 +24,8 @@ using render::RenderMode;
 using render::StandardView;
 
 const char* kPaneNames[kPaneCount] = {"3d", "axial", "coronal", "sagittal"};
+// The PET/CT layout's names of the same slots (scripts may use either).
+const char* kPetCtPaneNames[kPaneCount] = {"mip", "anatomical", "functional", "fused"};
 const StandardView kMprViews[3] = {StandardView::Inferior, StandardView::Anterior,
                                    StandardView::Left};
 const RenderMode k3dModes[] = {RenderMode::Composite, RenderMode::Isosurface, RenderMode::Mip,
@@ -93,6 +95,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   mprWindow_ = defaults.mpr.window;
   mprLevel_ = defaults.mpr.level;
   crosshair_ = scene_.centre;
+  functionalColors_ = greyTable(true);  // PET as nuclear medicine reads it: black on white
   // The study's first view the 3D pane can show sets it up, exactly as `mvw render` would
   // render it (glyphs, attribute window, crop, light, ...); an MPR view sets the MPR panes'
   // window and the overlay.
@@ -137,14 +140,62 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     measurements_.addSphere(sphere);
   for (const config::RulerMeasurement& ruler : study_.measurements.rulers)
     measurements_.addRuler(ruler);
+  setLayout(study_.layout);
 }
 
 const char* ViewerState::paneName(int pane) { return kPaneNames[pane]; }
 
 std::optional<int> ViewerState::paneNamed(const std::string& name) {
   for (int p = 0; p < kPaneCount; ++p)
-    if (name == kPaneNames[p]) return p;
+    if (name == kPaneNames[p] || name == kPetCtPaneNames[p]) return p;
   return std::nullopt;
+}
+
+void ViewerState::setLayout(config::ViewerLayout layout) {
+  layout_ = layout;
+  maximised_ = -1;
+  // A PET/CT reader's MIP turns; back in the standard layout the 3D view stands still.
+  setOrbit(petCtLayout() ? Orbit::Spin : Orbit::Off);
+  markAllDirty();
+}
+
+StandardView ViewerState::mprView(int pane) const {
+  switch (layout_) {
+    case config::ViewerLayout::Standard:
+      break;
+    case config::ViewerLayout::PetCtAxial:
+      return StandardView::Inferior;
+    case config::ViewerLayout::PetCtCoronal:
+      return StandardView::Anterior;
+    case config::ViewerLayout::PetCtSagittal:
+      return StandardView::Left;
+  }
+  return kMprViews[std::clamp(pane, 1, 3) - 1];
+}
+
+bool ViewerState::paneShowsFunctional(int pane) const {
+  return pane == k3d && petCtLayout() && functional_ != nullptr;
+}
+
+std::string ViewerState::paneTitle(int pane) const {
+  if (!petCtLayout()) return pane == k3d ? "3D" : kPaneNames[pane];
+  const Volume& shown = functional_ ? *functional_ : anatomical_;
+  const char* role = functional_ ? "functional" : "anatomical";
+  switch (pane) {
+    case k3d:
+      return "MIP " + volumeName(shown, role);
+    case kAxial:
+      return volumeName(anatomical_, "anatomical");
+    case kCoronal:
+      return volumeName(shown, role);
+    default:
+      return "fused";
+  }
+}
+
+int ViewerState::paneCell(int pane) const {
+  if (!petCtLayout()) return pane;
+  return pane == k3d ? 3 : pane - 1;  // anatomical, functional / fused, MIP
 }
 
 std::span<const RenderMode> ViewerState::modes3d() { return k3dModes; }
@@ -226,7 +277,7 @@ void ViewerState::panPane(int pane, double rightMm, double upMm) {
     return;
   }
   render::CameraSettings plane;
-  plane.view = kMprViews[pane - 1];
+  plane.view = mprView(pane);
   const render::Camera cam = render::makeCamera(plane, scene_.centre, scene_.radius, {64, 64});
   mprPan_ += cam.right * rightMm + cam.up * upMm;
   markMprDirty();
@@ -334,6 +385,8 @@ void ViewerState::key(char key, bool ctrl) {
     jumpNext();
   } else if (key == 'X') {
     mprOneToOne();
+  } else if (key == 'L') {
+    setLayout(static_cast<config::ViewerLayout>((static_cast<int>(layout_) + 1) % 4));
   } else if (key == 'S' && ctrl) {
     saveConfig("mvw-view-state.json");
   } else if (key == 'S') {
@@ -385,6 +438,7 @@ void ViewerState::setColormap(ColorTarget target, ColorMap map) {
   if (target == ColorTarget::View3d) view3d_.imageColors = table(ColorMap::Grey);
   if (target == ColorTarget::Mpr) mprColors_ = table(ColorMap::Grey);
   if (target == ColorTarget::Overlay) view3d_.overlayColors = table(ColorMap::HotMetal);
+  if (target == ColorTarget::Functional) functionalColors_ = mvw::study::colorTable(map);
   markAllDirty();
 }
 
@@ -394,6 +448,8 @@ ColorMap ViewerState::colormap(ColorTarget target) const {
       return view3d_.imageColors ? view3d_.imageColors->map : ColorMap::Grey;
     case ColorTarget::Mpr:
       return mprColors_ ? mprColors_->map : ColorMap::Grey;
+    case ColorTarget::Functional:
+      return functionalColors_.map;
     case ColorTarget::Overlay:
       break;
   }
@@ -418,13 +474,38 @@ bool ViewerState::needsRender(int pane) const {
 }
 
 render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) const {
+  return settingsIn(layout_, pane, interacting);
+}
+
+render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int pane,
+                                               bool interacting) const {
   const PaneState& image = pane_(pane);
+  const bool petCt = layout != config::ViewerLayout::Standard;
+  // The functional window (the overlay's, the PET/CT layout's functional pane and MIP).
+  const bool userWindow = view3d_.functionalHigh > view3d_.functionalLow;
+  const double flo = userWindow ? view3d_.functionalLow : scene_.functionalRange.first;
+  const double fhi = userWindow ? view3d_.functionalHigh : scene_.functionalRange.second;
   render::RenderSettings s;
-  if (pane == k3d) {
+  if (pane == k3d && petCt) {
+    // The rotating MIP of the functional volume (of the anatomical one where there is none),
+    // in the functional colour map, turned by the 3D pane's camera (the orbit, the mouse).
+    s.mode = RenderMode::Mip;
+    s.camera = view3d_.camera;
+    s.camera.perspective = false;
+    s.imageColors = functionalColors_;
+    s.overlay = false;
+    if (functional_)
+      s.window = fhi - flo, s.level = 0.5 * (flo + fhi);
+    else
+      s.window = mprWindow_, s.level = mprLevel_;
+  } else if (pane == k3d) {
     s = view3d_;
   } else {
     s.mode = RenderMode::Mpr;
-    s.camera.view = kMprViews[pane - 1];
+    s.camera.view = !petCt                                          ? kMprViews[pane - 1]
+                    : layout == config::ViewerLayout::PetCtCoronal  ? StandardView::Anterior
+                    : layout == config::ViewerLayout::PetCtSagittal ? StandardView::Left
+                                                                    : StandardView::Inferior;
     s.window = mprWindow_;
     s.level = mprLevel_;
     s.overlayOpacity = view3d_.overlayOpacity;
@@ -440,6 +521,19 @@ render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) c
         render::makeCamera(s.camera, scene_.centre, scene_.radius, glm::max(image.size, 1));
     s.camera.panMm = {glm::dot(mprPan_, plane.right), glm::dot(mprPan_, plane.up)};
     s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, plane.forward);
+    if (petCt && pane == kAxial) s.overlay = false;  // the anatomy alone
+    if (petCt && pane == kCoronal && functional_) {
+      // The functional volume alone: every value inside its box in the functional colour map
+      // at full opacity (the threshold below the window), over an anatomy drawn black.
+      ColorTable black = greyTable(false);
+      black.rgb.fill({0, 0, 0});
+      s.imageColors = black;
+      s.overlayColors = functionalColors_;
+      s.overlayOpacity = 1.0f;
+      s.overlayThreshold = -1.0f;
+    } else if (petCt && pane == kCoronal) {
+      s.imageColors = functionalColors_;  // the one volume in the functional colour map
+    }
   }
   s.size = image.size;
   if (pane == k3d && interacting) {  // coarse while dragging
@@ -451,13 +545,27 @@ render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) c
 
 std::string ViewerState::caption(int pane, const render::RenderSettings& s) const {
   const auto [lo, hi] = scene_.valueRange;
-  mvw::study::PlannedView shown{viewConfigOf(pane), s, pane == k3d ? presetName_ : ""};
-  return mvw::study::viewCaption(shown, windowOrFullRange(s.window, s.level, lo, hi));
+  mvw::study::PlannedView shown{viewConfigOf(pane, layout_), s,
+                                pane == k3d && !petCtLayout() ? presetName_ : ""};
+  std::string text = mvw::study::viewCaption(shown, windowOrFullRange(s.window, s.level, lo, hi));
+  if (!petCtLayout()) return text;
+  if (pane == kCoronal && functional_) {
+    // The functional pane's window is the functional one (the anatomy's is drawn black).
+    const bool userWindow = s.functionalHigh > s.functionalLow;
+    char window[96];
+    std::snprintf(window, sizeof window, "  %.4g-%.4g ",
+                  userWindow ? s.functionalLow : scene_.functionalRange.first,
+                  userWindow ? s.functionalHigh : scene_.functionalRange.second);
+    const std::string& unit = functional_->metadata().unit;
+    text = "mpr " + config::toString(shown.config.view) + window +
+           (unit.empty() ? "(no unit)" : unit) + "  " + toString(functionalColors_.map);
+  }
+  return paneTitle(pane) + "  " + text;
 }
 
 render::GlyphLegend ViewerState::glyphLegend(int pane, const render::RenderSettings& s) const {
   if (!functional_) return {};
-  mvw::study::PlannedView shown{viewConfigOf(pane), s, ""};
+  mvw::study::PlannedView shown{viewConfigOf(pane, layout_), s, ""};
   return mvw::study::glyphLegend(shown, functional_->metadata().unit, scene_.functionalRange);
 }
 
@@ -504,18 +612,21 @@ std::string ViewerState::emptyPaneMessage(int pane) const {
          "); Z fits the panes, R resets";
 }
 
-config::ViewConfig ViewerState::viewConfigOf(int pane) const {
-  config::ViewConfig v =
-      mvw::study::describeView(renderSettings(pane), std::string("view-") + kPaneNames[pane],
-                               pane == k3d ? presetName_ : "");
+config::ViewConfig ViewerState::viewConfigOf(int pane, config::ViewerLayout layout) const {
+  const bool petCt = layout != config::ViewerLayout::Standard;
+  const render::RenderSettings s = settingsIn(layout, pane, false);
+  config::ViewConfig v = mvw::study::describeView(
+      s, std::string("view-") + (petCt ? kPetCtPaneNames : kPaneNames)[pane],
+      pane == k3d && !petCt ? presetName_ : "");
   // Glyphs shown over the functional volume's full range (G on a view without a window): saved
   // as that range, or `mvw render` would give the glyph view its default window instead.
   if (pane == k3d && v.glyphs && !v.functionalWindow && v.functionalClasses == 0)
     v.functionalWindow =
         std::array<double, 2>{scene_.functionalRange.first, scene_.functionalRange.second};
-  if (pane != k3d)
-    v.view = *config::parseViewName(
-        kPaneNames[pane]);  // axial, coronal, sagittal: the planes' own names
+  if (pane != k3d)  // axial, coronal, sagittal: the planes' own names
+    v.view = s.camera.view == StandardView::Inferior   ? config::ViewName::Axial
+             : s.camera.view == StandardView::Anterior ? config::ViewName::Coronal
+                                                       : config::ViewName::Sagittal;
   return v;
 }
 
@@ -527,8 +638,13 @@ void ViewerState::saveConfig(const std::filesystem::path& file) const {
     if (!study.functional) study.functional.emplace();
     study.functional->path = functional_->metadata().sourcePath;
   }
+  // The standard layout's four views (what `mvw render` can render of any layout's state: the
+  // 3D view, and the three MPR planes at the MPR panes' zoom, pan and crosshair), and the
+  // layout the viewer opens the state in.
   study.render.views.clear();
-  for (int p = 0; p < kPaneCount; ++p) study.render.views.push_back(viewConfigOf(p));
+  for (int p = 0; p < kPaneCount; ++p)
+    study.render.views.push_back(viewConfigOf(p, config::ViewerLayout::Standard));
+  study.layout = layout_;
   study.measurements = measurements_.all();
   config::writeStudyConfig(study, file);
 }

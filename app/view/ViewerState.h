@@ -37,7 +37,8 @@ namespace mvw::app {
 enum class MouseButton { Left = 0, Right = 1, Middle = 2 };
 // Which image a colour map chooser sets: the 3D pane's projection, the MPR panes' anatomy, or
 // the functional overlay (MPR) and fusion (3D).
-enum class ColorTarget { View3d, Mpr, Overlay };
+// Functional: the PET/CT layout's functional pane and its MIP (grey-inverted by default).
+enum class ColorTarget { View3d, Mpr, Overlay, Functional };
 
 // What the renderer knows about the volumes that the state's maths need (the renderer holds
 // them in GL; a test gives them by hand).
@@ -75,8 +76,32 @@ class ViewerState : public PaneGeometry {
   ViewerState(const ViewerState&) = delete;
   ViewerState& operator=(const ViewerState&) = delete;
 
-  static const char* paneName(int pane);                         // 3d, axial, coronal, sagittal
-  static std::optional<int> paneNamed(const std::string& name);  // the inverse
+  static const char* paneName(int pane);  // 3d, axial, coronal, sagittal
+  // The inverse; the PET/CT layout's names are accepted too: mip (the 3D pane's slot),
+  // anatomical (axial's), functional (coronal's), fused (sagittal's).
+  static std::optional<int> paneNamed(const std::string& name);
+  // The layout (issue 36 item 2; config::ViewerLayout): standard, the 3D pane and the axial,
+  // coronal and sagittal MPR; PET/CT, the four panes' slots show the functional volume's
+  // rotating MIP (the 3D slot), the anatomical MPR (axial's slot: no overlay), the functional
+  // MPR (coronal's: the functional volume alone, in the functional colour map; without a
+  // functional volume the anatomical one in that map) and the fused MPR (sagittal's), the
+  // three MPRs of one plane in step (one zoom, pan and crosshair). Setting a PET/CT layout
+  // starts the MIP spinning; key L cycles standard, pet-ct (axial), coronal, sagittal.
+  void setLayout(config::ViewerLayout layout);
+  config::ViewerLayout layout() const { return layout_; }
+  bool petCtLayout() const { return layout_ != config::ViewerLayout::Standard; }
+  // The plane an MPR pane shows (its slot's in the standard layout, the layout's in PET/CT).
+  render::StandardView mprView(int pane) const;
+  // Whether the pane renders the functional volume as its image (the PET/CT layout's MIP of a
+  // study with a functional volume): the window renders it with a renderer of that volume.
+  bool paneShowsFunctional(int pane) const;
+  // What the pane shows, for its title on screen: "3D", "axial", ...; in PET/CT "MIP PET WB",
+  // "CT Chest", "PET WB", "fused".
+  std::string paneTitle(int pane) const;
+  // Where the panel draws each slot in the 2 x 2 grid (0 top left, 1 top right, 2 bottom left,
+  // 3 bottom right): the slot order in the standard layout; in PET/CT anatomical, functional,
+  // fused, MIP.
+  int paneCell(int pane) const;
   // The volume's name in readouts, statistics and colour bars (study::volumeName): "MR relCBF",
   // "CT Cranium"; `role` ("anatomical", "functional") where it names neither.
   static std::string volumeName(const Volume& volume, const char* role);
@@ -90,7 +115,7 @@ class ViewerState : public PaneGeometry {
   void wheel(int pane, double steps, bool ctrl = false);
   // key: an upper-case letter or digit ('1'..'5' modes, 'D', 'G', 'F', 'P', 'R', 'S', 'O' spin,
   // 'K' rock, 'Z' MPR fit, 'X' MPR one screen pixel per voxel, 'C' MPR panes centred on the
-  // crosshair, 'J' jump); other keys do nothing.
+  // crosshair, 'J' jump, 'L' next layout); other keys do nothing.
   void key(char key, bool ctrl);
   void toggleMaximised(int pane);
   // Zoom and pan (issue 36 item 1). The MPR panes are linked: one zoom, and one pan in world
@@ -231,7 +256,10 @@ class ViewerState : public PaneGeometry {
   PaneState& pane_(int pane) { return panes_[static_cast<std::size_t>(pane)]; }
   const PaneState& pane_(int pane) const { return panes_[static_cast<std::size_t>(pane)]; }
   void markMprDirty();
-  config::ViewConfig viewConfigOf(int pane) const;
+  // The pane's settings and view as `layout` would show it (saved states are the standard
+  // layout's views and the layout's name).
+  render::RenderSettings settingsIn(config::ViewerLayout layout, int pane, bool interacting) const;
+  config::ViewConfig viewConfigOf(int pane, config::ViewerLayout layout) const;
 
   const config::StudyConfig& study_;
   const Volume& anatomical_;
@@ -245,7 +273,9 @@ class ViewerState : public PaneGeometry {
   glm::dvec3 mprPan_{0.0};
   std::map<int, std::string> labelNames_;
   std::optional<ColorTable> mprColors_;  // the MPR panes' anatomy; none: grey
-  bool segmentOutlines_ = true;          // the MPR panes outline the study's segmentation
+  ColorTable functionalColors_;          // the PET/CT layout's functional pane and MIP
+  config::ViewerLayout layout_ = config::ViewerLayout::Standard;
+  bool segmentOutlines_ = true;  // the MPR panes outline the study's segmentation
   std::optional<std::pair<int, glm::dvec3>> cursor_;
   ViewerMeasurements measurements_;  // after scene_: it starts from scene_'s placement
   ViewerOrbit orbit_;

@@ -59,6 +59,11 @@ const EnumNames<RegistrationMethod> kRegistrations = {{RegistrationMethod::None,
                                                       {RegistrationMethod::Affine, "affine"},
                                                       {RegistrationMethod::File, "file"}};
 
+const EnumNames<ViewerLayout> kLayouts = {{ViewerLayout::Standard, "standard"},
+                                          {ViewerLayout::PetCtAxial, "pet-ct"},
+                                          {ViewerLayout::PetCtCoronal, "pet-ct-coronal"},
+                                          {ViewerLayout::PetCtSagittal, "pet-ct-sagittal"}};
+
 const EnumNames<OrbitMode> kOrbitModes = {{OrbitMode::Spin, "spin"}, {OrbitMode::Rock, "rock"}};
 
 EnumNames<ColorMap> colorMaps() {
@@ -400,6 +405,14 @@ json viewConfigJson(const ViewConfig& v) { return viewTable().write(v); }
 
 std::string toString(OrbitMode mode) { return detail::nameOf(kOrbitModes, mode); }
 
+std::string toString(ViewerLayout layout) { return detail::nameOf(kLayouts, layout); }
+
+std::optional<ViewerLayout> parseViewerLayout(const std::string& name) {
+  return detail::parseName(kLayouts, name);
+}
+
+std::string viewerLayoutList() { return detail::namesOf(kLayouts); }
+
 std::optional<OrbitMode> parseOrbitMode(const std::string& name) {
   return detail::parseName(kOrbitModes, name);
 }
@@ -697,7 +710,12 @@ const FieldTable<StudyConfig>& studyTable() {
             [](const S& in, json& j, const char* k) {
               if (in.measurements != Measurements{})
                 j[k] = measurementsTable().write(in.measurements);
-            });
+            })
+        .enumeration("layout",
+                     "How `mvw view` arranges its panes: standard (3D + axial, coronal, sagittal "
+                     "MPR); pet-ct (anatomical, functional and fused axial MPR in step + the "
+                     "functional MIP; pet-ct-coronal, pet-ct-sagittal: that plane).",
+                     &S::layout, kLayouts);
     return s;
   }();
   return t;

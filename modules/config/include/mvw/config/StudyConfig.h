@@ -193,6 +193,12 @@ struct RegistrationConfig {
   double rotationSearchDeg = 0.0;
 };
 
+// How `mvw view` arranges its four panes ("layout"): standard, the 3D view and the axial,
+// coronal and sagittal MPR; pet-ct (issue 36 item 2), as PET/CT readers know it: the
+// anatomical, the functional and the fused MPR of one plane (axial; pet-ct-coronal,
+// pet-ct-sagittal) in step with one crosshair, and the functional volume's rotating MIP.
+enum class ViewerLayout { Standard, PetCtAxial, PetCtCoronal, PetCtSagittal };
+
 struct StudyConfig {
   std::filesystem::path file;  // where it was loaded from
   std::string name;
@@ -205,6 +211,7 @@ struct StudyConfig {
   RegistrationConfig registration;
   RenderConfig render;
   Measurements measurements;
+  ViewerLayout layout = ViewerLayout::Standard;
 };
 
 StudyConfig loadStudyConfig(const std::filesystem::path& file);
@@ -236,6 +243,9 @@ std::string toString(GlyphConvexity convexity);
 std::string toString(GlyphPlacement placement);
 std::string toString(RegistrationMethod method);
 std::string toString(OrbitMode mode);
+std::string toString(ViewerLayout layout);
+std::optional<ViewerLayout> parseViewerLayout(const std::string& name);
+std::string viewerLayoutList();  // "standard, pet-ct, ..." for messages
 std::optional<OrbitMode> parseOrbitMode(const std::string& name);
 // The azimuths (degrees) of an orbiting view's frames; empty for a still.
 std::vector<double> orbitAzimuths(const ViewConfig& view);
