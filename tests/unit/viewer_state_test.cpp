@@ -217,6 +217,78 @@ TEST_F(ViewerStateTest, MprPanesShareTheFunctionalWindowOfTheThreeDPane) {
   EXPECT_EQ(state.renderSettings(kSagittal).camera.view, render::StandardView::Left);
 }
 
+// The PET/CT reading layout (issue 36 item 2): the MPR slots show one plane, the anatomical one
+// without the overlay, the functional one alone (full opacity over a black anatomy), the fused
+// one as the standard MPR; the 3D slot is the functional volume's MIP; key L cycles the layouts.
+TEST_F(ViewerStateTest, PetCtLayoutShowsOnePlaneInStepAndTheFunctionalMip) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  renderAll(state);
+  EXPECT_FALSE(state.paneShowsFunctional(k3d));
+  state.setLayout(config::ViewerLayout::PetCtCoronal);
+  EXPECT_TRUE(state.orbit().mode() == Orbit::Spin);  // the rotating MIP
+  for (int p = kAxial; p <= kSagittal; ++p)
+    EXPECT_EQ(state.renderSettings(p).camera.view, render::StandardView::Anterior) << p;
+  const render::RenderSettings anatomy = state.renderSettings(kAxial);
+  const render::RenderSettings functional = state.renderSettings(kCoronal);
+  const render::RenderSettings fused = state.renderSettings(kSagittal);
+  EXPECT_FALSE(anatomy.overlay);
+  EXPECT_TRUE(fused.overlay);
+  EXPECT_FLOAT_EQ(fused.overlayOpacity, 0.5f);
+  EXPECT_FLOAT_EQ(functional.overlayOpacity, 1.0f);
+  EXPECT_LT(functional.overlayThreshold, 0.0f);
+  ASSERT_TRUE(functional.imageColors);
+  for (const auto& rgb : functional.imageColors->rgb) EXPECT_EQ(rgb[0] + rgb[1] + rgb[2], 0);
+  ASSERT_TRUE(functional.overlayColors);
+  EXPECT_EQ(functional.overlayColors->map, ColorMap::GreyInverted);
+  // One crosshair: the three slots cut the plane through it.
+  EXPECT_DOUBLE_EQ(anatomy.planeOffsetMm, fused.planeOffsetMm);
+  renderAll(state);  // the panes' cameras, which the wheel moves along
+  state.wheel(kSagittal, 3.0);
+  EXPECT_DOUBLE_EQ(state.renderSettings(kAxial).planeOffsetMm,
+                   state.renderSettings(kSagittal).planeOffsetMm);
+  EXPECT_NE(state.renderSettings(kAxial).planeOffsetMm, anatomy.planeOffsetMm);
+  EXPECT_TRUE(state.paneShowsFunctional(k3d));
+  const render::RenderSettings mip = state.renderSettings(k3d);
+  EXPECT_EQ(mip.mode, RenderMode::Mip);
+  EXPECT_DOUBLE_EQ(mip.level - 0.5 * mip.window, state.scene().functionalRange.first);
+  EXPECT_DOUBLE_EQ(mip.level + 0.5 * mip.window, state.scene().functionalRange.second);
+  EXPECT_EQ(state.paneCell(kAxial), 0);
+  EXPECT_EQ(state.paneCell(kCoronal), 1);
+  EXPECT_EQ(state.paneCell(kSagittal), 2);
+  EXPECT_EQ(state.paneCell(k3d), 3);
+  EXPECT_EQ(ViewerState::paneNamed("fused"), kSagittal);
+  EXPECT_EQ(ViewerState::paneNamed("mip"), k3d);
+  state.key('L', false);
+  EXPECT_EQ(state.layout(), config::ViewerLayout::PetCtSagittal);
+  state.key('L', false);
+  EXPECT_EQ(state.layout(), config::ViewerLayout::Standard);
+  EXPECT_TRUE(state.orbit().mode() == Orbit::Off);
+  EXPECT_FALSE(state.paneShowsFunctional(k3d));
+  EXPECT_EQ(state.renderSettings(kCoronal).overlayOpacity, 0.5f);
+  EXPECT_EQ(state.paneCell(k3d), 0);
+}
+
+// A config's zoom keeps its field in a pane of another shape (issue 36 item 4): a 3D view zoomed
+// 2 for a 256 x 512 portrait shows the same height in a landscape pane, not half of it.
+TEST_F(ViewerStateTest, AStudysZoomKeepsItsFieldInAPaneOfAnotherShape) {
+  config::ViewConfig portrait;
+  portrait.name = "portrait";
+  portrait.mode = RenderMode::Mip;
+  portrait.zoom = 2.0;
+  portrait.width = 256;
+  portrait.height = 512;
+  study.render.views = {portrait};
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  state.setPaneSize(k3d, {518, 440});
+  const render::RenderSettings s = state.renderSettings(k3d);
+  const double r = state.scene().radius;
+  const render::Camera pane = render::makeCamera(s.camera, state.scene().centre, r, s.size);
+  const render::Camera own =
+      render::makeCamera(s.camera, state.scene().centre, r, {portrait.width, portrait.height});
+  EXPECT_NEAR(pane.halfHeightMm, own.halfHeightMm, 1e-9);  // the portrait's whole height
+  EXPECT_NEAR(own.halfHeightMm, 2.0 * r / 2.0, 1e-9);
+}
+
 TEST_F(ViewerStateTest, CaptionsNameTheModeAndWindow) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
   EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)), "composite  ct-bone");

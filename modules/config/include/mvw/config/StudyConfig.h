@@ -88,6 +88,9 @@ struct ViewConfig {
   std::array<double, 2> pan{0.0, 0.0};  // [right, up] mm the picture is moved on the screen
   bool perspective = false;
   int width = 512, height = 512;
+  // Not a key: the shape (width / height) the zoom was chosen for when a command-line --size
+  // gave the image another (0: width / height); see render::CameraSettings::fitAspect.
+  double fitAspect = 0.0;
   std::string preset;                               // transfer function preset; "" = by modality
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
