@@ -490,7 +490,10 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
     // The rotating MIP of the functional volume (of the anatomical one where there is none),
     // in the functional colour map, turned by the 3D pane's camera (the orbit, the mouse).
     s.mode = RenderMode::Mip;
-    s.camera = view3d_.camera;
+    s.camera = view3d_.camera;  // its zoom, pan and azimuth (the orbit), seen from the front
+    s.camera.view = StandardView::Anterior;
+    s.camera.elevationDeg = 0.0;
+    s.camera.rollDeg = 0.0;
     s.camera.perspective = false;
     s.imageColors = functionalColors_;
     s.overlay = false;
