@@ -16,6 +16,7 @@ namespace {
 struct ViewOptions {
   std::string study, anatomical, functional, script, frameLog;
   int width = 1400, height = 900;
+  double uiScale = 1.0;
 };
 
 void runView(const ViewOptions& o) {
@@ -38,6 +39,7 @@ void runView(const ViewOptions& o) {
   v.frameLog = o.frameLog;
   v.width = o.width;
   v.height = o.height;
+  v.uiScale = o.uiScale;
   runViewer(std::move(v));
 }
 
@@ -70,6 +72,9 @@ void addViewCommand(CLI::App& app) {
                   "size, whether it was a drag frame (benchmarks of interactivity)");
   cmd->add_option("--width", o->width, "Window width")->check(CLI::Range(640, 8192));
   cmd->add_option("--height", o->height, "Window height")->check(CLI::Range(480, 8192));
+  cmd->add_option("--ui-scale", o->uiScale,
+                  "Panel text and controls scaled (1.5 for a high-density screen)")
+      ->check(CLI::Range(0.5, 4.0));
   cmd->callback([o] { runView(*o); });
 }
 

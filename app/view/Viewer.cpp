@@ -39,11 +39,13 @@ namespace {
 // functions, so it needs no loader from us.
 class ImGuiSession {
  public:
-  explicit ImGuiSession(GLFWwindow* window) {
+  ImGuiSession(GLFWwindow* window, float scale) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;
     ImGui::StyleColorsDark();
+    ImGui::GetStyle().ScaleAllSizes(scale);
+    ImGui::GetIO().FontGlobalScale = scale;
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 450");
   }
@@ -155,7 +157,7 @@ int runViewer(ViewerOptions options) {
   // Declaration order is teardown order in reverse: the state (and a running registration,
   // which reads the volumes) goes first, the GL objects while the context still exists.
   GlfwContext context(glm::ivec2(options.width, options.height), "mvw view");
-  ImGuiSession imgui(context.window());
+  ImGuiSession imgui(context.window(), static_cast<float>(options.uiScale));
   render::VolumeRenderer renderer(context, session.anatomical());
   session.attach(renderer);
   ViewerScene scene;
@@ -190,7 +192,7 @@ int runViewer(ViewerOptions options) {
   render::WindowFramebuffer framebuffer(context);
   ViewerPanel::PaneTextures textures;
   ViewerState state(session.config(), session.anatomical(), functional, scene);
-  ViewerPanel panel(state, textures);
+  ViewerPanel panel(state, textures, static_cast<float>(options.uiScale));
   // The functional volume as an image of its own (the PET/CT layout's MIP), uploaded once the
   // layout first asks for it.
   std::unique_ptr<render::VolumeRenderer> functionalRendererHeld;

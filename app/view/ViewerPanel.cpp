@@ -473,7 +473,7 @@ bool ViewerPanel::draw() {
   ImGui::Begin("mvw", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                    ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
-  const float panel = 340.0f;
+  const float panel = 340.0f * scale_;
   ImGui::BeginChild("panel", ImVec2(panel, 0), true);
   drawControls();
   ImGui::EndChild();
