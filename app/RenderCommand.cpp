@@ -154,15 +154,17 @@ struct ViewPainter {
       auto [flo, fhi] = renderer.functionalRange();
       if (settings.functionalHigh > settings.functionalLow)
         flo = settings.functionalLow, fhi = settings.functionalHigh;
+      const std::string name = mvw::study::volumeName(*functional, "functional");
       if (settings.overlayColors)
         render::drawColourBar(f.image, flo, fhi, functional->metadata().unit,
-                              *settings.overlayColors);
+                              *settings.overlayColors, name);
       else
-        render::drawColourBar(f.image, flo, fhi, functional->metadata().unit);
+        render::drawColourBar(f.image, flo, fhi, functional->metadata().unit, name);
     } else if (render::showsImageColors(settings)) {
       render::drawColourBar(f.image, shown.level - 0.5 * shown.window,
                             shown.level + 0.5 * shown.window, session.anatomical().metadata().unit,
-                            *settings.imageColors);
+                            *settings.imageColors,
+                            mvw::study::volumeName(session.anatomical(), "anatomical"));
     }
     const mvw::study::SegmentOverlay* segments = session.segments();
     if (segments && settings.mode == render::RenderMode::Mpr && settings.segmentOutlines) {

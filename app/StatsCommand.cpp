@@ -1,5 +1,6 @@
 #include "StatsCommand.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -89,6 +90,37 @@ nlohmann::json toJson(const Roi& roi, const study::RoiStats& s) {
     j["threshold"] = *s.thresholdValue;
     j["metabolic_voxels"] = s.metabolicVoxels;
     j["metabolic_volume_ml"] = *s.metabolicVolumeMl;
+    j["metabolic_mean"] = s.metabolicMean ? nlohmann::json(*s.metabolicMean) : nullptr;
+    j["tlg"] = *s.tlg;
+  }
+  return j;
+}
+
+// The total over a SEG's segments: their union's voxels and, with a threshold, the total
+// metabolic tumour volume (study::metabolicTotal).
+struct Total {
+  std::string what;
+  std::size_t segments = 0;
+  study::RoiStats union_;
+  std::optional<study::MetabolicTotal> metabolic;
+};
+
+nlohmann::json toJson(const Total& t) {
+  nlohmann::json j;
+  j["roi"] = t.what;
+  j["total"] = true;
+  j["segments"] = t.segments;
+  j["voxels"] = t.union_.voxels;
+  j["voxels_no_data"] = t.union_.noData;
+  j["volume_ml"] = t.union_.volumeMl;
+  j["unit"] = t.union_.unit;
+  j["max"] = t.union_.voxels ? nlohmann::json(t.union_.max) : nullptr;
+  j["mean"] = t.union_.voxels ? nlohmann::json(t.union_.mean) : nullptr;
+  if (t.metabolic) {
+    j["metabolic_voxels"] = t.metabolic->voxels;
+    j["metabolic_volume_ml"] = t.metabolic->volumeMl;
+    j["metabolic_mean"] = t.metabolic->mean ? nlohmann::json(*t.metabolic->mean) : nullptr;
+    j["tlg"] = t.metabolic->tlg;
   }
   return j;
 }
@@ -113,21 +145,41 @@ void printText(std::ostream& out, const Roi& roi, const study::RoiStats& s,
     if (!std::isnan(opt.thresholdFraction))
       out << ", " << num(opt.thresholdFraction * 100) << " % of max";
     out << ")\n";
+    if (s.metabolicMean)
+      out << "  metab. mean  " << num(*s.metabolicMean) << unit
+          << "  (mean of the metabolic volume)\n";
+    out << "  TLG          " << num(*s.tlg) << (unit.empty() ? " ml" : unit + " x ml")
+        << "  (metabolic volume x its mean)\n";
   }
 }
 
-void runStats(const StatsOptions& opt) {
+void printText(std::ostream& out, const Total& t) {
+  const std::string unit = t.union_.unit.empty() ? "" : " " + t.union_.unit;
+  out << t.what << "\n";
+  out << "  voxels       " << t.union_.voxels << "  (" << num(t.union_.volumeMl) << " ml)\n";
+  if (t.union_.voxels) {
+    out << "  max          " << num(t.union_.max) << unit << "\n";
+    out << "  mean         " << num(t.union_.mean) << unit << "\n";
+  }
+  if (!t.metabolic) return;
+  out << "  TMTV         " << num(t.metabolic->volumeMl) << " ml  (" << t.metabolic->voxels
+      << " voxels, each segment at its own threshold)\n";
+  if (t.metabolic->mean) out << "  metab. mean  " << num(*t.metabolic->mean) << unit << "\n";
+  out << "  TLG          " << num(t.metabolic->tlg) << (unit.empty() ? " ml" : unit + " x ml")
+      << "  (total metabolic tumour volume x its mean)\n";
+}
+
+void runStats(StatsOptions opt) {
   const int rois = (!opt.sphere.empty()) + (!opt.box.empty()) + (!opt.labels.empty());
-  if (rois != 1)
-    throw CLI::ValidationError("ROI",
-                               "give exactly one of --sphere X Y Z R, --box X0 Y0 Z0 X1 Y1 "
-                               "Z1 or --labels FILE");
+  const char* kRoiChoice =
+      "give exactly one of --sphere X Y Z R, --box X0 Y0 Z0 X1 Y1 Z1 or --labels FILE";
+  if (rois > 1) throw CLI::ValidationError("ROI", kRoiChoice);
   if (!std::isnan(opt.threshold) && !std::isnan(opt.thresholdFraction))
     throw CLI::ValidationError("--threshold", "give --threshold or --threshold-fraction, not both");
   if (!std::isnan(opt.thresholdFraction) &&
       !(opt.thresholdFraction > 0 && opt.thresholdFraction <= 1))
     throw CLI::ValidationError("--threshold-fraction", "must lie in (0, 1], e.g. 0.41");
-  if (opt.label != 0 && opt.labels.empty())
+  if (opt.label != 0 && opt.labels.empty() && rois != 0)
     throw CLI::ValidationError("--label", "needs --labels FILE");
 
   io::ReadOptions read;
@@ -140,7 +192,10 @@ void runStats(const StatsOptions& opt) {
     if (opt.of == "anatomical") {
       volume = study::readAnatomical(study.anatomical, read);
     } else {
-      if (!study.functional) throw InputError(source, "the study names no functional volume");
+      if (!study.functional)
+        throw InputError(source,
+                         "the study names no functional volume (for its anatomical volume: "
+                         "--of anatomical)");
       volume = study::readSource(*study.functional, read);
     }
   } else {
@@ -149,9 +204,21 @@ void runStats(const StatsOptions& opt) {
                                              source.string() + " is a volume");
     volume = io::readVolume(source, read);
   }
+  // A folder of one image series and its DICOM SEG: without an ROI, the SEG's segments are the
+  // ROIs (as `mvw info` lists the SEG beside the series).
+  if (rois == 0) {
+    const auto& segs = volume.metadata().segmentationFiles;
+    if (segs.size() != 1) throw CLI::ValidationError("ROI", kRoiChoice);
+    opt.labels = segs.front();
+    std::cerr << "mvw stats: note: the ROIs are the segments of " << opt.labels
+              << " (the DICOM SEG beside the series)\n";
+  }
+  if (opt.label != 0 && opt.labels.empty())
+    throw CLI::ValidationError("--label", "needs --labels FILE");
 
   std::vector<Roi> list;
   std::string placementNote;
+  bool segmentList = false;  // every segment of a SEG: a total follows them
   if (!opt.sphere.empty()) {
     const study::SphereRoi s{{opt.sphere[0], opt.sphere[1], opt.sphere[2]}, opt.sphere[3]};
     list.push_back({"sphere at " + mm(s.centre) + " mm LPS, radius " + num(s.radiusMm) + " mm",
@@ -182,6 +249,7 @@ void runStats(const StatsOptions& opt) {
       }
     }
     placementNote = placed.note;
+    segmentList = seg && opt.label == 0;
     bool found = false;
     std::string known;
     std::size_t listed = 0;
@@ -226,9 +294,31 @@ void runStats(const StatsOptions& opt) {
       throw InputError(source, "the " + roi.what + " holds no voxel with data (its " +
                                    std::to_string(stats.back().noData) + " voxels are NaN)");
   }
+  std::optional<Total> total;
+  if (segmentList && list.size() > 1) {
+    total.emplace();
+    total->segments = list.size();
+    total->what = "total over the " + std::to_string(list.size()) + " segments";
+    study::VoxelList all;
+    std::vector<study::VoxelList> lesions;
+    std::vector<double> thresholds;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      all.insert(all.end(), list[i].voxels.begin(), list[i].voxels.end());
+      if (stats[i].thresholdValue) {
+        lesions.push_back(list[i].voxels);
+        thresholds.push_back(*stats[i].thresholdValue);
+      }
+    }
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    total->union_ = study::roiStatistics(volume, all, {});
+    if (so.threshold.kind != study::Threshold::Kind::None)
+      total->metabolic = study::metabolicTotal(volume, lesions, thresholds);
+  }
   if (opt.json) {
     nlohmann::json out = nlohmann::json::array();
     for (std::size_t i = 0; i < list.size(); ++i) out.push_back(toJson(list[i], stats[i]));
+    if (total) out.push_back(toJson(*total));
     std::cout << out.dump(2) << "\n";
     return;
   }
@@ -239,6 +329,7 @@ void runStats(const StatsOptions& opt) {
             << (md.unit.empty() ? ", no unit" : ", values in " + md.unit) << ")\n";
   if (!placementNote.empty()) std::cout << "  " << placementNote << "\n";
   for (std::size_t i = 0; i < list.size(); ++i) printText(std::cout, list[i], stats[i], opt);
+  if (total) printText(std::cout, *total);
 }
 
 }  // namespace
@@ -274,7 +365,8 @@ void addStatsCommand(CLI::App& app) {
       ->expected(6)
       ->check(finite);
   cmd->add_option("--labels", opt->labels,
-                  "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value)")
+                  "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value); "
+                  "default: the SEG beside a folder's one image series")
       ->check(nonEmpty());
   cmd->add_option("--label", opt->label, "Only this label (segment number; 0 is no label)")
       ->check(CLI::Validator(

@@ -16,6 +16,7 @@ namespace {
 struct ViewOptions {
   std::string study, anatomical, functional, script, frameLog;
   int width = 1400, height = 900;
+  double uiScale = 1.0;
 };
 
 void runView(const ViewOptions& o) {
@@ -38,6 +39,7 @@ void runView(const ViewOptions& o) {
   v.frameLog = o.frameLog;
   v.width = o.width;
   v.height = o.height;
+  v.uiScale = o.uiScale;
   runViewer(std::move(v));
 }
 
@@ -50,12 +52,15 @@ void addViewCommand(CLI::App& app) {
       "Interactive viewer: 3D view + axial, coronal, sagittal MPR with a linked crosshair.\n"
       "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom; MPR left "
       "click/drag moves the\n"
-      "crosshair, wheel scrolls slices, right-drag or Ctrl-drag window/level, Shift-drag a sphere "
-      "ROI,\nAlt-drag a ruler (or the panel's MPR mouse tool); double-click maximises a view.\n"
+      "crosshair, wheel scrolls slices, Ctrl+wheel zooms, middle-drag pans (the MPR panes "
+      "together),\nright-drag or Ctrl-drag window/level, Shift-drag a sphere "
+      "ROI, Alt-drag a ruler (or the panel's MPR mouse tool);\ndouble-click maximises a view.\n"
       "Keys: 1 composite, 2 isosurface, 3 MIP, 4 MinIP, 5 average, D depth cue, G glyphs, F colour "
       "fusion,\n"
-      "P next preset, R reset, S screenshot, Ctrl+S save the state as a study config (mvw render "
-      "reproduces it).");
+      "P next preset, Z fit the MPR panes, C centre them on the crosshair, J jump\n(hottest voxel, "
+      "segments, ROIs), X one pixel per voxel, "
+      "R reset, S screenshot, "
+      "Ctrl+S save the state\nas a study config (mvw render reproduces it).");
   cmd->add_option("study", o->study, "Study config (.json)");
   cmd->add_option("--anatomical", o->anatomical,
                   "Anatomical volume (DICOM folder or file, NIfTI, MetaImage)");
@@ -67,6 +72,9 @@ void addViewCommand(CLI::App& app) {
                   "size, whether it was a drag frame (benchmarks of interactivity)");
   cmd->add_option("--width", o->width, "Window width")->check(CLI::Range(640, 8192));
   cmd->add_option("--height", o->height, "Window height")->check(CLI::Range(480, 8192));
+  cmd->add_option("--ui-scale", o->uiScale,
+                  "Panel text and controls scaled (1.5 for a high-density screen)")
+      ->check(CLI::Range(0.5, 4.0));
   cmd->callback([o] { runView(*o); });
 }
 

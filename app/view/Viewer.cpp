@@ -4,8 +4,10 @@
 #include <array>
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -22,8 +24,10 @@
 #include "mvw/io/Png.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/DisplayTexture.h"
+#include "mvw/render/SegmentLegend.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/render/WindowFramebuffer.h"
+#include "mvw/study/SegmentOverlay.h"
 #include "mvw/study/Session.h"
 
 namespace mvw::app {
@@ -35,11 +39,13 @@ namespace {
 // functions, so it needs no loader from us.
 class ImGuiSession {
  public:
-  explicit ImGuiSession(GLFWwindow* window) {
+  ImGuiSession(GLFWwindow* window, float scale) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;
     ImGui::StyleColorsDark();
+    ImGui::GetStyle().ScaleAllSizes(scale);
+    ImGui::GetIO().FontGlobalScale = scale;
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 450");
   }
@@ -56,21 +62,29 @@ class ImGuiSession {
 // tests/view/viewer-xvfb compares the panes as shown with annotated headless renders byte for
 // byte): the overlay's or fusion's map, else the image's own over its window; grey: none.
 void drawColourBar(Image& shown, const ViewerState& state, const render::VolumeRenderer& renderer,
-                   const render::RenderSettings& s) {
+                   const render::RenderSettings& s, bool functionalImage) {
   const Volume* functional = state.functional();
+  if (functionalImage) {  // the PET/CT layout's MIP: the functional volume's own window
+    render::drawColourBar(shown, s.level - 0.5 * s.window, s.level + 0.5 * s.window,
+                          functional->metadata().unit, *s.imageColors,
+                          ViewerState::volumeName(*functional, "functional"));
+    return;
+  }
   const bool overlayShown = render::showsFunctional(s, functional != nullptr);
   if (overlayShown) {
     auto [flo, fhi] = renderer.functionalRange();
     if (s.functionalHigh > s.functionalLow) flo = s.functionalLow, fhi = s.functionalHigh;
+    const std::string name = ViewerState::volumeName(*functional, "functional");
     if (s.overlayColors)
-      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, *s.overlayColors);
+      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, *s.overlayColors, name);
     else
-      render::drawColourBar(shown, flo, fhi, functional->metadata().unit);
+      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, name);
   } else if (render::showsImageColors(s)) {
     const auto [lo, hi] = state.scene().valueRange;
     const WindowLevel w = windowOrFullRange(s.window, s.level, lo, hi);
     render::drawColourBar(shown, w.level - 0.5 * w.window, w.level + 0.5 * w.window,
-                          state.anatomical().metadata().unit, *s.imageColors);
+                          state.anatomical().metadata().unit, *s.imageColors,
+                          ViewerState::volumeName(state.anatomical(), "anatomical"));
   }
 }
 
@@ -80,13 +94,20 @@ struct Render3d {
   glm::ivec2 size{0};
 };
 
+// segments: the study's segmentation (null: none), whose legend the MPR panes show with the
+// outlines, as `mvw render` burns it in (app/RenderCommand.cpp). functionalRenderer: a
+// renderer of the functional volume, made on first use, for the panes that show it as their
+// image (the PET/CT layout's MIP).
 Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
+                          const std::function<render::VolumeRenderer&()>& functionalRenderer,
+                          const mvw::study::SegmentOverlay* segments,
                           ViewerPanel::PaneTextures& textures, bool interacting) {
   Render3d rendered3d;
   for (int p = 0; p < kPaneCount; ++p) {
     if (!state.needsRender(p)) continue;
     const render::RenderSettings s = state.renderSettings(p, interacting);
-    render::RenderedFrame f = renderer.render(s);
+    const bool functionalImage = state.paneShowsFunctional(p);
+    render::RenderedFrame f = (functionalImage ? functionalRenderer() : renderer).render(s);
     if (p == k3d) rendered3d = {f.milliseconds, s.size};
     Image shown = f.image;
     render::annotate(shown, f.camera, state.caption(p, s));
@@ -94,7 +115,13 @@ Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     // Glyph kinds (issue 40): each icon drawn by the view's own glyph shading.
     if (render::usesGlyphKinds(s)) renderer.renderGlyphIcons(s, legend);
     render::drawGlyphLegend(shown, legend);
-    drawColourBar(shown, state, renderer, s);
+    drawColourBar(shown, state, renderer, s, functionalImage);
+    if (segments && s.mode == render::RenderMode::Mpr && s.segmentOutlines) {
+      std::vector<render::LegendEntry> segmentLegend;
+      for (std::size_t i = 0; i < segments->names.size(); ++i)
+        segmentLegend.push_back({segments->names[i], segments->colours[i]});
+      render::drawSegmentLegend(shown, segmentLegend);
+    }
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting, f.milliseconds);
   }
@@ -132,7 +159,7 @@ int runViewer(ViewerOptions options) {
   // Declaration order is teardown order in reverse: the state (and a running registration,
   // which reads the volumes) goes first, the GL objects while the context still exists.
   GlfwContext context(glm::ivec2(options.width, options.height), "mvw view");
-  ImGuiSession imgui(context.window());
+  ImGuiSession imgui(context.window(), static_cast<float>(options.uiScale));
   render::VolumeRenderer renderer(context, session.anatomical());
   session.attach(renderer);
   ViewerScene scene;
@@ -142,13 +169,41 @@ int runViewer(ViewerOptions options) {
     scene.functionalRange = renderer.functionalRange();
     scene.anatomicalFromFunctional = session.anatomicalFromFunctional();
   }
+  if (const mvw::study::SegmentOverlay* segments = session.segments()) {
+    // Each segment's centre (the mean of its voxel centres), where the outlines put it.
+    const glm::dmat4 placed = mvw::study::anatomicalFromSegmentation(
+        *segments, functional, functional ? session.anatomicalFromFunctional() : glm::dmat4(1.0));
+    const Volume& masks = segments->masks;
+    const glm::ivec3 d = masks.dimensions();
+    for (int c = 0; c < masks.components(); ++c) {
+      glm::dvec3 sum(0.0);
+      double count = 0.0;
+      for (int k = 0; k < d.z; ++k)
+        for (int j = 0; j < d.y; ++j)
+          for (int i = 0; i < d.x; ++i)
+            if (masks.value(i, j, k, c) != 0.0) sum += glm::dvec3(i, j, k), count += 1.0;
+      if (count == 0.0) continue;
+      const glm::dvec3 world = masks.worldFromIndexPoint(sum / count);
+      scene.segmentCentres.push_back({segments->names[static_cast<std::size_t>(c)],
+                                      glm::dvec3(placed * glm::dvec4(world, 1.0))});
+    }
+  }
   scene.centre = renderer.centre();
   scene.radius = renderer.radius();
   scene.valueRange = renderer.valueRange();
   render::WindowFramebuffer framebuffer(context);
   ViewerPanel::PaneTextures textures;
   ViewerState state(session.config(), session.anatomical(), functional, scene);
-  ViewerPanel panel(state, textures);
+  ViewerPanel panel(state, textures, static_cast<float>(options.uiScale));
+  // The functional volume as an image of its own (the PET/CT layout's MIP), uploaded once the
+  // layout first asks for it.
+  std::unique_ptr<render::VolumeRenderer> functionalRendererHeld;
+  const std::function<render::VolumeRenderer&()> functionalRenderer =
+      [&]() -> render::VolumeRenderer& {
+    if (!functionalRendererHeld)
+      functionalRendererHeld = std::make_unique<render::VolumeRenderer>(context, *functional);
+    return *functionalRendererHeld;
+  };
 
   auto lastSwap = std::chrono::steady_clock::now();
 
@@ -163,7 +218,8 @@ int runViewer(ViewerOptions options) {
     const bool dragging = panel.draw() || state.requests().scriptedInteraction();
     const int divisor = state.dragDivisor();  // the one this frame renders with
     state.advanceOrbit();  // one step per drawn frame while the 3D view spins or rocks
-    const Render3d rendered3d = renderDirtyPanes(state, renderer, textures, dragging);
+    const Render3d rendered3d = renderDirtyPanes(state, renderer, functionalRenderer,
+                                                 session.segments(), textures, dragging);
     ImGui::Render();
     framebuffer.clear({0.08f, 0.08f, 0.1f, 1.0f});
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

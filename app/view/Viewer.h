@@ -18,6 +18,8 @@ struct ViewerOptions {
   // render ms and size where it rendered, interactive, drag divisor); empty: none.
   std::filesystem::path frameLog;
   int width = 1400, height = 900;
+  // The panel's text and controls (ImGui's font and sizes) and the panel's width scaled by this.
+  double uiScale = 1.0;
 };
 
 // Runs until the window closes or the script says quit; returns the process exit code.

@@ -14,6 +14,7 @@
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/TransferFunction.h"
+#include "mvw/study/ModalityDefaults.h"
 
 namespace mvw::app {
 
@@ -169,7 +170,7 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
   ViewerMeasurements& measurements = state_.measurements();
   if (ImGui::IsItemHovered()) {
     if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) state_.toggleMaximised(pane);
-    if (io.MouseWheel != 0.0f) state_.wheel(pane, io.MouseWheel);
+    if (io.MouseWheel != 0.0f) state_.wheel(pane, io.MouseWheel, io.KeyCtrl);
     // The tool, or Shift (sphere) / Alt (ruler) whatever the tool: a measurement starts.
     const MprTool tool = io.KeyShift ? MprTool::Sphere
                          : io.KeyAlt ? MprTool::Ruler
@@ -225,6 +226,37 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
     draw->AddLine(ImVec2(cx, pos.y), ImVec2(cx, pos.y + size.y), IM_COL32(80, 200, 255, 160));
     draw->AddLine(ImVec2(pos.x, cy), ImVec2(pos.x + size.x, cy), IM_COL32(80, 200, 255, 160));
   }
+  // A pane that shows nothing says why, in the middle (one clause a line).
+  if (const std::string message = state_.emptyPaneMessage(pane); !message.empty()) {
+    // Word-wrapped to the pane, a new line after each "; ".
+    std::string why, line;
+    const float width = size.x - 16.0f;
+    std::size_t start = 0;
+    while (start < message.size()) {
+      // A parenthesis (a value range) stays on one line.
+      std::size_t end = message.find(message[start] == '(' ? ')' : ' ', start);
+      if (end != std::string::npos && message[start] == '(') end = message.find(' ', end);
+      if (end == std::string::npos) end = message.size();
+      const std::string word = message.substr(start, end - start);
+      const std::string longer = line.empty() ? word : line + " " + word;
+      if (!line.empty() && ImGui::CalcTextSize(longer.c_str()).x > width) {
+        why += line + "\n";
+        line = word;
+      } else {
+        line = longer;
+      }
+      if (!line.empty() && line.back() == ';') why += line + "\n", line.clear();
+      start = end + 1;
+    }
+    why += line;
+    const ImVec2 text = ImGui::CalcTextSize(why.c_str());
+    draw->PushClipRect(pos, ImVec2(pos.x + size.x, pos.y + size.y), true);
+    boxedText(
+        draw,
+        ImVec2(pos.x + std::max(4.0f, (size.x - text.x) * 0.5f), pos.y + (size.y - text.y) * 0.5f),
+        IM_COL32(255, 210, 80, 255), why);
+    draw->PopClipRect();
+  }
   ImGui::PopID();
 }
 
@@ -232,15 +264,31 @@ void ViewerPanel::drawControls() {
   render::RenderSettings& v = state_.view3d();
   const Volume& anatomical = state_.anatomical();
   const Volume* functional = state_.functional();
-  ImGui::Text("%s", state_.study().name.empty() ? "mvw view" : state_.study().name.c_str());
+  // The study's name wraps (a long one was cut at the panel's edge), and every control leaves
+  // room on its right for the longest label, at any font scale (issue 36 item 8: "overlay
+  // colou", "step mm (0 au" at the default width).
+  ImGui::TextWrapped("%s", state_.study().name.empty() ? "mvw view" : state_.study().name.c_str());
   ImGui::Separator();
+  float label = 0.0f;
+  for (const char* text :
+       {"step mm (0 auto)", "glyph spacing mm", "overlay colours", "PET/MIP colours",
+        "overlay opacity", "smallest bump", "glyph method", "MPR colours"})
+    label = std::max(label, ImGui::CalcTextSize(text).x);
+  ImGui::PushItemWidth(-(label + ImGui::GetStyle().ItemInnerSpacing.x + 2.0f));
+  // The layout (key L): standard, or PET/CT (anatomical, functional, fused MPR of one plane
+  // and the functional volume's rotating MIP).
+  const char* layouts[] = {"standard", "PET/CT axial", "PET/CT coronal", "PET/CT sagittal"};
+  int layout = static_cast<int>(state_.layout());  // config::ViewerLayout's order
+  if (ImGui::Combo("layout (L)", &layout, layouts, 4))
+    state_.setLayout(static_cast<config::ViewerLayout>(layout));
+  if (state_.petCtLayout()) colormapCombo(state_, "PET/MIP colours", ColorTarget::Functional);
   const auto modes = ViewerState::modes3d();
   int mode = 0;
   for (int i = 0; i < static_cast<int>(modes.size()); ++i)
     if (modes[static_cast<std::size_t>(i)] == v.mode) mode = i;
   if (ImGui::Combo("3D mode", &mode, kModeLabels, static_cast<int>(modes.size())))
     state_.setMode(modes[static_cast<std::size_t>(mode)]);
-  const auto names = render::transferPresetNames();
+  const auto names = mvw::study::presetsFor(anatomical);  // no CT preset on a PET in SUV
   if (ImGui::BeginCombo("preset", state_.presetName().c_str())) {
     for (const auto& n : names)
       if (ImGui::Selectable(n.c_str(), n == state_.presetName())) state_.setPreset(n);
@@ -390,8 +438,8 @@ void ViewerPanel::drawControls() {
   int tool = static_cast<int>(measurements.tool());
   ImGui::Text("MPR mouse");
   const char* tools[] = {"crosshair", "sphere ROI", "ruler"};
-  for (int t = 0; t < 3; ++t) {
-    ImGui::SameLine();
+  for (int t = 0; t < 3; ++t) {  // on a line of their own: beside the label "ruler" was cut
+    if (t > 0) ImGui::SameLine();
     if (ImGui::RadioButton(tools[t], &tool, t)) measurements.setTool(static_cast<MprTool>(tool));
   }
   const auto& spheres = measurements.all().spheres;
@@ -415,13 +463,17 @@ void ViewerPanel::drawControls() {
   ImGui::Separator();
   ImGui::TextWrapped(
       "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom. MPR: left "
-      "click/drag moves the crosshair, wheel scrolls slices, right-drag or Ctrl-drag "
+      "click/drag moves the crosshair, wheel scrolls slices, Ctrl+wheel zooms and middle-drag "
+      "pans (the MPR panes together), right-drag or Ctrl-drag "
       "window/level, Shift-drag a sphere ROI, Alt-drag a ruler. Double-click maximises a "
       "view.\nKeys: 1-5 modes, D depth cue, G glyphs, F "
-      "fusion, P next preset, O spin, K rock, R reset, S screenshot, Ctrl+S save state as a "
-      "study config.");
+      "fusion, P next preset, O spin, K rock, Z fit the MPR panes, C centre them on the crosshair, "
+      "J jump to the hottest voxel, segments, ROIs, L next layout (PET/CT), "
+      "X one screen pixel per "
+      "voxel, R reset, S screenshot, Ctrl+S save state as a study config.");
   if (const std::string& status = state_.requests().status(); !status.empty())
     ImGui::TextWrapped("%s", status.c_str());
+  ImGui::PopItemWidth();
 }
 
 bool ViewerPanel::draw() {
@@ -432,7 +484,7 @@ bool ViewerPanel::draw() {
   ImGui::Begin("mvw", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                    ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
-  const float panel = 340.0f;
+  const float panel = 340.0f * scale_;
   ImGui::BeginChild("panel", ImVec2(panel, 0), true);
   drawControls();
   ImGui::EndChild();
@@ -442,16 +494,18 @@ bool ViewerPanel::draw() {
     drawPane(state_.maximised(), origin, area);
   } else {
     const ImVec2 cell(area.x / 2 - 2, area.y / 2 - 2);
-    for (int p = 0; p < kPaneCount; ++p)
-      drawPane(p, ImVec2(origin.x + (p % 2) * (cell.x + 4), origin.y + (p / 2) * (cell.y + 4)),
+    for (int p = 0; p < kPaneCount; ++p) {
+      const int at = state_.paneCell(p);  // the PET/CT layout puts its panes in reading order
+      drawPane(p, ImVec2(origin.x + (at % 2) * (cell.x + 4), origin.y + (at / 2) * (cell.y + 4)),
                cell);
+    }
   }
   ImGui::End();
   if (!io.WantTextInput) {
     // GLFW's key codes for digits and letters are their ASCII upper-case characters.
-    for (int key :
-         {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5, GLFW_KEY_D, GLFW_KEY_G,
-          GLFW_KEY_F, GLFW_KEY_P, GLFW_KEY_R, GLFW_KEY_S, GLFW_KEY_O, GLFW_KEY_K})
+    for (int key : {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5, GLFW_KEY_D,
+                    GLFW_KEY_G, GLFW_KEY_F, GLFW_KEY_P, GLFW_KEY_R, GLFW_KEY_S, GLFW_KEY_O,
+                    GLFW_KEY_K, GLFW_KEY_Z, GLFW_KEY_X, GLFW_KEY_C, GLFW_KEY_J, GLFW_KEY_L})
       if (ImGui::IsKeyPressed(key, false)) state_.key(static_cast<char>(key), io.KeyCtrl);
   }
   return dragging_;

@@ -17,8 +17,9 @@ namespace mvw::app {
 class ViewerPanel {
  public:
   using PaneTextures = std::array<render::DisplayTexture, kPaneCount>;
-  ViewerPanel(ViewerState& state, const PaneTextures& textures)
-      : state_(state), textures_(textures) {}
+  // scale: the UI scale (mvw view --ui-scale); the panel's width grows with it.
+  ViewerPanel(ViewerState& state, const PaneTextures& textures, float scale = 1.0f)
+      : state_(state), textures_(textures), scale_(scale) {}
 
   // Between ImGui::NewFrame and ImGui::Render; returns whether a pane is being dragged
   // (the 3D pane then renders coarse).
@@ -31,6 +32,7 @@ class ViewerPanel {
 
   ViewerState& state_;
   const PaneTextures& textures_;
+  float scale_ = 1.0f;
   bool dragging_ = false;
 };
 

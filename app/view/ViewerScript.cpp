@@ -46,7 +46,9 @@ class LineReader {
   int pane() {
     const std::string t = word("pane");
     if (auto p = ViewerState::paneNamed(t)) return *p;
-    fail("unknown pane '" + t + "' (3d, axial, coronal, sagittal)");
+    fail("unknown pane '" + t +
+         "' (3d, axial, coronal, sagittal; in the PET/CT layout also mip, anatomical, "
+         "functional, fused)");
   }
   void end() const {
     if (more()) fail(command() + ": unexpected '" + tokens_[next_] + "'");
@@ -70,7 +72,8 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
   if (cmd == "key") {
     c.kind = Kind::Key;
     const std::string k = in.word("key");
-    if (k.size() != 1) in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k)");
+    if (k.size() != 1)
+      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c, j, l)");
     c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
     if (in.more()) {
       const std::string mod = in.word("modifier");
@@ -108,6 +111,27 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
     c.kind = Kind::Wheel;
     c.pane = in.pane();
     c.x = in.number("notches");
+    if (in.more()) {
+      const std::string mod = in.word("modifier");
+      if (mod != "ctrl") in.fail("wheel: unknown modifier '" + mod + "' (ctrl)");
+      c.ctrl = true;
+    }
+  } else if (cmd == "jump") {
+    c.kind = Kind::Jump;
+  } else if (cmd == "iso") {
+    c.kind = Kind::Iso;
+    c.x = in.number("value");
+  } else if (cmd == "zoom") {
+    c.kind = Kind::Zoom;
+    c.pane = in.pane();
+    c.x = in.number("factor");
+    if (!(c.x >= 0.01 && c.x <= 100)) in.fail("zoom: the factor must lie in 0.01 .. 100");
+  } else if (cmd == "pan") {
+    c.kind = Kind::Pan;
+    c.pane = in.pane();
+    c.x = in.number("dx");
+    c.y = in.number("dy");
+    if (!(std::abs(c.x) <= 1e5 && std::abs(c.y) <= 1e5)) in.fail("pan: dx and dy within +-1e5 mm");
   } else if (cmd == "wait") {
     c.kind = Kind::Wait;
     const double frames = in.number("frame count");
@@ -134,8 +158,10 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       c.target = ColorTarget::Mpr;
     else if (target == "overlay")
       c.target = ColorTarget::Overlay;
+    else if (target == "functional")
+      c.target = ColorTarget::Functional;
     else
-      in.fail("colormap: unknown target '" + target + "' (3d, mpr, overlay)");
+      in.fail("colormap: unknown target '" + target + "' (3d, mpr, overlay, functional)");
     const std::string name = in.word("colour map");
     const std::optional<ColorMap> map = parseColorMap(name);
     if (!map) {
@@ -144,6 +170,13 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       in.fail("colormap: unknown colour map '" + name + "' (" + names + ")");
     }
     c.colormap = *map;
+  } else if (cmd == "layout") {
+    c.kind = Kind::Layout;
+    const std::string name = in.word("layout");
+    const std::optional<config::ViewerLayout> layout = config::parseViewerLayout(name);
+    if (!layout)
+      in.fail("layout: unknown layout '" + name + "' (" + config::viewerLayoutList() + ")");
+    c.layout = *layout;
   } else if (cmd == "orbit") {
     c.kind = Kind::Orbit;
     const std::string mode = in.word("mode");
@@ -267,7 +300,20 @@ bool ViewerScript::step(ViewerState& state) {
       state.click(c.pane, c.x, c.y);
       break;
     case Kind::Wheel:
-      state.wheel(c.pane, c.x);
+      state.wheel(c.pane, c.x, c.ctrl);
+      break;
+    case Kind::Jump:
+      state.jumpNext();
+      break;
+    case Kind::Iso:
+      state.view3d().isoValue = c.x;
+      state.markAllDirty();
+      break;
+    case Kind::Zoom:
+      state.zoomPane(c.pane, c.x);
+      break;
+    case Kind::Pan:
+      state.panPane(c.pane, c.x, c.y);
       break;
     case Kind::Wait:
       wait_ = c.frames;
@@ -289,6 +335,9 @@ bool ViewerScript::step(ViewerState& state) {
       break;
     case Kind::Orbit:
       state.setOrbit(c.orbit);
+      break;
+    case Kind::Layout:
+      state.setLayout(c.layout);
       break;
     case Kind::GlyphLabel:
       state.setGlyphLabel(c.label, c.labelKind);

@@ -1,12 +1,19 @@
 #pragma once
 // The viewer's --script (tests under Xvfb drive the window with it). One command per line:
-//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k)
+//   key K [ctrl]                        a key, as typed (1-5, d, g, f, p, r, s, o, k, z, x, c, j,
+//                                       l)
 //   drag PANE dx dy [left|right|middle] a drag by fractions of the pane (default left)
 //   drag-frames PANE dx dy N [BUTTON]   the same drag spread over N frames, each one a frame of
 //                                       an interactive drag (the 3D pane renders coarse, as
 //                                       under the mouse), then the frame that refines
 //   click PANE x y                      a click at fractions of the pane (y down)
-//   wheel PANE n                        n wheel notches
+//   wheel PANE n [ctrl]                 n wheel notches (with Ctrl: an MPR pane zooms)
+//   jump                                the next place to read (key J): hottest voxel, segments,
+//                                       ROIs
+//   iso VALUE                           the 3D pane's isovalue (the panel's slider)
+//   zoom PANE FACTOR                    the pane's zoom times FACTOR (the MPR panes together)
+//   pan PANE dx dy                      the pane's picture moved dx mm right, dy mm up (the MPR
+//                                       panes together, by the same world displacement)
 //   wait FRAMES                         let FRAMES frames pass
 //   screenshot FILE                     the whole window as drawn, PNG
 //   screenshot-pane PANE FILE           the pane's rectangle of the window as drawn, PNG
@@ -14,9 +21,12 @@
 //   dump PANE FILE                      the pane's full-resolution render, without annotations
 //   colormap 3d|mpr|overlay NAME        a colour map chooser (grey, grey-inverted, hot-iron, pet,
 //                                       hot-metal-blue, pet-20-step, hot-metal)
+//   colormap functional NAME            the PET/CT layout's functional pane and MIP
 //   orbit spin|rock|off                 the rotating 3D view (keys O and K toggle it)
 //   glyph-label N KIND|none             what label N of a label map gets (the panel's picker;
 //                                       KIND: bumps, dimples, rings, ridges, cones, crosses)
+//   layout NAME                         standard, pet-ct (axial), pet-ct-coronal, pet-ct-sagittal
+//                                       (key L cycles them; ViewerState::setLayout)
 //   register | wait-registration        re-run the registration in the background | wait for it
 //   roi PANE x0 y0 x1 y1                a sphere ROI drawn by a drag: centre at (x0, y0) on the
 //                                       pane's plane, radius the distance to (x1, y1), in mm
@@ -27,7 +37,8 @@
 //   roi-stats FILE                      every sphere's statistics, JSON (mvw stats's fields)
 //   clear-measurements                  no sphere, no ruler
 //   quit
-// PANE: 3d, axial, coronal, sagittal. Blank lines and lines starting with # are skipped (each
+// PANE: 3d, axial, coronal, sagittal; or mip, anatomical, functional, fused (the same slots,
+// as the PET/CT layout shows them). Blank lines and lines starting with # are skipped (each
 // still takes a frame, as every line does). The whole script is checked when it is read, so a
 // typo is reported before the window opens, naming the file and the line.
 #include <cstddef>
@@ -50,6 +61,10 @@ class ViewerScript {
       DragFrames,
       Click,
       Wheel,
+      Zoom,
+      Pan,
+      Iso,
+      Jump,
       Wait,
       Screenshot,
       PaneScreenshot,
@@ -57,6 +72,7 @@ class ViewerScript {
       Dump,
       Colormap,
       Orbit,
+      Layout,
       GlyphLabel,
       Register,
       WaitRegistration,
@@ -73,7 +89,7 @@ class ViewerScript {
     char key = 0;  // upper case
     bool ctrl = false;
     int pane = k3d;
-    double x = 0.0, y = 0.0;    // drag: dx, dy; click: x, y; wheel: x = notches
+    double x = 0.0, y = 0.0;    // drag, pan: dx, dy; click: x, y; wheel: x = notches; zoom: x
     double x1 = 0.0, y1 = 0.0;  // roi, ruler: where the drag ends
     config::SphereMeasurement sphere;
     MouseButton button = MouseButton::Left;
@@ -82,6 +98,7 @@ class ViewerScript {
     ColorTarget target = ColorTarget::View3d;
     ColorMap colormap = ColorMap::Grey;
     app::Orbit orbit = app::Orbit::Off;
+    config::ViewerLayout layout = config::ViewerLayout::Standard;
     int label = 0;  // glyph-label
     config::LabelGlyphKind labelKind = config::LabelGlyphKind::Bumps;
   };

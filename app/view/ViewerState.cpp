@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iterator>
+#include <limits>
 
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/LabelTable.h"
@@ -22,10 +24,14 @@ using render::RenderMode;
 using render::StandardView;
 
 const char* kPaneNames[kPaneCount] = {"3d", "axial", "coronal", "sagittal"};
+// The PET/CT layout's names of the same slots (scripts may use either).
+const char* kPetCtPaneNames[kPaneCount] = {"mip", "anatomical", "functional", "fused"};
 const StandardView kMprViews[3] = {StandardView::Inferior, StandardView::Anterior,
                                    StandardView::Left};
 const RenderMode k3dModes[] = {RenderMode::Composite, RenderMode::Isosurface, RenderMode::Mip,
                                RenderMode::MinIp, RenderMode::Average};
+
+constexpr double kMinMprZoom = 0.1, kMaxMprZoom = 50.0;
 
 bool is3dMode(RenderMode mode) {
   return std::find(std::begin(k3dModes), std::end(k3dModes), mode) != std::end(k3dModes);
@@ -65,7 +71,7 @@ double sampleLinear(const Volume& v, const glm::dvec3& world, bool* inside) {
 std::string formatValue(double v, const std::string& unit) {
   char buf[64];
   std::snprintf(buf, sizeof buf, std::abs(v) >= 100 ? "%.0f" : "%.3g", v);
-  return unit.empty() ? std::string(buf) : std::string(buf) + " " + unit;
+  return std::string(buf) + (unit.empty() ? " (no unit)" : " " + unit);
 }
 
 }  // namespace
@@ -89,6 +95,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   mprWindow_ = defaults.mpr.window;
   mprLevel_ = defaults.mpr.level;
   crosshair_ = scene_.centre;
+  functionalColors_ = greyTable(true);  // PET as nuclear medicine reads it: black on white
   // The study's first view the 3D pane can show sets it up, exactly as `mvw render` would
   // render it (glyphs, attribute window, crop, light, ...); an MPR view sets the MPR panes'
   // window and the overlay.
@@ -98,6 +105,12 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     if (!is3dMode(v.settings.mode)) continue;
     view3d_ = v.settings;
     presetName_ = v.presetName;
+    // A view in another mode carries the config's default isovalue (300, for HU): key 2 would
+    // show nothing on a volume that does not reach it (a PET in SUV), so the volume's own.
+    const auto [lo, hi] = scene_.valueRange;
+    if (v.settings.mode != RenderMode::Isosurface &&
+        !(view3d_.isoValue > lo && view3d_.isoValue < hi))
+      view3d_.isoValue = defaults.isoValue;
     break;
   }
   for (const mvw::study::PlannedView& v : planned)
@@ -107,6 +120,19 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       segmentOutlines_ = v.settings.segmentOutlines;
       break;
     }
+  // A saved state's MPR panes (views named view-axial, ...): their zoom, and the linked pan
+  // from their pans (each sees the world pan's two in-plane components; every axis is seen by
+  // two of the three panes). A study's own MPR views keep their zoom for `mvw render`: it is
+  // set for their image's shape (a portrait whole body), not for the viewer's panes.
+  glm::dvec3 pan(0.0);
+  for (const mvw::study::PlannedView& v : planned)
+    if (v.settings.mode == RenderMode::Mpr && v.config.name.rfind("view-", 0) == 0) {
+      mprZoom_ = std::clamp(v.settings.camera.zoom, kMinMprZoom, kMaxMprZoom);
+      const render::Camera cam =
+          render::makeCamera(v.settings.camera, scene_.centre, scene_.radius, {64, 64});
+      pan += 0.5 * (cam.right * v.settings.camera.panMm.x + cam.up * v.settings.camera.panMm.y);
+    }
+  mprPan_ = pan;
   if (study_.functionalKind == config::FunctionalKind::Labels && study_.functional)
     if (auto table = io::labelTableBeside(study_.functional->path))
       labelNames_ = io::readLabelTable(*table);
@@ -114,21 +140,68 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     measurements_.addSphere(sphere);
   for (const config::RulerMeasurement& ruler : study_.measurements.rulers)
     measurements_.addRuler(ruler);
+  setLayout(study_.layout);
 }
 
 const char* ViewerState::paneName(int pane) { return kPaneNames[pane]; }
 
 std::optional<int> ViewerState::paneNamed(const std::string& name) {
   for (int p = 0; p < kPaneCount; ++p)
-    if (name == kPaneNames[p]) return p;
+    if (name == kPaneNames[p] || name == kPetCtPaneNames[p]) return p;
   return std::nullopt;
+}
+
+void ViewerState::setLayout(config::ViewerLayout layout) {
+  layout_ = layout;
+  maximised_ = -1;
+  // A PET/CT reader's MIP turns; back in the standard layout the 3D view stands still.
+  setOrbit(petCtLayout() ? Orbit::Spin : Orbit::Off);
+  markAllDirty();
+}
+
+StandardView ViewerState::mprView(int pane) const {
+  switch (layout_) {
+    case config::ViewerLayout::Standard:
+      break;
+    case config::ViewerLayout::PetCtAxial:
+      return StandardView::Inferior;
+    case config::ViewerLayout::PetCtCoronal:
+      return StandardView::Anterior;
+    case config::ViewerLayout::PetCtSagittal:
+      return StandardView::Left;
+  }
+  return kMprViews[std::clamp(pane, 1, 3) - 1];
+}
+
+bool ViewerState::paneShowsFunctional(int pane) const {
+  return pane == k3d && petCtLayout() && functional_ != nullptr;
+}
+
+std::string ViewerState::paneTitle(int pane) const {
+  if (!petCtLayout()) return pane == k3d ? "3D" : kPaneNames[pane];
+  const Volume& shown = functional_ ? *functional_ : anatomical_;
+  const char* role = functional_ ? "functional" : "anatomical";
+  switch (pane) {
+    case k3d:
+      return "MIP " + volumeName(shown, role);
+    case kAxial:
+      return volumeName(anatomical_, "anatomical");
+    case kCoronal:
+      return volumeName(shown, role);
+    default:
+      return "fused";
+  }
+}
+
+int ViewerState::paneCell(int pane) const {
+  if (!petCtLayout()) return pane;
+  return pane == k3d ? 3 : pane - 1;  // anatomical, functional / fused, MIP
 }
 
 std::span<const RenderMode> ViewerState::modes3d() { return k3dModes; }
 
-std::string ViewerState::volumeName(const Volume& v, const char* fallback) {
-  const std::string& m = v.metadata().modality;
-  return m.empty() ? fallback : m == "PT" ? "PET" : m;
+std::string ViewerState::volumeName(const Volume& v, const char* role) {
+  return mvw::study::volumeName(v, role);
 }
 
 void ViewerState::markAllDirty() {
@@ -160,6 +233,12 @@ void ViewerState::drag(int pane, double dx, double dy, MouseButton button, bool 
     markDirty(k3d);
     return;
   }
+  if (button == MouseButton::Middle && !ctrl) {  // pan: the dragged point follows the mouse
+    const render::Camera& cam = pane_(pane).camera;
+    const double heightMm = 2.0 * cam.halfHeightMm;
+    panPane(pane, dx * heightMm * cam.aspect, -dy * heightMm);
+    return;
+  }
   if (button == MouseButton::Right || ctrl) {  // window / level, as workstation viewers do
     const auto [lo, hi] = scene_.valueRange;
     mprWindow_ = std::max(1e-3, mprWindow_ * std::exp(dx * 2.0));
@@ -180,7 +259,88 @@ void ViewerState::click(int pane, double x, double y) {
   markMprDirty();
 }
 
-void ViewerState::wheel(int pane, double steps) {
+void ViewerState::zoomPane(int pane, double factor) {
+  if (!(factor > 0) || !std::isfinite(factor)) return;
+  if (pane == k3d) {
+    view3d_.camera.zoom = std::clamp(view3d_.camera.zoom * factor, 0.1, 20.0);
+    markDirty(k3d);
+    return;
+  }
+  mprZoom_ = std::clamp(mprZoom_ * factor, kMinMprZoom, kMaxMprZoom);
+  markMprDirty();
+}
+
+void ViewerState::panPane(int pane, double rightMm, double upMm) {
+  if (pane == k3d) {
+    view3d_.camera.panMm += glm::dvec2(rightMm, upMm);
+    markDirty(k3d);
+    return;
+  }
+  render::CameraSettings plane;
+  plane.view = mprView(pane);
+  const render::Camera cam = render::makeCamera(plane, scene_.centre, scene_.radius, {64, 64});
+  mprPan_ += cam.right * rightMm + cam.up * upMm;
+  markMprDirty();
+}
+
+void ViewerState::mprFit() {
+  mprZoom_ = 1.0;
+  mprPan_ = glm::dvec3(0.0);
+  markMprDirty();
+}
+
+void ViewerState::mprCentreOnCrosshair() {
+  // Each pane's centre is scene centre minus the pan (in its plane): the crosshair there.
+  mprPan_ = scene_.centre - crosshair_;
+  markMprDirty();
+}
+
+std::string ViewerState::jumpNext() {
+  if (!hottest_) {
+    const Volume& v = functional_ ? *functional_ : anatomical_;
+    const glm::ivec3 d = v.dimensions();
+    double best = -std::numeric_limits<double>::infinity();
+    glm::ivec3 at(0);
+    for (int k = 0; k < d.z; ++k)
+      for (int j = 0; j < d.y; ++j)
+        for (int i = 0; i < d.x; ++i)
+          if (const double x = v.value(i, j, k); x > best) best = x, at = {i, j, k};
+    hottest_ = v.worldFromIndexPoint(glm::dvec3(at));
+    if (functional_)
+      hottest_ = glm::dvec3(scene_.anatomicalFromFunctional * glm::dvec4(*hottest_, 1.0));
+  }
+  std::vector<std::pair<std::string, glm::dvec3>> places{{"the hottest voxel", *hottest_}};
+  for (const auto& s : scene_.segmentCentres)
+    places.push_back({"segment \"" + s.first + "\"", s.second});
+  const auto& spheres = measurements_.all().spheres;
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    places.push_back({"ROI " + std::to_string(i + 1),
+                      {spheres[i].centre[0], spheres[i].centre[1], spheres[i].centre[2]}});
+  const std::size_t n = nextJump_++ % places.size();
+  setCrosshair(places[n].second);
+  mprCentreOnCrosshair();
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "jump %zu/%zu: %s at %.1f, %.1f, %.1f mm LPS (J: next)", n + 1,
+                places.size(), places[n].first.c_str(), places[n].second.x, places[n].second.y,
+                places[n].second.z);
+  requests_.setStatus(buf);
+  return places[n].first;
+}
+
+void ViewerState::mprOneToOne() {
+  // makeCamera fits the framing sphere's diameter in the shorter side, divided by the zoom.
+  const glm::ivec2 size = glm::max(pane_(kAxial).size, glm::ivec2(8));
+  const double shorter = std::min(size.x, size.y);
+  mprZoom_ = std::clamp(2.0 * scene_.radius / (shorter * anatomical_.smallestSpacing()),
+                        kMinMprZoom, kMaxMprZoom);
+  markMprDirty();
+}
+
+void ViewerState::wheel(int pane, double steps, bool ctrl) {
+  if (pane != k3d && ctrl) {
+    zoomPane(pane, std::exp(0.1 * steps));
+    return;
+  }
   if (pane == k3d) {
     view3d_.camera.zoom = std::clamp(view3d_.camera.zoom * std::exp(0.1 * steps), 0.1, 20.0);
     markDirty(k3d);
@@ -209,7 +369,7 @@ void ViewerState::key(char key, bool ctrl) {
                                  "composite, isosurface, mip, minip and average");
     view3d_.fusion = !view3d_.fusion;
   } else if (key == 'P') {
-    const auto names = render::transferPresetNames();
+    const auto names = mvw::study::presetsFor(anatomical_);
     auto it = std::find(names.begin(), names.end(), presetName_);
     presetName_ = it == names.end() || it + 1 == names.end() ? names.front() : *(it + 1);
     view3d_.transfer = render::transferPreset(presetName_);
@@ -217,10 +377,22 @@ void ViewerState::key(char key, bool ctrl) {
     setOrbit(Orbit::Off);
     view3d_.camera = render::CameraSettings{};
     crosshair_ = scene_.centre;
+    mprZoom_ = 1.0;
+    mprPan_ = glm::dvec3(0.0);
   } else if (key == 'O') {
     toggleOrbit(Orbit::Spin);
   } else if (key == 'K') {
     toggleOrbit(Orbit::Rock);
+  } else if (key == 'Z') {
+    mprFit();
+  } else if (key == 'C') {
+    mprCentreOnCrosshair();
+  } else if (key == 'J') {
+    jumpNext();
+  } else if (key == 'X') {
+    mprOneToOne();
+  } else if (key == 'L') {
+    setLayout(static_cast<config::ViewerLayout>((static_cast<int>(layout_) + 1) % 4));
   } else if (key == 'S' && ctrl) {
     saveConfig("mvw-view-state.json");
   } else if (key == 'S') {
@@ -272,6 +444,7 @@ void ViewerState::setColormap(ColorTarget target, ColorMap map) {
   if (target == ColorTarget::View3d) view3d_.imageColors = table(ColorMap::Grey);
   if (target == ColorTarget::Mpr) mprColors_ = table(ColorMap::Grey);
   if (target == ColorTarget::Overlay) view3d_.overlayColors = table(ColorMap::HotMetal);
+  if (target == ColorTarget::Functional) functionalColors_ = mvw::study::colorTable(map);
   markAllDirty();
 }
 
@@ -281,6 +454,8 @@ ColorMap ViewerState::colormap(ColorTarget target) const {
       return view3d_.imageColors ? view3d_.imageColors->map : ColorMap::Grey;
     case ColorTarget::Mpr:
       return mprColors_ ? mprColors_->map : ColorMap::Grey;
+    case ColorTarget::Functional:
+      return functionalColors_.map;
     case ColorTarget::Overlay:
       break;
   }
@@ -305,13 +480,41 @@ bool ViewerState::needsRender(int pane) const {
 }
 
 render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) const {
+  return settingsIn(layout_, pane, interacting);
+}
+
+render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int pane,
+                                               bool interacting) const {
   const PaneState& image = pane_(pane);
+  const bool petCt = layout != config::ViewerLayout::Standard;
+  // The functional window (the overlay's, the PET/CT layout's functional pane and MIP).
+  const bool userWindow = view3d_.functionalHigh > view3d_.functionalLow;
+  const double flo = userWindow ? view3d_.functionalLow : scene_.functionalRange.first;
+  const double fhi = userWindow ? view3d_.functionalHigh : scene_.functionalRange.second;
   render::RenderSettings s;
-  if (pane == k3d) {
+  if (pane == k3d && petCt) {
+    // The rotating MIP of the functional volume (of the anatomical one where there is none),
+    // in the functional colour map, turned by the 3D pane's camera (the orbit, the mouse).
+    s.mode = RenderMode::Mip;
+    s.camera = view3d_.camera;  // its zoom, pan and azimuth (the orbit), seen from the front
+    s.camera.view = StandardView::Anterior;
+    s.camera.elevationDeg = 0.0;
+    s.camera.rollDeg = 0.0;
+    s.camera.perspective = false;
+    s.imageColors = functionalColors_;
+    s.overlay = false;
+    if (functional_)
+      s.window = fhi - flo, s.level = 0.5 * (flo + fhi);
+    else
+      s.window = mprWindow_, s.level = mprLevel_;
+  } else if (pane == k3d) {
     s = view3d_;
   } else {
     s.mode = RenderMode::Mpr;
-    s.camera.view = kMprViews[pane - 1];
+    s.camera.view = !petCt                                          ? kMprViews[pane - 1]
+                    : layout == config::ViewerLayout::PetCtCoronal  ? StandardView::Anterior
+                    : layout == config::ViewerLayout::PetCtSagittal ? StandardView::Left
+                                                                    : StandardView::Inferior;
     s.window = mprWindow_;
     s.level = mprLevel_;
     s.overlayOpacity = view3d_.overlayOpacity;
@@ -322,9 +525,24 @@ render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) c
     s.imageColors = mprColors_;
     s.overlayColors = view3d_.overlayColors;
     s.segmentOutlines = segmentOutlines_;
-    const glm::dvec3 forward =
-        render::makeCamera(s.camera, scene_.centre, scene_.radius, image.size).forward;
-    s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, forward);
+    s.camera.zoom = mprZoom_;
+    const render::Camera plane =
+        render::makeCamera(s.camera, scene_.centre, scene_.radius, glm::max(image.size, 1));
+    s.camera.panMm = {glm::dot(mprPan_, plane.right), glm::dot(mprPan_, plane.up)};
+    s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, plane.forward);
+    if (petCt && pane == kAxial) s.overlay = false;  // the anatomy alone
+    if (petCt && pane == kCoronal && functional_) {
+      // The functional volume alone: every value inside its box in the functional colour map
+      // at full opacity (the threshold below the window), over an anatomy drawn black.
+      ColorTable black = greyTable(false);
+      black.rgb.fill({0, 0, 0});
+      s.imageColors = black;
+      s.overlayColors = functionalColors_;
+      s.overlayOpacity = 1.0f;
+      s.overlayThreshold = -1.0f;
+    } else if (petCt && pane == kCoronal) {
+      s.imageColors = functionalColors_;  // the one volume in the functional colour map
+    }
   }
   s.size = image.size;
   if (pane == k3d && interacting) {  // coarse while dragging
@@ -336,13 +554,27 @@ render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) c
 
 std::string ViewerState::caption(int pane, const render::RenderSettings& s) const {
   const auto [lo, hi] = scene_.valueRange;
-  mvw::study::PlannedView shown{viewConfigOf(pane), s, pane == k3d ? presetName_ : ""};
-  return mvw::study::viewCaption(shown, windowOrFullRange(s.window, s.level, lo, hi));
+  mvw::study::PlannedView shown{viewConfigOf(pane, layout_), s,
+                                pane == k3d && !petCtLayout() ? presetName_ : ""};
+  std::string text = mvw::study::viewCaption(shown, windowOrFullRange(s.window, s.level, lo, hi));
+  if (!petCtLayout()) return text;
+  if (pane == kCoronal && functional_) {
+    // The functional pane's window is the functional one (the anatomy's is drawn black).
+    const bool userWindow = s.functionalHigh > s.functionalLow;
+    char window[96];
+    std::snprintf(window, sizeof window, "  %.4g-%.4g ",
+                  userWindow ? s.functionalLow : scene_.functionalRange.first,
+                  userWindow ? s.functionalHigh : scene_.functionalRange.second);
+    const std::string& unit = functional_->metadata().unit;
+    text = "mpr " + config::toString(shown.config.view) + window +
+           (unit.empty() ? "(no unit)" : unit) + "  " + toString(functionalColors_.map);
+  }
+  return paneTitle(pane) + "  " + text;
 }
 
 render::GlyphLegend ViewerState::glyphLegend(int pane, const render::RenderSettings& s) const {
   if (!functional_) return {};
-  mvw::study::PlannedView shown{viewConfigOf(pane), s, ""};
+  mvw::study::PlannedView shown{viewConfigOf(pane, layout_), s, ""};
   return mvw::study::glyphLegend(shown, functional_->metadata().unit, scene_.functionalRange);
 }
 
@@ -358,21 +590,52 @@ void ViewerState::rendered(int pane, const render::Camera& camera, Image raw, bo
   p.camera = camera;
   p.raw = std::move(raw);
   p.rendered = true;
+  // Empty: every pixel the same (the background a ray that meets nothing leaves).
+  p.empty = !p.raw.rgba.empty();
+  for (std::size_t i = 4; i < p.raw.rgba.size() && p.empty; i += 4)
+    p.empty = std::memcmp(p.raw.rgba.data(), p.raw.rgba.data() + i, 4) == 0;
   p.dirty = interacting && pane == k3d;  // refine when the drag ends
 }
 
-config::ViewConfig ViewerState::viewConfigOf(int pane) const {
-  config::ViewConfig v =
-      mvw::study::describeView(renderSettings(pane), std::string("view-") + kPaneNames[pane],
-                               pane == k3d ? presetName_ : "");
+std::string ViewerState::emptyPaneMessage(int pane) const {
+  const PaneState& p = pane_(pane);
+  if (!p.rendered || !p.empty) return {};
+  const auto [lo, hi] = scene_.valueRange;
+  const std::string& unit = anatomical_.metadata().unit;
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.4g .. %.4g", lo, hi);
+  const std::string range = buf + (unit.empty() ? std::string(", no unit") : " " + unit);
+  if (pane == k3d && view3d_.mode == RenderMode::Isosurface &&
+      !(view3d_.isoValue > lo && view3d_.isoValue < hi)) {
+    char iso[32];
+    std::snprintf(iso, sizeof iso, "%g", view3d_.isoValue);
+    return std::string("Nothing to show: the isovalue ") + iso +
+           " lies outside the volume's values (" + range + "); set the iso value in the panel";
+  }
+  if (pane == k3d && view3d_.mode == RenderMode::Composite)
+    return "Nothing to show: the preset " + presetName_ + " makes every value of " + range +
+           " transparent; P: next preset";
+  if (pane == k3d)
+    return "Nothing to show with these settings (" + range + "); R resets the camera";
+  return "Nothing to show: the plane or the window leaves the pane empty (" + range +
+         "); Z fits the panes, R resets";
+}
+
+config::ViewConfig ViewerState::viewConfigOf(int pane, config::ViewerLayout layout) const {
+  const bool petCt = layout != config::ViewerLayout::Standard;
+  const render::RenderSettings s = settingsIn(layout, pane, false);
+  config::ViewConfig v = mvw::study::describeView(
+      s, std::string("view-") + (petCt ? kPetCtPaneNames : kPaneNames)[pane],
+      pane == k3d && !petCt ? presetName_ : "");
   // Glyphs shown over the functional volume's full range (G on a view without a window): saved
   // as that range, or `mvw render` would give the glyph view its default window instead.
   if (pane == k3d && v.glyphs && !v.functionalWindow && v.functionalClasses == 0)
     v.functionalWindow =
         std::array<double, 2>{scene_.functionalRange.first, scene_.functionalRange.second};
-  if (pane != k3d)
-    v.view = *config::parseViewName(
-        kPaneNames[pane]);  // axial, coronal, sagittal: the planes' own names
+  if (pane != k3d)  // axial, coronal, sagittal: the planes' own names
+    v.view = s.camera.view == StandardView::Inferior   ? config::ViewName::Axial
+             : s.camera.view == StandardView::Anterior ? config::ViewName::Coronal
+                                                       : config::ViewName::Sagittal;
   return v;
 }
 
@@ -384,8 +647,13 @@ void ViewerState::saveConfig(const std::filesystem::path& file) const {
     if (!study.functional) study.functional.emplace();
     study.functional->path = functional_->metadata().sourcePath;
   }
+  // The standard layout's four views (what `mvw render` can render of any layout's state: the
+  // 3D view, and the three MPR planes at the MPR panes' zoom, pan and crosshair), and the
+  // layout the viewer opens the state in.
   study.render.views.clear();
-  for (int p = 0; p < kPaneCount; ++p) study.render.views.push_back(viewConfigOf(p));
+  for (int p = 0; p < kPaneCount; ++p)
+    study.render.views.push_back(viewConfigOf(p, config::ViewerLayout::Standard));
+  study.layout = layout_;
   study.measurements = measurements_.all();
   config::writeStudyConfig(study, file);
 }

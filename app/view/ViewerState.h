@@ -37,7 +37,8 @@ namespace mvw::app {
 enum class MouseButton { Left = 0, Right = 1, Middle = 2 };
 // Which image a colour map chooser sets: the 3D pane's projection, the MPR panes' anatomy, or
 // the functional overlay (MPR) and fusion (3D).
-enum class ColorTarget { View3d, Mpr, Overlay };
+// Functional: the PET/CT layout's functional pane and its MIP (grey-inverted by default).
+enum class ColorTarget { View3d, Mpr, Overlay, Functional };
 
 // What the renderer knows about the volumes that the state's maths need (the renderer holds
 // them in GL; a test gives them by hand).
@@ -49,6 +50,9 @@ struct ViewerScene {
   std::string registration = "none";  // how the functional volume was placed, for the panel
   // The placement the renderer draws the functional volume with (world LPS mm to world).
   glm::dmat4 anatomicalFromFunctional{1.0};
+  // Places the reader jumps to besides the hottest voxel and the ROIs: each segment of the
+  // study's segmentation by its name, at its centre (world LPS mm, where the outlines are).
+  std::vector<std::pair<std::string, glm::dvec3>> segmentCentres;
 };
 
 // The volumes' values under a world point (the panel's cursor readout): the anatomical voxel
@@ -72,22 +76,67 @@ class ViewerState : public PaneGeometry {
   ViewerState(const ViewerState&) = delete;
   ViewerState& operator=(const ViewerState&) = delete;
 
-  static const char* paneName(int pane);                         // 3d, axial, coronal, sagittal
-  static std::optional<int> paneNamed(const std::string& name);  // the inverse
-  // "CT", "PET" (DICOM's PT), "MR", ...: the volume's modality, `fallback` where none is named.
-  static std::string volumeName(const Volume& volume, const char* fallback);
+  static const char* paneName(int pane);  // 3d, axial, coronal, sagittal
+  // The inverse; the PET/CT layout's names are accepted too: mip (the 3D pane's slot),
+  // anatomical (axial's), functional (coronal's), fused (sagittal's).
+  static std::optional<int> paneNamed(const std::string& name);
+  // The layout (issue 36 item 2; config::ViewerLayout): standard, the 3D pane and the axial,
+  // coronal and sagittal MPR; PET/CT, the four panes' slots show the functional volume's
+  // rotating MIP (the 3D slot), the anatomical MPR (axial's slot: no overlay), the functional
+  // MPR (coronal's: the functional volume alone, in the functional colour map; without a
+  // functional volume the anatomical one in that map) and the fused MPR (sagittal's), the
+  // three MPRs of one plane in step (one zoom, pan and crosshair). Setting a PET/CT layout
+  // starts the MIP spinning; key L cycles standard, pet-ct (axial), coronal, sagittal.
+  void setLayout(config::ViewerLayout layout);
+  config::ViewerLayout layout() const { return layout_; }
+  bool petCtLayout() const { return layout_ != config::ViewerLayout::Standard; }
+  // The plane an MPR pane shows (its slot's in the standard layout, the layout's in PET/CT).
+  render::StandardView mprView(int pane) const;
+  // Whether the pane renders the functional volume as its image (the PET/CT layout's MIP of a
+  // study with a functional volume): the window renders it with a renderer of that volume.
+  bool paneShowsFunctional(int pane) const;
+  // What the pane shows, for its title on screen: "3D", "axial", ...; in PET/CT "MIP PET WB",
+  // "CT Chest", "PET WB", "fused".
+  std::string paneTitle(int pane) const;
+  // Where the panel draws each slot in the 2 x 2 grid (0 top left, 1 top right, 2 bottom left,
+  // 3 bottom right): the slot order in the standard layout; in PET/CT anatomical, functional,
+  // fused, MIP.
+  int paneCell(int pane) const;
+  // The volume's name in readouts, statistics and colour bars (study::volumeName): "MR relCBF",
+  // "CT Cranium"; `role` ("anatomical", "functional") where it names neither.
+  static std::string volumeName(const Volume& volume, const char* role);
   // The 3D pane's modes, in the order of the keys 1-5.
   static std::span<const render::RenderMode> modes3d();
 
   // Input. Drags and clicks are in fractions of the pane (y down); steps are wheel notches.
   void drag(int pane, double dx, double dy, MouseButton button, bool ctrl);
   void click(int pane, double x, double y);
-  void wheel(int pane, double steps);
+  // The wheel: the 3D pane zooms; an MPR pane scrolls slices, or zooms with Ctrl.
+  void wheel(int pane, double steps, bool ctrl = false);
   // key: an upper-case letter or digit ('1'..'5' modes, 'D', 'G', 'F', 'P', 'R', 'S', 'O' spin,
-  // 'K' rock); other keys do nothing.
+  // 'K' rock, 'Z' MPR fit, 'X' MPR one screen pixel per voxel, 'C' MPR panes centred on the
+  // crosshair, 'J' jump, 'L' next layout); other keys do nothing.
   void key(char key, bool ctrl);
   void toggleMaximised(int pane);
-  void setMode(render::RenderMode mode);  // one of modes3d()
+  // Zoom and pan (issue 36 item 1). The MPR panes are linked: one zoom, and one pan in world
+  // terms (a point moved into view on one pane is in view on the others); the 3D pane has its
+  // own camera. zoomPane multiplies the zoom (0.1 .. 50 for MPR, 0.1 .. 20 in 3D); panPane
+  // moves the picture right and up by millimetres on the pane. mprFit: the whole volume (zoom
+  // 1, no pan); mprOneToOne: one screen pixel per voxel of the anatomical volume's finest
+  // spacing on the axial pane, the pan kept.
+  void zoomPane(int pane, double factor);
+  void panPane(int pane, double rightMm, double upMm);
+  void mprFit();
+  void mprOneToOne();
+  void mprCentreOnCrosshair();  // the pan that puts the crosshair in every MPR pane's middle
+  // Reading a PET (issue 36 item 4): the crosshair to the next of the hottest voxel (of the
+  // functional volume where there is one, else of the anatomical), each segment's centre and
+  // each sphere ROI's centre, in that order and round again; the MPR panes centre on it and the
+  // status line names it. Returns what it jumped to ("" when there is nothing).
+  std::string jumpNext();
+  double mprZoom() const { return mprZoom_; }
+  const glm::dvec3& mprPan() const { return mprPan_; }  // world mm the MPR pictures are moved
+  void setMode(render::RenderMode mode);                // one of modes3d()
   void setPreset(const std::string& name);
   void setMprWindow(double window, double level);
   // Colour maps (grey for the images and hot metal for the overlay are the defaults); the 3D
@@ -134,6 +183,10 @@ class ViewerState : public PaneGeometry {
   void rendered(int pane, const render::Camera& camera, Image raw, bool interacting,
                 double milliseconds = 0.0);
   bool anyDirty() const;
+  // Why the pane's last frame shows nothing (empty where it shows something): an isovalue
+  // outside the volume's values, a preset that makes them all transparent, a plane or window
+  // that leaves nothing; the panel writes it on the pane (issue 36 item 5).
+  std::string emptyPaneMessage(int pane) const;
   void markDirty(int pane) { panes_[static_cast<std::size_t>(pane)].dirty = true; }
   void markAllDirty();
 
@@ -163,8 +216,9 @@ class ViewerState : public PaneGeometry {
   // and so does the script's hover.
   void setCursor(int pane, double x, double y) { cursor_ = {pane, onPlane(pane, x, y)}; }
   std::optional<std::pair<int, glm::dvec3>> cursor() const { return cursor_; }
-  // The readout at a point: "CT 45 HU | PET 3.21 SUVbw" (each volume by its modality, or
-  // "anatomical" / "functional"; "outside" where the point is outside a volume).
+  // The readout at a point: "CT Cranium 45 HU | PET WB 3.21 SUVbw" (each volume by
+  // volumeName, each value with its unit or "(no unit)"; "outside" where the point is outside
+  // a volume).
   std::string readout(const glm::dvec3& world) const;
 
   // The crosshair to a point (the MPR panes then cut it), e.g. to an ROI's centre.
@@ -193,6 +247,7 @@ class ViewerState : public PaneGeometry {
   struct PaneState {
     bool dirty = true;
     bool rendered = false;
+    bool empty = false;  // the last frame is one colour: nothing of the volume shows
     glm::ivec2 size{0};
     glm::ivec2 origin{0};
     render::Camera camera;  // of the last frame: clicks and the wheel move along its axes
@@ -201,7 +256,10 @@ class ViewerState : public PaneGeometry {
   PaneState& pane_(int pane) { return panes_[static_cast<std::size_t>(pane)]; }
   const PaneState& pane_(int pane) const { return panes_[static_cast<std::size_t>(pane)]; }
   void markMprDirty();
-  config::ViewConfig viewConfigOf(int pane) const;
+  // The pane's settings and view as `layout` would show it (saved states are the standard
+  // layout's views and the layout's name).
+  render::RenderSettings settingsIn(config::ViewerLayout layout, int pane, bool interacting) const;
+  config::ViewConfig viewConfigOf(int pane, config::ViewerLayout layout) const;
 
   const config::StudyConfig& study_;
   const Volume& anatomical_;
@@ -211,14 +269,20 @@ class ViewerState : public PaneGeometry {
   render::RenderSettings view3d_;
   std::string presetName_;
   double mprWindow_ = 0, mprLevel_ = 0;
+  double mprZoom_ = 1.0;
+  glm::dvec3 mprPan_{0.0};
   std::map<int, std::string> labelNames_;
   std::optional<ColorTable> mprColors_;  // the MPR panes' anatomy; none: grey
-  bool segmentOutlines_ = true;          // the MPR panes outline the study's segmentation
+  ColorTable functionalColors_;          // the PET/CT layout's functional pane and MIP
+  config::ViewerLayout layout_ = config::ViewerLayout::Standard;
+  bool segmentOutlines_ = true;  // the MPR panes outline the study's segmentation
   std::optional<std::pair<int, glm::dvec3>> cursor_;
   ViewerMeasurements measurements_;  // after scene_: it starts from scene_'s placement
   ViewerOrbit orbit_;
   glm::dvec3 crosshair_{0.0};
   int maximised_ = -1;
+  std::size_t nextJump_ = 0;
+  std::optional<glm::dvec3> hottest_;  // found on the first jump
   ViewerRequests requests_;
   // Last: destroyed first, so a running re-run is waited for while everything else is there.
   ViewerRegistration registration_;

@@ -112,4 +112,64 @@ bad["bad-fractional-1bit.dcm"].SegmentationType = "FRACTIONAL"
 for name, ds in bad.items():
     ds.save_as(os.path.join(out, name), write_like_original=False)
 json.dump(expected, open(os.path.join(out, "expected.json"), "w"), indent=1)
+
+# A folder of one PET series and a SEG of it (the SEG opens as the series' segmentation, with no
+# --series): 4 slices on the SEG's grid, values from a slope; the segments' metabolic volumes,
+# their means, TLG and the total over both segments (the union, each at its own threshold),
+# computed here with numpy for the test to compare with `mvw stats`.
+PET_CLASS = "1.2.840.10008.5.1.4.1.1.128"
+folder = os.path.join(out, "pet-with-seg")
+os.makedirs(folder, exist_ok=True)
+study_uid, series_uid = generate_uid(), generate_uid()
+slope = 0.01
+stored = rng.integers(0, 1000, (4, ROWS, COLS)).astype(np.uint16)
+for k in range(4):
+    meta = FileMetaDataset()
+    meta.MediaStorageSOPClassUID = PET_CLASS
+    meta.MediaStorageSOPInstanceUID = generate_uid()
+    meta.TransferSyntaxUID = ExplicitVRLittleEndian
+    ds = Dataset()
+    ds.file_meta = meta
+    ds.is_little_endian, ds.is_implicit_VR = True, False
+    ds.SOPClassUID, ds.SOPInstanceUID = PET_CLASS, meta.MediaStorageSOPInstanceUID
+    ds.Modality, ds.Units = "PT", "GML"
+    ds.PatientID, ds.PatientName = "synthetic", "synthetic"
+    ds.StudyInstanceUID, ds.SeriesInstanceUID = study_uid, series_uid
+    ds.FrameOfReferenceUID = "1.2.826.0.1.3680043.8.498.1"
+    ds.SeriesNumber, ds.SeriesDescription, ds.InstanceNumber = 2, "synthetic PET", k + 1
+    ds.ImageOrientationPatient = [1, 0, 0, 0, 1, 0]
+    ds.ImagePositionPatient = [-10, 20, 2.5 * k]
+    ds.PixelSpacing, ds.SliceThickness = [1.5, 2.0], 2.5
+    ds.Rows, ds.Columns = ROWS, COLS
+    ds.SamplesPerPixel, ds.PhotometricInterpretation, ds.PixelRepresentation = 1, "MONOCHROME2", 0
+    ds.BitsAllocated, ds.BitsStored, ds.HighBit = 16, 16, 15
+    ds.RescaleSlope, ds.RescaleIntercept = slope, 0
+    ds.PixelData = stored[k].tobytes()
+    ds.save_as(os.path.join(folder, "pet-%d.dcm" % k), write_like_original=False)
+s1 = [mask(0.6) for _ in range(2)]
+s2 = mask(0.6)
+pet_seg = make([(1, 0.0, (0, 0), s1[0]), (1, 2.5, (0, 0), s1[1]), (2, 2.5, (0, 0), s2)])
+pet_seg.StudyInstanceUID = study_uid
+pet_seg.save_as(os.path.join(folder, "seg.dcm"), write_like_original=False)
+values = stored.astype(np.float64) * slope  # [k, row, column]
+seg_masks = {1: np.zeros(values.shape, bool), 2: np.zeros(values.shape, bool)}
+seg_masks[1][0], seg_masks[1][1], seg_masks[2][1] = s1[0] != 0, s1[1] != 0, s2 != 0
+voxel_ml = 1.5 * 2.0 * 2.5 / 1000.0
+FRACTION = 0.5
+pet_expected = {"fraction": FRACTION, "segments": {}}
+union = np.zeros(values.shape, bool)
+for number, m in seg_masks.items():
+    t = FRACTION * values[m].max()
+    hot = m & (values >= t)
+    union |= hot
+    pet_expected["segments"][str(number)] = {
+        "voxels": int(m.sum()), "metabolic_voxels": int(hot.sum()),
+        "metabolic_volume_ml": float(hot.sum() * voxel_ml),
+        "metabolic_mean": float(values[hot].mean()), "tlg": float(values[hot].sum() * voxel_ml)}
+pet_expected["total"] = {
+    "voxels": int((seg_masks[1] | seg_masks[2]).sum()), "metabolic_voxels": int(union.sum()),
+    "metabolic_volume_ml": float(union.sum() * voxel_ml),
+    "metabolic_mean": float(values[union].mean()), "tlg": float(values[union].sum() * voxel_ml),
+    "overlap": int((seg_masks[1] & seg_masks[2]).sum())}
+json.dump(pet_expected, open(os.path.join(out, "pet-with-seg.json"), "w"), indent=1)
 print("wrote %d files to %s" % (len(expected) + len(bad), out))

@@ -92,7 +92,10 @@ def stats(mask, threshold=None, fraction=None):
     if fraction is not None:
         threshold = fraction * values.max()
     if threshold is not None:
-        out["metabolic_volume_ml"] = (values >= threshold).sum() * voxel_ml
+        hot = values[values >= threshold]
+        out["metabolic_volume_ml"] = hot.size * voxel_ml
+        out["metabolic_mean"] = hot.mean()
+        out["tlg"] = hot.size * voxel_ml * hot.mean()  # TLG: metabolic volume x its SUVmean
     return out
 
 
@@ -109,7 +112,8 @@ def compare(name, mine, theirs):
     check(name + ": voxels", mine["voxels"] == theirs["voxels"],
           "python %d  mvw %d" % (mine["voxels"], theirs["voxels"]))
     check(name + ": unit", theirs["unit"] == "SUVbw", theirs["unit"])
-    for key in ("volume_ml", "max", "mean", "sd", "peak", "metabolic_volume_ml"):
+    for key in ("volume_ml", "max", "mean", "sd", "peak", "metabolic_volume_ml", "metabolic_mean",
+                "tlg"):
         if key in mine:
             close(name + ": " + key, mine[key], theirs.get(key, float("nan")))
 
@@ -181,7 +185,36 @@ print("segment voxels on the PET grid: %s; overlap %d voxels"
       % ({n: int(m.sum()) for n, m in segment_masks.items()},
          int((segment_masks[1] & segment_masks[2]).sum())))
 theirs = run_mvw("--labels", seg_file, "--threshold-fraction", 0.41)
-check("one object per segment", len(theirs) == len(segment_masks), str(len(theirs)))
+check("one object per segment and a total", len(theirs) == len(segment_masks) + 1,
+      str(len(theirs)))
+total = [o for o in theirs if o.get("total")]
+theirs = [o for o in theirs if not o.get("total")]
+# The total metabolic tumour volume: the union of each segment's voxels at or above 41 % of its
+# own max, a voxel in both segments counted once; TLG = that volume x its SUVmean.
+hot_union = np.zeros(pet.shape, bool)
+for number, m in segment_masks.items():
+    hot_union |= m & (pet >= 0.41 * pet[m].max())
+tmtv = hot_union.sum() * voxel_ml
+print("python: TMTV %.4f ml, SUVmean %.4f, TLG %.4f" % (tmtv, pet[hot_union].mean(),
+                                                       tmtv * pet[hot_union].mean()))
+check("a total object", len(total) == 1)
+if total:
+    t = total[0]
+    check("total: metabolic voxels", t["metabolic_voxels"] == int(hot_union.sum()),
+          "python %d  mvw %d" % (hot_union.sum(), t["metabolic_voxels"]))
+    check("total: voxels (union of the segments)",
+          t["voxels"] == int((segment_masks[1] | segment_masks[2]).sum()))
+    close("total: TMTV ml", tmtv, t["metabolic_volume_ml"])
+    close("total: metabolic_mean", pet[hot_union].mean(), t["metabolic_mean"])
+    close("total: tlg", tmtv * pet[hot_union].mean(), t["tlg"])
+# The folder opens without --series (its SEG is the segmentation) and the SEG is the default ROI.
+p = subprocess.run([mvw, "stats", folder, "--threshold-fraction", "0.41", "--json"],
+                   capture_output=True, text=True)
+check("the folder without --series or --labels: exit 0", p.returncode == 0, p.stderr.strip())
+if p.returncode == 0:
+    default = json.loads(p.stdout)
+    labelled = run_mvw("--labels", seg_file, "--threshold-fraction", 0.41)
+    check("the folder's SEG is the default ROI", default == labelled)
 for obj in theirs:
     number = obj["label"]
     check("segment %d name" % number, obj["name"] == names[number], obj["name"])

@@ -27,6 +27,7 @@ ViewConfig fullySet() {
   v.elevation = -3;
   v.roll = 4;
   v.zoom = 1.7;
+  v.pan = {12.5, -3.0};
   v.perspective = true;
   v.width = 300;
   v.height = 200;
@@ -94,6 +95,7 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.elevation, a.elevation);
   EXPECT_EQ(b.roll, a.roll);
   EXPECT_EQ(b.zoom, a.zoom);
+  EXPECT_EQ(b.pan, a.pan);
   EXPECT_EQ(b.perspective, a.perspective);
   EXPECT_EQ(b.width, a.width);
   EXPECT_EQ(b.height, a.height);

@@ -280,6 +280,7 @@ TEST(StudyConfig, FullySetStudyLoadsBackFieldByField) {
   c.registration = {RegistrationMethod::File, dir / "t.tfm", 20.0};
   c.measurements.spheres = {{{1.0, -2.0, 3.0}, 7.5}};
   c.measurements.rulers = {{{0.0, 0.0, 0.0}, {10.0, 0.0, 5.0}}};
+  c.layout = ViewerLayout::PetCtCoronal;
   ViewConfig v;
   v.name = "only";
   v.zoom = 2.0;
@@ -302,6 +303,7 @@ TEST(StudyConfig, FullySetStudyLoadsBackFieldByField) {
   }
   EXPECT_EQ(d.functionalKind, c.functionalKind);
   EXPECT_EQ(d.registration.method, c.registration.method);
+  EXPECT_EQ(d.layout, c.layout);
   EXPECT_EQ(d.registration.transform, c.registration.transform);
   EXPECT_EQ(d.registration.rotationSearchDeg, c.registration.rotationSearchDeg);
   ASSERT_EQ(d.render.views.size(), 1u);

@@ -84,6 +84,18 @@ TEST(ViewerScript, ParsesEveryCommand) {
 }
 
 // A pane as the window shows it: its rectangle of the framebuffer, taken after the frame.
+TEST(ViewerScript, LayoutCommandNamesALayout) {
+  const ViewerScript script =
+      ViewerScript::parse("layout pet-ct-coronal\nclick fused 0.5 0.5\n", "s.txt");
+  ASSERT_EQ(script.commands().size(), 2u);
+  EXPECT_EQ(script.commands()[0].kind, ViewerScript::Command::Kind::Layout);
+  EXPECT_EQ(script.commands()[0].layout, config::ViewerLayout::PetCtCoronal);
+  EXPECT_EQ(script.commands()[1].pane, kSagittal);
+  EXPECT_EQ(problemOf("layout grid"),
+            "line 1: layout: unknown layout 'grid' (standard, pet-ct, pet-ct-coronal or "
+            "pet-ct-sagittal)");
+}
+
 TEST(ViewerScript, ScreenshotPaneNamesThePaneAndTheFile) {
   const ViewerScript s = ViewerScript::parse("screenshot-pane sagittal out/s.png\n", "t.script");
   ASSERT_EQ(s.commands().size(), 1u);
@@ -92,21 +104,29 @@ TEST(ViewerScript, ScreenshotPaneNamesThePaneAndTheFile) {
   EXPECT_EQ(s.commands()[0].file, std::filesystem::path("out/s.png"));
   EXPECT_EQ(problemOf("screenshot-pane axial"), "line 1: screenshot-pane: missing file");
   EXPECT_EQ(problemOf("screenshot-pane top a.png"),
-            "line 1: unknown pane 'top' (3d, axial, coronal, sagittal)");
+            "line 1: unknown pane 'top' (3d, axial, coronal, sagittal; in the PET/CT layout also "
+            "mip, anatomical, "
+            "functional, fused)");
 }
 
 TEST(ViewerScript, BadLinesNameTheLineAndTheProblem) {
-  EXPECT_EQ(problemOf("wait 1\nzoom 3d 2\n"), "line 2: unknown command 'zoom'");
+  EXPECT_EQ(problemOf("wait 1\nzoomm 3d 2\n"), "line 2: unknown command 'zoomm'");
+  EXPECT_EQ(problemOf("zoom axial 0"), "line 1: zoom: the factor must lie in 0.01 .. 100");
+  EXPECT_EQ(problemOf("zoom axial"), "line 1: zoom: missing factor");
+  EXPECT_EQ(problemOf("pan coronal 3"), "line 1: pan: missing dy");
+  EXPECT_EQ(problemOf("wheel axial 2 shift"), "line 1: wheel: unknown modifier 'shift' (ctrl)");
   EXPECT_EQ(problemOf("click oblique 0.5 0.5"),
-            "line 1: unknown pane 'oblique' (3d, axial, coronal, sagittal)");
+            "line 1: unknown pane 'oblique' (3d, axial, coronal, sagittal; in the PET/CT layout "
+            "also mip, anatomical, "
+            "functional, fused)");
   EXPECT_EQ(problemOf("drag 3d 0.1"), "line 1: drag: missing dy");
   EXPECT_EQ(problemOf("drag 3d 0.1 x"), "line 1: drag: dy 'x' is not a number");
   EXPECT_EQ(problemOf("drag 3d 0.1 0.2 sideways"),
             "line 1: drag: unknown button 'sideways' (left, right, middle)");
-  EXPECT_EQ(problemOf("wheel axial 2 3"), "line 1: wheel: unexpected '3'");
+  EXPECT_EQ(problemOf("wheel axial 2 3"), "line 1: wheel: unknown modifier '3' (ctrl)");
   EXPECT_EQ(problemOf("key"), "line 1: key: missing key");
   EXPECT_EQ(problemOf("key ctrl"),
-            "line 1: key: 'ctrl' is not one key (1-5, d, g, f, p, r, s, o, k)");
+            "line 1: key: 'ctrl' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c, j, l)");
   EXPECT_EQ(problemOf("key s shift"), "line 1: key: unknown modifier 'shift' (ctrl)");
   EXPECT_EQ(problemOf("wait -1"),
             "line 1: wait: the frame count must be a whole number from 0 to 1000000");
@@ -124,6 +144,20 @@ TEST(ViewerScript, BadLinesNameTheLineAndTheProblem) {
             "line 1: drag-frames: the frame count must be a whole number from 1 to 100000");
   EXPECT_EQ(problemOf("drag-frames 3d 0.5 0 4 up"),
             "line 1: drag-frames: unknown button 'up' (left, right, middle)");
+}
+
+// Zoom and pan for tests of the MPR panes (issue 36 item 1), run on the state.
+TEST(ViewerScript, ZoomAndPanReachTheState) {
+  const ViewerScript s =
+      ViewerScript::parse("zoom axial 2.5\npan sagittal 3 -4\nwheel coronal 1 ctrl\n", "t.script");
+  ASSERT_EQ(s.commands().size(), 3u);
+  EXPECT_EQ(s.commands()[0].kind, ViewerScript::Command::Kind::Zoom);
+  EXPECT_EQ(s.commands()[0].pane, kAxial);
+  EXPECT_DOUBLE_EQ(s.commands()[0].x, 2.5);
+  EXPECT_EQ(s.commands()[1].kind, ViewerScript::Command::Kind::Pan);
+  EXPECT_DOUBLE_EQ(s.commands()[1].x, 3.0);
+  EXPECT_DOUBLE_EQ(s.commands()[1].y, -4.0);
+  EXPECT_TRUE(s.commands()[2].ctrl);
 }
 
 TEST(ViewerScript, MissingFileIsBadInput) {
@@ -253,7 +287,7 @@ TEST(ViewerScript, ColormapAndOrbitCommands) {
             "line 1: colormap: unknown colour map 'jet' (grey, grey-inverted, hot-iron, pet, "
             "hot-metal-blue, pet-20-step, hot-metal)");
   EXPECT_EQ(problemOf("colormap left pet"),
-            "line 1: colormap: unknown target 'left' (3d, mpr, overlay)");
+            "line 1: colormap: unknown target 'left' (3d, mpr, overlay, functional)");
   EXPECT_EQ(problemOf("colormap 3d"), "line 1: colormap: missing colour map");
   EXPECT_EQ(problemOf("orbit"), "line 1: orbit: missing mode");
   EXPECT_EQ(problemOf("orbit tumble"), "line 1: orbit: unknown mode 'tumble' (spin, rock, off)");

@@ -182,7 +182,7 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   EXPECT_EQ(state.requests().takeScreenshotRequest(), std::filesystem::path("mvw-screenshot.png"));
   EXPECT_EQ(state.requests().takeScreenshotRequest(), std::nullopt);
   renderAll(state);
-  state.key('X', false);  // unbound: nothing to redraw
+  state.key('Q', false);  // unbound: nothing to redraw
   EXPECT_FALSE(state.anyDirty());
   state.drag(k3d, 0.5, 0.0, MouseButton::Left, false);
   state.key('R', false);
@@ -239,6 +239,78 @@ TEST_F(ViewerStateTest, MprPanesShareTheFunctionalWindowOfTheThreeDPane) {
   EXPECT_EQ(state.renderSettings(kSagittal).camera.view, render::StandardView::Left);
 }
 
+// The PET/CT reading layout (issue 36 item 2): the MPR slots show one plane, the anatomical one
+// without the overlay, the functional one alone (full opacity over a black anatomy), the fused
+// one as the standard MPR; the 3D slot is the functional volume's MIP; key L cycles the layouts.
+TEST_F(ViewerStateTest, PetCtLayoutShowsOnePlaneInStepAndTheFunctionalMip) {
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  renderAll(state);
+  EXPECT_FALSE(state.paneShowsFunctional(k3d));
+  state.setLayout(config::ViewerLayout::PetCtCoronal);
+  EXPECT_TRUE(state.orbit().mode() == Orbit::Spin);  // the rotating MIP
+  for (int p = kAxial; p <= kSagittal; ++p)
+    EXPECT_EQ(state.renderSettings(p).camera.view, render::StandardView::Anterior) << p;
+  const render::RenderSettings anatomy = state.renderSettings(kAxial);
+  const render::RenderSettings functional = state.renderSettings(kCoronal);
+  const render::RenderSettings fused = state.renderSettings(kSagittal);
+  EXPECT_FALSE(anatomy.overlay);
+  EXPECT_TRUE(fused.overlay);
+  EXPECT_FLOAT_EQ(fused.overlayOpacity, 0.5f);
+  EXPECT_FLOAT_EQ(functional.overlayOpacity, 1.0f);
+  EXPECT_LT(functional.overlayThreshold, 0.0f);
+  ASSERT_TRUE(functional.imageColors);
+  for (const auto& rgb : functional.imageColors->rgb) EXPECT_EQ(rgb[0] + rgb[1] + rgb[2], 0);
+  ASSERT_TRUE(functional.overlayColors);
+  EXPECT_EQ(functional.overlayColors->map, ColorMap::GreyInverted);
+  // One crosshair: the three slots cut the plane through it.
+  EXPECT_DOUBLE_EQ(anatomy.planeOffsetMm, fused.planeOffsetMm);
+  renderAll(state);  // the panes' cameras, which the wheel moves along
+  state.wheel(kSagittal, 3.0);
+  EXPECT_DOUBLE_EQ(state.renderSettings(kAxial).planeOffsetMm,
+                   state.renderSettings(kSagittal).planeOffsetMm);
+  EXPECT_NE(state.renderSettings(kAxial).planeOffsetMm, anatomy.planeOffsetMm);
+  EXPECT_TRUE(state.paneShowsFunctional(k3d));
+  const render::RenderSettings mip = state.renderSettings(k3d);
+  EXPECT_EQ(mip.mode, RenderMode::Mip);
+  EXPECT_DOUBLE_EQ(mip.level - 0.5 * mip.window, state.scene().functionalRange.first);
+  EXPECT_DOUBLE_EQ(mip.level + 0.5 * mip.window, state.scene().functionalRange.second);
+  EXPECT_EQ(state.paneCell(kAxial), 0);
+  EXPECT_EQ(state.paneCell(kCoronal), 1);
+  EXPECT_EQ(state.paneCell(kSagittal), 2);
+  EXPECT_EQ(state.paneCell(k3d), 3);
+  EXPECT_EQ(ViewerState::paneNamed("fused"), kSagittal);
+  EXPECT_EQ(ViewerState::paneNamed("mip"), k3d);
+  state.key('L', false);
+  EXPECT_EQ(state.layout(), config::ViewerLayout::PetCtSagittal);
+  state.key('L', false);
+  EXPECT_EQ(state.layout(), config::ViewerLayout::Standard);
+  EXPECT_TRUE(state.orbit().mode() == Orbit::Off);
+  EXPECT_FALSE(state.paneShowsFunctional(k3d));
+  EXPECT_EQ(state.renderSettings(kCoronal).overlayOpacity, 0.5f);
+  EXPECT_EQ(state.paneCell(k3d), 0);
+}
+
+// A config's zoom keeps its field in a pane of another shape (issue 36 item 4): a 3D view zoomed
+// 2 for a 256 x 512 portrait shows the same height in a landscape pane, not half of it.
+TEST_F(ViewerStateTest, AStudysZoomKeepsItsFieldInAPaneOfAnotherShape) {
+  config::ViewConfig portrait;
+  portrait.name = "portrait";
+  portrait.mode = RenderMode::Mip;
+  portrait.zoom = 2.0;
+  portrait.width = 256;
+  portrait.height = 512;
+  study.render.views = {portrait};
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  state.setPaneSize(k3d, {518, 440});
+  const render::RenderSettings s = state.renderSettings(k3d);
+  const double r = state.scene().radius;
+  const render::Camera pane = render::makeCamera(s.camera, state.scene().centre, r, s.size);
+  const render::Camera own =
+      render::makeCamera(s.camera, state.scene().centre, r, {portrait.width, portrait.height});
+  EXPECT_NEAR(pane.halfHeightMm, own.halfHeightMm, 1e-9);  // the portrait's whole height
+  EXPECT_NEAR(own.halfHeightMm, 2.0 * r / 2.0, 1e-9);
+}
+
 TEST_F(ViewerStateTest, CaptionsNameTheModeAndWindow) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
   EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)), "composite  ct-bone");
@@ -285,6 +357,114 @@ TEST_F(ViewerStateTest, SavedStateReopensAsTheSameViews) {
   EXPECT_NEAR(reopened.mprLevel(), state.mprLevel(), 1e-6);
 }
 
+// Zoom and pan on the MPR panes (issue 36 item 1): linked, a point panned into view on one
+// pane is panned on the panes that share its axis, the keys fit and 1:1, and the state saves
+// and restores them.
+TEST_F(ViewerStateTest, MprPanesZoomAndPanTogether) {
+  const auto dir = test::scratchDir();
+  ct.metadata().sourcePath = (dir / "ct.nii.gz").string();
+  std::ofstream(ct.metadata().sourcePath) << "";
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  const glm::dvec3 crosshair = state.crosshair();
+  state.wheel(kAxial, 2.0, true);  // Ctrl+wheel: zoom, not a slice
+  EXPECT_EQ(state.crosshair(), crosshair);
+  for (int p = kAxial; p < kPaneCount; ++p)
+    EXPECT_NEAR(state.renderSettings(p).camera.zoom, std::exp(0.2), 1e-12) << p;
+  EXPECT_DOUBLE_EQ(state.renderSettings(k3d).camera.zoom, 1.0);
+  state.zoomPane(kCoronal, 2.0);
+  EXPECT_NEAR(state.mprZoom(), 2.0 * std::exp(0.2), 1e-12);
+
+  // The axial pane's picture 10 mm right, 4 mm up: the world moves by that much in its plane;
+  // the coronal pane shares its left-right axis, the sagittal its anterior-posterior one.
+  state.panPane(kAxial, 10.0, 4.0);
+  const auto panOf = [&](int p) { return state.renderSettings(p).camera.panMm; };
+  EXPECT_NEAR(panOf(kAxial).x, 10.0, 1e-9);
+  EXPECT_NEAR(panOf(kAxial).y, 4.0, 1e-9);
+  EXPECT_NEAR(std::abs(panOf(kCoronal).x), 10.0, 1e-9);
+  EXPECT_NEAR(panOf(kCoronal).y, 0.0, 1e-9);
+  EXPECT_NEAR(std::abs(panOf(kSagittal).x), 4.0, 1e-9);
+  EXPECT_NEAR(panOf(kSagittal).y, 0.0, 1e-9);
+  // A middle drag over half the pane's width moves the picture by half its width in mm.
+  renderAll(state);
+  const render::Camera& axial = state.paneCamera(kAxial);
+  const glm::dvec2 before = panOf(kAxial);
+  state.drag(kAxial, 0.5, 0.0, MouseButton::Middle, false);
+  EXPECT_NEAR(panOf(kAxial).x - before.x, axial.halfHeightMm * axial.aspect, 1e-9);
+
+  state.saveConfig(dir / "saved.json");
+  ViewerState reopened(config::loadStudyConfig(dir / "saved.json"), ct, nullptr, sceneOf(ct));
+  EXPECT_NEAR(reopened.mprZoom(), state.mprZoom(), 1e-9);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(reopened.mprPan()[a], state.mprPan()[a], 1e-9) << a;
+
+  // C: the crosshair in the middle of every MPR pane.
+  state.click(kAxial, 0.8, 0.3);
+  state.click(kCoronal, 0.8, 0.7);
+  state.key('C', false);
+  renderAll(state);
+  for (int p = kAxial; p < kPaneCount; ++p) {
+    const glm::dvec4 clip = state.paneCamera(p).clipFromWorld * glm::dvec4(state.crosshair(), 1.0);
+    EXPECT_NEAR(clip.x / clip.w, 0.0, 1e-9) << p;
+    EXPECT_NEAR(clip.y / clip.w, 0.0, 1e-9) << p;
+  }
+  state.key('Z', false);  // fit
+  EXPECT_DOUBLE_EQ(state.mprZoom(), 1.0);
+  EXPECT_EQ(state.mprPan(), glm::dvec3(0.0));
+  state.key('X', false);  // one screen pixel per voxel of the finest spacing (1 mm here)
+  renderAll(state);
+  const render::Camera& one = state.paneCamera(kAxial);
+  EXPECT_NEAR(2.0 * one.halfHeightMm / 48.0, ct.smallestSpacing(), 1e-9);
+}
+
+// No silent black panes (issue 36 item 5): a PET in SUV opens with its own isovalue (SUV 2.5,
+// not the config's 300 HU), P offers no CT preset, and a pane whose frame is one colour says why.
+TEST_F(ViewerStateTest, NoSilentEmptyPanes) {
+  Volume suv = makeVolume("PT", 0.0, 19.0);  // int16 voxels
+  suv.metadata().unit = "SUVbw";
+  ViewerState state(study, suv, nullptr, sceneOf(suv));
+  EXPECT_DOUBLE_EQ(state.view3d().isoValue, 2.5);
+  EXPECT_EQ(state.presetName(), "pet-hot-metal");
+  for (int i = 0; i < 6; ++i) {
+    state.key('P', false);
+    EXPECT_EQ(state.presetName().rfind("ct-", 0), std::string::npos) << state.presetName();
+  }
+  state.key('2', false);
+  state.view3d().isoValue = 300.0;
+  for (int p = 0; p < kPaneCount; ++p) state.setPaneSize(p, {64, 48});
+  const render::RenderSettings s = state.renderSettings(k3d);
+  const render::Camera cam =
+      render::makeCamera(s.camera, state.scene().centre, state.scene().radius, s.size);
+  state.rendered(k3d, cam, Image(64, 48), false);  // one colour: nothing shows
+  EXPECT_EQ(state.emptyPaneMessage(k3d),
+            "Nothing to show: the isovalue 300 lies outside the volume's values (0 .. 19 "
+            "SUVbw); set the iso value in the panel");
+  Image some(64, 48);
+  some.rgba[4 * 100] = 200;
+  state.rendered(k3d, cam, some, false);
+  EXPECT_EQ(state.emptyPaneMessage(k3d), "");
+  EXPECT_EQ(state.emptyPaneMessage(kAxial), "");  // not rendered yet
+}
+
+// Jumping through the places a PET reader looks at (issue 36 item 4): the hottest voxel, each
+// segment, each ROI, round again; the MPR panes centre on each.
+TEST_F(ViewerStateTest, JumpGoesToTheHottestVoxelSegmentsAndRois) {
+  ct.setValue(7, 2, 3, 0, 3000.0);  // the hottest voxel: (3, -1, 5.5) mm
+  ViewerScene scene = sceneOf(ct);
+  scene.segmentCentres = {{"Neoplasm, Primary", {1.0, 2.0, 3.0}}};
+  ViewerState state(study, ct, nullptr, scene);
+  state.measurements().addSphere({{{-2.0, 1.0, 0.5}}, 2.0});
+  EXPECT_EQ(state.jumpNext(), "the hottest voxel");
+  EXPECT_EQ(state.crosshair(), glm::dvec3(3.0, -1.0, 5.5));
+  EXPECT_EQ(state.mprPan(), state.scene().centre - state.crosshair());
+  EXPECT_EQ(state.requests().status(),
+            "jump 1/3: the hottest voxel at 3.0, -1.0, 5.5 mm LPS (J: next)");
+  EXPECT_EQ(state.jumpNext(), "segment \"Neoplasm, Primary\"");
+  EXPECT_EQ(state.crosshair(), glm::dvec3(1.0, 2.0, 3.0));
+  state.key('J', false);
+  EXPECT_EQ(state.crosshair(), glm::dvec3(-2.0, 1.0, 0.5));
+  EXPECT_EQ(state.jumpNext(), "the hottest voxel");  // round again
+}
+
 TEST_F(ViewerStateTest, DumpWritesThePaneAsRendered) {
   const auto dir = test::scratchDir();
   ViewerState state(study, ct, nullptr, sceneOf(ct));
@@ -328,6 +508,34 @@ TEST_F(ViewerStateTest, ReadoutShowsBothValuesWhereTheRendererSamplesThem) {
   ViewerState moved(study, ct, &pet, scene);
   EXPECT_EQ(moved.readout({1.0, -3.0, 3.0}), "CT 0 HU | PET outside");
   EXPECT_EQ(moved.readout({1.0, -1.0, 3.0}), "CT 0 HU | PET 5 SUVbw");
+}
+
+// Two volumes of one modality read apart (issue 36 item 3): each by its series description or
+// file name, and a value without a unit says so.
+TEST_F(ViewerStateTest, ReadoutNamesVolumesByDescriptionOrFileAndSaysNoUnit) {
+  Volume t1 = makeVolume("MR", 0.0, 500.0);
+  t1.metadata().seriesDescription = "mocoMEMPRAGE_220FOV RMS";
+  t1.metadata().unit = "";
+  Volume cbf = makeVolume("MR", 0.0, 900.0);
+  cbf.metadata().sourcePath = "/data/study/relCBF.nii.gz";
+  cbf.metadata().unit = "ml/100g/min";
+  t1.setValue(5, 3, 2, 0, 346.0);
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 9; ++i) cbf.setValue(i, j, k, 0, 314.0);
+  ViewerState state(study, t1, &cbf, sceneOf(t1));
+  EXPECT_EQ(state.readout({1.0, 0.0, 3.0}),
+            "MR mocoMEMPRAGE_220FOV RMS 346 (no unit) | MR relCBF 314 ml/100g/min");
+  EXPECT_EQ(ViewerState::volumeName(t1, "anatomical"), "MR mocoMEMPRAGE_220FOV RMS");
+  Volume wholeBody = makeVolume("PT", 0.0, 1.0);
+  wholeBody.metadata().seriesDescription = "PET WB_0";  // not "PET PET WB_0"
+  EXPECT_EQ(ViewerState::volumeName(wholeBody, "anatomical"), "PET WB_0");
+  wholeBody.metadata().seriesDescription = "Petrous bone";
+  EXPECT_EQ(ViewerState::volumeName(wholeBody, "anatomical"), "PET Petrous bone");
+  Volume bare = makeVolume("", 0.0, 1.0);
+  EXPECT_EQ(ViewerState::volumeName(bare, "functional"), "functional");
+  bare.metadata().seriesDescription = "a very long series description indeed";
+  EXPECT_EQ(ViewerState::volumeName(bare, "functional"), "a very long series des..");
 }
 
 TEST(ViewerStateText, PaneNames) {

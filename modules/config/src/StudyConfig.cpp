@@ -61,6 +61,10 @@ const EnumNames<RegistrationMethod> kRegistrations = {{RegistrationMethod::None,
 
 const EnumNames<FusionProjection> kFusionProjections = {{FusionProjection::Max, "max"},
                                                         {FusionProjection::Mean, "mean"}};
+const EnumNames<ViewerLayout> kLayouts = {{ViewerLayout::Standard, "standard"},
+                                          {ViewerLayout::PetCtAxial, "pet-ct"},
+                                          {ViewerLayout::PetCtCoronal, "pet-ct-coronal"},
+                                          {ViewerLayout::PetCtSagittal, "pet-ct-sagittal"}};
 
 const EnumNames<OrbitMode> kOrbitModes = {{OrbitMode::Spin, "spin"}, {OrbitMode::Rock, "rock"}};
 
@@ -228,6 +232,8 @@ const FieldTable<ViewConfig>& viewTable() {
         .number("elevation", "Degrees about the view's right axis.", &V::elevation, -3600, 3600)
         .number("roll", "Degrees about the line of sight.", &V::roll, -3600, 3600)
         .number("zoom", "Magnification (1 fits the volume).", &V::zoom, 1e-3, 1e3)
+        .numbers("pan", "Picture moved on the screen [right, up] in mm (after the zoom).", &V::pan,
+                 -1e6, 1e6)
         .boolean("perspective", "Perspective instead of orthographic projection.", &V::perspective)
         .number("width", "Image width in pixels.", &V::width, 1, 8192)
         .number("height", "Image height in pixels.", &V::height, 1, 8192)
@@ -488,6 +494,13 @@ LabelGlyphKind labelGlyphKind(GlyphKind kind) {
   }
   return LabelGlyphKind::None;
 }
+std::string toString(ViewerLayout layout) { return detail::nameOf(kLayouts, layout); }
+
+std::optional<ViewerLayout> parseViewerLayout(const std::string& name) {
+  return detail::parseName(kLayouts, name);
+}
+
+std::string viewerLayoutList() { return detail::namesOf(kLayouts); }
 
 std::optional<OrbitMode> parseOrbitMode(const std::string& name) {
   return detail::parseName(kOrbitModes, name);
@@ -786,7 +799,12 @@ const FieldTable<StudyConfig>& studyTable() {
             [](const S& in, json& j, const char* k) {
               if (in.measurements != Measurements{})
                 j[k] = measurementsTable().write(in.measurements);
-            });
+            })
+        .enumeration("layout",
+                     "How `mvw view` arranges its panes: standard (3D + axial, coronal, sagittal "
+                     "MPR); pet-ct (anatomical, functional and fused axial MPR in step + the "
+                     "functional MIP; pet-ct-coronal, pet-ct-sagittal: that plane).",
+                     &S::layout, kLayouts);
     return s;
   }();
   return t;

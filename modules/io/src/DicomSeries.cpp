@@ -882,6 +882,24 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
   } else {
     chosen = series;
   }
+  // One image series and segmentations of it (a PET beside its DICOM SEG): the one volume is
+  // the image series; the SEGs are named in its metadata, for a tool to take as its labels.
+  std::vector<std::string> segFiles;
+  if (!allSeries && options.series.empty() && chosen.size() > 1) {
+    std::vector<SeriesRef> images;
+    for (const auto& s : chosen) {
+      vtkStringArray* files = dir->GetFileNamesForSeries(s.index);
+      if (s.modality == "SEG" && files->GetNumberOfValues() == 1)
+        segFiles.push_back(files->GetValue(0));
+      else
+        images.push_back(s);
+    }
+    if (images.size() == 1) {
+      chosen = images;
+    } else {
+      segFiles.clear();
+    }
+  }
   if (!allSeries && chosen.size() > 1) {
     std::string list;
     for (const auto& s : chosen) list += "\n  " + describe(s);
@@ -909,6 +927,7 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
   }
   if (volumes.empty() && firstFailure) std::rethrow_exception(firstFailure);
   for (const std::string& note : unread) volumes.front().metadata().notes.push_back(note);
+  volumes.front().metadata().segmentationFiles = segFiles;
   return volumes;
 }
 

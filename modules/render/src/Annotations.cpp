@@ -52,31 +52,47 @@ void annotate(Image& image, const Camera& camera, const std::string& caption) {
   text(bottom, {w / 2 - sz.width / 2, h - pad}, labelScale);
 
   const double captionScale = 0.5 * scale;
-  if (!caption.empty()) text(caption, {pad, h - pad - static_cast<int>(28 * scale)}, captionScale);
-  if (!camera.perspective && camera.halfHeightMm > 0) {
-    // A round length near a quarter of the width.
-    const double mmPerPixel = 2.0 * camera.halfHeightMm / h;
+  // The scale bar: a round length near a quarter of the width, bottom right.
+  const bool scaleBar = !camera.perspective && camera.halfHeightMm > 0;
+  const double mmPerPixel = scaleBar ? 2.0 * camera.halfHeightMm / h : 0.0;
+  double mm = 0.0;
+  int px = 0;
+  char barText[32] = "";
+  if (scaleBar) {
     const double target = 0.25 * w * mmPerPixel;
     const double pow10 = std::pow(10.0, std::floor(std::log10(target)));
-    double mm = pow10;
+    mm = pow10;
     for (double f : {2.0, 5.0, 10.0})
       if (f * pow10 <= target) mm = f * pow10;
-    const int px = static_cast<int>(std::lround(mm / mmPerPixel));
-    const int y = h - pad - static_cast<int>(8 * scale);
+    px = static_cast<int>(std::lround(mm / mmPerPixel));
+    std::snprintf(barText, sizeof barText, "%g mm", mm);
+  }
+  const int y = h - pad - static_cast<int>(8 * scale);
+  const cv::Size barSize = size(barText, captionScale);
+  if (!caption.empty()) {
+    // A caption that would reach the scale bar or its length goes a line up, clear of both
+    // (issue 36 item 8: a depth-cued MIP's long caption ran into the bar).
+    cv::Point at(pad, h - pad - static_cast<int>(28 * scale));
+    int base = 0;
+    const cv::Size captionSize =
+        cv::getTextSize(caption, cv::FONT_HERSHEY_SIMPLEX, captionScale, thick, &base);
+    const int barLeft = w - pad - std::max(px, barSize.width);
+    if (scaleBar && pad + captionSize.width + pad > barLeft)
+      at.y = y - static_cast<int>(6 * scale) - barSize.height - base - thick - 2 - pad;
+    text(caption, at, captionScale);
+  }
+  if (scaleBar) {
     const cv::Point a(w - pad - px, y), b(w - pad, y);
     cv::line(m, a, b, black, thick + 3);
     cv::line(m, a, b, yellow, thick);
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g mm", mm);
-    sz = size(buf, captionScale);
-    text(buf, {w - pad - sz.width, y - static_cast<int>(6 * scale)}, captionScale);
+    text(barText, {w - pad - barSize.width, y - static_cast<int>(6 * scale)}, captionScale);
   }
 }
 
 namespace {
 
 // The bar in 256 colours (index 0 at the bottom), the range's ends and the unit beside it.
-void drawBar(Image& image, double lo, double hi, const std::string& unit,
+void drawBar(Image& image, double lo, double hi, const std::string& unit, const std::string& title,
              const std::vector<cv::Scalar>& colours) {
   cv::Mat m(image.height, image.width, CV_8UC4, image.rgba.data());
   const double scale = std::max(0.4, std::min(image.width, image.height) / 600.0);
@@ -108,25 +124,27 @@ void drawBar(Image& image, double lo, double hi, const std::string& unit,
     std::snprintf(buf, sizeof buf, "%.4g", v);
     text(buf, y);
   };
+  if (!title.empty()) text(title, top - static_cast<int>(24 * scale));
   label(hi, top - static_cast<int>(6 * scale));
   label(lo, bottom + static_cast<int>(16 * scale));
-  if (!unit.empty()) text(unit, bottom + static_cast<int>(32 * scale));
+  text(unit.empty() ? "no unit" : unit, bottom + static_cast<int>(32 * scale));
 }
 
 }  // namespace
 
-void drawColourBar(Image& image, double lo, double hi, const std::string& unit) {
+void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
+                   const std::string& title) {
   const auto lut = sampleTransferFunction(transferPreset("pet-hot-metal"), 0.0, 1.0, 256, 0.0, 1.0);
   std::vector<cv::Scalar> colours;
   for (const glm::vec4& c : lut) colours.emplace_back(255 * c.r, 255 * c.g, 255 * c.b, 255);
-  drawBar(image, lo, hi, unit, colours);
+  drawBar(image, lo, hi, unit, title, colours);
 }
 
 void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
-                   const ColorTable& table) {
+                   const ColorTable& table, const std::string& title) {
   std::vector<cv::Scalar> colours;
   for (const auto& c : table.rgb) colours.emplace_back(c[0], c[1], c[2], 255);
-  drawBar(image, lo, hi, unit, colours);
+  drawBar(image, lo, hi, unit, title, colours);
 }
 
 void drawGlyphLegend(Image& image, const GlyphLegend& legend) {

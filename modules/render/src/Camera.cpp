@@ -1,5 +1,6 @@
 #include "mvw/render/Camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -57,6 +58,26 @@ WorldRay rayThrough(const Camera& camera, const glm::dvec2& ndc) {
   return ray;
 }
 
+namespace {
+
+// Half the view's height at zoom 1 in framing radii, in an image of `aspect`: the framing
+// sphere fits the shorter side; with a fitAspect of another shape, the field that shape shows
+// fits whole (its height, or its width at this aspect, whichever needs more).
+double fieldHalfHeight(const CameraSettings& s, double aspect) {
+  if (!(s.fitAspect > 0.0) || s.fitAspect == aspect) return 1.0 / std::min(1.0, aspect);
+  const double half = 1.0 / std::min(1.0, s.fitAspect);
+  return std::max(half, half * s.fitAspect / aspect);
+}
+
+}  // namespace
+
+double fittedZoom(const CameraSettings& s, glm::ivec2 imageSize) {
+  const double aspect = static_cast<double>(imageSize.x) / std::max(imageSize.y, 1);
+  const double zoom = s.zoom > 0 ? s.zoom : 1.0;
+  if (!(s.fitAspect > 0.0) || s.fitAspect == aspect) return zoom;  // exactly: saved states
+  return zoom / std::min(1.0, aspect) / fieldHalfHeight(s, aspect);
+}
+
 Camera makeCamera(const CameraSettings& s, const glm::dvec3& centre, double radius,
                   glm::ivec2 imageSize) {
   Basis b = standardBasis(s.view);
@@ -82,8 +103,8 @@ Camera makeCamera(const CameraSettings& s, const glm::dvec3& centre, double radi
   c.aspect = static_cast<double>(imageSize.x) / imageSize.y;
   const double zoom = s.zoom > 0 ? s.zoom : 1.0;
   const glm::dvec3 target = centre - c.right * s.panMm.x - c.up * s.panMm.y;
-  // Fit the bounding sphere in the shorter image side.
-  const double fitHalf = radius / std::min(1.0, c.aspect) / zoom;
+  // Fit the bounding sphere in the shorter image side (of the image the zoom was set for).
+  const double fitHalf = radius * fieldHalfHeight(s, c.aspect) / zoom;
   double nearPlane = 0.0, farPlane = 0.0;
   if (s.perspective) {
     c.tanHalfFov = std::tan(glm::radians(s.fovDeg) / 2.0);

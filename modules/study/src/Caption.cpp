@@ -1,9 +1,47 @@
 #include "mvw/study/Caption.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 
 namespace mvw::study {
+
+namespace {
+
+// "iso 300", "iso 2.5" (an SUV isosurface is not "iso 2").
+std::string shortIso(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string volumeName(const Volume& v, const char* role) {
+  const VolumeMetadata& md = v.metadata();
+  const std::string modality = md.modality == "PT" ? "PET" : md.modality;
+  // The series description, or the file's name without its extensions (a DICOM folder's name
+  // where the series has no description).
+  std::string what = md.seriesDescription;
+  if (what.empty() && !md.sourcePath.empty()) {
+    std::filesystem::path file = std::filesystem::path(md.sourcePath).filename();
+    while (file.has_extension() && file.extension().string().size() <= 4) file = file.stem();
+    what = file.string();
+  }
+  if (what.size() > 24) what = what.substr(0, 22) + "..";
+  if (what.empty()) return modality.empty() ? role : modality;
+  // "PET WB" rather than "PET PET WB": a description that starts with the modality says it.
+  const auto startsWithModality = [&] {
+    if (modality.empty() || what.size() < modality.size()) return false;
+    for (std::size_t i = 0; i < modality.size(); ++i)
+      if (std::toupper(static_cast<unsigned char>(what[i])) != modality[i]) return false;
+    return what.size() == modality.size() ||
+           !std::isalnum(static_cast<unsigned char>(what[modality.size()]));
+  };
+  if (modality.empty() || startsWithModality()) return what;
+  return modality + " " + what;
+}
 
 std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   const render::RenderSettings& s = v.settings;
@@ -14,7 +52,7 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   if (s.mode == render::RenderMode::Composite)
     caption += "  " + v.presetName;
   else if (s.mode == render::RenderMode::Isosurface)
-    caption += "  iso " + std::to_string(static_cast<int>(s.isoValue));
+    caption += "  iso " + shortIso(s.isoValue);
   else
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "mvw/render/TransferFunction.h"
+
 namespace mvw::study {
 
 namespace {
@@ -33,9 +35,19 @@ ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, doubl
     d.mpr = kCtSoftTissue;
   } else {
     d.isoValue = lo + kIsoFractionOfRange * (hi - lo);
+    if (anatomy.metadata().unit.rfind("SUV", 0) == 0 && hi > kSuvLesionThreshold &&
+        lo < kSuvLesionThreshold)
+      d.isoValue = kSuvLesionThreshold;
     d.mpr = windowOrFullRange(0.0, 0.0, lo, hi);
   }
   return d;
+}
+
+std::vector<std::string> presetsFor(const Volume& anatomy) {
+  std::vector<std::string> out;
+  for (const std::string& name : render::transferPresetNames())
+    if (isCt(anatomy) || render::transferPreset(name).relative) out.push_back(name);
+  return out;
 }
 
 std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKind kind,

@@ -10,6 +10,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
 
@@ -303,9 +304,14 @@ RoiStats roiStatistics(const Volume& volume, const VoxelList& voxels, const Stat
                          ? options.threshold.value
                          : options.threshold.value * out.max;
     out.thresholdValue = t;
+    double metabolicSum = 0.0;
     for (std::size_t v : voxels)
-      if (!std::isnan(values[v]) && values[v] >= t) ++out.metabolicVoxels;
+      if (!std::isnan(values[v]) && values[v] >= t)
+        ++out.metabolicVoxels, metabolicSum += values[v];
     out.metabolicVolumeMl = static_cast<double>(out.metabolicVoxels) * voxelMl;
+    if (out.metabolicVoxels > 0)
+      out.metabolicMean = metabolicSum / static_cast<double>(out.metabolicVoxels);
+    out.tlg = metabolicSum * voxelMl;  // = metabolic volume x its mean
   }
 
   if (options.peak) {
@@ -348,6 +354,37 @@ RoiStats roiStatistics(const Volume& volume, const VoxelList& voxels, const Stat
     }
     if (std::isfinite(best)) out.peak = best;
   }
+  return out;
+}
+
+VoxelList metabolicVoxels(const Volume& volume, const VoxelList& voxels, double threshold) {
+  const ValueReader values(volume);
+  VoxelList out;
+  for (std::size_t v : voxels)
+    if (!std::isnan(values[v]) && values[v] >= threshold) out.push_back(v);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+MetabolicTotal metabolicTotal(const Volume& volume, const std::vector<VoxelList>& lesions,
+                              const std::vector<double>& thresholds) {
+  MVW_CHECK_EQ(lesions.size(), thresholds.size());
+  VoxelList all;
+  for (std::size_t i = 0; i < lesions.size(); ++i) {
+    const VoxelList hot = metabolicVoxels(volume, lesions[i], thresholds[i]);
+    all.insert(all.end(), hot.begin(), hot.end());
+  }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  const ValueReader values(volume);
+  const double voxelMl = std::abs(glm::determinant(glm::dmat3(volume.worldFromIndex()))) / 1000.0;
+  MetabolicTotal out;
+  double sum = 0.0;
+  for (std::size_t v : all) sum += values[v];
+  out.voxels = all.size();
+  out.volumeMl = static_cast<double>(out.voxels) * voxelMl;
+  if (out.voxels > 0) out.mean = sum / static_cast<double>(out.voxels);
+  out.tlg = sum * voxelMl;
   return out;
 }
 

@@ -249,6 +249,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     ranged(o.cueBrightness, "--cue-brightness", "depth_cue.brightness");
     ranged(o.cueAmount, "--cue-amount", "depth_cue.amount");
     ranged(o.cueContrast, "--cue-contrast", "depth_cue.contrast");
+    // The config's zoom keeps its field in the square image (issue 36 item 4).
+    if (o.size && v.fitAspect <= 0.0) v.fitAspect = double(v.width) / v.height;
     if (o.size) v.width = v.height = *o.size;
     if (o.azimuth) v.azimuth = *o.azimuth;
     if (o.elevation) v.elevation = *o.elevation;
@@ -295,6 +297,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     s.camera.elevationDeg = v.elevation;
     s.camera.rollDeg = v.roll;
     s.camera.zoom = v.zoom;
+    s.camera.fitAspect = v.fitAspect > 0.0 ? v.fitAspect : double(v.width) / v.height;
+    s.camera.panMm = {v.pan[0], v.pan[1]};
     s.camera.perspective = v.perspective;
     s.window = v.window.value_or(0.0);
     s.level = v.level.value_or(0.0);
@@ -459,7 +463,8 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.azimuth = s.camera.azimuthDeg;
   v.elevation = s.camera.elevationDeg;
   v.roll = s.camera.rollDeg;
-  v.zoom = s.camera.zoom;
+  v.zoom = render::fittedZoom(s.camera, s.size);  // the zoom at the described size's shape
+  v.pan = {s.camera.panMm.x, s.camera.panMm.y};
   v.perspective = s.camera.perspective;
   v.width = s.size.x;
   v.height = s.size.y;

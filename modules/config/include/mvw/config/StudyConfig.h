@@ -92,8 +92,12 @@ struct ViewConfig {
   ViewName view = ViewName::Anterior;
   double azimuth = 0.0, elevation = 0.0, roll = 0.0;  // degrees
   double zoom = 1.0;
+  std::array<double, 2> pan{0.0, 0.0};  // [right, up] mm the picture is moved on the screen
   bool perspective = false;
   int width = 512, height = 512;
+  // Not a key: the shape (width / height) the zoom was chosen for when a command-line --size
+  // gave the image another (0: width / height); see render::CameraSettings::fitAspect.
+  double fitAspect = 0.0;
   std::string preset;                               // transfer function preset; "" = by modality
   std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
@@ -206,6 +210,12 @@ struct RegistrationConfig {
   double rotationSearchDeg = 0.0;
 };
 
+// How `mvw view` arranges its four panes ("layout"): standard, the 3D view and the axial,
+// coronal and sagittal MPR; pet-ct (issue 36 item 2), as PET/CT readers know it: the
+// anatomical, the functional and the fused MPR of one plane (axial; pet-ct-coronal,
+// pet-ct-sagittal) in step with one crosshair, and the functional volume's rotating MIP.
+enum class ViewerLayout { Standard, PetCtAxial, PetCtCoronal, PetCtSagittal };
+
 struct StudyConfig {
   std::filesystem::path file;  // where it was loaded from
   std::string name;
@@ -218,6 +228,7 @@ struct StudyConfig {
   RegistrationConfig registration;
   RenderConfig render;
   Measurements measurements;
+  ViewerLayout layout = ViewerLayout::Standard;
 };
 
 StudyConfig loadStudyConfig(const std::filesystem::path& file);
@@ -249,6 +260,9 @@ std::string toString(GlyphConvexity convexity);
 std::string toString(GlyphPlacement placement);
 std::string toString(RegistrationMethod method);
 std::string toString(OrbitMode mode);
+std::string toString(ViewerLayout layout);
+std::optional<ViewerLayout> parseViewerLayout(const std::string& name);
+std::string viewerLayoutList();  // "standard, pet-ct, ..." for messages
 std::optional<OrbitMode> parseOrbitMode(const std::string& name);
 // The azimuths (degrees) of an orbiting view's frames; empty for a still.
 std::vector<double> orbitAzimuths(const ViewConfig& view);

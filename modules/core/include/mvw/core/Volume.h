@@ -39,6 +39,9 @@ struct VolumeMetadata {
   std::optional<SliceSpacing> sliceSpacing;
   std::optional<double> suvFactor;  // PET read as SUVbw: SUVbw = Bq/ml x suvFactor
   std::vector<std::string> notes;   // what a user should know: unit decisions, reorderings
+  // DICOM only: the SEG files beside the one image series of a folder that holds both (the
+  // series read without --series); a tool may offer them as the volume's segmentation.
+  std::vector<std::string> segmentationFiles;
 };
 
 class Volume {

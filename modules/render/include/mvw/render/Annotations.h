@@ -18,10 +18,12 @@ std::string orientationLabel(const glm::dvec3& worldDirection);
 
 void annotate(Image& image, const Camera& camera, const std::string& caption);
 
-// A vertical colour bar (hot metal, or `table`) at the right edge, labelled with the value range.
-void drawColourBar(Image& image, double lo, double hi, const std::string& unit);
+// A vertical colour bar (hot metal, or `table`) at the right edge, labelled with the value range,
+// the unit ("no unit" where none is known) and, above it, `title`: the volume it shows.
 void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
-                   const ColorTable& table);
+                   const std::string& title = "");
+void drawColourBar(Image& image, double lo, double hi, const std::string& unit,
+                   const ColorTable& table, const std::string& title = "");
 
 // A glyph legend (issue 15): what a bump's size or kind means. size: the apparent bump radius
 // as a fraction of the glyph radius (0: no glyph); the icons keep the sizes' ratios.

@@ -29,6 +29,11 @@ struct CameraSettings {
   glm::dvec2 panMm{0.0};
   bool perspective = false;
   double fovDeg = 30.0;  // vertical, perspective only
+  // The image shape (width / height) the zoom was chosen for (issue 36 item 4); <= 0: the
+  // image's own. In an image of another shape the picture shows at least the field that the
+  // zoom shows in that shape (the whole rectangle, with more around it on one side): a zoom
+  // set for a portrait whole body keeps the body whole in a landscape pane or a square image.
+  double fitAspect = 0.0;
 };
 
 struct Camera {
@@ -52,6 +57,9 @@ struct WorldRay {
   glm::dvec3 direction{0.0};
 };
 WorldRay rayThrough(const Camera& camera, const glm::dvec2& ndc);
+
+// The zoom that frames at `imageSize`, without fitAspect, what `settings` frames there.
+double fittedZoom(const CameraSettings& settings, glm::ivec2 imageSize);
 
 // A camera that shows a sphere of `radius` mm around `centre` whole at zoom 1.
 Camera makeCamera(const CameraSettings& settings, const glm::dvec3& centre, double radius,

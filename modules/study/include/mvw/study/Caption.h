@@ -3,11 +3,18 @@
 // annotated renders by `mvw render` and drawn on the viewer's panes.
 #include <string>
 
+#include "mvw/core/Volume.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/study/ViewPlan.h"
 
 namespace mvw::study {
+
+// A volume's name in readouts, statistics and colour bars, so that two volumes of one modality
+// read apart: its modality ("PET" for DICOM's PT) and series description, or its file's name
+// without extensions ("MR relCBF", "CT Cranium", "aal"); `role` ("anatomical", "functional")
+// where it names neither. At most 24 characters of the description.
+std::string volumeName(const Volume& volume, const char* role);
 
 // `shown`: the window the projection or MPR actually used (windowOrFullRange).
 std::string viewCaption(const PlannedView& view, const WindowLevel& shown);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "mvw/config/StudyConfig.h"
 
@@ -21,12 +22,18 @@ struct ModalityDefaults {
 };
 
 // CT (or HU): bone preset, bone isosurface (300 HU), soft-tissue window (W 400 L 40).
-// PET/SPECT: hot-metal preset. Otherwise (MR, unknown): the MR preset, the isosurface at 40 %
-// of the value range and the full range as window.
+// PET/SPECT: hot-metal preset, in SUV the isosurface at SUV 2.5 (kSuvLesionThreshold) where the
+// volume reaches it. Otherwise (MR, unknown, PET in other units): the MR or PET preset, the
+// isosurface at 40 % of the value range and the full range as window.
 ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, double> valueRange);
 
 // The preset part of modalityDefaults, which needs no value range.
 std::string defaultPreset(const Volume& anatomy);
+
+// The transfer presets that can show this volume: the Hounsfield ones (ct-*, absolute values)
+// for CT only; the relative ones (over the value range) for every volume. The viewer's P key and
+// preset list offer these, so no CT preset blanks a PET in SUV.
+std::vector<std::string> presetsFor(const Volume& anatomy);
 
 // What a functional reader starts from, the one home of these numbers.
 inline constexpr double kSuvLesionThreshold = 2.5;        // SUVbw: the usual lesion threshold

@@ -81,14 +81,34 @@ struct RoiStats {
   std::optional<double> peak;
   glm::dvec3 peakAt{0.0};
   std::size_t peakSphereVoxels = 0;
-  // With a threshold: the voxels of the ROI at or above it.
+  // With a threshold: the voxels of the ROI at or above it (the metabolic volume), their mean
+  // (SUVmean of the metabolic volume; none without a voxel) and the total lesion glycolysis,
+  // TLG = metabolic volume (ml) x its mean (0 without a voxel).
   std::optional<double> thresholdValue;
   std::size_t metabolicVoxels = 0;
   std::optional<double> metabolicVolumeMl;
+  std::optional<double> metabolicMean;
+  std::optional<double> tlg;
 };
 
 // Statistics of `volume` (component 0) over `voxels`; an ROI without voxels with data gives
 // voxels == 0 and no max, mean, peak.
 RoiStats roiStatistics(const Volume& volume, const VoxelList& voxels, const StatsOptions& options);
+
+// The voxels of `voxels` with data at or above `threshold`, ascending.
+VoxelList metabolicVoxels(const Volume& volume, const VoxelList& voxels, double threshold);
+
+// The total metabolic tumour volume over several lesions (the segments of a SEG): the union of
+// each lesion's metabolic voxels, each lesion taken at its own threshold (a fraction of its own
+// max, as readers delineate lesion by lesion); a voxel in two lesions counts once. TLG is the
+// union's volume x its mean, so it is the lesions' TLGs summed where they do not overlap.
+struct MetabolicTotal {
+  std::size_t voxels = 0;
+  double volumeMl = 0.0;
+  std::optional<double> mean;  // none without a voxel
+  double tlg = 0.0;
+};
+MetabolicTotal metabolicTotal(const Volume& volume, const std::vector<VoxelList>& lesions,
+                              const std::vector<double>& thresholds);
 
 }  // namespace mvw::study
