@@ -17,7 +17,7 @@
 #include "RenderTestUtil.h"
 #include "Trilinear.h"
 #include "mvw/io/ColorPalettes.h"
-#include "mvw/io/PngWriter.h"
+#include "mvw/io/Png.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/VolumeRenderer.h"
