@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "JsonFile.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
 
@@ -15,16 +16,6 @@ namespace mvw::validate {
 namespace fs = std::filesystem;
 
 namespace {
-
-nlohmann::json readJson(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
-}
 
 std::string csv(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
@@ -84,7 +75,7 @@ void writeBatchIndex(const fs::path& out, const fs::path& manifest,
 }
 
 BatchReportCounts writeBatchReport(const fs::path& out) {
-  const nlohmann::json index = readJson(out / "batch.json");
+  const nlohmann::json index = detail::readJsonOrNull(out / "batch.json");
   if (!index.is_object() || !index.contains("ids") || !index["ids"].is_array())
     throw InputError(out, "holds no batch.json: it is not the output folder of `mvw batch run`");
   BatchReportCounts counts;
@@ -98,8 +89,8 @@ BatchReportCounts writeBatchReport(const fs::path& out) {
   for (const auto& idJson : index["ids"]) {
     const std::string id = idJson.get<std::string>();
     const fs::path dir = out / id;
-    nlohmann::json done = readJson(dir / "done.json");
-    const nlohmann::json failed = readJson(dir / "failed.json");
+    nlohmann::json done = detail::readJsonOrNull(dir / "done.json");
+    const nlohmann::json failed = detail::readJsonOrNull(dir / "failed.json");
     std::string status = "not run", task, message, seconds, exitCode;
     if (done.is_object()) {
       status = "done";
@@ -121,7 +112,7 @@ BatchReportCounts writeBatchReport(const fs::path& out) {
             << csv(message);
     // A stats study: its ROIs; the first in summary.csv, all in stats.csv.
     nlohmann::json rois =
-        status == "done" && task == "stats" ? readJson(dir / "stats.json") : nullptr;
+        status == "done" && task == "stats" ? detail::readJsonOrNull(dir / "stats.json") : nullptr;
     if (rois.is_object()) rois = nlohmann::json::array({rois});
     if (rois.is_array() && !rois.empty()) {
       const auto& first = rois[0];
@@ -156,7 +147,7 @@ BatchReportCounts writeBatchReport(const fs::path& out) {
       // The views in the study config's order (render.json lists them so), then any other image
       // (the registration's QA picture) by name.
       std::vector<std::string> images;
-      const nlohmann::json render = readJson(dir / "render.json");
+      const nlohmann::json render = detail::readJsonOrNull(dir / "render.json");
       if (render.is_object() && render.contains("views") && render["views"].is_array())
         for (const auto& v : render["views"])
           if (v.is_object() && v.contains("file") && v["file"].is_string() &&

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "JsonFile.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
@@ -99,16 +100,6 @@ std::string lastMessage(const fs::path& log) {
   std::string message = lastError.empty() ? last : lastError;
   if (message.size() > 2000) message = message.substr(0, 2000) + "...";
   return message;
-}
-
-nlohmann::json readJson(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
 }
 
 // Deletes what a killed run of this study left: OUT/.work-<id>-* and OUT/.old-<id>-*. Shards
@@ -255,14 +246,12 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
     progress << "[" << (counts.done + counts.skipped) << " done, " << counts.failed << " failed, "
              << left << " left] " << id << ": " << what << std::endl;
   };
-  auto recordFailure = [&](const Pending& p, int status, const std::string& message,
-                           double seconds) {
+  // What done.json and failed.json share: the study, its command and inputs, mvw's version.
+  auto record = [&](const Pending& p, const char* status, double seconds) {
     nlohmann::json j;
     j["id"] = p.study->id;
-    j["status"] = "failed";
+    j["status"] = status;
     j["task"] = p.study->task;
-    j["exit_code"] = status;
-    j["message"] = message;
     j["seconds"] = seconds;
     j["command"] = p.command;
     j["manifest"] = manifest.file.string();
@@ -270,6 +259,13 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
     j["inputs"] = p.inputs;
     j["mvw_version"] = options.version;
     j["finished_utc"] = utcNow();
+    return j;
+  };
+  auto recordFailure = [&](const Pending& p, int status, const std::string& message,
+                           double seconds) {
+    nlohmann::json j = record(p, "failed", seconds);
+    j["exit_code"] = status;
+    j["message"] = message;
     io::writeTextAtomically(p.work / "failed.json", j.dump(2) + "\n");
     publish(p.work, out, p.study->id);
     ++counts.failed;
@@ -293,7 +289,7 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
       recordFailure(p, 2, "mvw: error: " + problem, 0.0);
       continue;
     }
-    const nlohmann::json done = readJson(out / study->id / "done.json");
+    const nlohmann::json done = detail::readJsonOrNull(out / study->id / "done.json");
     if (done.is_object() && done.value("manifest_line", "") == study->line &&
         done.contains("inputs") && done["inputs"] == nlohmann::json(p.inputs)) {
       fs::remove_all(p.work);
@@ -321,17 +317,7 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
           recordFailure(p, result.status, message, result.seconds);
           return;
         }
-        nlohmann::json j;
-        j["id"] = p.study->id;
-        j["status"] = "done";
-        j["task"] = p.study->task;
-        j["seconds"] = result.seconds;
-        j["command"] = p.command;
-        j["manifest"] = manifest.file.string();
-        j["manifest_line"] = p.study->line;
-        j["inputs"] = p.inputs;
-        j["mvw_version"] = options.version;
-        j["finished_utc"] = utcNow();
+        nlohmann::json j = record(p, "done", result.seconds);
         nlohmann::json outputs = nlohmann::json::object();
         for (const auto& e : fs::recursive_directory_iterator(p.work))
           if (e.is_regular_file() && e.path().filename() != "log.txt")
