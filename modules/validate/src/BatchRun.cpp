@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "JsonFile.h"
+#include "Sha256.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
@@ -28,28 +29,6 @@ namespace mvw::validate {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Digest = std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)>;
-
-Digest newDigest() {
-  Digest ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
-  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
-    throw Error("SHA-256 is not available from OpenSSL");
-  return ctx;
-}
-
-std::string hex(Digest& ctx) {
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned n = 0;
-  EVP_DigestFinal_ex(ctx.get(), digest, &n);
-  static const char* digits = "0123456789abcdef";
-  std::string out;
-  for (unsigned i = 0; i < n; ++i) {
-    out += digits[digest[i] >> 4];
-    out += digits[digest[i] & 15];
-  }
-  return out;
-}
 
 void hashFileInto(EVP_MD_CTX* ctx, const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -64,7 +43,7 @@ void hashFileInto(EVP_MD_CTX* ctx, const fs::path& file) {
 
 // A folder (a DICOM series) hashes as the names and bytes of its files, in name order.
 std::string pathSha256(const fs::path& path) {
-  Digest ctx = newDigest();
+  detail::Sha256 ctx = detail::newSha256();
   if (fs::is_directory(path)) {
     std::vector<fs::path> files;
     for (const auto& e : fs::recursive_directory_iterator(path))
@@ -78,7 +57,7 @@ std::string pathSha256(const fs::path& path) {
   } else {
     hashFileInto(ctx.get(), path);
   }
-  return hex(ctx);
+  return detail::hexDigest(ctx);
 }
 
 std::string utcNow() {
@@ -136,9 +115,9 @@ void publish(const fs::path& work, const fs::path& out, const std::string& id) {
 }  // namespace
 
 std::string fileSha256(const fs::path& file) {
-  Digest ctx = newDigest();
+  detail::Sha256 ctx = detail::newSha256();
   hashFileInto(ctx.get(), file);
-  return hex(ctx);
+  return detail::hexDigest(ctx);
 }
 
 std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study) {

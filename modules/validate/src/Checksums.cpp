@@ -1,12 +1,10 @@
 #include "mvw/validate/Checksums.h"
 
-#include <openssl/evp.h>
-
 #include <fstream>
-#include <memory>
 
 #include <nlohmann/json.hpp>
 
+#include "Sha256.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
 
@@ -16,24 +14,13 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string pixelSha256(const cv::Mat& image) {
-  const std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
-  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
-    throw Error("SHA-256 is not available from OpenSSL");
+  detail::Sha256 ctx = detail::newSha256();
   const std::size_t rowBytes = image.cols * image.elemSize();
   for (int y = 0; y < image.rows; ++y) EVP_DigestUpdate(ctx.get(), image.ptr(y), rowBytes);
   const std::string shape = std::to_string(image.cols) + "x" + std::to_string(image.rows) + "x" +
                             std::to_string(image.channels());
   EVP_DigestUpdate(ctx.get(), shape.data(), shape.size());
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int n = 0;
-  EVP_DigestFinal_ex(ctx.get(), digest, &n);
-  static const char* hex = "0123456789abcdef";
-  std::string s;
-  for (unsigned int i = 0; i < n; ++i) {
-    s += hex[digest[i] >> 4];
-    s += hex[digest[i] & 15];
-  }
-  return s;
+  return detail::hexDigest(ctx);
 }
 
 std::string ChecksumManifest::keyOf(const fs::path& reference) const {
