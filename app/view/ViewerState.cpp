@@ -159,8 +159,12 @@ void ViewerState::setLayout(config::ViewerLayout layout) {
   markAllDirty();
 }
 
-StandardView ViewerState::mprView(int pane) const {
-  switch (layout_) {
+namespace {
+
+// The plane an MPR pane shows in `layout`: its slot's in the standard layout, the layout's own
+// in PET/CT (the three MPR panes in step).
+StandardView mprViewIn(config::ViewerLayout layout, int pane) {
+  switch (layout) {
     case config::ViewerLayout::Standard:
       break;
     case config::ViewerLayout::PetCtAxial:
@@ -172,6 +176,10 @@ StandardView ViewerState::mprView(int pane) const {
   }
   return kMprViews[std::clamp(pane, 1, 3) - 1];
 }
+
+}  // namespace
+
+StandardView ViewerState::mprView(int pane) const { return mprViewIn(layout_, pane); }
 
 bool ViewerState::paneShowsFunctional(int pane) const {
   return pane == k3d && petCtLayout() && functional_ != nullptr;
@@ -479,6 +487,12 @@ bool ViewerState::needsRender(int pane) const {
   return p.dirty && p.size.x >= 8 && p.size.y >= 8;
 }
 
+std::pair<double, double> ViewerState::functionalWindow() const {
+  if (view3d_.functionalHigh > view3d_.functionalLow)
+    return {view3d_.functionalLow, view3d_.functionalHigh};
+  return scene_.functionalRange;
+}
+
 render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) const {
   return settingsIn(layout_, pane, interacting);
 }
@@ -488,9 +502,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
   const PaneState& image = pane_(pane);
   const bool petCt = layout != config::ViewerLayout::Standard;
   // The functional window (the overlay's, the PET/CT layout's functional pane and MIP).
-  const bool userWindow = view3d_.functionalHigh > view3d_.functionalLow;
-  const double flo = userWindow ? view3d_.functionalLow : scene_.functionalRange.first;
-  const double fhi = userWindow ? view3d_.functionalHigh : scene_.functionalRange.second;
+  const auto [flo, fhi] = functionalWindow();
   render::RenderSettings s;
   if (pane == k3d && petCt) {
     // The rotating MIP of the functional volume (of the anatomical one where there is none),
@@ -511,10 +523,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
     s = view3d_;
   } else {
     s.mode = RenderMode::Mpr;
-    s.camera.view = !petCt                                          ? kMprViews[pane - 1]
-                    : layout == config::ViewerLayout::PetCtCoronal  ? StandardView::Anterior
-                    : layout == config::ViewerLayout::PetCtSagittal ? StandardView::Left
-                                                                    : StandardView::Inferior;
+    s.camera.view = mprViewIn(layout, pane);
     s.window = mprWindow_;
     s.level = mprLevel_;
     s.overlayOpacity = view3d_.overlayOpacity;
@@ -560,11 +569,9 @@ std::string ViewerState::caption(int pane, const render::RenderSettings& s) cons
   if (!petCtLayout()) return text;
   if (pane == kCoronal && functional_) {
     // The functional pane's window is the functional one (the anatomy's is drawn black).
-    const bool userWindow = s.functionalHigh > s.functionalLow;
+    const auto [flo, fhi] = functionalWindow();
     char window[96];
-    std::snprintf(window, sizeof window, "  %.4g-%.4g ",
-                  userWindow ? s.functionalLow : scene_.functionalRange.first,
-                  userWindow ? s.functionalHigh : scene_.functionalRange.second);
+    std::snprintf(window, sizeof window, "  %.4g-%.4g ", flo, fhi);
     const std::string& unit = functional_->metadata().unit;
     text = "mpr " + config::toString(shown.config.view) + window +
            (unit.empty() ? "(no unit)" : unit) + "  " + toString(functionalColors_.map);

@@ -259,6 +259,9 @@ class ViewerState : public PaneGeometry {
   // The pane's settings and view as `layout` would show it (saved states are the standard
   // layout's views and the layout's name).
   render::RenderSettings settingsIn(config::ViewerLayout layout, int pane, bool interacting) const;
+  // The functional window the panes show: the one set (the overlay's, the glyphs'), else the
+  // functional volume's full range.
+  std::pair<double, double> functionalWindow() const;
   config::ViewConfig viewConfigOf(int pane, config::ViewerLayout layout) const;
 
   const config::StudyConfig& study_;
