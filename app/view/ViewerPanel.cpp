@@ -372,8 +372,7 @@ void ViewerPanel::drawControls() {
     ImGui::SameLine();
     if (ImGui::Checkbox("colour fusion (F)", &fusion)) v.fusion = fusion, state_.markDirty(k3d);
     // A fused minip or average: the functional maximum along the ray, or its mean.
-    if (v.fusion &&
-        (v.mode == render::RenderMode::MinIp || v.mode == render::RenderMode::Average)) {
+    if (v.fusion && takesFusionMean(v.mode)) {
       ImGui::SameLine();
       bool mean = v.fusionProjection == render::FusionProjection::Mean;
       if (ImGui::Checkbox("functional mean", &mean)) {

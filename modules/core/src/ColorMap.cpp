@@ -36,10 +36,7 @@ std::vector<std::string> colorMapNames() {
   return names;
 }
 
-bool takesImageColors(RenderMode mode) {
-  return mode == RenderMode::Mip || mode == RenderMode::MinIp || mode == RenderMode::Average ||
-         mode == RenderMode::Mpr;
-}
+bool takesImageColors(RenderMode mode) { return isProjectionMode(mode) || mode == RenderMode::Mpr; }
 
 ColorTable greyTable(bool inverted) {
   ColorTable t;

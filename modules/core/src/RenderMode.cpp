@@ -38,9 +38,16 @@ bool isShellMode(RenderMode mode) {
          mode == RenderMode::ShellLit;
 }
 
+bool isProjectionMode(RenderMode mode) {
+  return mode == RenderMode::Mip || mode == RenderMode::MinIp || mode == RenderMode::Average;
+}
+
 bool takesFusion(RenderMode mode) {
-  return mode == RenderMode::Composite || mode == RenderMode::Isosurface ||
-         mode == RenderMode::Mip || mode == RenderMode::MinIp || mode == RenderMode::Average;
+  return mode == RenderMode::Composite || mode == RenderMode::Isosurface || isProjectionMode(mode);
+}
+
+bool takesFusionMean(RenderMode mode) {
+  return mode == RenderMode::MinIp || mode == RenderMode::Average;
 }
 
 std::vector<std::string> renderModeNames() {

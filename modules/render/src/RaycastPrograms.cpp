@@ -64,11 +64,9 @@ RaycastSource RaycastPrograms::source(RenderMode mode, VolumeLayout layout, Rayc
     if (has(v, RaycastVariant::Fusion)) defines.push_back("MVW_FUSION 1");
   }
   // The fused projections: a program of their own, so that the plain ones keep their skipping.
-  const bool projection =
-      mode == RenderMode::Mip || mode == RenderMode::MinIp || mode == RenderMode::Average;
-  if (projection && has(v, RaycastVariant::Fusion)) {
+  if (isProjectionMode(mode) && has(v, RaycastVariant::Fusion)) {
     defines.push_back("MVW_FUSION 1");
-    if (mode != RenderMode::Mip && has(v, RaycastVariant::FusionMean))
+    if (takesFusionMean(mode) && has(v, RaycastVariant::FusionMean))
       defines.push_back("MVW_FUSION_MEAN 1");
   }
   if (shaded && has(v, RaycastVariant::Glyphs)) {

@@ -66,11 +66,8 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   // shows its overlay, and the shell modes cannot fuse.
   if (render::showsFusion(s, true)) {
     caption += "  + colour fusion";
-    const bool projection = s.mode == render::RenderMode::Mip ||
-                            s.mode == render::RenderMode::MinIp ||
-                            s.mode == render::RenderMode::Average;
-    if (projection)
-      caption += s.mode != render::RenderMode::Mip && s.fusionProjection == FusionProjection::Mean
+    if (isProjectionMode(s.mode))
+      caption += takesFusionMean(s.mode) && s.fusionProjection == FusionProjection::Mean
                      ? " (functional mean)"
                      : " (functional max)";
   }

@@ -21,11 +21,6 @@ namespace mvw::study {
 
 namespace {
 
-// The modes whose functional projection the config chooses (fusion_projection).
-bool fusesByMean(render::RenderMode mode) {
-  return mode == render::RenderMode::MinIp || mode == render::RenderMode::Average;
-}
-
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
@@ -269,7 +264,7 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
     if (colormap && takesImageColors(v.mode)) v.colormap = *colormap;
     // And one whose fused projection is always the maximum drops the view's functional mean.
-    if (o.mode && !fusesByMean(v.mode)) v.fusionProjection = FusionProjection::Max;
+    if (o.mode && !takesFusionMean(v.mode)) v.fusionProjection = FusionProjection::Max;
     if (overlayColormap) v.overlayColormap = *overlayColormap;
     // --orbit turns the views that can turn about the long axis (not those looking along it).
     const render::StandardView sight = standardView(v.view);
@@ -375,7 +370,7 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
       throw InputError(study.file,
                        "view '" + v.name + "': fusion needs a functional volume in the study");
     s.fusionProjection = v.fusionProjection;
-    if (v.fusionProjection == FusionProjection::Mean && !fusesByMean(s.mode))
+    if (v.fusionProjection == FusionProjection::Mean && !takesFusionMean(s.mode))
       throw InputError(study.file, "view '" + v.name +
                                        "': fusion_projection mean is for minip and average views "
                                        "(a fused mip shows the functional maximum)");
@@ -522,7 +517,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.segmentationOutlines = s.segmentOutlines;
   v.fusion = s.fusion;
   // Only where the mode takes it, as the colour map below.
-  if (fusesByMean(s.mode)) v.fusionProjection = s.fusionProjection;
+  if (takesFusionMean(s.mode)) v.fusionProjection = s.fusionProjection;
   v.functionalClasses = s.functionalClasses;
   v.glyphClassKinds = s.glyphClassKinds;
   v.overlayOpacity = s.overlayOpacity;

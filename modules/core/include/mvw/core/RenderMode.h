@@ -30,6 +30,9 @@ std::vector<std::string> renderModeNames();
 // The paper's discrete modes (isosurface shells drawn as triangles, not ray cast).
 bool isShellMode(RenderMode mode);
 
+// The projections: mip, minip and average (one value per ray, shaders/projection.frag.glsl).
+bool isProjectionMode(RenderMode mode);
+
 // Whether a mode can blend the functional volume in (colour fusion): composite and isosurface
 // colour the anatomy where they sample it; mip, minip and average lay the functional volume's
 // own projection along each ray over the anatomy's. MPR shows it as its overlay instead; the
@@ -39,6 +42,8 @@ bool takesFusion(RenderMode mode);
 // A fused minip or average view's functional projection along each ray: the maximum of its
 // samples or their mean (a fused MIP always takes the maximum). Config names: max, mean.
 enum class FusionProjection { Max, Mean };
+// The modes a fused view of which may take the mean (minip, average: fusion_projection).
+bool takesFusionMean(RenderMode mode);
 
 // Volumetric normal glyphs (Seipel 2007): convex bumps, concave dimples, or both (dimples
 // below the attribute window's middle, bumps above). Config names: convex, concave, both.
