@@ -9,10 +9,10 @@ namespace mvw::study {
 
 namespace {
 
-// "iso 300", "iso 2.5" (an SUV isosurface is not "iso 2").
-std::string shortIso(double v) {
+// `v` to `significant` digits, %g style: "300", "2.5" (an SUV isosurface is not "iso 2").
+std::string significant(double v, int digits) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
   return buf;
 }
 
@@ -52,7 +52,7 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   if (s.mode == render::RenderMode::Composite)
     caption += "  " + v.presetName;
   else if (s.mode == render::RenderMode::Isosurface)
-    caption += "  iso " + shortIso(s.isoValue);
+    caption += "  iso " + significant(s.isoValue, 4);
   else
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));
@@ -84,11 +84,8 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
 
 namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
+// A legend's value: three significant digits.
+std::string number(double v) { return significant(v, 3); }
 
 }  // namespace
 
