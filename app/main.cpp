@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     // A command line mvw cannot use: one message in mvw's own form, exit 2.
     std::cerr << "mvw: error: " << e.what() << " (mvw COMMAND --help lists the options)\n";
     return 2;
-  } catch (const mvw::validate::SchedulerError& e) {
+  } catch (const mvw::ServiceError& e) {
     // A server that could not be reached or refused: neither the user's input nor mvw's fault.
     std::cerr << "mvw: error: " << e.what() << "\n";
     return 3;

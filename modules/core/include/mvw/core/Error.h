@@ -1,7 +1,8 @@
 #pragma once
 // Two error tiers (docs/design.md#errors): programmer bugs are MVW_CHECKs (Check.h); bad data and
 // environment failures are exceptions derived from mvw::Error. Only app/ decides exit codes:
-// InputError -> 2 (bad file, bad config), any other Error -> 1 (internal fault).
+// InputError -> 2 (bad file, bad config), ServiceError -> 3 (a server or the network failed),
+// any other Error -> 1 (internal fault).
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,13 @@ class InputError : public Error {
  private:
   std::filesystem::path file_;
   std::string problem_;
+};
+
+// A server (PACS, scheduler) that could not be reached, refused, timed out or broke off. The
+// message names the server and what it said; never credentials.
+class ServiceError : public Error {
+ public:
+  explicit ServiceError(const std::string& message) : Error(message) {}
 };
 
 // Why `path` cannot be opened as a file to read, said as what it is ("no such file or

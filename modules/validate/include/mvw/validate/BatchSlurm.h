@@ -23,9 +23,9 @@ struct SlurmJobOptions {
 std::string slurmScript(const SlurmJobOptions& options);
 
 // The scheduler could not be reached or refused the job: exit 3, naming the server.
-class SchedulerError : public Error {
+class SchedulerError : public ServiceError {
  public:
-  explicit SchedulerError(const std::string& message) : Error(message) {}
+  explicit SchedulerError(const std::string& message) : ServiceError(message) {}
 };
 
 // Runs `sbatch --parsable script` and returns the job id. Throws InputError when sbatch is not
