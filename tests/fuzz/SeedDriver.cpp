@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s FILE_OR_FOLDER... (no input given or found)\n", argv[0]);
     return 2;
   }
+  // libFuzzer's first input is the empty one.
+  LLVMFuzzerTestOneInput(nullptr, 0);
   for (const auto& file : files) {
     std::ifstream in(file, std::ios::binary);
     if (!in) {
@@ -56,6 +58,6 @@ int main(int argc, char** argv) {
     LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   }
   ::alarm(0);
-  std::printf("%zu inputs ran\n", files.size());
+  std::printf("%zu inputs ran (and the empty one)\n", files.size());
   return 0;
 }
