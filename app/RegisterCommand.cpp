@@ -135,9 +135,12 @@ void runRegister(const RegisterOptions& opt) {
   if (opt.dicom.dicom) {
     fixedId = dicomout::identityOf(fixed, opt.dicom.given());
     dicomout::GivenIdentity movingGiven = opt.dicom.given();
-    if (movingGiven.patientId.empty() && moving.metadata().format != "DICOM")
-      movingGiven = {fixedId->patientId,
-                     fixedId->patientName.empty() ? fixedId->patientId : fixedId->patientName};
+    if (moving.metadata().format != "DICOM") {
+      if (movingGiven.patientId.empty()) movingGiven.patientId = fixedId->patientId;
+      if (movingGiven.patientName.empty())
+        movingGiven.patientName =
+            fixedId->patientName.empty() ? fixedId->patientId : fixedId->patientName;
+    }
     movingId = dicomout::identityOf(moving, movingGiven);
   }
 

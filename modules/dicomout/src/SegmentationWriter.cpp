@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include "DcmCommon.h"
+#include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Version.h"
 
@@ -111,6 +112,13 @@ void writeSegmentation(const std::filesystem::path& file, const Volume& grid,
 
   const std::size_t slice = static_cast<std::size_t>(dims.x) * dims.y;
   std::vector<Uint8> frame(slice);
+  // The frames' bits as the standard packs them: one stream, frame after frame, with no padding
+  // between frames (PS3.5 8.1.1). DCMTK 3.6.7 pads each frame to a whole byte and cuts the
+  // total, which shifts every frame after the first by a bit per frame when rows x columns is
+  // not a multiple of 8 (DicomOut.SegReadBackVoxelForVoxel, 23 x 17 frames: 792 voxels wrong),
+  // so the pixel data is written again from this stream below.
+  std::vector<Uint8> packed((slice * segments.size() * static_cast<std::size_t>(dims.z) + 7) / 8);
+  std::size_t bit = 0;
   for (const SegmentMask& mask : segments) {
     DcmSegment* segment = nullptr;
     const bool metabolic = mask.metabolic;
@@ -131,7 +139,11 @@ void writeSegmentation(const std::filesystem::path& file, const Volume& grid,
     for (std::size_t v : mask.voxels) bySlice[v / slice].push_back(v % slice);
     for (int k = 0; k < dims.z; ++k) {
       std::fill(frame.begin(), frame.end(), Uint8{0});
-      for (std::size_t p : bySlice[static_cast<std::size_t>(k)]) frame[p] = 1;
+      for (std::size_t p : bySlice[static_cast<std::size_t>(k)]) {
+        frame[p] = 1;
+        packed[(bit + p) / 8] |= static_cast<Uint8>(1u << ((bit + p) % 8));
+      }
+      bit += slice;
       const glm::dvec3 position = grid.worldFromIndexPoint({0.0, 0.0, double(k)});
       std::unique_ptr<FGPlanePosPatient> pos(FGPlanePosPatient::createMinimal(
           ds(position.x).c_str(), ds(position.y).c_str(), ds(position.z).c_str()));
@@ -168,7 +180,12 @@ void writeSegmentation(const std::filesystem::path& file, const Volume& grid,
   }
 
   DcmFileFormat ff;
-  check(seg->writeDataset(*ff.getDataset()), file.string() + ": DICOM SEG");
+  DcmDataset& dataset = *ff.getDataset();
+  check(seg->writeDataset(dataset), file.string() + ": DICOM SEG");
+  MVW_CHECK_EQ(bit, slice * static_cast<std::size_t>(dims.z) * segments.size());
+  check(dataset.putAndInsertUint8Array(DCM_PixelData, packed.data(),
+                                       static_cast<unsigned long>(packed.size())),
+        "PixelData");
   save(ff, file);
 }
 

@@ -159,8 +159,9 @@ int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomI
     }
   } cleanup{staging};
 
-  // DERIVED\SECONDARY, then the source's own values 3 and on (PET: the image's kind).
-  std::string imageType = "DERIVED\\SECONDARY";
+  // DERIVED\SECONDARY (PET: DERIVED\PRIMARY, the only value 2 its IOD allows), then the
+  // source's own values 3 and on (PET: the image's kind).
+  std::string imageType = modality == "PT" ? "DERIVED\\PRIMARY" : "DERIVED\\SECONDARY";
   {
     const std::string src = text(tmpl, DCM_ImageType);
     const std::size_t first = src.find('\\');
@@ -180,7 +181,9 @@ int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomI
     removePrivate(ds);
     // 2C, required for CT and MR without a Patient Orientation Code Sequence: empty where the
     // source does not say.
-    if (!ds.tagExists(DCM_PatientPosition) && modality != "PT")
+    if (ds.tagExists(DCM_PatientOrientationCodeSequence))
+      delete ds.remove(DCM_PatientPosition);  // not both (PET: the code sequence is the one)
+    else if (!ds.tagExists(DCM_PatientPosition))
       putString(ds, DCM_PatientPosition, "");
     putString(ds, DCM_Manufacturer, "mvw");
     // Frame of Reference: the grid's (the anatomical volume's).
