@@ -74,11 +74,12 @@ std::string text(DcmItem& item, const DcmTagKey& tag) {
   return {};
 }
 
-// Private tags, recursively (a source's private sequences and their items).
+// Private tags and group lengths (retired), recursively: a source's private sequences and the
+// group lengths inside copied sequence items.
 void removePrivate(DcmItem& item) {
   for (unsigned long i = item.card(); i-- > 0;) {
     DcmElement* e = item.getElement(i);
-    if (e->getTag().isPrivate()) {
+    if (e->getTag().isPrivate() || e->getTag().getElement() == 0x0000) {
       delete item.remove(e);
       continue;
     }
