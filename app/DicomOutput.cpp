@@ -26,7 +26,16 @@ void addDicomOptions(CLI::App& cmd, DicomOutputOptions& o, bool withFolder) {
       ->check(nonEmpty());
 }
 
-void checkDicomOutput(const DicomOutputOptions& o, const fs::path& outDir) {
+void checkDicomOutput(const DicomOutputOptions& o, bool writing, const fs::path& outDir) {
+  if (!writing) {
+    const char* given = !o.patientId.empty()     ? "--patient-id"
+                        : !o.patientName.empty() ? "--patient-name"
+                        : !o.uidRoot.empty()     ? "--uid-root"
+                        : o.force                ? "--force"
+                                                 : nullptr;
+    if (given)
+      throw CLI::ValidationError(given, "goes with a DICOM output (--dicom, or --seg for stats)");
+  }
   dicomout::checkUidRoot(o.uidRoot, "--uid-root");
   dicomout::setUidRoot(o.uidRoot);
   if (!o.dicom || o.force || outDir.empty()) return;

@@ -21,9 +21,11 @@ struct DicomOutputOptions {
 // --patient-id, --patient-name, --uid-root; with withFolder, --dicom and --force.
 void addDicomOptions(CLI::App& cmd, DicomOutputOptions& o, bool withFolder);
 
-// Before any work: the UID root is valid (and taken), and with --dicom an output folder that
-// exists is empty unless --force. Throws InputError naming the folder.
-void checkDicomOutput(const DicomOutputOptions& o, const std::filesystem::path& outDir);
+// Before any work: the DICOM options go with a DICOM output (writing: --dicom or --seg), the
+// UID root is valid (and taken), and with --dicom an output folder that exists is empty unless
+// --force. Throws CLI::ValidationError or InputError naming the folder.
+void checkDicomOutput(const DicomOutputOptions& o, bool writing,
+                      const std::filesystem::path& outDir);
 
 // The line that tells the reader whose study the objects went into.
 std::string identityNote(const dicomout::DicomIdentity& id);

@@ -120,7 +120,7 @@ class Staging {
 void runRegister(const RegisterOptions& opt) {
   const auto interpolation = kInterpolations.at(opt.interpolation);
   // Checked before any heavy work: a wrong -o should not cost a registration.
-  checkDicomOutput(opt.dicom, opt.output);
+  checkDicomOutput(opt.dicom, opt.dicom.dicom, opt.output);
   Staging staging(opt.output);
 
   io::ReadOptions fixedRead, movingRead;

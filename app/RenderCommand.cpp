@@ -430,7 +430,7 @@ std::vector<std::string> writeViewDicom(const mvw::study::PlannedView& v, const 
 void runRender(const RenderOptions& o) {
   config::StudyConfig study = config::loadStudyConfig(o.study);
   checkOutputFolder(o.outDir);
-  checkDicomOutput(o.dicom, o.outDir);
+  checkDicomOutput(o.dicom, o.dicom.dicom, o.outDir);
   mvw::study::Session session(std::move(study), o.overrides);
   // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
   auto context = makeHeadlessContext(o.gl);

@@ -220,7 +220,7 @@ void runStats(StatsOptions opt) {
     throw CLI::ValidationError("--threshold-fraction", "must lie in (0, 1], e.g. 0.41");
   if (opt.label != 0 && opt.labels.empty() && rois != 0)
     throw CLI::ValidationError("--label", "needs --labels FILE");
-  checkDicomOutput(opt.dicom, {});
+  checkDicomOutput(opt.dicom, !opt.seg.empty(), {});
   if (!opt.seg.empty()) {
     std::error_code ec;
     const fs::path parent = fs::absolute(opt.seg).parent_path();
