@@ -9,13 +9,17 @@
 #include <map>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "CliChecks.h"
+#include "DicomOutput.h"
 #include "mvw/core/Error.h"
+#include "mvw/dicomout/SpatialRegistration.h"
+#include "mvw/dicomout/VolumeSeries.h"
 #include "mvw/io/Png.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
@@ -45,6 +49,7 @@ struct RegisterOptions {
   bool noSuv = false;
   bool affine = false;
   double rotationSearchDeg = 0.0;
+  DicomOutputOptions dicom;
 };
 
 const std::map<std::string, Interpolation> kInterpolations = {{"auto", Interpolation::Automatic},
@@ -102,6 +107,7 @@ class Staging {
     fs::create_directories(output_, ec);
     if (ec) throw InputError(output_, "cannot create the output folder: " + ec.message());
     for (const auto& n : names) {
+      if (fs::is_directory(dir_ / n, ec)) fs::remove_all(output_ / n, ec);  // an earlier run's
       fs::rename(dir_ / n, output_ / n, ec);
       if (ec) throw InputError(output_ / n, "cannot write: " + ec.message());
     }
@@ -114,6 +120,7 @@ class Staging {
 void runRegister(const RegisterOptions& opt) {
   const auto interpolation = kInterpolations.at(opt.interpolation);
   // Checked before any heavy work: a wrong -o should not cost a registration.
+  checkDicomOutput(opt.dicom, opt.dicom.dicom, opt.output);
   Staging staging(opt.output);
 
   io::ReadOptions fixedRead, movingRead;
@@ -122,6 +129,20 @@ void runRegister(const RegisterOptions& opt) {
   fixedRead.suv = movingRead.suv = !opt.noSuv;
   Volume fixed = io::readVolume(opt.fixed, fixedRead);
   const Volume moving = io::readVolume(opt.moving, movingRead);
+  // With --dicom, the identities before the registration: a source without one is refused
+  // now. A moving volume that is not DICOM joins the fixed one's patient and study.
+  std::optional<dicomout::DicomIdentity> fixedId, movingId;
+  if (opt.dicom.dicom) {
+    fixedId = dicomout::identityOf(fixed, opt.dicom.given());
+    dicomout::GivenIdentity movingGiven = opt.dicom.given();
+    if (moving.metadata().format != "DICOM") {
+      if (movingGiven.patientId.empty()) movingGiven.patientId = fixedId->patientId;
+      if (movingGiven.patientName.empty())
+        movingGiven.patientName =
+            fixedId->patientName.empty() ? fixedId->patientId : fixedId->patientName;
+    }
+    movingId = dicomout::identityOf(moving, movingGiven);
+  }
 
   RegistrationOptions options;
   options.seed = opt.seed;
@@ -144,6 +165,36 @@ void runRegister(const RegisterOptions& opt) {
 
   r.transform.writeItk(staging.file("transform.tfm"));
   io::writeVolume(onGrid, staging.file("functional_on_anatomical.nii.gz"));
+  std::vector<std::string> dicomOutputs;
+  std::string seriesNote;
+  if (fixedId) {
+    dicomout::SeriesInfo regSeries;
+    regSeries.seriesNumber = 2001;
+    regSeries.description = "mvw registration (" + std::string(r.affine ? "affine" : "rigid") + ")";
+    dicomout::writeSpatialRegistration(staging.file("registration.dcm"), *fixedId, *movingId,
+                                       r.transform.fixedFromMoving(), r.affine, regSeries,
+                                       std::string(r.affine ? "rigid then affine" : "rigid") +
+                                           ", Mattes mutual information (mvw register)");
+    dicomOutputs.push_back("registration.dcm");
+    dicomout::SeriesInfo resampled;
+    resampled.seriesNumber = 2002;
+    resampled.description =
+        (moving.metadata().seriesDescription.empty() ? std::string("functional")
+                                                     : moving.metadata().seriesDescription) +
+        " on the anatomical grid";
+    try {
+      const int files = dicomout::writeVolumeSeries(
+          staging.file("functional_on_anatomical"), onGrid, *movingId, *fixedId, resampled,
+          "resampled onto the grid of " + opt.fixed + " by mvw register (" + name(used) + ")");
+      dicomOutputs.push_back("functional_on_anatomical");
+      seriesNote = "functional_on_anatomical/ (" + std::to_string(files) + " " +
+                   movingId->modality + " images)";
+    } catch (const InputError& e) {
+      // A functional source that is not a DICOM PT, MR or CT series: the registration object
+      // is written, the series is not, and the reader is told why.
+      seriesNote = std::string("no DICOM series of the resampled volume: ") + e.what();
+    }
+  }
 
   nlohmann::json j;
   j["fixed"] = opt.fixed;
@@ -211,8 +262,9 @@ void runRegister(const RegisterOptions& opt) {
   j["fixed_from_moving"] = rows(r.transform.fixedFromMoving());
   j["moving_from_fixed"] = rows(r.transform.movingFromFixed());
   j["interpolation"] = name(used);
-  const std::vector<std::string> outputs = {"transform.tfm", "functional_on_anatomical.nii.gz",
-                                            "registration_qa.png", "registration.json"};
+  std::vector<std::string> outputs = {"transform.tfm", "functional_on_anatomical.nii.gz",
+                                      "registration_qa.png", "registration.json"};
+  outputs.insert(outputs.end(), dicomOutputs.begin(), dicomOutputs.end());
   j["outputs"] = outputs;
   {
     std::ofstream out(staging.file("registration.json"));
@@ -231,6 +283,10 @@ void runRegister(const RegisterOptions& opt) {
             << (fs::path(opt.output) / "functional_on_anatomical.nii.gz").string() << " ("
             << name(used) << "), " << (fs::path(opt.output) / "registration_qa.png").string()
             << ", " << (fs::path(opt.output) / "registration.json").string() << "\n";
+  if (fixedId)
+    std::cout << "  DICOM: " << (fs::path(opt.output) / "registration.dcm").string()
+              << " (Spatial Registration, " << (r.affine ? "AFFINE" : "RIGID") << "), "
+              << seriesNote << ", " << identityNote(*fixedId) << "\n";
   for (const std::string& w : warnings) std::cerr << "mvw register: warning: " << w << "\n";
 }
 
@@ -271,6 +327,7 @@ void addRegisterCommand(CLI::App& app) {
                   "30-degree steps on the coarsest level (for large misalignment); 0: off")
       ->check(CLI::Range(0.0, 180.0));
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
+  addDicomOptions(*cmd, opt->dicom, true);
   cmd->callback([opt] { runRegister(*opt); });
 }
 

@@ -1,6 +1,7 @@
 #include "RenderCommand.h"
 
 #include "CliChecks.h"
+#include "DicomOutput.h"
 #include "HeadlessGl.h"
 
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "mvw/core/Error.h"
 #include "mvw/core/Version.h"
 #include "mvw/core/WindowLevel.h"
+#include "mvw/dicomout/SecondaryCapture.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/MovieWriter.h"
 #include "mvw/io/Png.h"
@@ -44,6 +46,7 @@ struct RenderOptions {
   mvw::study::ViewOverrides overrides;
   std::string gl;  // --gl (empty: MVW_GL, else auto)
   std::string gradient = "auto";
+  DicomOutputOptions dicom;
 };
 
 std::string fnv1a(const std::vector<std::uint8_t>& bytes) {
@@ -180,7 +183,7 @@ struct ViewPainter {
 // The rest of an orbit's frames (frame 0 is the still itself, at the view's own azimuth),
 // written with the movie into the staging folder; returns render.json's "orbit" record.
 nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame& still,
-                           Staging& staging) {
+                           Staging& staging, std::vector<Image>* keep) {
   const config::ViewConfig& c = paint.view.config;
   const fs::path folder = staging.dir() / c.name;
   fs::create_directories(folder);
@@ -203,6 +206,7 @@ nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame
     const std::string name = frameName(static_cast<int>(k));
     io::writePng(f.image, folder / name);
     movie.add(f.image);
+    if (keep) keep->push_back(f.image);
     files.push_back(c.name + "/" + name);
   }
   movie.finish();
@@ -364,6 +368,7 @@ struct Output {
   std::string file;
   Image image;
   nlohmann::json record;
+  std::vector<std::string> dicomFiles;  // with --dicom: the view's objects, in staging
 };
 
 // Everything is written into the staging folder before anything moves into place: a failure
@@ -381,7 +386,10 @@ void writeOutputs(const fs::path& outDir, std::vector<Output>& outputs,
                      std::string("cannot write the renders (is the disk full?): ") + e.what());
   }
   fs::create_directories(outDir);
-  for (const auto& out : outputs) fs::rename(staging.dir() / out.file, outDir / out.file);
+  for (const auto& out : outputs) {
+    fs::rename(staging.dir() / out.file, outDir / out.file);
+    for (const std::string& name : out.dicomFiles) fs::rename(staging.dir() / name, outDir / name);
+  }
   for (const std::string& name : orbits) {
     const fs::path folder = outDir / name;
     fs::remove_all(folder);  // an earlier run's frames
@@ -391,13 +399,45 @@ void writeOutputs(const fs::path& outDir, std::vector<Output>& outputs,
   fs::rename(staging.dir() / "render.json", outDir / "render.json");
 }
 
+// With --dicom: a view's still as a Secondary Capture and its orbit as one multi-frame SC, in
+// a new series of the anatomical source's study (one series per view), written into staging.
+std::vector<std::string> writeViewDicom(const mvw::study::PlannedView& v, const Image& still,
+                                        const std::vector<Image>& orbit, double fps,
+                                        const dicomout::DicomIdentity& id, int seriesNumber,
+                                        Staging& staging) {
+  const config::ViewConfig& c = v.config;
+  dicomout::SeriesInfo series;
+  series.seriesInstanceUid = dicomout::newUid();
+  series.seriesNumber = seriesNumber;
+  series.description =
+      "mvw " + c.name + " (" + toString(c.mode) + ", " + config::toString(c.view) + ")";
+  dicomout::CaptureInfo info;
+  info.burnedInAnnotation = c.annotate;
+  info.derivation = "mvw render: " + std::string(toString(c.mode)) + " of the " +
+                    config::toString(c.view) + " view";
+  std::vector<std::string> names{c.name + ".dcm"};
+  dicomout::writeSecondaryCapture(staging.dir() / names.back(), {still}, id, series, info);
+  if (!orbit.empty()) {
+    info.instanceNumber = 2;
+    info.frameTimeMs = 1000.0 / fps;
+    info.derivation += ", orbit of " + std::to_string(orbit.size()) + " frames";
+    names.push_back(c.name + "-orbit.dcm");
+    dicomout::writeSecondaryCapture(staging.dir() / names.back(), orbit, id, series, info);
+  }
+  return names;
+}
+
 void runRender(const RenderOptions& o) {
   config::StudyConfig study = config::loadStudyConfig(o.study);
   checkOutputFolder(o.outDir);
+  checkDicomOutput(o.dicom, o.dicom.dicom, o.outDir);
   mvw::study::Session session(std::move(study), o.overrides);
   // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
   auto context = makeHeadlessContext(o.gl);
   session.load();
+  // Before any render: a source without a DICOM identity needs one from the command line.
+  std::optional<dicomout::DicomIdentity> identity;
+  if (o.dicom.dicom) identity = dicomout::identityOf(session.anatomical(), o.dicom.given());
   render::VolumeRenderer renderer(*context, session.anatomical(),
                                   render::parseGradientSource(o.gradient));
   session.attach(renderer);
@@ -405,6 +445,7 @@ void runRender(const RenderOptions& o) {
   std::vector<Output> outputs;
   Staging staging(o.outDir);
   std::vector<std::string> orbits;  // views whose frames and movie wait in staging
+  int dicomObjects = 0;
   for (const mvw::study::PlannedView& v : session.views(renderer)) {
     const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
     const ViewPainter paint{renderer,
@@ -415,17 +456,28 @@ void runRender(const RenderOptions& o) {
                             render::showsFunctional(v.settings, session.functional() != nullptr)};
     render::RenderedFrame frame = paint(v.settings);
     nlohmann::json record = viewRecord(paint, frame);
+    std::vector<Image> orbitFrames;
     if (v.config.orbit > 0) {
-      record["orbit"] = renderOrbit(paint, frame, staging);
+      record["orbit"] = renderOrbit(paint, frame, staging, identity ? &orbitFrames : nullptr);
       orbits.push_back(v.config.name);
     }
-    outputs.push_back({v.config.name + ".png", std::move(frame.image), record});
+    std::vector<std::string> dicomFiles;
+    if (identity) {
+      dicomFiles = writeViewDicom(v, frame.image, orbitFrames, v.config.orbitFps, *identity,
+                                  1000 + static_cast<int>(outputs.size()) + 1, staging);
+      record["dicom"] = dicomFiles;
+      dicomObjects += static_cast<int>(dicomFiles.size());
+    }
+    outputs.push_back({v.config.name + ".png", std::move(frame.image), record, dicomFiles});
     std::cerr << "rendered " << v.config.name << " (" << toString(v.config.mode) << ", "
               << config::toString(v.config.view) << ") in " << static_cast<int>(frame.milliseconds)
               << " ms\n";
   }
   writeOutputs(o.outDir, outputs, orbits, studyRecord(session, renderer, *context), staging);
   std::cout << "wrote " << outputs.size() << " view(s) and render.json to " << o.outDir << "\n";
+  if (identity)
+    std::cout << "wrote " << dicomObjects << " DICOM Secondary Capture object(s) "
+              << identityNote(*identity) << "\n";
 }
 
 }  // namespace
@@ -485,6 +537,7 @@ void addRenderCommand(CLI::App& app) {
                 "No orientation labels, scale bar or caption");
   addGlOption(*cmd, o->gl);
   addGradientOption(*cmd, o->gradient);
+  addDicomOptions(*cmd, o->dicom, true);
   cmd->callback([o] {
     if (o->overrides.window.has_value() != o->overrides.level.has_value())
       throw InputError(o->study, "--window and --level go together");

@@ -15,8 +15,10 @@
 #include <nlohmann/json.hpp>
 
 #include "CliChecks.h"
+#include "DicomOutput.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/dicomout/SegmentationWriter.h"
 #include "mvw/io/DicomSeg.h"
 #include "mvw/io/LabelTable.h"
 #include "mvw/io/VolumeReader.h"
@@ -39,6 +41,8 @@ struct StatsOptions {
   double threshold = NAN, thresholdFraction = NAN;
   bool json = false;
   bool noSuv = false;
+  std::string seg;  // --seg OUT.dcm
+  DicomOutputOptions dicom;
 };
 
 std::string num(double v, int significant = 4) {
@@ -169,6 +173,41 @@ void printText(std::ostream& out, const Total& t) {
       << "  (total metabolic tumour volume x its mean)\n";
 }
 
+// --seg: each ROI, or with a threshold its metabolic volume, as one segment of a binary DICOM
+// SEG on the volume's grid, in the source's study.
+void writeSeg(const StatsOptions& opt, const Volume& volume, const std::vector<Roi>& list,
+              const std::vector<study::RoiStats>& stats, const study::StatsOptions& so) {
+  const dicomout::DicomIdentity id = dicomout::identityOf(volume, opt.dicom.given());
+  std::vector<dicomout::SegmentMask> segments;
+  const std::string unit = volume.metadata().unit.empty() ? "" : " " + volume.metadata().unit;
+  std::string algorithm = "mvw stats";
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    dicomout::SegmentMask m;
+    m.description = list[i].what;
+    if (stats[i].thresholdValue) {
+      m.voxels = study::metabolicVoxels(volume, list[i].voxels, *stats[i].thresholdValue);
+      m.metabolic = true;
+      m.label = "metabolic volume >= " + num(*stats[i].thresholdValue) + unit;
+      algorithm = so.threshold.kind == study::Threshold::Kind::FractionOfMax
+                      ? "mvw stats, threshold " + num(opt.thresholdFraction * 100) + " % of max"
+                      : "mvw stats, threshold " + num(opt.threshold) + unit;
+    } else {
+      m.voxels = list[i].voxels;
+      m.label = list[i].label ? list[i].label->name : list[i].what;
+      algorithm = "mvw stats, ROI";
+    }
+    segments.push_back(std::move(m));
+  }
+  dicomout::SeriesInfo series;
+  series.seriesNumber = 3001;
+  series.description = segments.size() == 1
+                           ? "mvw " + segments.front().label
+                           : "mvw segmentation (" + std::to_string(segments.size()) + " segments)";
+  dicomout::writeSegmentation(opt.seg, volume, segments, id, series, algorithm);
+  std::cerr << "mvw stats: wrote the DICOM SEG " << opt.seg << " (" << segments.size() << " segment"
+            << (segments.size() == 1 ? "" : "s") << ") " << identityNote(id) << "\n";
+}
+
 void runStats(StatsOptions opt) {
   const int rois = (!opt.sphere.empty()) + (!opt.box.empty()) + (!opt.labels.empty());
   const char* kRoiChoice =
@@ -181,6 +220,14 @@ void runStats(StatsOptions opt) {
     throw CLI::ValidationError("--threshold-fraction", "must lie in (0, 1], e.g. 0.41");
   if (opt.label != 0 && opt.labels.empty() && rois != 0)
     throw CLI::ValidationError("--label", "needs --labels FILE");
+  checkDicomOutput(opt.dicom, !opt.seg.empty(), {});
+  if (!opt.seg.empty()) {
+    std::error_code ec;
+    const fs::path parent = fs::absolute(opt.seg).parent_path();
+    if (!fs::is_directory(parent, ec))
+      throw InputError(opt.seg, "its folder " + parent.string() + " does not exist");
+    if (fs::is_directory(opt.seg, ec)) throw InputError(opt.seg, "is a folder, not a file name");
+  }
 
   io::ReadOptions read;
   read.series = opt.series;
@@ -294,6 +341,7 @@ void runStats(StatsOptions opt) {
       throw InputError(source, "the " + roi.what + " holds no voxel with data (its " +
                                    std::to_string(stats.back().noData) + " voxels are NaN)");
   }
+  if (!opt.seg.empty()) writeSeg(opt, volume, list, stats, so);
   std::optional<Total> total;
   if (segmentList && list.size() > 1) {
     total.emplace();
@@ -384,6 +432,12 @@ void addStatsCommand(CLI::App& app) {
       ->check(finite);
   cmd->add_flag("--json", opt->json, "Print a JSON array, one object per ROI or label");
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
+  cmd->add_option(
+         "--seg", opt->seg,
+         "Write the ROI (with --threshold/--threshold-fraction: its metabolic volume) as a "
+         "binary DICOM SEG file on the volume's grid")
+      ->check(nonEmpty());
+  addDicomOptions(*cmd, opt->dicom, false);
   cmd->callback([opt] { runStats(*opt); });
 }
 
