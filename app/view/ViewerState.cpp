@@ -92,6 +92,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   view3d_.transfer = render::transferPreset(presetName_);
   view3d_.camera.view = StandardView::Anterior;
   view3d_.isoValue = defaults.isoValue;
+  view3d_.cutFace = CutFace::Anatomy;  // as a planned view has it by default (cut_face)
   mprWindow_ = defaults.mpr.window;
   mprLevel_ = defaults.mpr.level;
   crosshair_ = scene_.centre;
@@ -252,6 +253,7 @@ void ViewerState::drag(int pane, double dx, double dy, MouseButton button, bool 
     mprWindow_ = std::max(1e-3, mprWindow_ * std::exp(dx * 2.0));
     mprLevel_ -= dy * (hi - lo) * 0.5;
     markMprDirty();
+    if (render::showsAnatomyOnCutFace(view3d_)) markDirty(k3d);  // its cut face follows
   }
 }
 
@@ -521,6 +523,8 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
       s.window = mprWindow_, s.level = mprLevel_;
   } else if (pane == k3d) {
     s = view3d_;
+    // The cut face shows the anatomy as the MPR panes do, under their window.
+    if (render::showsAnatomyOnCutFace(s)) s.window = mprWindow_, s.level = mprLevel_;
   } else {
     s.mode = RenderMode::Mpr;
     s.camera.view = mprViewIn(layout, pane);
