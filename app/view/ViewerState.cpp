@@ -114,8 +114,14 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       view3d_.isoValue = defaults.isoValue;
     break;
   }
+  if (functional_) {
+    const auto w = mvw::study::defaultFunctionalDisplayWindow(*functional_, scene_.functionalRange);
+    functionalDisplay_ = {w[0], w[1]};
+  }
   for (const mvw::study::PlannedView& v : planned)
     if (v.settings.mode == RenderMode::Mpr) {
+      if (v.config.functionalWindow)
+        functionalDisplay_ = {(*v.config.functionalWindow)[0], (*v.config.functionalWindow)[1]};
       if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
       mprColors_ = v.settings.imageColors;
       segmentOutlines_ = v.settings.segmentOutlines;
@@ -489,10 +495,9 @@ bool ViewerState::needsRender(int pane) const {
   return p.dirty && p.size.x >= 8 && p.size.y >= 8;
 }
 
-std::pair<double, double> ViewerState::functionalWindow() const {
-  if (view3d_.functionalHigh > view3d_.functionalLow)
-    return {view3d_.functionalLow, view3d_.functionalHigh};
-  return scene_.functionalRange;
+void ViewerState::setFunctionalDisplayWindow(double low, double high) {
+  functionalDisplay_ = {low, std::max(high, low + 1e-6 * std::abs(low) + 1e-12)};
+  markAllDirty();
 }
 
 render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) const {
@@ -504,7 +509,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
   const PaneState& image = pane_(pane);
   const bool petCt = layout != config::ViewerLayout::Standard;
   // The functional window (the overlay's, the PET/CT layout's functional pane and MIP).
-  const auto [flo, fhi] = functionalWindow();
+  const auto [flo, fhi] = functionalDisplay_;
   render::RenderSettings s;
   if (pane == k3d && petCt) {
     // The rotating MIP of the functional volume (of the anatomical one where there is none),
@@ -553,6 +558,8 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
       s.overlayColors = functionalColors_;
       s.overlayOpacity = 1.0f;
       s.overlayThreshold = -1.0f;
+      s.functionalLow = flo;
+      s.functionalHigh = fhi;
     } else if (petCt && pane == kCoronal) {
       s.imageColors = functionalColors_;  // the one volume in the functional colour map
     }
@@ -573,7 +580,7 @@ std::string ViewerState::caption(int pane, const render::RenderSettings& s) cons
   if (!petCtLayout()) return text;
   if (pane == kCoronal && functional_) {
     // The functional pane's window is the functional one (the anatomy's is drawn black).
-    const auto [flo, fhi] = functionalWindow();
+    const auto [flo, fhi] = functionalDisplay_;
     char window[96];
     std::snprintf(window, sizeof window, "  %.4g-%.4g ", flo, fhi);
     const std::string& unit = functional_->metadata().unit;
