@@ -76,12 +76,16 @@ TEST(FunctionalDisplayWindow, ARobustRangeFromTheDataOrSuvFiveOrTen) {
   // 500 voxels above 0: the sorted 300 .. 797 and 5000, 5000; the 99.5th percentile is
   // element floor(0.995 * 499) = 496, the value 796.
   EXPECT_EQ(w[1], 796.0);
-  // Values below 0 (a z map): from the 1st percentile of the voxels above the minimum.
+  // Values below 0 in a z map: from the 1st percentile of the voxels above the minimum;
+  // elsewhere (an ASL CBF's negative noise) from 0.
   Volume z({10, 10, 10}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  z.metadata().unit = "z";
   for (int n = 0; n < 1000; ++n) z.setValue(n % 10, n / 10 % 10, n / 100, 0, n / 100.0 - 5.0);
   const auto zw = defaultFunctionalDisplayWindow(z, z.valueRange());
   EXPECT_NEAR(zw[0], -4.9, 1e-5);  // element floor(0.01 * 998) = 9 of -4.99 .. 4.99
   EXPECT_NEAR(zw[1], 4.94, 1e-5);  // element floor(0.995 * 998) = 993
+  z.metadata().unit = "ml/100g/min";
+  EXPECT_EQ(defaultFunctionalDisplayWindow(z, z.valueRange())[0], 0.0);
   // SUV: 0-5 (here three hot voxels above it), or 0-10 where more than 0.5 % of the voxels
   // above the background lie above SUV 5.
   Volume suv({10, 10, 10}, 1, ScalarType::Float32, glm::dmat4(1.0));

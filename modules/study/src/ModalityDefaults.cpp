@@ -94,7 +94,10 @@ std::array<double, 2> defaultFunctionalDisplayWindow(const Volume& functional,
   };
   const double top = percentile(0.995);
   if (functional.metadata().unit.rfind("SUV", 0) == 0) return {0.0, top > 5.0 ? 10.0 : 5.0};
-  const double bottom = lo < 0.0 ? percentile(0.01) : 0.0;
+  // Below 0 is noise in perfusion (an ASL subtraction) and most other maps: from 0; a
+  // statistic map's negative values (deactivation) are data.
+  const std::string& unit = functional.metadata().unit;
+  const double bottom = lo < 0.0 && (unit == "z" || unit == "t") ? percentile(0.01) : 0.0;
   if (!(top > bottom)) return {lo, hi};
   return {bottom, top};
 }
