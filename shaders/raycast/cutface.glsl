@@ -14,7 +14,7 @@ uniform vec2 uWindowLevel;  // window width, centre (the anatomy's unit): the MP
 const float kCutFaceRelief = 0.85;
 
 // The cut face's colour at `hit` (world mm), whose anatomical value is `value` and glyph
-// attribute `attribute` (0: none); shaded: the glyph relief (composite without shading: none).
+// attribute `beta` (0: none); shaded: the glyph relief (composite without shading: none).
 vec3 cutFaceColour(vec3 hit, vec3 viewDir, float value, float beta, bool shaded) {
   float grey =
       clamp((value - (uWindowLevel.y - 0.5 * uWindowLevel.x)) / uWindowLevel.x, 0.0, 1.0);
