@@ -25,13 +25,17 @@ struct FeatureBenchOptions {
   std::string gl;
 };
 
-bool hasFeature(const render::RenderSettings& s) { return s.glyphs || s.fusion || s.depthCue; }
+// The cut face's anatomy (issue 36) counts as a feature: without it, the plain face.
+bool hasFeature(const render::RenderSettings& s) {
+  return s.glyphs || s.fusion || s.depthCue || render::showsAnatomyOnCutFace(s);
+}
 
 std::string featureName(const render::RenderSettings& s) {
   std::string name;
   if (s.glyphs) name += "glyphs";
   if (s.fusion) name += name.empty() ? "fusion" : "+fusion";
   if (s.depthCue) name += name.empty() ? "depth cue" : "+depth cue";
+  if (render::showsAnatomyOnCutFace(s)) name += name.empty() ? "cut face" : "+cut face";
   return name;
 }
 
@@ -61,6 +65,7 @@ void runFeatureBench(const FeatureBenchOptions& o) {
     render::RenderSettings with = v.settings;
     render::RenderSettings without = with;
     without.glyphs = without.fusion = without.depthCue = false;
+    without.cutFace = render::CutFace::Plain;
     renderer.render(with);  // compile both programs, upload the glyph map
     renderer.render(without);
     std::vector<double> ratios;
@@ -90,7 +95,8 @@ void addBenchFeaturesCommand(CLI::App& bench) {
   auto o = std::make_shared<FeatureBenchOptions>();
   CLI::App* cmd = bench.add_subcommand(
       "features",
-      "ms/frame of each view with its glyphs, fusion or depth cue and without, interleaved");
+      "ms/frame of each view with its glyphs, fusion, depth cue or cut face and without, "
+      "interleaved");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("--size", o->size, "Image width and height (default: each view's own)")
       ->check(CLI::Range(16, 4096));

@@ -5,6 +5,9 @@
 #include "raycast/common.glsl"
 #include "common/functional.glsl"
 #include "common/glyphs.glsl"
+#if defined(MVW_CUT_FACE)
+#include "raycast/cutface.glsl"
+#endif
 
 uniform sampler2D uTransfer;   // RGBA over (value, |gradient| * uGradientScale); alpha per step
 uniform vec2 uTransferRange;   // (scale, offset): value * scale + offset is the table's column, 0..1
@@ -129,6 +132,26 @@ float leanSampleValue(vec3 tex) {
 int leanSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   return value >= uVisibleValues.x && value <= uVisibleValues.y ? 2 : 0;
 }
+
+#if defined(MVW_CUT_FACE)
+// A ray that enters the cropped box where the table shows the tissue meets the crop's cut
+// face: opaque, the anatomy's grey under the window with fusion and glyphs on it
+// (cutface.glsl), and nothing behind it. Elsewhere the ray runs as without the variant.
+#define RAY_ENTRY_HOOK
+bool entryHook(inout RayState s, Ray ray, vec2 span) {
+  vec3 tex = textureAt(span.x);
+  float value = sampleValue(tex);
+  if (value < uVisibleValues.x || value > uVisibleValues.y) return true;
+  float beta = 0.0;
+#if defined(MVW_GLYPHS)
+  beta = sampleGradientOfValue(tex).a;
+#endif
+  vec3 face = ray.origin + span.x * ray.dir;
+  s.color = vec4(cutFaceColour(face, ray.dir, value, beta, uShading), 1.0);
+  s.depth = span.x;
+  return false;
+}
+#endif
 
 void finishHook(inout RayState s, Ray ray, vec2 span) {
   fragColor = vec4(s.color.rgb + (1.0 - s.color.a) * uBackground, 1.0);

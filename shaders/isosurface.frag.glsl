@@ -3,6 +3,9 @@
 #include "raycast/common.glsl"
 #include "common/functional.glsl"
 #include "common/glyphs.glsl"
+#if defined(MVW_CUT_FACE)
+#include "raycast/cutface.glsl"
+#endif
 
 uniform float uIsoValue;
 uniform vec4 uIsoColor;
@@ -49,6 +52,14 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
   // is the cut face itself: shade it flat, facing the viewer, not with the gradient of
   // whatever tissue was cut (noise, for a CT).
   if (s.hitT <= gRayEntry) n = -ray.dir;
+#if defined(MVW_CUT_FACE)
+  // The anatomy's grey under the window instead of the isosurface colour (cutface.glsl).
+  if (s.hitT <= gRayEntry) {
+    fragColor = vec4(cutFaceColour(hit, ray.dir, sampleValue(toTexture(hit)), g.a, true), 1.0);
+    fragDepth = s.hitT;
+    return;
+  }
+#endif
 #if defined(MVW_GLYPHS)
   n = glyphNormal(hit, n, g.a);
 #endif

@@ -362,6 +362,14 @@ void ViewerPanel::drawControls() {
       v.functionalHigh = std::max(double(fw[1]), double(fw[0]) + 1e-6 * (fhi - flo));
       state_.markAllDirty();
     }
+    // The PET/CT layout's functional pane and MIP: the functional volume's own window.
+    if (state_.petCtLayout()) {
+      const auto [dlo, dhi] = state_.functionalDisplayWindow();
+      float dw[2] = {float(dlo), float(dhi)};
+      if (ImGui::DragFloatRange2("pane window", &dw[0], &dw[1], float(fhi - flo) / 200.0f,
+                                 float(std::min(flo, dlo)), float(std::max(fhi, dhi))))
+        state_.setFunctionalDisplayWindow(dw[0], dw[1]);
+    }
     int classes = v.functionalClasses;
     if (ImGui::InputInt("classes", &classes)) {
       v.functionalClasses = std::clamp(classes, 0, 64);

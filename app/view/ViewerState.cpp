@@ -92,6 +92,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   view3d_.transfer = render::transferPreset(presetName_);
   view3d_.camera.view = StandardView::Anterior;
   view3d_.isoValue = defaults.isoValue;
+  view3d_.cutFace = CutFace::Anatomy;  // as a planned view has it by default (cut_face)
   mprWindow_ = defaults.mpr.window;
   mprLevel_ = defaults.mpr.level;
   crosshair_ = scene_.centre;
@@ -113,8 +114,14 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       view3d_.isoValue = defaults.isoValue;
     break;
   }
+  if (functional_) {
+    const auto w = mvw::study::defaultFunctionalDisplayWindow(*functional_, scene_.functionalRange);
+    functionalDisplay_ = {w[0], w[1]};
+  }
   for (const mvw::study::PlannedView& v : planned)
     if (v.settings.mode == RenderMode::Mpr) {
+      if (v.config.functionalWindow)
+        functionalDisplay_ = {(*v.config.functionalWindow)[0], (*v.config.functionalWindow)[1]};
       if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
       mprColors_ = v.settings.imageColors;
       segmentOutlines_ = v.settings.segmentOutlines;
@@ -252,6 +259,7 @@ void ViewerState::drag(int pane, double dx, double dy, MouseButton button, bool 
     mprWindow_ = std::max(1e-3, mprWindow_ * std::exp(dx * 2.0));
     mprLevel_ -= dy * (hi - lo) * 0.5;
     markMprDirty();
+    if (render::showsAnatomyOnCutFace(view3d_)) markDirty(k3d);  // its cut face follows
   }
 }
 
@@ -487,10 +495,9 @@ bool ViewerState::needsRender(int pane) const {
   return p.dirty && p.size.x >= 8 && p.size.y >= 8;
 }
 
-std::pair<double, double> ViewerState::functionalWindow() const {
-  if (view3d_.functionalHigh > view3d_.functionalLow)
-    return {view3d_.functionalLow, view3d_.functionalHigh};
-  return scene_.functionalRange;
+void ViewerState::setFunctionalDisplayWindow(double low, double high) {
+  functionalDisplay_ = {low, std::max(high, low + 1e-6 * std::abs(low) + 1e-12)};
+  markAllDirty();
 }
 
 render::RenderSettings ViewerState::renderSettings(int pane, bool interacting) const {
@@ -502,7 +509,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
   const PaneState& image = pane_(pane);
   const bool petCt = layout != config::ViewerLayout::Standard;
   // The functional window (the overlay's, the PET/CT layout's functional pane and MIP).
-  const auto [flo, fhi] = functionalWindow();
+  const auto [flo, fhi] = functionalDisplay_;
   render::RenderSettings s;
   if (pane == k3d && petCt) {
     // The rotating MIP of the functional volume (of the anatomical one where there is none),
@@ -521,6 +528,8 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
       s.window = mprWindow_, s.level = mprLevel_;
   } else if (pane == k3d) {
     s = view3d_;
+    // The cut face shows the anatomy as the MPR panes do, under their window.
+    if (render::showsAnatomyOnCutFace(s)) s.window = mprWindow_, s.level = mprLevel_;
   } else {
     s.mode = RenderMode::Mpr;
     s.camera.view = mprViewIn(layout, pane);
@@ -549,6 +558,8 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
       s.overlayColors = functionalColors_;
       s.overlayOpacity = 1.0f;
       s.overlayThreshold = -1.0f;
+      s.functionalLow = flo;
+      s.functionalHigh = fhi;
     } else if (petCt && pane == kCoronal) {
       s.imageColors = functionalColors_;  // the one volume in the functional colour map
     }
@@ -569,7 +580,7 @@ std::string ViewerState::caption(int pane, const render::RenderSettings& s) cons
   if (!petCtLayout()) return text;
   if (pane == kCoronal && functional_) {
     // The functional pane's window is the functional one (the anatomy's is drawn black).
-    const auto [flo, fhi] = functionalWindow();
+    const auto [flo, fhi] = functionalDisplay_;
     char window[96];
     std::snprintf(window, sizeof window, "  %.4g-%.4g ", flo, fhi);
     const std::string& unit = functional_->metadata().unit;

@@ -204,6 +204,11 @@ class ViewerState : public PaneGeometry {
   const std::string& presetName() const { return presetName_; }
   double mprWindow() const { return mprWindow_; }
   double mprLevel() const { return mprLevel_; }
+  // The PET/CT layout's functional pane and rotating MIP: the functional volume alone, in its
+  // own window (not the glyphs' or the overlay's): the study's first MPR view's
+  // functional_window, else study::defaultFunctionalDisplayWindow from the data.
+  std::pair<double, double> functionalDisplayWindow() const { return functionalDisplay_; }
+  void setFunctionalDisplayWindow(double low, double high);
   int maximised() const { return maximised_; }  // -1: all four panes
   // The panes' geometry (PaneGeometry): the last frames' cameras, the crosshair, and the world
   // point under (x, y) of an MPR pane, on its plane through the crosshair.
@@ -259,9 +264,6 @@ class ViewerState : public PaneGeometry {
   // The pane's settings and view as `layout` would show it (saved states are the standard
   // layout's views and the layout's name).
   render::RenderSettings settingsIn(config::ViewerLayout layout, int pane, bool interacting) const;
-  // The functional window the panes show: the one set (the overlay's, the glyphs'), else the
-  // functional volume's full range.
-  std::pair<double, double> functionalWindow() const;
   config::ViewConfig viewConfigOf(int pane, config::ViewerLayout layout) const;
 
   const config::StudyConfig& study_;
@@ -272,6 +274,7 @@ class ViewerState : public PaneGeometry {
   render::RenderSettings view3d_;
   std::string presetName_;
   double mprWindow_ = 0, mprLevel_ = 0;
+  std::pair<double, double> functionalDisplay_{0.0, 1.0};
   double mprZoom_ = 1.0;
   glm::dvec3 mprPan_{0.0};
   std::map<int, std::string> labelNames_;

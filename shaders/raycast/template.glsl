@@ -11,6 +11,9 @@
 //                          termination)
 //   void finishHook(inout RayState s, Ray ray, vec2 span)  every mode; writes fragColor and
 //                          fragDepth
+//   bool entryHook(inout RayState s, Ray ray, vec2 span)  with RAY_ENTRY_HOOK; once per ray that
+//                          meets the box, before the first loop: false ends the ray at its
+//                          entry (composite's opaque cut face, MVW_CUT_FACE)
 //   float leanSampleValue(vec3 tex)  with RAY_LEAN_LOOP; the value the lean loop reads (it may
 //                          read less than sampleValue: one channel, not the packed texel)
 //   int leanSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray)
@@ -28,6 +31,7 @@
 //   RAY_MIDDLE_LOOP  a middle loop between the lean and the full loop; needs RAY_LEAN_LOOP
 //   RAY_HAND_BACK    the full loop hands the ray back to the lean loop; needs RAY_LEAN_LOOP
 //   RAY_PREPASS      prepassHook runs before the first loop
+//   RAY_ENTRY_HOOK   entryHook runs before the first loop and may end the ray there
 // Without RAY_LEAN_LOOP the full loop alone runs the whole ray. With it, in rounds ([...]:
 // only with its macro):
 //
@@ -35,6 +39,7 @@
 //                                   ^                   |                  |
 //                                   |   handBackHook    |                  | handBackHook
 //                                   +-------------------+------------------+ [RAY_HAND_BACK]
+//   [entryHook] runs between prepassHook and the first loop; false: no loop runs.
 //   Any loop ends the ray (-> finishHook) at 1 or false from its hook, the box's exit or
 //   uMaxSteps; a sample handed over (2) is sampled again by the next loop, one handed back
 //   is passed, so every round advances by a sample at least.
@@ -75,6 +80,9 @@ void main() {
     int i = 0;
     float n = 0.0;  // whole numbers, exact in a float up to 2^24 samples
     bool rest = true;
+#if defined(RAY_ENTRY_HOOK)
+    rest = entryHook(s, ray, span);
+#endif
     // Each loop spells out its first lines, the sample's distance, the box's end and the skip,
     // and the full loop is written out twice (in rounds, and alone): as one function returning
     // what to do, composite and MIP took 4-5 % longer.

@@ -30,9 +30,10 @@ std::string describe(const RaycastSource& s) {
 }
 
 // One program per mode, layout and combination of variants, compiled and linked as the
-// renderer does (ShaderProgram), each named on failure by its files and defines. About 820
-// programs, mostly composite with glyphs: a variant that no view in the golden suite uses
-// breaks here, not in a user's first frame.
+// renderer does (ShaderProgram), each named on failure by its files and defines. About 1,600
+// programs, mostly composite with glyphs (composite and isosurface each with and without the
+// cut face since issue 36): a variant that no view in the golden suite uses breaks here, not in
+// a user's first frame.
 TEST(RaycastPrograms, EveryProgramCompilesAndLinks) {
   auto ctx = createHeadlessContext({1, 1});
   const std::vector<RaycastSource> every = RaycastPrograms::every();

@@ -66,6 +66,7 @@ ViewConfig fullySet() {
   v.cropMax = {1, 0.9, 0.55};
   v.cropMinMm = std::array<double, 3>{-50, -60, -10};
   v.cropMaxMm = std::array<double, 3>{50, 40, 30.5};
+  v.cutFace = CutFace::Plain;
   v.annotate = false;
   v.light = {-0.8, 0.8};
   v.planeOffsetMm = 20;
@@ -142,6 +143,7 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.segmentationOutlines, a.segmentationOutlines);
   EXPECT_EQ(b.fusion, a.fusion);
   EXPECT_EQ(b.fusionProjection, a.fusionProjection);
+  EXPECT_EQ(b.cutFace, a.cutFace);
   EXPECT_EQ(b.overlayOpacity, a.overlayOpacity);
   EXPECT_EQ(b.overlayThreshold, a.overlayThreshold);
   EXPECT_EQ(b.colormap, a.colormap);

@@ -62,6 +62,41 @@ TEST(AttributeDefaults, PetInSuvFromTheLesionThresholdOtherUnitsFrom41Percent) {
   EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Fmri, volumeOf("", "t"), {-4, 2}));
   EXPECT_FALSE(defaultAttributeWindow(config::FunctionalKind::Labels, volumeOf("", ""), {0, 9}));
 }
+// The PET/CT layout's functional pane (issue 36): a CBF-like volume of 1000 voxels, background
+// 0, tissue 300 .. 796 evenly and two hot voxels (a vessel) at 5000: 0 to the 99.5th
+// percentile of the voxels above the background, not to the vessel; SUV at 0-5 or 0-10.
+TEST(FunctionalDisplayWindow, ARobustRangeFromTheDataOrSuvFiveOrTen) {
+  Volume cbf({10, 10, 10}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  for (int n = 0; n < 1000; ++n) {
+    const int i = n % 10, j = n / 10 % 10, k = n / 100;
+    cbf.setValue(i, j, k, 0, n < 500 ? 0.0 : n < 998 ? 300.0 + (n - 500) : 5000.0);
+  }
+  const auto w = defaultFunctionalDisplayWindow(cbf, cbf.valueRange());
+  EXPECT_EQ(w[0], 0.0);
+  // 500 voxels above 0: the sorted 300 .. 797 and 5000, 5000; the 99.5th percentile is
+  // element floor(0.995 * 499) = 496, the value 796.
+  EXPECT_EQ(w[1], 796.0);
+  // Values below 0 in a z map: from the 1st percentile of the voxels above the minimum;
+  // elsewhere (an ASL CBF's negative noise) from 0.
+  Volume z({10, 10, 10}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  z.metadata().unit = "z";
+  for (int n = 0; n < 1000; ++n) z.setValue(n % 10, n / 10 % 10, n / 100, 0, n / 100.0 - 5.0);
+  const auto zw = defaultFunctionalDisplayWindow(z, z.valueRange());
+  EXPECT_NEAR(zw[0], -4.9, 1e-5);  // element floor(0.01 * 998) = 9 of -4.99 .. 4.99
+  EXPECT_NEAR(zw[1], 4.94, 1e-5);  // element floor(0.995 * 998) = 993
+  z.metadata().unit = "ml/100g/min";
+  EXPECT_EQ(defaultFunctionalDisplayWindow(z, z.valueRange())[0], 0.0);
+  // SUV: 0-5 (here three hot voxels above it), or 0-10 where more than 0.5 % of the voxels
+  // above the background lie above SUV 5.
+  Volume suv({10, 10, 10}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  suv.metadata().unit = "SUVbw";
+  for (int n = 0; n < 1000; ++n)
+    suv.setValue(n % 10, n / 10 % 10, n / 100, 0, n < 500 ? 0.0 : n < 997 ? 1.5 : 19.5);
+  EXPECT_EQ(defaultFunctionalDisplayWindow(suv, suv.valueRange())[1], 5.0);
+  for (int n = 900; n < 1000; ++n) suv.setValue(n % 10, n / 10 % 10, n / 100, 0, 7.0);
+  EXPECT_EQ(defaultFunctionalDisplayWindow(suv, suv.valueRange())[1], 10.0);
+}
+
 TEST(AttributeDefaults, AViewsOwnWindowOrClassesWin) {
   const nlohmann::json glyphs = nlohmann::json::object();
   PlannedView own =

@@ -272,8 +272,17 @@ TEST_F(ViewerStateTest, PetCtLayoutShowsOnePlaneInStepAndTheFunctionalMip) {
   EXPECT_TRUE(state.paneShowsFunctional(k3d));
   const render::RenderSettings mip = state.renderSettings(k3d);
   EXPECT_EQ(mip.mode, RenderMode::Mip);
-  EXPECT_DOUBLE_EQ(mip.level - 0.5 * mip.window, state.scene().functionalRange.first);
-  EXPECT_DOUBLE_EQ(mip.level + 0.5 * mip.window, state.scene().functionalRange.second);
+  // The functional volume alone, MIP and pane, in its own window from the data (the 99.5th
+  // percentile of the voxels above the background: here its one hot voxel, 10), not the
+  // overlay's or the glyphs' (the scene's range here, 0 .. 1).
+  const auto [dlo, dhi] = state.functionalDisplayWindow();
+  EXPECT_DOUBLE_EQ(dlo, 0.0);
+  EXPECT_DOUBLE_EQ(dhi, 10.0);
+  EXPECT_DOUBLE_EQ(mip.level - 0.5 * mip.window, dlo);
+  EXPECT_DOUBLE_EQ(mip.level + 0.5 * mip.window, dhi);
+  EXPECT_DOUBLE_EQ(functional.functionalLow, dlo);
+  EXPECT_DOUBLE_EQ(functional.functionalHigh, dhi);
+  EXPECT_NE(fused.functionalHigh, dhi);  // the fused pane keeps the overlay's window
   EXPECT_EQ(state.paneCell(kAxial), 0);
   EXPECT_EQ(state.paneCell(kCoronal), 1);
   EXPECT_EQ(state.paneCell(kSagittal), 2);

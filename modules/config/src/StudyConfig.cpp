@@ -61,6 +61,7 @@ const EnumNames<RegistrationMethod> kRegistrations = {{RegistrationMethod::None,
 
 const EnumNames<FusionProjection> kFusionProjections = {{FusionProjection::Max, "max"},
                                                         {FusionProjection::Mean, "mean"}};
+const EnumNames<CutFace> kCutFaces = {{CutFace::Anatomy, "anatomy"}, {CutFace::Plain, "plain"}};
 const EnumNames<ViewerLayout> kLayouts = {{ViewerLayout::Standard, "standard"},
                                           {ViewerLayout::PetCtAxial, "pet-ct"},
                                           {ViewerLayout::PetCtCoronal, "pet-ct-coronal"},
@@ -291,6 +292,11 @@ const FieldTable<ViewConfig>& viewTable() {
               if (in.cropMinMm && in.cropMaxMm)
                 j[k] = {{"min", *in.cropMinMm}, {"max", *in.cropMaxMm}};
             })
+        .enumeration("cut_face",
+                     "Composite and isosurface with a crop: the cut face shows the anatomy's grey "
+                     "values under the MPR window (window / level), glyphs and fusion on it "
+                     "(anatomy), or the isosurface colour and the transfer function (plain).",
+                     &V::cutFace, kCutFaces)
         .boolean("annotate", "Orientation labels, scale bar, caption and colour bar.", &V::annotate)
         .add(
             "light", "Light offset in screen terms ([0, 0]: a headlight).",

@@ -50,6 +50,10 @@ bool takesFusionMean(RenderMode mode) {
   return mode == RenderMode::MinIp || mode == RenderMode::Average;
 }
 
+bool hasCutFace(RenderMode mode) {
+  return mode == RenderMode::Composite || mode == RenderMode::Isosurface;
+}
+
 std::vector<std::string> renderModeNames() {
   std::vector<std::string> out;
   for (const auto& [m, n] : kModeNames) out.push_back(n);

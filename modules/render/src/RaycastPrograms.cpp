@@ -46,6 +46,7 @@ RaycastVariants RaycastPrograms::variants(const RenderSettings& s, bool fusion) 
   set(RaycastVariant::GlyphKinds, kinds);
   set(RaycastVariant::GlyphPaper, s.glyphMap.placement == GlyphPlacement::Paper);
   set(RaycastVariant::ImageColormap, s.imageColors.has_value());
+  set(RaycastVariant::CutFace, showsAnatomyOnCutFace(s));
   return v;
 }
 
@@ -77,6 +78,7 @@ RaycastSource RaycastPrograms::source(RenderMode mode, VolumeLayout layout, Rayc
     if (has(v, RaycastVariant::GlyphPaper)) defines.push_back("MVW_GLYPH_PAPER 1");
     if (has(v, RaycastVariant::GlyphKinds)) defines.push_back("MVW_GLYPH_KINDS 1");
   }
+  if (shaded && has(v, RaycastVariant::CutFace)) defines.push_back("MVW_CUT_FACE 1");
   switch (mode) {
     case RenderMode::Composite:
       out.fragment = "composite.frag.glsl";

@@ -35,6 +35,7 @@ enum class RaycastVariant {
   GlyphPaper,
   GlyphKinds,     // issue 40: glyph kinds other than bumps and dimples
   ImageColormap,  // MIP, MinIP, average, MPR
+  CutFace,        // composite and isosurface: the anatomy on the crop's cut face (issue 36)
   Count
 };
 using RaycastVariants = std::bitset<static_cast<std::size_t>(RaycastVariant::Count)>;

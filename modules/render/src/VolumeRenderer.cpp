@@ -335,6 +335,15 @@ bool usesGlyphKinds(const RenderSettings& s) {
   return false;
 }
 
+bool cropsVolume(const RenderSettings& s) {
+  if (s.cropMinMm && s.cropMaxMm) return true;
+  return s.cropMin != glm::dvec3(0.0) || s.cropMax != glm::dvec3(1.0);
+}
+
+bool showsAnatomyOnCutFace(const RenderSettings& s) {
+  return hasCutFace(s.mode) && s.cutFace == CutFace::Anatomy && cropsVolume(s);
+}
+
 bool showsImageColors(const RenderSettings& s) { return s.imageColors && takesImageColors(s.mode); }
 
 bool showsFusion(const RenderSettings& s, bool hasFunctional) {

@@ -1,6 +1,8 @@
 #include "mvw/study/ModalityDefaults.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 
 #include "mvw/render/TransferFunction.h"
 
@@ -69,6 +71,35 @@ std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKi
     return std::array<double, 2>{kSuvLesionThreshold, std::max(max, kSuvLesionThreshold + 1.0)};
   if (!(max > 0)) return std::nullopt;
   return std::array<double, 2>{kRelativeUptakeThreshold * max, max};
+}
+
+std::array<double, 2> defaultFunctionalDisplayWindow(const Volume& functional,
+                                                     std::pair<double, double> range) {
+  const auto [lo, hi] = range;
+  const glm::ivec3 d = functional.dimensions();
+  // At most about a million voxels, evenly strided: a percentile needs no more.
+  const std::size_t total = static_cast<std::size_t>(d.x) * d.y * d.z;
+  const std::size_t stride = std::max<std::size_t>(1, total / 1000000);
+  std::vector<double> above;  // the voxels above the background
+  for (std::size_t n = 0; n < total; n += stride) {
+    const int i = static_cast<int>(n % d.x), j = static_cast<int>(n / d.x % d.y),
+              k = static_cast<int>(n / (static_cast<std::size_t>(d.x) * d.y));
+    const double v = functional.value(i, j, k);
+    if (std::isfinite(v) && v > lo) above.push_back(v);
+  }
+  if (above.empty() || !(hi > lo)) return {lo, hi > lo ? hi : lo + 1.0};
+  std::sort(above.begin(), above.end());
+  const auto percentile = [&](double p) {
+    return above[static_cast<std::size_t>(p * static_cast<double>(above.size() - 1))];
+  };
+  const double top = percentile(0.995);
+  if (functional.metadata().unit.rfind("SUV", 0) == 0) return {0.0, top > 5.0 ? 10.0 : 5.0};
+  // Below 0 is noise in perfusion (an ASL subtraction) and most other maps: from 0; a
+  // statistic map's negative values (deactivation) are data.
+  const std::string& unit = functional.metadata().unit;
+  const double bottom = lo < 0.0 && (unit == "z" || unit == "t") ? percentile(0.01) : 0.0;
+  if (!(top > bottom)) return {lo, hi};
+  return {bottom, top};
 }
 
 }  // namespace mvw::study

@@ -1,9 +1,34 @@
 #include "mvw/study/Session.h"
 
+#include <algorithm>
+#include <optional>
+
 #include "mvw/core/Check.h"
+#include "mvw/study/ModalityDefaults.h"
 #include "mvw/study/StudyLoader.h"
 
 namespace mvw::study {
+
+namespace {
+
+// The window the viewer's MPR panes start from (ViewerState): the first MPR view's own, else
+// the modality's. Only where a view shows the anatomy on a cut face without a window of its own
+// (the value range is a pass over the voxels).
+std::optional<WindowLevel> studyMprWindow(const std::vector<PlannedView>& views,
+                                          const Volume& anatomical) {
+  if (std::none_of(views.begin(), views.end(), [](const PlannedView& v) {
+        return !v.config.window && render::showsAnatomyOnCutFace(v.settings);
+      }))
+    return std::nullopt;
+  for (const PlannedView& v : views)
+    if (v.settings.mode == render::RenderMode::Mpr) {
+      if (v.settings.window > 0) return WindowLevel{v.settings.window, v.settings.level};
+      break;
+    }
+  return modalityDefaults(anatomical, anatomical.valueRange()).mpr;
+}
+
+}  // namespace
 
 Session::Session(config::StudyConfig study, const ViewOverrides& overrides)
     : study_(std::move(study)), planned_(planViews(study_, overrides)) {}
@@ -56,8 +81,10 @@ void prepareViews(std::vector<PlannedView>& views, const config::StudyConfig& st
                   const Volume& anatomical, const Volume* functional,
                   std::pair<double, double> functionalRange) {
   checkViewsAgainstAnatomy(views, anatomical, study.file);
+  const std::optional<WindowLevel> mpr = studyMprWindow(views, anatomical);
   for (PlannedView& v : views) {
     applyDefaultPreset(v, anatomical);
+    if (mpr) applyCutFaceWindow(v, *mpr);
     if (functional) {
       applyAttributeDefaults(v, study.functionalKind, *functional, functionalRange);
       applyGlyphScale(v, anatomical, *functional);

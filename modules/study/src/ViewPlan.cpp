@@ -310,6 +310,7 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
       s.cropMinMm = glm::dvec3((*v.cropMinMm)[0], (*v.cropMinMm)[1], (*v.cropMinMm)[2]);
       s.cropMaxMm = glm::dvec3((*v.cropMaxMm)[0], (*v.cropMaxMm)[1], (*v.cropMaxMm)[2]);
     }
+    s.cutFace = v.cutFace;
     s.glyphs = v.glyphs;
     s.glyphSizeControl = v.glyphMethod == config::GlyphMethod::Sized;
     s.glyphConvexity = v.glyphConvexity;
@@ -449,6 +450,12 @@ void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
   view.settings.functionalHigh = (*window)[1];
 }
 
+void applyCutFaceWindow(PlannedView& view, const WindowLevel& mpr) {
+  if (view.config.window || !render::showsAnatomyOnCutFace(view.settings)) return;
+  view.settings.window = mpr.window;
+  view.settings.level = mpr.level;
+}
+
 config::ViewConfig describeView(const render::RenderSettings& s, const std::string& name,
                                 const std::string& preset) {
   config::ViewConfig v;
@@ -472,6 +479,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.jitter = s.jitter;
   v.seed = s.seed;
   v.background = {s.background.r, s.background.g, s.background.b};
+  v.cutFace = s.cutFace;
   v.cropMin = {s.cropMin.x, s.cropMin.y, s.cropMin.z};
   v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
   if (s.cropMinMm && s.cropMaxMm) {

@@ -150,6 +150,9 @@ struct ViewConfig {
   // posterior / superior); or "crop_mm": {"min": [...], "max": [...]} in LPS mm, which wins.
   std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};
   std::optional<std::array<double, 3>> cropMinMm, cropMaxMm;
+  // composite / isosurface with a crop: the cut face shows the anatomy under the MPR's window
+  // (anatomy) or the isosurface colour / transfer function (plain).
+  CutFace cutFace = CutFace::Anatomy;
   bool annotate = true;
   std::array<double, 2> light{0.0, 0.0};  // light offset in screen terms; 0, 0: headlight
   double planeOffsetMm = 0.0;             // mpr: plane moved along the line of sight

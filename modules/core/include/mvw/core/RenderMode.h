@@ -45,6 +45,14 @@ enum class FusionProjection { Max, Mean };
 // The modes a fused view of which may take the mean (minip, average: fusion_projection).
 bool takesFusionMean(RenderMode mode);
 
+// What the opaque face shows where a crop cuts an isosurface or a composite rendering (issue 36
+// item 7): the anatomy's grey values under the window as an MPR on that plane would show them,
+// the glyphs and fusion on top (anatomy), or the isosurface colour / the transfer function as
+// before (plain). Config names: anatomy, plain.
+enum class CutFace { Anatomy, Plain };
+// The modes whose crop leaves a cut face: composite and isosurface.
+bool hasCutFace(RenderMode mode);
+
 // Volumetric normal glyphs (Seipel 2007): convex bumps, concave dimples, or both (dimples
 // below the attribute window's middle, bumps above). Config names: convex, concave, both.
 enum class GlyphConvexity { Bumps, Dimples, Both };

@@ -35,6 +35,7 @@ struct RenderSettings;
 bool usesGlyphKinds(const RenderSettings& s);
 
 // The modes and glyph kinds are the study config's vocabulary too (mvw/core/RenderMode.h).
+using mvw::CutFace;
 using mvw::GlyphConvexity;
 using mvw::GlyphKind;
 using mvw::parseRenderMode;
@@ -49,8 +50,10 @@ struct RenderSettings {
   // 2D transfer function: opacity scaled by smoothstep(g0, g1, |gradient|) (unit/mm), which
   // keeps boundaries and hides homogeneous regions (Levoy). g1 <= 0: 1D only.
   double gradientOpacityLow = 0.0, gradientOpacityHigh = 0.0;
-  double window = 0.0;  // projections: window width; <= 0 means the full value range
-  double level = 0.0;   // window centre
+  // Projections, MPR and the anatomy on a cut face (cutFace): window width; <= 0 means the
+  // full value range.
+  double window = 0.0;
+  double level = 0.0;  // window centre
   double isoValue = 300.0;
   // MIP with depth cueing (Heidrich et al. 1995, eq. 3 and section 2.3): brightness beta0,
   // depth cue amount a, contrast b. Off, or a = 0, b = 1, beta0 = 0: plain MIP.
@@ -75,6 +78,12 @@ struct RenderSettings {
   glm::dvec3 cropMin{0.0};
   glm::dvec3 cropMax{1.0};
   std::optional<glm::dvec3> cropMinMm, cropMaxMm;
+  // Composite and isosurface with a crop: the opaque cut face shows the anatomy's grey values
+  // under window / level, glyphs and fusion on it (MVW_CUT_FACE), or the isosurface colour and
+  // the transfer function (plain). Plain here, so that settings made by hand keep the look
+  // they had; study::prepareViews turns it on as the config's cut_face says (anatomy by
+  // default) and gives the window.
+  CutFace cutFace = CutFace::Plain;
   // MPR: the plane faces the camera through the volume centre, moved along the line of
   // sight; a slab > 0 mm is a thick-slab MIP. (Always orthographic.)
   double planeOffsetMm = 0.0;
@@ -126,6 +135,12 @@ struct RenderSettings {
   std::optional<ColorTable> imageColors;
   std::optional<ColorTable> overlayColors;
 };
+
+// Whether the crop cuts the volume: a box in mm, or fractions other than 0 .. 1.
+bool cropsVolume(const RenderSettings& settings);
+// Whether a render of `settings` shows the anatomy on a cut face (MVW_CUT_FACE): composite or
+// isosurface, cropped, with CutFace::Anatomy. Renders without a crop keep their program.
+bool showsAnatomyOnCutFace(const RenderSettings& settings);
 
 // Whether `settings` colours its image (a colour map on a mode that takes one).
 using mvw::takesImageColors;

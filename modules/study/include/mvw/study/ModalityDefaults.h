@@ -52,4 +52,14 @@ std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKi
                                                             const Volume& functional,
                                                             std::pair<double, double> range);
 
+// The functional volume's window where it is shown alone (the viewer's PET/CT functional pane
+// and rotating MIP) and the study names none: PET or SPECT in SUV from 0 to 5, or to 10 where
+// more than 0.5 % of the voxels above the background exceed 5; otherwise from 0 (a statistic
+// map, unit z or t, with values below 0: from the 1st percentile) to the 99.5th percentile of
+// the voxels above the
+// background (the minimum), so that a few hot voxels do not set the scale. The full range where
+// that leaves nothing. range: the functional volume's value range (min, max).
+std::array<double, 2> defaultFunctionalDisplayWindow(const Volume& functional,
+                                                     std::pair<double, double> range);
+
 }  // namespace mvw::study

@@ -8,6 +8,7 @@
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Volume.h"
+#include "mvw/core/WindowLevel.h"
 #include "mvw/render/VolumeRenderer.h"
 
 namespace mvw::study {
@@ -61,6 +62,12 @@ void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volum
 // that suits the functional volume (defaultAttributeWindow); range: its value range.
 void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
                             const Volume& functional, std::pair<double, double> range);
+
+// Cropped composite and isosurface views that show the anatomy on their cut face
+// (RenderSettings::cutFace) and name no window get `mpr`: the study's MPR window (its first MPR
+// view's, else the modality's, ModalityDefaults::mpr), so the face shows what an MPR on that
+// plane shows, in `mvw render` as in the viewer.
+void applyCutFaceWindow(PlannedView& view, const WindowLevel& mpr);
 
 // Glyph views whose config leaves the blue-noise spacing open get it from the functional
 // volume's voxel and the rendered scale (defaultGlyphSpacingMm), the diameter following.
