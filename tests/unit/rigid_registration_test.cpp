@@ -9,6 +9,7 @@
 
 #include "RegistrationTestUtil.h"
 #include "mvw/core/Error.h"
+#include "mvw/resampling/PetPhantom.h"
 #include "mvw/resampling/RigidRegistration.h"
 #include "mvw/resampling/Transform.h"
 
@@ -48,6 +49,48 @@ TEST(RigidRegistration, BadInputIsRefusedWithTheFileName) {
   const auto r = registerRigid(good, far);
   EXPECT_EQ(r.initialisation, Initialisation::CentreOfMass);
   EXPECT_LT(glm::length(r.transform.movingFromFixedPoint({0, 0, 0}) - glm::dvec3(1000, 0, 0)), 0.5);
+}
+
+// The coarse rotation search (RegistrationOptions::rotationSearchRangeDeg) on the blobs turned by
+// 70 degrees about the feet-head axis: every grid rotation is scored, and the climb from the
+// best candidates lands on the truth. (The accuracy of the search on the CT and a PET-like
+// volume is KnownTransform.RotationSearchRecoversLargeRotations; this one runs in a moment,
+// also under the sanitizers, which leave the KnownTransform suite to the release run.)
+TEST(RigidRegistration, RotationSearchScoresEveryGridRotationAndFindsTheTurn) {
+  const Volume fixed = blobs({0, 0, 0});
+  Volume moving = blobs({0, 0, 0});
+  const glm::dvec3 centre = fixed.worldFromIndexPoint(glm::dvec3(fixed.dimensions() - 1) * 0.5);
+  const glm::dmat4 truth =
+      rigidMatrix({glm::dvec3(0, 0, 70) * (3.14159265358979 / 180), {}}, centre);
+  moving.setWorldFromIndex(truth * moving.worldFromIndex());
+  RegistrationOptions options;
+  options.rotationSearchRangeDeg = 90.0;
+  const auto r = registerRigid(fixed, moving, options);
+  EXPECT_EQ(r.searchedRotations, 7 * 7 * 7);
+  for (const glm::dvec3 p : {centre, centre + glm::dvec3(20, 0, 0), centre + glm::dvec3(0, 20, 10)})
+    EXPECT_LT(
+        glm::length(r.transform.movingFromFixedPoint(p) - glm::dvec3(truth * glm::dvec4(p, 1))),
+        1.0);
+}
+
+// The phantom's target registration error is the mean distance over its lattice (the CT's
+// voxels above -300 HU on a sparse grid): 0 for the truth, the shift for a pure shift.
+TEST(PetPhantom, TreIsTheMeanDistanceOverTheLatticeInsideTheHead) {
+  Volume ct({40, 40, 30}, 1, ScalarType::Float32,
+            makeWorldFromIndex({-40, -40, -30}, {2, 2, 2}, glm::dmat3(1.0)));
+  for (int k = 0; k < 30; ++k)
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 40; ++i) {
+        const double r = glm::length(ct.worldFromIndexPoint({i, j, k}));
+        // bone core, brain, a fatty layer (-500..-100 HU), air
+        ct.setValue(i, j, k, 0, r < 8 ? 800.0 : r < 20 ? 40.0 : r < 26 ? -300.0 : -1000.0);
+      }
+  const PetPhantom phantom(ct);
+  ASSERT_FALSE(phantom.lattice().empty());
+  EXPECT_GT(phantom.uptake().value(20, 20, 15), 0.0);
+  const glm::dmat4 shift = glm::translate(glm::dmat4(1.0), glm::dvec3(2, 0, 0));
+  EXPECT_DOUBLE_EQ(phantom.meanTre(glm::dmat4(1.0), glm::dmat4(1.0)), 0.0);
+  EXPECT_NEAR(phantom.meanTre(shift, glm::dmat4(1.0)), 2.0, 1e-9);
 }
 
 }  // namespace
