@@ -79,7 +79,7 @@ void Receiver::acceptFile(const fs::path& file) {
   const fs::path target = staging_ / (uids->sopInstance + ".dcm");
   bytes_ += fs::file_size(file, ec);
   fs::rename(file, target);
-  received_.insert(uids->sopInstance);
+  if (received_.insert(uids->sopInstance).second) ++perSeries_[uids->series];
   report(false);
 }
 

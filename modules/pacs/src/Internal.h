@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -36,6 +37,11 @@ class Receiver {
   Transfer transfer() const;
   const std::filesystem::path& staging() const { return staging_; }
   int count() const { return static_cast<int>(received_.size()); }
+  // The distinct instances received of one series.
+  long countOf(const std::string& seriesUid) const {
+    auto it = perSeries_.find(seriesUid);
+    return it == perSeries_.end() ? 0 : it->second;
+  }
 
  private:
   const Server& server_;
@@ -44,6 +50,7 @@ class Receiver {
   bool progress_;
   bool lineOpen_ = false;
   std::set<std::string> received_;
+  std::map<std::string, long> perSeries_;
   std::uint64_t bytes_ = 0;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point lastReport_ = start_;

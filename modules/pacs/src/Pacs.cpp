@@ -217,22 +217,33 @@ Match selectSeries(const Server& server, const std::vector<Match>& series,
 
 namespace {
 
-// The series of `studyUid` the selections name (every series for none), each as a UID.
-std::vector<std::string> resolveSeries(const Server& server, const std::string& studyUid,
-                                       const std::vector<std::string>& selections,
-                                       const Options& options) {
+// The series of `studyUid` the selections name (every series for none).
+std::vector<Match> resolveSeries(const Server& server, const std::string& studyUid,
+                                 const std::vector<std::string>& selections,
+                                 const Options& options) {
   std::vector<Match> all = findSeries(server, studyUid, options);
   if (all.empty()) throw InputError(server.text, "has no study " + studyUid);
-  std::vector<std::string> uids;
-  if (selections.empty()) {
-    for (const Match& m : all) uids.push_back(m.at("SeriesInstanceUID"));
-  } else {
-    for (const std::string& s : selections) {
-      std::string uid = selectSeries(server, all, studyUid, s).at("SeriesInstanceUID");
-      if (std::find(uids.begin(), uids.end(), uid) == uids.end()) uids.push_back(uid);
-    }
+  if (selections.empty()) return all;
+  std::vector<Match> chosen;
+  for (const std::string& s : selections) {
+    Match m = selectSeries(server, all, studyUid, s);
+    const bool seen = std::any_of(chosen.begin(), chosen.end(), [&](const Match& c) {
+      return c.at("SeriesInstanceUID") == m.at("SeriesInstanceUID");
+    });
+    if (!seen) chosen.push_back(std::move(m));
   }
-  return uids;
+  return chosen;
+}
+
+// The instance count a series match states (NumberOfSeriesRelatedInstances), or -1 where the
+// server gives none: then its instances are listed. A count saves the listing, which costs a
+// server more than the retrieve itself (Orthanc: 0.7 s for 299 instances, the retrieve 0.1 s).
+long statedCount(const Match& series) {
+  auto it = series.find("NumberOfSeriesRelatedInstances");
+  if (it == series.end() || it->second.empty() ||
+      it->second.find_first_not_of("0123456789") != std::string::npos || it->second.size() > 9)
+    return -1;
+  return std::stol(it->second);
 }
 
 void retrieve(const Server& server, const std::string& studyUid, const std::string& seriesUid,
@@ -288,26 +299,33 @@ Transfer get(const Server& server, const std::string& studyUid,
              const std::vector<std::string>& series, const fs::path& outDir,
              const Options& options) {
   requireUid(studyUid, "--study");
-  const std::vector<std::string> seriesUids = resolveSeries(server, studyUid, series, options);
+  const std::vector<Match> chosen = resolveSeries(server, studyUid, series, options);
+  std::set<std::string> seriesUids;
+  for (const Match& m : chosen) seriesUids.insert(m.at("SeriesInstanceUID"));
   fs::create_directories(outDir);
   StagingGuard guard{outDir / (".mvw-staging-" + std::to_string(::getpid()))};
   fs::remove_all(guard.dir);
   fs::create_directories(guard.dir);
-  detail::Expect expect{studyUid, {seriesUids.begin(), seriesUids.end()}};
-  detail::Receiver receiver(server, guard.dir, expect, options.progress);
-  std::set<std::string> listed;
-  for (const std::string& uid : seriesUids) {
-    const auto uids = instanceUids(findInstances(server, studyUid, uid, options));
-    listed.insert(uids.begin(), uids.end());
+  detail::Receiver receiver(server, guard.dir, {studyUid, seriesUids}, options.progress);
+  for (const Match& m : chosen) {
+    const std::string& uid = m.at("SeriesInstanceUID");
+    // Complete: as many instances as the server states, each of this series (the receiver
+    // refused any other), or every instance it lists.
+    const long stated = statedCount(m);
+    std::set<std::string> listed;
+    if (stated < 0) listed = instanceUids(findInstances(server, studyUid, uid, options));
     retrieve(server, studyUid, uid, {}, receiver, options);
+    const long expected = stated >= 0 ? stated : static_cast<long>(listed.size());
+    for (const std::string& sop : listed)
+      if (!fs::exists(guard.dir / (sop + ".dcm")))
+        throw ServiceError(server.text + ": the retrieve of series " + uid +
+                           " ended without its instance " + sop);
+    if (receiver.countOf(uid) != expected)
+      throw ServiceError(server.text + ": the retrieve of series " + uid + " ended with " +
+                         std::to_string(receiver.countOf(uid)) + " of the " +
+                         std::to_string(expected) + " instances it holds");
   }
   receiver.report(true);
-  // Complete: every instance the server listed arrived (the receiver refused any other).
-  for (const std::string& uid : listed)
-    if (!fs::exists(guard.dir / (uid + ".dcm")))
-      throw ServiceError(server.text + ": the retrieve ended without instance " + uid + " (" +
-                         std::to_string(receiver.count()) + " of " + std::to_string(listed.size()) +
-                         " arrived)");
   for (const auto& entry : fs::directory_iterator(guard.dir))
     fs::rename(entry.path(), outDir / entry.path().filename());
   return receiver.transfer();
@@ -374,18 +392,38 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
     if (in && std::getline(in, seriesUid) && isUid(seriesUid))
       if (auto dir = completeFolder(seriesUid)) return *dir;
   }
-  const std::string seriesUid =
-      selectSeries(server, findSeries(server, studyUid, options), studyUid, selection)
-          .at("SeriesInstanceUID");
+  const Match series =
+      selectSeries(server, findSeries(server, studyUid, options), studyUid, selection);
+  const std::string seriesUid = series.at("SeriesInstanceUID");
   if (!fs::exists(studyDir / seriesUid / ".complete") || !completeFolder(seriesUid)) {
-    const auto listed = instanceUids(findInstances(server, studyUid, seriesUid, options));
-    if (listed.empty())
-      throw ServiceError(server.text + ": lists no instances in series " + seriesUid);
     // The .partial folder survives an interruption; what it holds that verifies is kept.
     const fs::path partial = studyDir / (seriesUid + ".partial");
     fs::create_directories(partial);
+    bool resuming = false;
     for (const auto& e : fs::directory_iterator(partial))
-      if (e.path().extension() != ".dcm") fs::remove(e.path());
+      if (e.path().extension() != ".dcm")
+        fs::remove(e.path());
+      else
+        resuming = true;
+    std::set<std::string> listed;
+    const long stated = statedCount(series);
+    if (!resuming && stated > 0) {
+      // A fresh retrieve: the whole series, complete when it holds as many verified instances
+      // as the server states (the listing is needed only to resume).
+      detail::Receiver receiver(server, partial, {studyUid, {seriesUid}}, options.progress);
+      retrieve(server, studyUid, seriesUid, {}, receiver, options);
+      receiver.report(true);
+      for (const auto& e : fs::directory_iterator(partial))
+        if (e.path().extension() == ".dcm") listed.insert(e.path().stem().string());
+      if (static_cast<long>(listed.size()) != stated)
+        throw ServiceError(server.text + ": the retrieve of series " + seriesUid + " ended with " +
+                           std::to_string(listed.size()) + " of the " + std::to_string(stated) +
+                           " instances it holds");
+    } else {
+      listed = instanceUids(findInstances(server, studyUid, seriesUid, options));
+    }
+    if (listed.empty())
+      throw ServiceError(server.text + ": lists no instances in series " + seriesUid);
     std::vector<std::string> missing = missingInstances(partial, listed, studyUid, seriesUid);
     if (!missing.empty()) {
       detail::Receiver receiver(server, partial, {studyUid, {seriesUid}}, options.progress);

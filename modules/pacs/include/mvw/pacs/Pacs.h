@@ -101,8 +101,9 @@ Transfer store(const Server& server, const std::vector<std::filesystem::path>& f
                const Options& options);
 
 // The folder in the verified cache holding the series `selection` of study `studyUid`,
-// retrieved first unless it is there complete and verified: every instance the server lists,
-// each parsing and carrying the SOP Instance, series and study UIDs asked for. An interrupted
+// retrieved first unless it is there complete and verified: every instance the server has (as
+// many as it states for the series, or every one it lists), each parsing and carrying the SOP
+// Instance, series and study UIDs asked for. An interrupted
 // retrieve leaves only a .partial folder, which the next call resumes.
 std::filesystem::path cachedSeries(const Server& server, const std::string& studyUid,
                                    const std::string& selection, const Options& options);
