@@ -273,10 +273,10 @@ TEST(StudyConfig, FullySetStudyLoadsBackFieldByField) {
   std::ofstream(dir / "t.tfm") << "x";
   StudyConfig c;
   c.name = "every field";
-  c.anatomical = {dir / "anat.nii", "7", FrameChoice{false, 2}, 1.5};
-  c.functional = VolumeSource{dir / "pet.nii", "3", FrameChoice{true, 0}, 2.5};
+  c.anatomical = {dir / "anat.nii", "7", "", "", FrameChoice{false, 2}, 1.5};
+  c.functional = VolumeSource{dir / "pet.nii", "3", "", "", FrameChoice{true, 0}, 2.5};
   c.functionalKind = FunctionalKind::Dose;
-  c.segmentation = VolumeSource{dir / "seg.nii", "9", FrameChoice{false, 1}, 0.5};
+  c.segmentation = VolumeSource{dir / "seg.nii", "9", "", "", FrameChoice{false, 1}, 0.5};
   c.registration = {RegistrationMethod::File, dir / "t.tfm", 20.0};
   c.measurements.spheres = {{{1.0, -2.0, 3.0}, 7.5}};
   c.measurements.rulers = {{{0.0, 0.0, 0.0}, {10.0, 0.0, 5.0}}};
