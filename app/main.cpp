@@ -1,5 +1,6 @@
 // mvw: multimodal volume workstation. One CLI, one subcommand per job.
-// Exit codes: 0 success, 1 internal fault, 2 bad input (file, config or command line).
+// Exit codes: 0 success, 1 internal fault, 2 bad input (file, config or command line), 3 a
+// server or the network failed (PACS, Slurm).
 #include <cmath>
 #include <cstdlib>
 #include <exception>
@@ -16,6 +17,7 @@
 #include "GlyphMapCommand.h"
 #include "HugePages.h"
 #include "InfoCommand.h"
+#include "PacsCommand.h"
 #include "PhantomCommand.h"
 #include "RegisterCommand.h"
 #include "RenderCommand.h"
@@ -23,6 +25,7 @@
 #include "ValidateCommand.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Version.h"
+#include "mvw/pacs/Pacs.h"
 #include "mvw/validate/BatchSlurm.h"
 #include "view/ViewCommand.h"
 
@@ -32,6 +35,18 @@ int main(int argc, char** argv) {
       "mvw - multimodal volume workstation: anatomy + functional volumes, registered and rendered"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("mvw ") + mvw::kVersion);
+  // Study configs naming PACS series: the verified cache and the time-outs, on every command
+  // (fallthrough: given after the command's name too).
+  mvw::pacs::Options& pacsOptions = mvw::pacs::studyOptions();
+  app.add_option("--cache", pacsOptions.cacheDir,
+                 "the cache of PACS series (default $XDG_CACHE_HOME/mvw/dicom)");
+  app.add_option("--connect-timeout", pacsOptions.connectTimeoutS,
+                 "PACS: seconds to wait for the connection (default 10)")
+      ->check(CLI::Range(0.1, 3600.0));
+  app.add_option("--read-timeout", pacsOptions.readTimeoutS,
+                 "PACS: seconds to wait for the next bytes of an answer (default 60)")
+      ->check(CLI::Range(0.1, 86400.0));
+  app.fallthrough();
   mvw::app::addInfoCommand(app);
   mvw::app::addConvertCommand(app);
   mvw::app::addRegisterCommand(app);
@@ -44,6 +59,7 @@ int main(int argc, char** argv) {
   mvw::app::addValidateCommand(app);
   mvw::app::addConfigCommand(app);
   mvw::app::addBatchCommand(app);
+  mvw::app::addPacsCommand(app);
   // Every number option is finite: NaN passes any range check (comparisons with it are false)
   // and inf overflows what it scales.
   const CLI::Validator finite(

@@ -26,9 +26,11 @@ void runView(const ViewOptions& o) {
   } else {
     if (o.anatomical.empty()) throw InputError("mvw view", "give a study config or --anatomical");
     study.anatomical.path = o.anatomical;
-    if (!o.functional.empty())
-      study.functional =
-          config::VolumeSource{o.functional, "", config::defaultFrame(study.functionalKind)};
+    if (!o.functional.empty()) {
+      study.functional = config::VolumeSource{};
+      study.functional->path = o.functional;
+      study.functional->frame = config::defaultFrame(study.functionalKind);
+    }
   }
   ViewerOptions v;
   // Everything the study names is read and placed before the window opens: bad input is

@@ -660,10 +660,11 @@ config::ViewConfig ViewerState::viewConfigOf(int pane, config::ViewerLayout layo
 void ViewerState::saveConfig(const std::filesystem::path& file) const {
   config::StudyConfig study = study_;
   if (study.name.empty()) study.name = "saved from mvw view";
-  study.anatomical.path = anatomical_.metadata().sourcePath;
+  // A PACS series stays named by its server, study and series (the cache is not the source).
+  if (study.anatomical.pacs.empty()) study.anatomical.path = anatomical_.metadata().sourcePath;
   if (functional_) {
     if (!study.functional) study.functional.emplace();
-    study.functional->path = functional_->metadata().sourcePath;
+    if (study.functional->pacs.empty()) study.functional->path = functional_->metadata().sourcePath;
   }
   // The standard layout's four views (what `mvw render` can render of any layout's state: the
   // 3D view, and the three MPR planes at the MPR panes' zoom, pan and crosshair), and the

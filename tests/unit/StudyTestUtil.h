@@ -15,7 +15,7 @@ inline config::StudyConfig studyWith(const nlohmann::json& view) {
   config::StudyConfig s;
   s.file = "study.json";
   s.anatomical.path = "ct.nii";
-  s.functional = config::VolumeSource{"pet.nii", "", std::nullopt};
+  s.functional = config::VolumeSource{"pet.nii", "", "", "", std::nullopt};
   s.render.views = {config::parseViewConfig(view, s.file, "view", 0)};
   return s;
 }

@@ -273,10 +273,10 @@ TEST(StudyConfig, FullySetStudyLoadsBackFieldByField) {
   std::ofstream(dir / "t.tfm") << "x";
   StudyConfig c;
   c.name = "every field";
-  c.anatomical = {dir / "anat.nii", "7", FrameChoice{false, 2}, 1.5};
-  c.functional = VolumeSource{dir / "pet.nii", "3", FrameChoice{true, 0}, 2.5};
+  c.anatomical = {dir / "anat.nii", "7", "", "", FrameChoice{false, 2}, 1.5};
+  c.functional = VolumeSource{dir / "pet.nii", "3", "", "", FrameChoice{true, 0}, 2.5};
   c.functionalKind = FunctionalKind::Dose;
-  c.segmentation = VolumeSource{dir / "seg.nii", "9", FrameChoice{false, 1}, 0.5};
+  c.segmentation = VolumeSource{dir / "seg.nii", "9", "", "", FrameChoice{false, 1}, 0.5};
   c.registration = {RegistrationMethod::File, dir / "t.tfm", 20.0};
   c.measurements.spheres = {{{1.0, -2.0, 3.0}, 7.5}};
   c.measurements.rulers = {{{0.0, 0.0, 0.0}, {10.0, 0.0, 5.0}}};
@@ -345,11 +345,52 @@ TEST(StudyConfig, FullySetStudyLoadsBackFieldByField) {
     ASSERT_TRUE(full.contains(key)) << key << " is not written";
     if (dot == std::string::npos) continue;
     const std::string sub = path.substr(dot + 1);
+    // A source names a path or a PACS series, never both: PacsSourceLoadsBack covers those.
+    if (sub == "pacs" || sub == "study") continue;
     EXPECT_TRUE(full[key].contains(sub)) << path << " is not written";
     if (sub != "path" && full[key].contains(sub))
       EXPECT_NE(full[key][sub],
                 def.value(key, nlohmann::json::object()).value(sub, nlohmann::json()))
           << path << " left at its default";
+  }
+}
+
+// A source naming a PACS series (issue 37): "pacs", "study" and "series" written and loaded back,
+// no "path"; the config refuses a path beside it, a missing study, a study that is not a UID,
+// credentials in the server URL and a server that is not one.
+TEST(StudyConfig, PacsSourceLoadsBack) {
+  const fs::path dir = test::scratchDir();
+  StudyConfig c;
+  c.anatomical.pacs = "http://127.0.0.1:8042/dicom-web";
+  c.anatomical.study = "1.2.840.113619.2.55";
+  c.anatomical.series = "CT";
+  c.functional = VolumeSource{};
+  c.functional->pacs = "dicom://ORTHANC@127.0.0.1:4242";
+  c.functional->study = "1.2.840.113619.2.55";
+  c.functional->series = "PT";
+  const fs::path written = dir / "pacs.json";
+  writeStudyConfig(c, written);
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(written));
+  EXPECT_FALSE(j["anatomical"].contains("path")) << j.dump();
+  const StudyConfig d = loadStudyConfig(written);
+  EXPECT_EQ(d.anatomical.pacs, c.anatomical.pacs);
+  EXPECT_EQ(d.anatomical.study, c.anatomical.study);
+  EXPECT_EQ(d.anatomical.series, "CT");
+  EXPECT_TRUE(d.anatomical.path.empty());
+  ASSERT_TRUE(d.functional.has_value());
+  EXPECT_EQ(d.functional->pacs, c.functional->pacs);
+  EXPECT_EQ(d.functional->series, "PT");
+  std::ofstream(dir / "ct.nii") << "x";
+  for (
+      const char* bad :
+      {R"({"anatomical": {"path": "ct.nii", "pacs": "http://h/dw", "study": "1.2", "series": "1"}})",
+       R"({"anatomical": {"pacs": "http://h/dw", "series": "1"}})",
+       R"({"anatomical": {"pacs": "http://h/dw", "study": "../x", "series": "1"}})",
+       R"({"anatomical": {"pacs": "http://u:pw@h/dw", "study": "1.2", "series": "1"}})",
+       R"({"anatomical": {"pacs": "ftp://h", "study": "1.2", "series": "1"}})",
+       R"({"anatomical": {"path": "ct.nii", "study": "1.2"}})"}) {
+    writeConfig(dir, bad);
+    EXPECT_THROW(loadStudyConfig(dir / "study.json"), InputError) << bad;
   }
 }
 

@@ -17,7 +17,7 @@ TEST(StudyLoader, A4DFunctionalVolumeContributesTheMeanOrTheChosenFrame) {
   const auto path = test::sampleData("nipy/functional.nii.gz");
   const Volume all = io::readVolume(path);
   ASSERT_EQ(all.components(), 20);
-  config::VolumeSource source{path, "", config::defaultFrame(config::FunctionalKind::Fmri)};
+  config::VolumeSource source{path, "", "", "", config::defaultFrame(config::FunctionalKind::Fmri)};
   const Volume mean = readSource(source);
   EXPECT_EQ(mean.components(), 1);
   EXPECT_EQ(mean.dimensions(), all.dimensions());

@@ -541,7 +541,7 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
        "path",
        "The volume: a NIfTI, MetaImage or DICOM file, or a DICOM folder; relative to the "
        "config file's folder.",
-       {"string", "an existing file or folder", "required", {}},
+       {"string", "an existing file or folder", "required (or \"pacs\")", {}},
        [](const json& v, SourceEntry& out, const Where& w) {
          const std::string p = detail::readString(v, w);
          if (p.empty()) w.bad("is empty");
@@ -550,7 +550,39 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
          if (!fs::exists(out.source.path, ec))
            w.bad("names " + out.source.path.string() + ", which does not exist");
        },
-       [](const SourceEntry& in, json& j, const char* k) { j[k] = absolutePath(in.source.path); })
+       [](const SourceEntry& in, json& j, const char* k) {
+         if (!in.source.path.empty()) j[k] = absolutePath(in.source.path);
+       })
+      .add(
+          "pacs",
+          "Instead of a path, a PACS: http(s)://host:port/PATH (DICOMweb) or "
+          "dicom://AET@host:port (DIMSE); the series is read from the verified cache.",
+          {"string", "a server URL, no credentials", "", {}},
+          [](const json& v, SourceEntry& out, const Where& w) {
+            const std::string p = detail::readString(v, w);
+            if (p.rfind("http://", 0) != 0 && p.rfind("https://", 0) != 0 &&
+                p.rfind("dicom://", 0) != 0)
+              w.bad("must be http(s)://host:port/PATH or dicom://AET@host:port");
+            if (p.rfind("http", 0) == 0 && p.find('@') != std::string::npos)
+              w.bad("must not hold credentials: set MVW_PACS_USER and MVW_PACS_PASSWORD");
+            out.source.pacs = p;
+          },
+          [](const SourceEntry& in, json& j, const char* k) {
+            if (!in.source.pacs.empty()) j[k] = in.source.pacs;
+          })
+      .add(
+          "study", "With \"pacs\": the Study Instance UID.", {"string", "a DICOM UID", "", {}},
+          [](const json& v, SourceEntry& out, const Where& w) {
+            const std::string uid = detail::readString(v, w);
+            const bool digitsAndDots = uid.find_first_not_of("0123456789.") == std::string::npos;
+            if (uid.empty() || uid.size() > 64 || !digitsAndDots || uid.front() == '.' ||
+                uid.back() == '.' || uid.find("..") != std::string::npos)
+              w.bad("must be a DICOM UID (digits and dots, at most 64 characters)");
+            out.source.study = uid;
+          },
+          [](const SourceEntry& in, json& j, const char* k) {
+            if (!in.source.study.empty()) j[k] = in.source.study;
+          })
       .add(
           "series",
           "The DICOM series, where the folder holds several: its UID, number or part of its "
@@ -609,7 +641,15 @@ SourceEntry readSource(const json& j, const fs::path& file, const std::string& n
   if (!j.is_object()) throw InputError(file, "'" + name + "' must be an object with a \"path\"");
   SourceEntry e;
   sourceTable(withKind).read(j, e, Where{file, name + "."});
-  if (!j.contains("path")) throw InputError(file, "missing key '" + name + ".path'");
+  const bool pacs = j.contains("pacs");
+  if (pacs && j.contains("path"))
+    throw InputError(file, "'" + name + "' names both a \"path\" and a \"pacs\": give one");
+  if (pacs && (!j.contains("study") || !j.contains("series")))
+    throw InputError(file, "'" + name +
+                               "' names a \"pacs\" without its \"study\" and "
+                               "\"series\"");
+  if (!pacs && j.contains("study")) throw InputError(file, "'" + name + ".study' needs a \"pacs\"");
+  if (!pacs && !j.contains("path")) throw InputError(file, "missing key '" + name + ".path'");
   return e;
 }
 

@@ -1,12 +1,15 @@
 #include "mvw/study/SegmentOverlay.h"
 
 #include <cmath>
+#include <filesystem>
 #include <map>
+#include <vector>
 
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
 #include "mvw/core/Frame.h"
 #include "mvw/io/DicomSeg.h"
+#include "mvw/study/StudyLoader.h"
 
 namespace mvw::study {
 
@@ -19,10 +22,29 @@ const glm::vec3 kPalette[] = {{0.50f, 0.68f, 0.50f}, {0.95f, 0.84f, 0.57f}, {0.6
 
 }  // namespace
 
+static SegmentOverlay readLocalSegmentOverlay(const config::VolumeSource& source,
+                                              const io::ReadOptions& options);
+
 SegmentOverlay readSegmentOverlay(const config::VolumeSource& source,
                                   const io::ReadOptions& given) {
   io::ReadOptions options = given;
   options.series = source.series;
+  config::VolumeSource local = source;
+  if (!source.pacs.empty()) {
+    // A PACS series from its verified cache folder: a SEG is its one file; "series" chose it.
+    local.path = localPath(source);
+    local.series.clear();
+    options.series.clear();
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(local.path))
+      if (e.path().extension() == ".dcm") files.push_back(e.path());
+    if (files.size() == 1 && io::isDicomSegmentation(files.front())) local.path = files.front();
+  }
+  return readLocalSegmentOverlay(local, options);
+}
+
+static SegmentOverlay readLocalSegmentOverlay(const config::VolumeSource& source,
+                                              const io::ReadOptions& options) {
   SegmentOverlay out;
   if (io::isDicomSegmentation(source.path)) {
     // A SEG file is one segmentation, its frames its segments' slices: neither key applies.

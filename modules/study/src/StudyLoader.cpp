@@ -9,13 +9,21 @@
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
 #include "mvw/core/Frame.h"
+#include "mvw/pacs/Pacs.h"
 
 namespace mvw::study {
 
+std::filesystem::path localPath(const config::VolumeSource& source) {
+  if (source.pacs.empty()) return source.path;
+  return pacs::cachedSeries(pacs::parseServer(source.pacs), source.study, source.series,
+                            pacs::studyOptions());
+}
+
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options) {
-  options.series = source.series;
+  // A PACS series is read from its verified cache folder, which holds that series alone.
+  options.series = source.pacs.empty() ? source.series : std::string();
   options.sliceSpacing = source.sliceSpacingMm;
-  Volume volume = io::readVolume(source.path, options);
+  Volume volume = io::readVolume(localPath(source), options);
   // A 4D volume becomes the one 3D volume every view and the registration use, with a note;
   // a frame the volume does not have is bad input, said before any heavy work.
   if (volume.components() > 1 || (source.frame && !source.frame->mean && source.frame->index > 0)) {

@@ -6,6 +6,8 @@
 //   { "name": "Cranium CT",
 //     "anatomical": { "path": "../data/cranium/dicom", "series": "" },
 //     "functional": { "path": "../data/pet.nii.gz", "kind": "pet" },
+//     (or from a PACS: "functional": { "pacs": "http://pacs:8042/dicom-web", "study": "1.2.3",
+//                                      "series": "PT", "kind": "pet" })
 //     "render": { "views": [ { "name": "bone", "mode": "composite", "view": "anterior",
 //                              "preset": "ct-bone", "width": 512, "height": 512 } ] } }
 //
@@ -30,6 +32,12 @@ namespace mvw::config {
 struct VolumeSource {
   std::filesystem::path path;
   std::string series;  // DICOM series selection: UID, number or part of the description
+  // Or a series on a PACS (issue 37): the server (http(s)://... or dicom://AET@host:port) and the
+  // Study Instance UID; `series` then names the series (UID, number, modality or description)
+  // and the study loader reads it from the verified cache (mvw::pacs::cachedSeries). `path`
+  // stays empty.
+  std::string pacs;
+  std::string study;
   // What a 4D volume contributes ("frame": N or "mean"); unset: frame 0 (the anatomy), for the
   // functional volume the loader sets defaultFrame(kind). A 3D volume ignores frame 0 / mean.
   std::optional<FrameChoice> frame;

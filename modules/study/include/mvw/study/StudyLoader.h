@@ -8,6 +8,10 @@
 
 namespace mvw::study {
 
+// Where a source's files are: its path, or for a PACS series ("pacs", "study", "series") the
+// verified cache folder, retrieved first when it is not complete there (mvw::pacs).
+std::filesystem::path localPath(const config::VolumeSource& source);
+
 // The volume a study names, read with `options` and the source's own series selection.
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options = {});
 

@@ -1,0 +1,169 @@
+#include "PacsCommand.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "mvw/core/Error.h"
+#include "mvw/pacs/Pacs.h"
+
+namespace mvw::app {
+
+namespace {
+
+struct PacsCli {
+  std::string server;
+  pacs::Options options;
+  pacs::StudyQuery query;
+  std::vector<std::string> series;
+  std::filesystem::path out;
+  std::vector<std::filesystem::path> files;
+  bool json = false;
+  bool quiet = false;
+};
+
+void addConnection(CLI::App* cmd, PacsCli& o) {
+  cmd->add_option("SERVER", o.server,
+                  "http(s)://host:port/PATH (DICOMweb) or dicom://AET@host:port (DIMSE)")
+      ->required();
+  cmd->add_option("--calling-aet", o.options.callingAet, "DIMSE: mvw's AE title (default MVW)")
+      ->check([](const std::string& s) {
+        return s.empty() || s.size() > 16 ? std::string("an AE title has 1 to 16 characters")
+                                          : std::string();
+      });
+  cmd->add_option("--connect-timeout", o.options.connectTimeoutS,
+                  "seconds to wait for the connection (default 10)")
+      ->check(CLI::Range(0.1, 3600.0));
+  cmd->add_option("--read-timeout", o.options.readTimeoutS,
+                  "seconds to wait for the next bytes of an answer (default 60)")
+      ->check(CLI::Range(0.1, 86400.0));
+  cmd->add_flag("--insecure", o.options.insecure,
+                "HTTPS: do not verify the server's certificate (said on stderr)");
+  cmd->add_flag("-q,--quiet", o.quiet, "no progress on stderr");
+}
+
+std::string field(const pacs::Match& m, const char* key) {
+  auto it = m.find(key);
+  return it == m.end() ? std::string() : it->second;
+}
+
+void printMatches(const std::vector<pacs::Match>& matches, bool json, bool series) {
+  if (json) {
+    for (const pacs::Match& m : matches) std::cout << nlohmann::json(m).dump() << "\n";
+    return;
+  }
+  if (series) {
+    std::cout << std::left << std::setw(7) << "number" << std::setw(9) << "modality"
+              << std::setw(10) << "instances" << std::setw(34) << "description"
+              << "SeriesInstanceUID\n";
+    for (const pacs::Match& m : matches)
+      std::cout << std::setw(7) << field(m, "SeriesNumber") << std::setw(9) << field(m, "Modality")
+                << std::setw(10) << field(m, "NumberOfSeriesRelatedInstances") << std::setw(34)
+                << field(m, "SeriesDescription").substr(0, 32) << field(m, "SeriesInstanceUID")
+                << "\n";
+    return;
+  }
+  std::cout << std::left << std::setw(24) << "patient" << std::setw(14) << "patient id"
+            << std::setw(10) << "date" << std::setw(11) << "modalities" << std::setw(8) << "series"
+            << std::setw(30) << "description"
+            << "StudyInstanceUID\n";
+  for (const pacs::Match& m : matches)
+    std::cout << std::setw(24) << field(m, "PatientName").substr(0, 22) << std::setw(14)
+              << field(m, "PatientID").substr(0, 12) << std::setw(10) << field(m, "StudyDate")
+              << std::setw(11) << field(m, "ModalitiesInStudy").substr(0, 10) << std::setw(8)
+              << field(m, "NumberOfStudyRelatedSeries") << std::setw(30)
+              << field(m, "StudyDescription").substr(0, 28) << field(m, "StudyInstanceUID") << "\n";
+}
+
+void summary(const char* verb, const pacs::Transfer& t) {
+  std::printf("%s %d instances, %.1f MB in %.2f s (%.1f MB/s)\n", verb, t.instances,
+              static_cast<double>(t.bytes) / 1e6, t.seconds,
+              t.seconds > 0 ? static_cast<double>(t.bytes) / 1e6 / t.seconds : 0.0);
+}
+
+}  // namespace
+
+void addPacsCommand(CLI::App& app) {
+  auto o = std::make_shared<PacsCli>();
+  CLI::App* cmd = app.add_subcommand(
+      "pacs",
+      "Query and retrieve studies from a PACS (DICOMweb or DIMSE); credentials from "
+      "MVW_PACS_USER/MVW_PACS_PASSWORD or MVW_PACS_CREDENTIALS; exit 3 when the server "
+      "fails");
+  cmd->require_subcommand(1);
+
+  CLI::App* echo = cmd->add_subcommand("echo", "C-ECHO, or a QIDO-RS request: the round trip");
+  addConnection(echo, *o);
+  echo->callback([o] {
+    const pacs::Server server = pacs::parseServer(o->server);
+    const double s = pacs::echo(server, o->options);
+    std::printf("%s answered in %.1f ms\n", server.text.c_str(), s * 1000.0);
+  });
+
+  CLI::App* find =
+      cmd->add_subcommand("find", "Studies matching the keys, or with --study that study's series");
+  addConnection(find, *o);
+  find->add_option("--patient-id", o->query.patientId, "Patient ID");
+  find->add_option("--patient-name", o->query.patientName, "Patient's name (wildcards * ?)");
+  find->add_option("--study-date", o->query.studyDate, "YYYYMMDD or YYYYMMDD-YYYYMMDD");
+  find->add_option("--modality", o->query.modality, "a modality in the study (CT, PT, MR...)");
+  find->add_option("--accession", o->query.accession, "Accession Number");
+  find->add_option("--study", o->query.studyUid, "a Study Instance UID: its series");
+  find->add_flag("--json", o->json, "one JSON object per match, keyed by DICOM keyword");
+  find->callback([o] {
+    const pacs::Server server = pacs::parseServer(o->server);
+    if (!o->query.studyUid.empty()) {
+      auto series = pacs::findSeries(server, o->query.studyUid, o->options);
+      if (series.empty()) {
+        // An unknown study and a study without series read alike: say which.
+        pacs::StudyQuery q;
+        q.studyUid = o->query.studyUid;
+        if (pacs::findStudies(server, q, o->options).empty())
+          throw InputError(server.text, "has no study " + o->query.studyUid);
+      }
+      printMatches(series, o->json, true);
+    } else {
+      printMatches(pacs::findStudies(server, o->query, o->options), o->json, false);
+    }
+  });
+
+  CLI::App* get = cmd->add_subcommand(
+      "get",
+      "Every instance of the chosen series (all without --series) into DIR, one file per "
+      "instance named by its SOP Instance UID");
+  addConnection(get, *o);
+  get->add_option("--study", o->query.studyUid, "the Study Instance UID")->required();
+  get->add_option("--series", o->series,
+                  "a series: its UID, number, modality or part of its description (repeatable)");
+  get->add_option("-o,--output", o->out, "the folder to write into")->required();
+  get->add_option("--move-to", o->options.moveToAet,
+                  "DIMSE: retrieve by C-MOVE to this AE title (mvw's storage SCP; needs --port)");
+  get->add_option("--port", o->options.movePort, "the storage SCP's port for --move-to")
+      ->check(CLI::Range(1, 65535));
+  get->callback([o] {
+    const pacs::Server server = pacs::parseServer(o->server);
+    if (!o->options.moveToAet.empty() &&
+        (o->options.movePort == 0 || server.protocol != pacs::Protocol::Dimse))
+      throw InputError("--move-to", "needs --port P and a dicom:// server");
+    o->options.progress = !o->quiet;
+    summary("retrieved", pacs::get(server, o->query.studyUid, o->series, o->out, o->options));
+  });
+
+  CLI::App* store = cmd->add_subcommand(
+      "store", "DICOM files (or every file under folders) to the server: STOW-RS or C-STORE");
+  addConnection(store, *o);
+  store->add_option("FILE", o->files, "DICOM files or folders")->required();
+  store->callback([o] {
+    const pacs::Server server = pacs::parseServer(o->server);
+    summary("stored", pacs::store(server, o->files, o->options));
+  });
+}
+
+}  // namespace mvw::app

@@ -1,0 +1,111 @@
+#pragma once
+// Studies from a PACS (issue 37): query and retrieve over DICOMweb (QIDO-RS, WADO-RS, STOW-RS)
+// and DIMSE (C-ECHO, C-FIND, C-GET, C-MOVE, C-STORE), into a folder or the verified cache.
+// DCMTK and libcurl stay inside this module's .cpp files.
+//
+// A server's answer is input: UIDs are checked (isUid) before one names a file, sizes and
+// counts are bounded. A server that cannot be reached, refuses or breaks off is a ServiceError
+// naming the server and what it said (never credentials); bad input is an InputError.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace mvw::pacs {
+
+enum class Protocol { DicomWeb, Dimse };
+
+// SERVER as the user writes it: http(s)://host:port/PATH (DICOMweb) or dicom://AET@host:port.
+struct Server {
+  Protocol protocol = Protocol::DicomWeb;
+  std::string text;     // as given (never holds credentials: parseServer refuses them)
+  std::string baseUrl;  // DICOMweb: the URL without a trailing slash
+  std::string host;     // DIMSE
+  int port = 0;         // DIMSE
+  std::string calledAet;
+};
+
+// Throws InputError (naming SERVER) for anything else, and for credentials in a URL.
+Server parseServer(const std::string& text);
+
+struct Options {
+  std::string callingAet = "MVW";
+  double connectTimeoutS = 10.0;
+  double readTimeoutS = 60.0;
+  bool insecure = false;  // HTTPS without certificate verification (said on stderr)
+  // DIMSE retrieve by C-MOVE to this AE title, received by mvw's own storage SCP on movePort;
+  // empty: C-GET.
+  std::string moveToAet;
+  int movePort = 0;
+  bool progress = true;  // instances and MB/s on stderr
+  // The verified cache (cachedSeries); empty: $XDG_CACHE_HOME/mvw/dicom or ~/.cache/mvw/dicom.
+  std::filesystem::path cacheDir;
+};
+
+// The cache folder Options::cacheDir names, or the default.
+std::filesystem::path cacheRoot(const Options& options);
+
+// The options the study loader reads PACS series with: process-wide, set from the command line
+// (`--cache DIR`, `--connect-timeout S`, `--read-timeout S` on every command).
+Options& studyOptions();
+
+// A DICOM UID: 1..64 characters, digits and dots, no empty component. Only such a string ever
+// names a file.
+bool isUid(const std::string& text);
+
+// One query match keyed by DICOM keyword (StudyInstanceUID, Modality, ...); several values
+// joined by '\'.
+using Match = std::map<std::string, std::string>;
+
+struct StudyQuery {
+  std::string patientId;
+  std::string patientName;  // DICOM wildcards * and ?
+  std::string studyDate;    // YYYYMMDD, or a range YYYYMMDD-YYYYMMDD
+  std::string modality;
+  std::string accession;
+  std::string studyUid;
+};
+
+// The round trip of a C-ECHO or a QIDO-RS request, in seconds.
+double echo(const Server& server, const Options& options);
+std::vector<Match> findStudies(const Server& server, const StudyQuery& query,
+                               const Options& options);
+std::vector<Match> findSeries(const Server& server, const std::string& studyUid,
+                              const Options& options);
+std::vector<Match> findInstances(const Server& server, const std::string& studyUid,
+                                 const std::string& seriesUid, const Options& options);
+
+// The series of a study one selection names: its UID, its number, its modality or part of its
+// description (case-insensitive). InputError when none or several match.
+Match selectSeries(const Server& server, const std::vector<Match>& series,
+                   const std::string& studyUid, const std::string& selection);
+
+struct Transfer {
+  int instances = 0;
+  std::uint64_t bytes = 0;
+  double seconds = 0.0;
+};
+
+// Every instance of the chosen series (all series of the study when `series` is empty) into
+// `outDir`, one file per instance named <SOPInstanceUID>.dcm. Staged in a hidden folder inside
+// outDir and moved in when all are verified; nothing is left on failure.
+Transfer get(const Server& server, const std::string& studyUid,
+             const std::vector<std::string>& series, const std::filesystem::path& outDir,
+             const Options& options);
+
+// The files (or every file under each folder) sent to the server: STOW-RS or C-STORE.
+// InputError for a file that is not DICOM, ServiceError when the server refuses one.
+Transfer store(const Server& server, const std::vector<std::filesystem::path>& files,
+               const Options& options);
+
+// The folder in the verified cache holding the series `selection` of study `studyUid`,
+// retrieved first unless it is there complete and verified: every instance the server has (as
+// many as it states for the series, or every one it lists), each parsing and carrying the SOP
+// Instance, series and study UIDs asked for. An interrupted
+// retrieve leaves only a .partial folder, which the next call resumes.
+std::filesystem::path cachedSeries(const Server& server, const std::string& studyUid,
+                                   const std::string& selection, const Options& options);
+
+}  // namespace mvw::pacs

@@ -1,0 +1,94 @@
+#pragma once
+// What the protocol halves (DicomWeb.cpp, Dimse.cpp) share with Pacs.cpp: one retrieve into a
+// staging folder, the checks every received file passes, progress.
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "mvw/pacs/Pacs.h"
+
+namespace mvw::pacs::detail {
+
+// The UIDs a received instance must carry; empty: any.
+struct Expect {
+  std::string studyUid;
+  std::set<std::string> seriesUids;
+};
+
+// Instances as they arrive: each checked and written as <staging>/<SOPInstanceUID>.dcm.
+class Receiver {
+ public:
+  Receiver(const Server& server, std::filesystem::path staging, Expect expect, bool progress);
+  // Ends a progress line left open (by a retrieve that failed), so the error starts a line.
+  ~Receiver();
+  Receiver(const Receiver&) = delete;
+  Receiver& operator=(const Receiver&) = delete;
+  // A DICOM file received whole at `file` (a temporary name in the staging folder): parsed,
+  // its UIDs checked, renamed to <SOPInstanceUID>.dcm. ServiceError naming the server when
+  // the object is not what was asked for.
+  void acceptFile(const std::filesystem::path& file);
+  void addBytes(std::uint64_t n) { bytes_ += n; }
+  void report(bool final);
+  Transfer transfer() const;
+  const std::filesystem::path& staging() const { return staging_; }
+  int count() const { return static_cast<int>(received_.size()); }
+  // The distinct instances received of one series.
+  long countOf(const std::string& seriesUid) const {
+    auto it = perSeries_.find(seriesUid);
+    return it == perSeries_.end() ? 0 : it->second;
+  }
+
+ private:
+  const Server& server_;
+  std::filesystem::path staging_;
+  Expect expect_;
+  bool progress_;
+  bool lineOpen_ = false;
+  std::set<std::string> received_;
+  std::map<std::string, long> perSeries_;
+  std::uint64_t bytes_ = 0;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point lastReport_ = start_;
+};
+
+// The UIDs a DICOM file carries, or nullopt when it does not parse.
+struct FileUids {
+  std::string sopInstance;
+  std::string series;
+  std::string study;
+};
+std::optional<FileUids> readUids(const std::filesystem::path& file);
+
+// The instances of `seriesUid` (all of them, or only `instances`) retrieved into `receiver`.
+void webRetrieve(const Server& server, const std::string& studyUid, const std::string& seriesUid,
+                 const std::vector<std::string>& instances, Receiver& receiver,
+                 const Options& options);
+void dimseRetrieve(const Server& server, const std::string& studyUid, const std::string& seriesUid,
+                   const std::vector<std::string>& instances, Receiver& receiver,
+                   const Options& options);
+
+double webEcho(const Server& server, const Options& options);
+double dimseEcho(const Server& server, const Options& options);
+// level: STUDY, SERIES or IMAGE; keys: keyword -> value (empty: return it).
+std::vector<Match> webFind(const Server& server, const std::string& level, const Match& keys,
+                           const Options& options);
+std::vector<Match> dimseFind(const Server& server, const std::string& level, const Match& keys,
+                             const Options& options);
+void webStore(const Server& server, const std::vector<std::filesystem::path>& files,
+              const Options& options);
+void dimseStore(const Server& server, const std::vector<std::filesystem::path>& files,
+                const Options& options);
+
+// DCMTK logs to stderr by default; mvw says what went wrong itself, once. Called before any
+// DCMTK work.
+void quietDcmtk();
+
+// The DICOM keyword of tag (group, element) from DCMTK's dictionary, "" when unknown.
+std::string keywordOf(unsigned group, unsigned element);
+
+}  // namespace mvw::pacs::detail

@@ -1,0 +1,109 @@
+// The PACS client's checks that need no server (the rest: tests/cli/pacs-cli against Orthanc):
+// which strings are UIDs (only those name files), which SERVER texts are servers, and how a
+// series choice picks one series or refuses.
+#include <cstdlib>
+#include <optional>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "mvw/core/Error.h"
+#include "mvw/pacs/Pacs.h"
+
+namespace mvw::pacs {
+namespace {
+
+TEST(Pacs, OnlyUidsNameFiles) {
+  EXPECT_TRUE(isUid("1.2.840.10008.5.1.4.1.1.2"));
+  EXPECT_TRUE(isUid("2.25.312033976858594262333413331300812186691"));
+  EXPECT_TRUE(isUid("1"));
+  EXPECT_FALSE(isUid(""));
+  EXPECT_FALSE(isUid("../x"));
+  EXPECT_FALSE(isUid(".."));
+  EXPECT_FALSE(isUid("1..2"));
+  EXPECT_FALSE(isUid(".1.2"));
+  EXPECT_FALSE(isUid("1.2."));
+  EXPECT_FALSE(isUid("1.2/3"));
+  EXPECT_FALSE(isUid("1.2\\3"));
+  EXPECT_FALSE(isUid("1.2 3"));
+  EXPECT_FALSE(isUid(std::string(65, '1')));
+  EXPECT_TRUE(isUid(std::string(64, '1')));
+}
+
+TEST(Pacs, ServersAreDicomWebOrDimse) {
+  Server web = parseServer("http://127.0.0.1:8042/dicom-web/");
+  EXPECT_EQ(web.protocol, Protocol::DicomWeb);
+  EXPECT_EQ(web.baseUrl, "http://127.0.0.1:8042/dicom-web");
+  EXPECT_EQ(parseServer("https://pacs.example.org/wado").protocol, Protocol::DicomWeb);
+  Server dimse = parseServer("dicom://ORTHANC@pacs.local:4242");
+  EXPECT_EQ(dimse.protocol, Protocol::Dimse);
+  EXPECT_EQ(dimse.calledAet, "ORTHANC");
+  EXPECT_EQ(dimse.host, "pacs.local");
+  EXPECT_EQ(dimse.port, 4242);
+  for (const char* bad : {"ftp://x", "dicom://pacs:104", "dicom://A@h:0", "dicom://A@h:70000",
+                          "dicom://TOOLONGAETITLE_1234@h:104", "pacs", ""})
+    EXPECT_THROW(parseServer(bad), InputError) << bad;
+}
+
+TEST(Pacs, CredentialsInAUrlAreRefusedWithoutBeingRepeated) {
+  try {
+    parseServer("https://alice:hunter2@pacs.example.org/dicom-web");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("hunter2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("MVW_PACS_USER"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Pacs, ASeriesChoicePicksOneOrRefuses) {
+  const Server s = parseServer("http://127.0.0.1:1/dw");
+  const std::vector<Match> series = {{{"SeriesInstanceUID", "1.2.3.1"},
+                                      {"SeriesNumber", "1"},
+                                      {"Modality", "CT"},
+                                      {"SeriesDescription", "Head 1.5 mm"}},
+                                     {{"SeriesInstanceUID", "1.2.3.2"},
+                                      {"SeriesNumber", "2"},
+                                      {"Modality", "PT"},
+                                      {"SeriesDescription", "PET AC"}},
+                                     {{"SeriesInstanceUID", "1.2.3.3"},
+                                      {"SeriesNumber", "3"},
+                                      {"Modality", "PT"},
+                                      {"SeriesDescription", "PET NAC"}}};
+  EXPECT_EQ(selectSeries(s, series, "1.2", "1.2.3.3").at("SeriesNumber"), "3");
+  EXPECT_EQ(selectSeries(s, series, "1.2", "2").at("SeriesInstanceUID"), "1.2.3.2");
+  EXPECT_EQ(selectSeries(s, series, "1.2", "ct").at("SeriesInstanceUID"), "1.2.3.1");
+  EXPECT_EQ(selectSeries(s, series, "1.2", "nac").at("SeriesInstanceUID"), "1.2.3.3");
+  EXPECT_THROW(selectSeries(s, series, "1.2", "PT"), InputError);   // two PET series
+  EXPECT_THROW(selectSeries(s, series, "1.2", "MR"), InputError);   // none
+  EXPECT_THROW(selectSeries(s, series, "1.2", "PET"), InputError);  // two descriptions
+}
+
+TEST(Pacs, TheCacheFollowsXdgCacheHome) {
+  // The environment as it was, afterwards: other tests of this process read HOME.
+  struct Restore {
+    std::string name;
+    std::optional<std::string> value;
+    ~Restore() {
+      if (value)
+        ::setenv(name.c_str(), value->c_str(), 1);
+      else
+        ::unsetenv(name.c_str());
+    }
+  };
+  auto saved = [](const char* name) {
+    const char* v = std::getenv(name);
+    return Restore{name, v ? std::optional<std::string>(v) : std::nullopt};
+  };
+  const Restore home = saved("HOME"), xdg = saved("XDG_CACHE_HOME");
+  Options o;
+  o.cacheDir = "/tmp/given";
+  EXPECT_EQ(cacheRoot(o), std::filesystem::path("/tmp/given"));
+  ::setenv("XDG_CACHE_HOME", "/tmp/xdg", 1);
+  EXPECT_EQ(cacheRoot(Options{}), std::filesystem::path("/tmp/xdg/mvw/dicom"));
+  ::setenv("XDG_CACHE_HOME", "relative", 1);  // not absolute: ignored, as the spec says
+  ::setenv("HOME", "/home/u", 1);
+  EXPECT_EQ(cacheRoot(Options{}), std::filesystem::path("/home/u/.cache/mvw/dicom"));
+}
+
+}  // namespace
+}  // namespace mvw::pacs
