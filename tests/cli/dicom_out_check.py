@@ -21,48 +21,14 @@ import zlib
 import numpy as np
 import pydicom
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "view"))
+import pngstat  # noqa: E402  (the PNG reader the viewer tests use, standard library only)
+
 
 def read_png(path):
-    data = open(path, "rb").read()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n", path + ": not a PNG"
-    pos, idat = 8, b""
-    while pos < len(data):
-        n = struct.unpack(">I", data[pos:pos + 4])[0]
-        kind, chunk = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + n]
-        if kind == b"IHDR":
-            w, h, depth, colour = struct.unpack(">IIBB", chunk[:10])
-            assert depth == 8 and colour in (2, 6), path + ": expected 8-bit RGB(A)"
-            bpp = 4 if colour == 6 else 3
-        elif kind == b"IDAT":
-            idat += chunk
-        pos += 12 + n
-    raw = np.frombuffer(zlib.decompress(idat), np.uint8).reshape(h, w * bpp + 1)
-    out = np.zeros((h, w * bpp), np.int32)
-    prev = np.zeros(w * bpp, np.int32)
-    for y in range(h):
-        f, line = raw[y, 0], raw[y, 1:].astype(np.int32)
-        if f == 0:
-            cur = line
-        elif f == 2:
-            cur = (line + prev) & 255
-        else:
-            cur = np.zeros_like(line)
-            for i in range(w * bpp):
-                a = cur[i - bpp] if i >= bpp else 0
-                b = prev[i]
-                c = prev[i - bpp] if i >= bpp else 0
-                if f == 1:
-                    v = a
-                elif f == 3:
-                    v = (a + b) // 2
-                else:
-                    p = a + b - c
-                    pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                    v = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
-                cur[i] = (line[i] + v) & 255
-        out[y] = cur
-        prev = cur
-    return out.reshape(h, w, bpp)[:, :, :3].astype(np.uint8)
+    """The PNG's RGB as an (h, w, 3) uint8 array, decoded by the viewer tests' reader."""
+    w, h, bpp, rows = pngstat.read(path)
+    return np.frombuffer(b"".join(rows), np.uint8).reshape(h, w, bpp)[:, :, :3]
 
 
 def write_png(path, rgb):
