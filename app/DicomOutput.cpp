@@ -1,6 +1,9 @@
 #include "DicomOutput.h"
 
+#include <ostream>
+
 #include "CliChecks.h"
+#include "PacsCommand.h"
 #include "mvw/core/Error.h"
 
 namespace mvw::app {
@@ -24,6 +27,12 @@ void addDicomOptions(CLI::App& cmd, DicomOutputOptions& o, bool withFolder) {
   cmd.add_option("--uid-root", o.uidRoot,
                  "DICOM output: an organisation's UID root for the new UIDs (default 2.25, a UUID)")
       ->check(nonEmpty());
+  cmd.add_option("--store", o.store,
+                 "Once every DICOM object is written, send them to this PACS: "
+                 "http(s)://host:port/PATH (STOW-RS) or dicom://AET@host:port (C-STORE), as "
+                 "`mvw pacs store`; exit 3 when the server fails (the files stay written)")
+      ->check(nonEmpty());
+  addServerOptions(cmd, o.storeOptions);
 }
 
 void checkDicomOutput(const DicomOutputOptions& o, bool writing, const fs::path& outDir) {
@@ -35,7 +44,17 @@ void checkDicomOutput(const DicomOutputOptions& o, bool writing, const fs::path&
                                                  : nullptr;
     if (given)
       throw CLI::ValidationError(given, "goes with a DICOM output (--dicom, or --seg for stats)");
+    if (!o.store.empty())
+      throw CLI::ValidationError("--store",
+                                 "sends the DICOM objects the command writes: it needs "
+                                 "--dicom (stats: --seg FILE)");
   }
+  const pacs::Options defaults;
+  if (o.store.empty() && (o.storeOptions.callingAet != defaults.callingAet ||
+                          o.storeOptions.insecure != defaults.insecure))
+    throw CLI::ValidationError(o.storeOptions.insecure ? "--insecure" : "--calling-aet",
+                               "goes with --store SERVER");
+  if (!o.store.empty()) pacs::parseServer(o.store);
   dicomout::checkUidRoot(o.uidRoot, "--uid-root");
   dicomout::setUidRoot(o.uidRoot);
   if (!o.dicom || o.force || outDir.empty()) return;
@@ -44,6 +63,25 @@ void checkDicomOutput(const DicomOutputOptions& o, bool writing, const fs::path&
     throw InputError(outDir,
                      "exists and is not empty: DICOM objects go into a new or empty folder "
                      "(give --force to write into it)");
+}
+
+void storeDicom(const DicomOutputOptions& o, const std::vector<fs::path>& files,
+                const fs::path& where, std::ostream& out) {
+  if (o.store.empty()) return;
+  const pacs::Server server = pacs::parseServer(o.store);
+  // The time-outs of the global --connect-timeout and --read-timeout (the study's PACS series
+  // are read with the same), the AE title and HTTPS check of this command's options.
+  pacs::Options options = pacs::studyOptions();
+  options.callingAet = o.storeOptions.callingAet;
+  options.insecure = o.storeOptions.insecure;
+  options.progress = false;
+  try {
+    out << transferSummary("stored", pacs::store(server, files, options)) << " to " << server.text
+        << "\n";
+  } catch (const ServiceError& e) {
+    throw ServiceError(std::string(e.what()) + " (the DICOM objects stay written in " +
+                       where.string() + "; send them with mvw pacs store)");
+  }
 }
 
 std::string identityNote(const dicomout::DicomIdentity& id) {

@@ -33,19 +33,13 @@ void addConnection(CLI::App* cmd, PacsCli& o) {
   cmd->add_option("SERVER", o.server,
                   "http(s)://host:port/PATH (DICOMweb) or dicom://AET@host:port (DIMSE)")
       ->required();
-  cmd->add_option("--calling-aet", o.options.callingAet, "DIMSE: mvw's AE title (default MVW)")
-      ->check([](const std::string& s) {
-        return s.empty() || s.size() > 16 ? std::string("an AE title has 1 to 16 characters")
-                                          : std::string();
-      });
+  addServerOptions(*cmd, o.options);
   cmd->add_option("--connect-timeout", o.options.connectTimeoutS,
                   "seconds to wait for the connection (default 10)")
       ->check(CLI::Range(0.1, 3600.0));
   cmd->add_option("--read-timeout", o.options.readTimeoutS,
                   "seconds to wait for the next bytes of an answer (default 60)")
       ->check(CLI::Range(0.1, 86400.0));
-  cmd->add_flag("--insecure", o.options.insecure,
-                "HTTPS: do not verify the server's certificate (said on stderr)");
   cmd->add_flag("-q,--quiet", o.quiet, "no progress on stderr");
 }
 
@@ -82,13 +76,25 @@ void printMatches(const std::vector<pacs::Match>& matches, bool json, bool serie
               << field(m, "StudyDescription").substr(0, 28) << field(m, "StudyInstanceUID") << "\n";
 }
 
-void summary(const char* verb, const pacs::Transfer& t) {
-  std::printf("%s %d instances, %.1f MB in %.2f s (%.1f MB/s)\n", verb, t.instances,
-              static_cast<double>(t.bytes) / 1e6, t.seconds,
-              t.seconds > 0 ? static_cast<double>(t.bytes) / 1e6 / t.seconds : 0.0);
+}  // namespace
+
+void addServerOptions(CLI::App& cmd, pacs::Options& options) {
+  cmd.add_option("--calling-aet", options.callingAet, "DIMSE: mvw's AE title (default MVW)")
+      ->check([](const std::string& s) {
+        return s.empty() || s.size() > 16 ? std::string("an AE title has 1 to 16 characters")
+                                          : std::string();
+      });
+  cmd.add_flag("--insecure", options.insecure,
+               "HTTPS: do not verify the server's certificate (said on stderr)");
 }
 
-}  // namespace
+std::string transferSummary(const char* verb, const pacs::Transfer& t) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%s %d instances, %.1f MB in %.2f s (%.1f MB/s)", verb,
+                t.instances, static_cast<double>(t.bytes) / 1e6, t.seconds,
+                t.seconds > 0 ? static_cast<double>(t.bytes) / 1e6 / t.seconds : 0.0);
+  return text;
+}
 
 void addPacsCommand(CLI::App& app) {
   auto o = std::make_shared<PacsCli>();
@@ -153,7 +159,9 @@ void addPacsCommand(CLI::App& app) {
         (o->options.movePort == 0 || server.protocol != pacs::Protocol::Dimse))
       throw InputError("--move-to", "needs --port P and a dicom:// server");
     o->options.progress = !o->quiet;
-    summary("retrieved", pacs::get(server, o->query.studyUid, o->series, o->out, o->options));
+    std::cout << transferSummary("retrieved", pacs::get(server, o->query.studyUid, o->series,
+                                                        o->out, o->options))
+              << "\n";
   });
 
   CLI::App* store = cmd->add_subcommand(
@@ -162,7 +170,7 @@ void addPacsCommand(CLI::App& app) {
   store->add_option("FILE", o->files, "DICOM files or folders")->required();
   store->callback([o] {
     const pacs::Server server = pacs::parseServer(o->server);
-    summary("stored", pacs::store(server, o->files, o->options));
+    std::cout << transferSummary("stored", pacs::store(server, o->files, o->options)) << "\n";
   });
 }
 

@@ -288,6 +288,12 @@ void runRegister(const RegisterOptions& opt) {
               << " (Spatial Registration, " << (r.affine ? "AFFINE" : "RIGID") << "), "
               << seriesNote << ", " << identityNote(*fixedId) << "\n";
   for (const std::string& w : warnings) std::cerr << "mvw register: warning: " << w << "\n";
+  // Once everything is written and in place: the REG and the resampled series.
+  if (fixedId) {
+    std::vector<fs::path> written;
+    for (const std::string& name : dicomOutputs) written.push_back(fs::path(opt.output) / name);
+    storeDicom(opt.dicom, written, opt.output, std::cout);
+  }
 }
 
 }  // namespace

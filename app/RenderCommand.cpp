@@ -475,9 +475,15 @@ void runRender(const RenderOptions& o) {
   }
   writeOutputs(o.outDir, outputs, orbits, studyRecord(session, renderer, *context), staging);
   std::cout << "wrote " << outputs.size() << " view(s) and render.json to " << o.outDir << "\n";
-  if (identity)
+  if (identity) {
     std::cout << "wrote " << dicomObjects << " DICOM Secondary Capture object(s) "
               << identityNote(*identity) << "\n";
+    // Only once every view is rendered and every object written: exactly this run's objects.
+    std::vector<fs::path> written;
+    for (const Output& out : outputs)
+      for (const std::string& name : out.dicomFiles) written.push_back(fs::path(o.outDir) / name);
+    storeDicom(o.dicom, written, o.outDir, std::cout);
+  }
 }
 
 }  // namespace

@@ -208,6 +208,19 @@ void writeSeg(const StatsOptions& opt, const Volume& volume, const std::vector<R
             << (segments.size() == 1 ? "" : "s") << ") " << identityNote(id) << "\n";
 }
 
+void printStats(const Volume& volume, const std::string& placementNote,
+                const std::vector<Roi>& list, const std::vector<study::RoiStats>& stats,
+                const std::optional<Total>& total, const StatsOptions& opt) {
+  const auto& md = volume.metadata();
+  std::cout << md.sourcePath;
+  if (!md.seriesDescription.empty()) std::cout << "  \"" << md.seriesDescription << "\"";
+  std::cout << "  (" << (md.modality.empty() ? "modality not stated" : md.modality)
+            << (md.unit.empty() ? ", no unit" : ", values in " + md.unit) << ")\n";
+  if (!placementNote.empty()) std::cout << "  " << placementNote << "\n";
+  for (std::size_t i = 0; i < list.size(); ++i) printText(std::cout, list[i], stats[i], opt);
+  if (total) printText(std::cout, *total);
+}
+
 void runStats(StatsOptions opt) {
   const int rois = (!opt.sphere.empty()) + (!opt.box.empty()) + (!opt.labels.empty());
   const char* kRoiChoice =
@@ -368,16 +381,11 @@ void runStats(StatsOptions opt) {
     for (std::size_t i = 0; i < list.size(); ++i) out.push_back(toJson(list[i], stats[i]));
     if (total) out.push_back(toJson(*total));
     std::cout << out.dump(2) << "\n";
-    return;
+  } else {
+    printStats(volume, placementNote, list, stats, total, opt);
   }
-  const auto& md = volume.metadata();
-  std::cout << md.sourcePath;
-  if (!md.seriesDescription.empty()) std::cout << "  \"" << md.seriesDescription << "\"";
-  std::cout << "  (" << (md.modality.empty() ? "modality not stated" : md.modality)
-            << (md.unit.empty() ? ", no unit" : ", values in " + md.unit) << ")\n";
-  if (!placementNote.empty()) std::cout << "  " << placementNote << "\n";
-  for (std::size_t i = 0; i < list.size(); ++i) printText(std::cout, list[i], stats[i], opt);
-  if (total) printText(std::cout, *total);
+  // The SEG, written and the statistics said: to the server (said on stderr, as the SEG is).
+  if (!opt.seg.empty()) storeDicom(opt.dicom, {opt.seg}, opt.seg, std::cerr);
 }
 
 }  // namespace
