@@ -8,16 +8,20 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string_view>
 
 #include <curl/curl.h>
 #include <nlohmann/json.hpp>
 
 #include "Internal.h"
+#include "Multipart.h"
 #include "mvw/core/Error.h"
 
 namespace fs = std::filesystem;
@@ -27,12 +31,12 @@ namespace mvw::pacs::detail {
 
 namespace {
 
-// Bounds on what a server may send: a query answer, a retrieve, one part's headers, the parts.
+// Bounds on what a server may send: a query answer, a retrieve (its parts, their headers:
+// MultipartLimits), the matches of a query, an error answer kept for its message.
 constexpr std::size_t kMaxQueryBytes = 64u << 20;
 constexpr std::size_t kMaxRetrieveBytes = std::size_t{4} << 30;
-constexpr std::size_t kMaxPartHeaderBytes = 16u << 10;
-constexpr std::size_t kMaxParts = 100000;
 constexpr std::size_t kMaxMatches = 100000;
+constexpr std::size_t kMaxErrorBodyBytes = 64u << 10;
 
 struct Credentials {
   std::string user, password;
@@ -72,18 +76,51 @@ struct Response {
   std::string body;
 };
 
+// Where the body of a successful (2xx) answer goes while it arrives, instead of into memory:
+// the bytes and the answer's Content-Type. Throwing ends the transfer; request() rethrows.
+using BodyStream = std::function<void(const char* bytes, std::size_t n, const std::string& type)>;
+
 struct Sink {
-  std::string* body;
-  std::size_t limit;
+  std::string* body = nullptr;
+  std::size_t limit = 0;
   bool overflow = false;
+  CURL* curl = nullptr;
+  const BodyStream* stream = nullptr;
+  int streaming = -1;  // with a stream: -1 not known yet, 1 a 2xx answer, 0 an error answer
+  std::string contentType;
+  std::uint64_t total = 0;
+  std::exception_ptr error;  // thrown by the stream: nothing may unwind through libcurl
 };
 
 std::size_t writeBody(char* data, std::size_t size, std::size_t n, void* user) {
   auto* sink = static_cast<Sink*>(user);
   const std::size_t bytes = size * n;
-  if (sink->body->size() + bytes > sink->limit) {
+  sink->total += bytes;
+  if (sink->total > sink->limit) {
     sink->overflow = true;
     return 0;
+  }
+  if (sink->stream) {
+    if (sink->streaming < 0) {  // the headers are in: the status and the type are known
+      long status = 0;
+      char* type = nullptr;
+      curl_easy_getinfo(sink->curl, CURLINFO_RESPONSE_CODE, &status);
+      curl_easy_getinfo(sink->curl, CURLINFO_CONTENT_TYPE, &type);
+      sink->streaming = status >= 200 && status < 300 ? 1 : 0;
+      if (type) sink->contentType = type;
+    }
+    if (sink->streaming == 0) {  // an error answer: its start, for the message
+      if (sink->body->size() < kMaxErrorBodyBytes)
+        sink->body->append(data, std::min(bytes, kMaxErrorBodyBytes - sink->body->size()));
+      return bytes;
+    }
+    try {
+      (*sink->stream)(data, bytes, sink->contentType);
+    } catch (...) {
+      sink->error = std::current_exception();
+      return 0;
+    }
+    return bytes;
   }
   sink->body->append(data, bytes);
   return bytes;
@@ -118,13 +155,17 @@ std::string reason(long status) {
 
 Response request(const Server& server, const std::string& url, const std::string& accept,
                  std::size_t limit, const Options& options, const std::string* postBody = nullptr,
-                 const std::string& postType = "") {
+                 const std::string& postType = "", const BodyStream* stream = nullptr) {
   curlInit();
   std::unique_ptr<CURL, void (*)(CURL*)> curl(curl_easy_init(), curl_easy_cleanup);
   if (!curl) throw Error("curl_easy_init failed");
   CURL* c = curl.get();
   Response r;
-  Sink sink{&r.body, limit};
+  Sink sink;
+  sink.body = &r.body;
+  sink.limit = limit;
+  sink.curl = c;
+  sink.stream = stream;
   char errors[CURL_ERROR_SIZE] = {0};
   curl_slist* headers = nullptr;
   headers = curl_slist_append(headers, ("Accept: " + accept).c_str());
@@ -158,7 +199,9 @@ Response request(const Server& server, const std::string& url, const std::string
     curl_easy_setopt(c, CURLOPT_POSTFIELDS, postBody->data());
     curl_easy_setopt(c, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(postBody->size()));
   }
+  if (stream) curl_easy_setopt(c, CURLOPT_BUFFERSIZE, 256L << 10);  // fewer, larger slices
   const CURLcode code = curl_easy_perform(c);
+  if (sink.error) std::rethrow_exception(sink.error);
   if (sink.overflow)
     throw ServiceError(server.text + ": the answer exceeds " + std::to_string(limit >> 20) + " MB");
   if (code != CURLE_OK)
@@ -287,85 +330,74 @@ std::vector<Match> webFind(const Server& server, const std::string& level, const
 
 namespace {
 
-// The boundary parameter of a multipart/related Content-Type.
-std::string boundaryOf(const Server& server, const std::string& contentType) {
-  std::string lowerType = contentType;
-  std::transform(lowerType.begin(), lowerType.end(), lowerType.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  if (lowerType.rfind("multipart/related", 0) != 0)
-    throw ServiceError(server.text + ": answered the WADO-RS request with '" +
-                       printable(contentType, 80) + "', not multipart/related");
-  const auto at = lowerType.find("boundary=");
-  if (at == std::string::npos)
-    throw ServiceError(server.text + ": answered multipart/related without a boundary");
-  std::string b = contentType.substr(at + 9);
-  if (!b.empty() && b.front() == '"') {
-    const auto end = b.find('"', 1);
-    if (end == std::string::npos)
-      throw ServiceError(server.text + ": answered a multipart boundary without its closing quote");
-    b = b.substr(1, end - 1);
-  } else {
-    b = b.substr(0, b.find_first_of("; \t"));
+// Each part of a WADO-RS answer written to <staging>/.part-N while it arrives, and handed to the
+// receiver (parsed, its UIDs checked, renamed to <SOPInstanceUID>.dcm) as soon as it ends. A
+// part left unfinished (the answer broke off) is removed.
+class PartFiles : public MultipartSink {
+ public:
+  explicit PartFiles(Receiver& receiver) : receiver_(receiver) {}
+  ~PartFiles() override {
+    if (file_) {
+      std::fclose(file_);
+      std::error_code ec;
+      fs::remove(path_, ec);
+    }
   }
-  if (b.empty() || b.size() > 70)
-    throw ServiceError(server.text + ": answered a multipart boundary of " +
-                       std::to_string(b.size()) + " characters (1 .. 70 allowed)");
-  return b;
-}
+  PartFiles(const PartFiles&) = delete;
+  PartFiles& operator=(const PartFiles&) = delete;
 
-// Each part of a multipart/related body (RFC 2046), written whole to the staging folder and
-// handed to the receiver. Bounded: parts, header sizes; a body that ends without its closing
-// delimiter broke off.
-void parseMultipart(const Server& server, const std::string& contentType, std::string_view body,
-                    Receiver& receiver) {
-  const std::string delimiter = "--" + boundaryOf(server, contentType);
-  auto brokeOff = [&](const std::string& why) {
-    throw ServiceError(server.text + ": the WADO-RS answer " + why);
+  void begin(std::size_t index) override {
+    path_ = receiver_.staging() / (".part-" + std::to_string(index));
+    file_ = std::fopen(path_.c_str(), "wb");
+    if (!file_) throw Error("cannot write " + path_.string());
+  }
+  void data(const char* bytes, std::size_t n) override {
+    if (std::fwrite(bytes, 1, n, file_) != n) throw Error("cannot write " + path_.string());
+  }
+  void end() override {
+    const int closed = std::fclose(file_);
+    file_ = nullptr;
+    if (closed != 0) throw Error("cannot write " + path_.string());
+    receiver_.acceptFile(path_);
+  }
+
+ private:
+  Receiver& receiver_;
+  fs::path path_;
+  std::FILE* file_ = nullptr;
+};
+
+// One WADO-RS request, its multipart/related answer parsed while it downloads.
+void retrieveMultipart(const Server& server, const std::string& url, Receiver& receiver,
+                       const Options& options) {
+  const std::string accept = "multipart/related; type=\"application/dicom\"; transfer-syntax=*";
+  PartFiles files(receiver);
+  std::optional<MultipartParser> parser;
+  // A broken answer is the server's failure, named as such.
+  auto serverFailed = [&](const MultipartError& e) {
+    return ServiceError(server.text + ": " + e.what());
   };
-  std::size_t pos = body.find(delimiter);
-  if (pos == std::string_view::npos) brokeOff("holds no multipart delimiter");
-  pos += delimiter.size();
-  std::size_t parts = 0;
-  const std::string next = "\r\n" + delimiter;
-  for (;;) {
-    if (body.substr(pos, 2) == "--") return;  // the closing delimiter
-    // Transport padding, then CRLF.
-    while (pos < body.size() && (body[pos] == ' ' || body[pos] == '\t')) ++pos;
-    if (body.substr(pos, 2) != "\r\n") brokeOff("broke off after a delimiter");
-    pos += 2;
-    const std::size_t headersEnd = body.find("\r\n\r\n", pos);
-    std::size_t contentStart;
-    if (body.substr(pos, 2) == "\r\n") {
-      contentStart = pos + 2;  // a part without headers
-    } else {
-      if (headersEnd == std::string_view::npos || headersEnd - pos > kMaxPartHeaderBytes)
-        brokeOff("has a part whose headers do not end within " +
-                 std::to_string(kMaxPartHeaderBytes) + " bytes");
-      std::string headers(body.substr(pos, headersEnd - pos));
-      std::transform(headers.begin(), headers.end(), headers.begin(),
-                     [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-      const auto typeAt = headers.find("content-type:");
-      if (typeAt != std::string::npos) {
-        const std::string type =
-            headers.substr(typeAt + 13, headers.find("\r\n", typeAt) - typeAt - 13);
-        if (type.find("application/dicom") == std::string::npos)
-          brokeOff("has a part of type '" + printable(type, 60) + "', not application/dicom");
-      }
-      contentStart = headersEnd + 4;
+  auto start = [&](const std::string& contentType) {
+    try {
+      parser.emplace(multipartBoundary(contentType), files);
+    } catch (const MultipartError& e) {
+      throw serverFailed(e);
     }
-    const std::size_t contentEnd = body.find(next, contentStart);
-    if (contentEnd == std::string_view::npos) brokeOff("broke off inside a part");
-    if (++parts > kMaxParts) brokeOff("has more than " + std::to_string(kMaxParts) + " parts");
-    const fs::path tmp = receiver.staging() / (".part-" + std::to_string(parts));
-    {
-      std::FILE* f = std::fopen(tmp.c_str(), "wb");
-      if (!f) throw Error("cannot write " + tmp.string());
-      const std::size_t n = contentEnd - contentStart;
-      const bool ok = std::fwrite(body.data() + contentStart, 1, n, f) == n;
-      if (std::fclose(f) != 0 || !ok) throw Error("cannot write " + tmp.string());
+  };
+  const BodyStream stream = [&](const char* bytes, std::size_t n, const std::string& type) {
+    if (!parser) start(type);
+    try {
+      parser->feed(bytes, n);
+    } catch (const MultipartError& e) {
+      throw serverFailed(e);
     }
-    receiver.acceptFile(tmp);
-    pos = contentEnd + next.size();
+  };
+  const Response r = request(server, url, accept, kMaxRetrieveBytes, options, nullptr, "", &stream);
+  if (!parser) start(r.contentType);  // an empty answer
+  try {
+    parser->finish();
+  } catch (const MultipartError& e) {
+    throw serverFailed(e);
   }
 }
 
@@ -375,17 +407,13 @@ void webRetrieve(const Server& server, const std::string& studyUid, const std::s
                  const std::vector<std::string>& instances, Receiver& receiver,
                  const Options& options) {
   warnInsecure(server, options);
-  const std::string accept = "multipart/related; type=\"application/dicom\"; transfer-syntax=*";
   const std::string series = server.baseUrl + "/studies/" + studyUid + "/series/" + seriesUid;
   std::vector<std::string> urls;
   if (instances.empty())
     urls.push_back(series);
   else
     for (const std::string& uid : instances) urls.push_back(series + "/instances/" + uid);
-  for (const std::string& url : urls) {
-    Response r = request(server, url, accept, kMaxRetrieveBytes, options);
-    parseMultipart(server, r.contentType, r.body, receiver);
-  }
+  for (const std::string& url : urls) retrieveMultipart(server, url, receiver, options);
 }
 
 void webStore(const Server& server, const std::vector<fs::path>& files, const Options& options) {
