@@ -127,7 +127,8 @@ struct Inputs {
   std::string fixedName, movingName;  // as the outputs name them
 };
 
-Inputs readInputs(const RegisterOptions& opt, const std::optional<config::StudyConfig>& studyConfig) {
+Inputs readInputs(const RegisterOptions& opt,
+                  const std::optional<config::StudyConfig>& studyConfig) {
   Inputs in;
   io::ReadOptions fixedRead, movingRead;
   fixedRead.suv = movingRead.suv = !opt.noSuv;
