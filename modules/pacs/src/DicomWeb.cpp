@@ -1,5 +1,6 @@
 // DICOMweb with libcurl: QIDO-RS (find, echo), WADO-RS (retrieve: the multipart/related answer
 // parsed here, strictly bounded), STOW-RS (store).
+#include <dlfcn.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -65,10 +66,66 @@ std::optional<Credentials> credentials() {
   return Credentials{line.substr(0, colon), line.substr(colon + 1)};
 }
 
-void curlInit() {
-  static std::once_flag once;
-  std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
+// libcurl, loaded on first use: only `mvw pacs` and `--store` reach a DICOMweb server, and
+// linked, libcurl brings 20 shared libraries of its own (TLS, LDAP, SSH, IDN...) that every
+// start of mvw would load and relocate (docs/performance-log.md#start-up). The types come
+// from <curl/curl.h>; the library is the one of the same ABI (soname libcurl.so.4).
+struct CurlLibrary {
+  decltype(&curl_global_init) globalInit = nullptr;
+  decltype(&curl_easy_init) easyInit = nullptr;
+  decltype(&curl_easy_cleanup) easyCleanup = nullptr;
+  decltype(&curl_easy_setopt) easySetopt = nullptr;
+  decltype(&curl_easy_perform) easyPerform = nullptr;
+  decltype(&curl_easy_getinfo) easyGetinfo = nullptr;
+  decltype(&curl_easy_strerror) easyStrerror = nullptr;
+  decltype(&curl_easy_escape) easyEscape = nullptr;
+  decltype(&curl_free) free = nullptr;
+  decltype(&curl_slist_append) slistAppend = nullptr;
+  decltype(&curl_slist_free_all) slistFreeAll = nullptr;
+};
+
+template <typename F>
+void bind(void* handle, F& f, const char* name) {
+  f = reinterpret_cast<F>(::dlsym(handle, name));
+  if (!f) throw Error(std::string("libcurl.so.4 has no ") + name);
 }
+
+// Loaded once per process, initialised (curl_global_init) and never unloaded.
+const CurlLibrary& curl() {
+  static const CurlLibrary lib = [] {
+    void* h = ::dlopen("libcurl.so.4", RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+      const char* why = ::dlerror();
+      throw Error(std::string("cannot load libcurl.so.4 (DICOMweb): ") + (why ? why : "?"));
+    }
+    CurlLibrary l;
+    bind(h, l.globalInit, "curl_global_init");
+    bind(h, l.easyInit, "curl_easy_init");
+    bind(h, l.easyCleanup, "curl_easy_cleanup");
+    bind(h, l.easySetopt, "curl_easy_setopt");
+    bind(h, l.easyPerform, "curl_easy_perform");
+    bind(h, l.easyGetinfo, "curl_easy_getinfo");
+    bind(h, l.easyStrerror, "curl_easy_strerror");
+    bind(h, l.easyEscape, "curl_easy_escape");
+    bind(h, l.free, "curl_free");
+    bind(h, l.slistAppend, "curl_slist_append");
+    bind(h, l.slistFreeAll, "curl_slist_free_all");
+    l.globalInit(CURL_GLOBAL_DEFAULT);
+    return l;
+  }();
+  return lib;
+}
+
+// A libcurl easy handle, cleaned up with the loaded library's function.
+struct Easy {
+  CURL* c = curl().easyInit();
+  Easy() = default;
+  Easy(const Easy&) = delete;
+  Easy& operator=(const Easy&) = delete;
+  ~Easy() {
+    if (c) curl().easyCleanup(c);
+  }
+};
 
 struct Response {
   long status = 0;
@@ -104,8 +161,8 @@ std::size_t writeBody(char* data, std::size_t size, std::size_t n, void* user) {
     if (sink->streaming < 0) {  // the headers are in: the status and the type are known
       long status = 0;
       char* type = nullptr;
-      curl_easy_getinfo(sink->curl, CURLINFO_RESPONSE_CODE, &status);
-      curl_easy_getinfo(sink->curl, CURLINFO_CONTENT_TYPE, &type);
+      curl().easyGetinfo(sink->curl, CURLINFO_RESPONSE_CODE, &status);
+      curl().easyGetinfo(sink->curl, CURLINFO_CONTENT_TYPE, &type);
       sink->streaming = status >= 200 && status < 300 ? 1 : 0;
       if (type) sink->contentType = type;
     }
@@ -156,10 +213,10 @@ std::string reason(long status) {
 Response request(const Server& server, const std::string& url, const std::string& accept,
                  std::size_t limit, const Options& options, const std::string* postBody = nullptr,
                  const std::string& postType = "", const BodyStream* stream = nullptr) {
-  curlInit();
-  std::unique_ptr<CURL, void (*)(CURL*)> curl(curl_easy_init(), curl_easy_cleanup);
-  if (!curl) throw Error("curl_easy_init failed");
-  CURL* c = curl.get();
+  const CurlLibrary& lib = curl();
+  Easy easy;
+  if (!easy.c) throw Error("curl_easy_init failed");
+  CURL* c = easy.c;
   Response r;
   Sink sink;
   sink.body = &r.body;
@@ -168,48 +225,47 @@ Response request(const Server& server, const std::string& url, const std::string
   sink.stream = stream;
   char errors[CURL_ERROR_SIZE] = {0};
   curl_slist* headers = nullptr;
-  headers = curl_slist_append(headers, ("Accept: " + accept).c_str());
-  if (postBody) headers = curl_slist_append(headers, ("Content-Type: " + postType).c_str());
-  std::unique_ptr<curl_slist, void (*)(curl_slist*)> headerGuard(headers, curl_slist_free_all);
-  curl_easy_setopt(c, CURLOPT_URL, url.c_str());
-  curl_easy_setopt(c, CURLOPT_HTTPHEADER, headers);
-  curl_easy_setopt(c, CURLOPT_WRITEFUNCTION, writeBody);
-  curl_easy_setopt(c, CURLOPT_WRITEDATA, &sink);
-  curl_easy_setopt(c, CURLOPT_ERRORBUFFER, errors);
-  curl_easy_setopt(c, CURLOPT_NOSIGNAL, 1L);
-  curl_easy_setopt(c, CURLOPT_PROTOCOLS_STR, "http,https");
-  curl_easy_setopt(c, CURLOPT_CONNECTTIMEOUT_MS,
-                   static_cast<long>(options.connectTimeoutS * 1000.0));
+  headers = lib.slistAppend(headers, ("Accept: " + accept).c_str());
+  if (postBody) headers = lib.slistAppend(headers, ("Content-Type: " + postType).c_str());
+  std::unique_ptr<curl_slist, void (*)(curl_slist*)> headerGuard(headers, lib.slistFreeAll);
+  lib.easySetopt(c, CURLOPT_URL, url.c_str());
+  lib.easySetopt(c, CURLOPT_HTTPHEADER, headers);
+  lib.easySetopt(c, CURLOPT_WRITEFUNCTION, writeBody);
+  lib.easySetopt(c, CURLOPT_WRITEDATA, &sink);
+  lib.easySetopt(c, CURLOPT_ERRORBUFFER, errors);
+  lib.easySetopt(c, CURLOPT_NOSIGNAL, 1L);
+  lib.easySetopt(c, CURLOPT_PROTOCOLS_STR, "http,https");
+  lib.easySetopt(c, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(options.connectTimeoutS * 1000.0));
   // The read time-out: no byte for this long ends the transfer.
-  curl_easy_setopt(c, CURLOPT_LOW_SPEED_LIMIT, 1L);
-  curl_easy_setopt(c, CURLOPT_LOW_SPEED_TIME,
-                   std::max(1L, static_cast<long>(options.readTimeoutS + 0.5)));
-  curl_easy_setopt(c, CURLOPT_ACCEPT_ENCODING, "");
+  lib.easySetopt(c, CURLOPT_LOW_SPEED_LIMIT, 1L);
+  lib.easySetopt(c, CURLOPT_LOW_SPEED_TIME,
+                 std::max(1L, static_cast<long>(options.readTimeoutS + 0.5)));
+  lib.easySetopt(c, CURLOPT_ACCEPT_ENCODING, "");
   if (options.insecure) {
-    curl_easy_setopt(c, CURLOPT_SSL_VERIFYPEER, 0L);
-    curl_easy_setopt(c, CURLOPT_SSL_VERIFYHOST, 0L);
+    lib.easySetopt(c, CURLOPT_SSL_VERIFYPEER, 0L);
+    lib.easySetopt(c, CURLOPT_SSL_VERIFYHOST, 0L);
   }
   if (auto cred = credentials()) {
-    curl_easy_setopt(c, CURLOPT_HTTPAUTH, CURLAUTH_BASIC);
-    curl_easy_setopt(c, CURLOPT_USERNAME, cred->user.c_str());
-    curl_easy_setopt(c, CURLOPT_PASSWORD, cred->password.c_str());
+    lib.easySetopt(c, CURLOPT_HTTPAUTH, CURLAUTH_BASIC);
+    lib.easySetopt(c, CURLOPT_USERNAME, cred->user.c_str());
+    lib.easySetopt(c, CURLOPT_PASSWORD, cred->password.c_str());
   }
   if (postBody) {
-    curl_easy_setopt(c, CURLOPT_POST, 1L);
-    curl_easy_setopt(c, CURLOPT_POSTFIELDS, postBody->data());
-    curl_easy_setopt(c, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(postBody->size()));
+    lib.easySetopt(c, CURLOPT_POST, 1L);
+    lib.easySetopt(c, CURLOPT_POSTFIELDS, postBody->data());
+    lib.easySetopt(c, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(postBody->size()));
   }
-  if (stream) curl_easy_setopt(c, CURLOPT_BUFFERSIZE, 256L << 10);  // fewer, larger slices
-  const CURLcode code = curl_easy_perform(c);
+  if (stream) lib.easySetopt(c, CURLOPT_BUFFERSIZE, 256L << 10);  // fewer, larger slices
+  const CURLcode code = lib.easyPerform(c);
   if (sink.error) std::rethrow_exception(sink.error);
   if (sink.overflow)
     throw ServiceError(server.text + ": the answer exceeds " + std::to_string(limit >> 20) + " MB");
   if (code != CURLE_OK)
-    throw ServiceError(server.text + ": " + curl_easy_strerror(code) +
+    throw ServiceError(server.text + ": " + lib.easyStrerror(code) +
                        (errors[0] ? std::string(" (") + errors + ")" : std::string()));
-  curl_easy_getinfo(c, CURLINFO_RESPONSE_CODE, &r.status);
+  lib.easyGetinfo(c, CURLINFO_RESPONSE_CODE, &r.status);
   char* type = nullptr;
-  curl_easy_getinfo(c, CURLINFO_CONTENT_TYPE, &type);
+  lib.easyGetinfo(c, CURLINFO_CONTENT_TYPE, &type);
   if (type) r.contentType = type;
   if (r.status >= 300) {
     const std::string said = printable(r.body, 200);
@@ -220,11 +276,10 @@ Response request(const Server& server, const std::string& url, const std::string
 }
 
 std::string escape(const std::string& text) {
-  curlInit();
-  std::unique_ptr<CURL, void (*)(CURL*)> curl(curl_easy_init(), curl_easy_cleanup);
-  char* e = curl_easy_escape(curl.get(), text.c_str(), static_cast<int>(text.size()));
+  Easy easy;
+  char* e = curl().easyEscape(easy.c, text.c_str(), static_cast<int>(text.size()));
   std::string out = e ? e : "";
-  curl_free(e);
+  curl().free(e);
   return out;
 }
 
