@@ -12,11 +12,13 @@
 
 #include "CliChecks.h"
 #include "VolumeReport.h"
+#include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Frame.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
+#include "mvw/study/StudyLoader.h"
 
 namespace mvw::app {
 
@@ -30,7 +32,11 @@ struct ConvertOptions {
   std::string series;
   std::string frame;  // "": every frame of a 4D volume is written
   bool noSuv = false;
+  // Of a study config (.json): which of its volumes; "" is the anatomical one.
+  std::string volume;
 };
+
+bool isStudyConfig(const fs::path& p) { return p.extension() == ".json"; }
 
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
@@ -82,13 +88,47 @@ nlohmann::json sidecarJson(const Volume& volume, const ConvertOptions& o) {
   j["series_number"] = md.seriesNumber;
   j["series_instance_uid"] = md.seriesInstanceUid;
   if (md.suvFactor) j["suv_factor"] = *md.suvFactor;  // SUVbw = Bq/ml x suv_factor
-  j["frame"] = o.frame.empty() ? nlohmann::json("all") : nlohmann::json(o.frame);
+  if (isStudyConfig(o.input)) {
+    j["study_volume"] = o.volume.empty() ? "anatomical" : o.volume;
+    j["frame"] = "as the study config reads it";
+  } else {
+    j["frame"] = o.frame.empty() ? nlohmann::json("all") : nlohmann::json(o.frame);
+  }
   j["written_by"] = "mvw convert";
   return j;
 }
 
+// One volume of a study config, read as every command reads the study (its own series choice,
+// "frame" and PACS series from the verified cache): the anatomical one by default.
+Volume readStudyVolume(const ConvertOptions& o, const io::ReadOptions& read) {
+  const config::StudyConfig study = config::loadStudyConfig(o.input);
+  const std::string which = o.volume.empty() ? "anatomical" : o.volume;
+  if (which == "anatomical") return study::readAnatomical(study.anatomical, read);
+  if (which == "functional") {
+    if (!study.functional)
+      throw InputError(o.input, "the study names no functional volume (--volume functional)");
+    return study::readFunctional(study, read);
+  }
+  if (!study.segmentation)
+    throw InputError(o.input, "the study names no segmentation (--volume segmentation)");
+  if (study.segmentation->frame && study.segmentation->frame->mean)
+    throw InputError(o.input,
+                     "'segmentation.frame' cannot be \"mean\": label numbers are not averaged");
+  return study::readSource(*study.segmentation, read);  // a DICOM SEG: its label volume
+}
+
 void runConvert(const ConvertOptions& o) {
   const fs::path output = o.output, sidecar = sidecarOf(output);
+  const bool fromStudy = isStudyConfig(o.input);
+  if (fromStudy && !o.series.empty())
+    throw CLI::ValidationError("--series", "chooses a DICOM series of a folder; the study config " +
+                                               o.input + " names its series itself");
+  if (fromStudy && !o.frame.empty())
+    throw CLI::ValidationError("--frame", "chooses a frame of a volume file; the study config " +
+                                              o.input + " chooses with its \"frame\"");
+  if (!fromStudy && !o.volume.empty())
+    throw CLI::ValidationError(
+        "--volume", "chooses a volume of a study config (.json); " + o.input + " is a volume");
   checkOutput(output, sidecar, o.input);
   std::optional<FrameChoice> frame;
   if (!o.frame.empty()) {
@@ -100,7 +140,7 @@ void runConvert(const ConvertOptions& o) {
   io::ReadOptions read;
   read.series = o.series;
   read.suv = !o.noSuv;
-  Volume volume = io::readVolume(o.input, read);
+  Volume volume = fromStudy ? readStudyVolume(o, read) : io::readVolume(o.input, read);
   if (frame) volume = selectFrame(volume, *frame);
   const std::string text = sidecarJson(volume, o).dump(2) + "\n";
 
@@ -133,7 +173,12 @@ void runConvert(const ConvertOptions& o) {
   if (volume.components() > 1) std::cout << " x " << volume.components() << " frames";
   std::cout << ", " << scalarName(volume.scalarType())
             << (volume.metadata().unit.empty() ? "" : ", " + volume.metadata().unit) << ") and "
-            << sidecar.string() << "\n";
+            << sidecar.string();
+  if (fromStudy)
+    std::cout << ": the " << (o.volume.empty() ? "anatomical" : o.volume) << " volume of "
+              << o.input
+              << (o.volume.empty() ? " (--volume functional|segmentation for the others)" : "");
+  std::cout << "\n";
 }
 
 }  // namespace
@@ -142,9 +187,12 @@ void addConvertCommand(CLI::App& app) {
   auto opt = std::make_shared<ConvertOptions>();
   CLI::App* cmd = app.add_subcommand(
       "convert",
-      "Write a volume (DICOM series, NIfTI, MetaImage) as NIfTI or MetaImage, in its physical "
-      "unit and LPS geometry as every mvw command reads it, with a JSON sidecar (OUT.json)");
-  cmd->add_option("input", opt->input, "DICOM folder or file, NIfTI or MetaImage file")->required();
+      "Write a volume (DICOM series, NIfTI, MetaImage, or one volume of a study config) as NIfTI "
+      "or MetaImage, in its physical unit and LPS geometry as every mvw command reads it, with a "
+      "JSON sidecar (OUT.json)");
+  cmd->add_option("input", opt->input,
+                  "DICOM folder or file, NIfTI or MetaImage file, or a study config (.json)")
+      ->required();
   cmd->add_option("-o,--output", opt->output, "Output file: .nii.gz, .nii or .mha")->required();
   cmd->add_option("--series", opt->series,
                   "DICOM series, where the folder holds several: UID, number or part of the "
@@ -153,6 +201,9 @@ void addConvertCommand(CLI::App& app) {
   cmd->add_option("--frame", opt->frame,
                   "Of a 4D volume, write frame N (from 0) or 'mean' (default: every frame)")
       ->check(nonEmpty());
+  cmd->add_option("--volume", opt->volume,
+                  "Of a study config: anatomical (default), functional or segmentation")
+      ->check(CLI::IsMember({"anatomical", "functional", "segmentation"}));
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
   cmd->callback([opt] { runConvert(*opt); });
 }

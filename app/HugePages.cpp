@@ -42,6 +42,22 @@ void putTunablesBack(const char* before) {
 }  // namespace
 #endif
 
+bool readsVolumes(char** argv) {
+  // The command is the first argument that is not an option, past the global options' values
+  // (main.cpp: --cache, --connect-timeout, --read-timeout).
+  for (int i = 1; argv[i]; ++i) {
+    const char* a = argv[i];
+    if (a[0] == '-') {
+      for (const char* valued : {"--cache", "--connect-timeout", "--read-timeout"})
+        if (std::strcmp(a, valued) == 0 && argv[i + 1]) ++i;
+      continue;
+    }
+    // Commands that talk to a server or print text: a start is most of their run.
+    return std::strcmp(a, "pacs") != 0 && std::strcmp(a, "config") != 0;
+  }
+  return false;  // --version, --help, or nothing
+}
+
 void restartWithHugePages(char** argv) {
 #if defined(__linux__) && defined(__GLIBC__)
   constexpr const char* kUnset = "-";             // GLIBC_TUNABLES was not set
@@ -49,6 +65,7 @@ void restartWithHugePages(char** argv) {
     putTunablesBack(std::strcmp(before, kUnset) == 0 ? nullptr : before);
     return;
   }
+  if (!readsVolumes(argv)) return;
   // Not where the loader ignores tunables (set-user-ID and the like), nor where this process
   // is not the program itself (run through the dynamic loader: /proc/self/exe is the loader).
   if (getauxval(AT_SECURE) != 0 || getauxval(AT_BASE) == 0) return;

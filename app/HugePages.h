@@ -8,7 +8,13 @@ namespace mvw::app {
 // with the same arguments; in that second start, puts the environment back as the user had
 // it and returns. Also returns (the program goes on as it is) where the user set the tunable,
 // on other C libraries and systems, in secure-execution mode, when run through the dynamic
-// loader, or when the new start fails.
+// loader, or when the new start fails. Only for the commands that read volumes: not for
+// `mvw pacs`, `mvw config`, nor --version or --help without a command, whose whole run is
+// shorter than a second start (docs/performance-log.md#start-up).
 void restartWithHugePages(char** argv);
+
+// Whether the command line (argv, null-terminated) names a command that reads volumes, the
+// only ones a second start pays for.
+bool readsVolumes(char** argv);
 
 }  // namespace mvw::app

@@ -17,6 +17,7 @@
 
 #include "CliChecks.h"
 #include "DicomOutput.h"
+#include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/dicomout/SpatialRegistration.h"
 #include "mvw/dicomout/VolumeSeries.h"
@@ -27,6 +28,7 @@
 #include "mvw/resampling/Resample.h"
 #include "mvw/resampling/RigidRegistration.h"
 #include "mvw/resampling/Transform.h"
+#include "mvw/study/StudyLoader.h"
 
 namespace mvw::app {
 
@@ -41,6 +43,7 @@ namespace fs = std::filesystem;
 using namespace mvw::resampling;
 
 struct RegisterOptions {
+  std::string study;  // a study config: its anatomical (fixed) and functional (moving) volumes
   std::string fixed, moving, output;
   std::string fixedSeries, movingSeries;
   std::string interpolation = "auto";
@@ -117,18 +120,70 @@ class Staging {
   fs::path output_, dir_;
 };
 
-void runRegister(const RegisterOptions& opt) {
+// The two volumes: the files given, or a study config's anatomical and functional volumes read
+// as every command reads the study (their series, "frame", PACS series from the cache).
+struct Inputs {
+  Volume fixed, moving;
+  std::string fixedName, movingName;  // as the outputs name them
+};
+
+Inputs readInputs(const RegisterOptions& opt,
+                  const std::optional<config::StudyConfig>& studyConfig) {
+  Inputs in;
+  io::ReadOptions fixedRead, movingRead;
+  fixedRead.suv = movingRead.suv = !opt.noSuv;
+  if (studyConfig) {
+    in.fixed = study::readAnatomical(studyConfig->anatomical, fixedRead);
+    in.moving = study::readFunctional(*studyConfig, movingRead);
+    in.fixedName = opt.study + " (anatomical)";
+    in.movingName = opt.study + " (functional)";
+    return in;
+  }
+  fixedRead.series = opt.fixedSeries;
+  movingRead.series = opt.movingSeries;
+  in.fixed = io::readVolume(opt.fixed, fixedRead);
+  in.moving = io::readVolume(opt.moving, movingRead);
+  in.fixedName = opt.fixed;
+  in.movingName = opt.moving;
+  return in;
+}
+
+void runRegister(RegisterOptions opt, const CLI::App& cmd) {
+  // STUDY.json, or --fixed and --moving: one of the two.
+  std::optional<config::StudyConfig> studyConfig;
+  if (!opt.study.empty()) {
+    for (const char* o : {"--fixed", "--moving", "--fixed-series", "--moving-series"})
+      if (cmd.count(o))
+        throw CLI::ValidationError(o, std::string("names a volume; the study config ") + opt.study +
+                                          " names both: give one or the other");
+    if (fs::path(opt.study).extension() != ".json")
+      throw CLI::ValidationError("STUDY", "'" + opt.study +
+                                              "' is not a study config (.json): give the "
+                                              "volumes with --fixed and --moving");
+    studyConfig = config::loadStudyConfig(opt.study);
+    if (!studyConfig->functional)
+      throw InputError(opt.study, "the study names no functional volume: nothing to register");
+    // Its registration settings, where the command line does not say otherwise.
+    const config::RegistrationConfig& r = studyConfig->registration;
+    if (r.method == config::RegistrationMethod::Affine) opt.affine = true;
+    if (!cmd.count("--rotation-search")) opt.rotationSearchDeg = r.rotationSearchDeg;
+    if (r.method == config::RegistrationMethod::File)
+      std::cerr << "mvw register: note: the study places its functional volume by "
+                << r.transform.string() << "; registering anew (rigid"
+                << (opt.affine ? " then affine" : "") << ")\n";
+  } else if (opt.fixed.empty() || opt.moving.empty()) {
+    throw CLI::ValidationError(opt.fixed.empty() ? "--fixed" : "--moving",
+                               "is required (or give a study config: mvw register STUDY.json "
+                               "-o OUT)");
+  }
   const auto interpolation = kInterpolations.at(opt.interpolation);
   // Checked before any heavy work: a wrong -o should not cost a registration.
   checkDicomOutput(opt.dicom, opt.dicom.dicom, opt.output);
   Staging staging(opt.output);
 
-  io::ReadOptions fixedRead, movingRead;
-  fixedRead.series = opt.fixedSeries;
-  movingRead.series = opt.movingSeries;
-  fixedRead.suv = movingRead.suv = !opt.noSuv;
-  Volume fixed = io::readVolume(opt.fixed, fixedRead);
-  const Volume moving = io::readVolume(opt.moving, movingRead);
+  Inputs inputs = readInputs(opt, studyConfig);
+  Volume fixed = std::move(inputs.fixed);
+  const Volume moving = std::move(inputs.moving);
   // With --dicom, the identities before the registration: a source without one is refused
   // now. A moving volume that is not DICOM joins the fixed one's patient and study.
   std::optional<dicomout::DicomIdentity> fixedId, movingId;
@@ -185,7 +240,8 @@ void runRegister(const RegisterOptions& opt) {
     try {
       const int files = dicomout::writeVolumeSeries(
           staging.file("functional_on_anatomical"), onGrid, *movingId, *fixedId, resampled,
-          "resampled onto the grid of " + opt.fixed + " by mvw register (" + name(used) + ")");
+          "resampled onto the grid of " + inputs.fixedName + " by mvw register (" + name(used) +
+              ")");
       dicomOutputs.push_back("functional_on_anatomical");
       seriesNote = "functional_on_anatomical/ (" + std::to_string(files) + " " +
                    movingId->modality + " images)";
@@ -197,8 +253,9 @@ void runRegister(const RegisterOptions& opt) {
   }
 
   nlohmann::json j;
-  j["fixed"] = opt.fixed;
-  j["moving"] = opt.moving;
+  j["fixed"] = inputs.fixedName;
+  j["moving"] = inputs.movingName;
+  if (!opt.study.empty()) j["study"] = opt.study;
   j["method"] = std::string(r.affine ? "rigid then affine" : "rigid") +
                 ", Mattes mutual information, quasi-Newton (BFGS) ascent";
   if (r.searchedRotations > 0)
@@ -273,9 +330,9 @@ void runRegister(const RegisterOptions& opt) {
   }
   staging.commit(outputs);
 
-  std::cout << (r.affine ? "registered (rigid + affine) " : "registered ") << opt.moving << " to "
-            << opt.fixed << " in " << r.seconds << " s, " << r.iterations << " iterations"
-            << (r.converged ? "" : " (NOT converged)") << "\n"
+  std::cout << (r.affine ? "registered (rigid + affine) " : "registered ") << inputs.movingName
+            << " to " << inputs.fixedName << " in " << r.seconds << " s, " << r.iterations
+            << " iterations" << (r.converged ? "" : " (NOT converged)") << "\n"
             << "  rotation " << degrees.x << ", " << degrees.y << ", " << degrees.z
             << " deg, translation " << r.parameters.translation.x << ", "
             << r.parameters.translation.y << ", " << r.parameters.translation.z << " mm\n"
@@ -303,11 +360,14 @@ void addRegisterCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "register",
       "Register a functional volume to an anatomical one (rigid, optionally affine) and resample "
-      "it onto its grid");
+      "it onto its grid; or a study config's functional volume to its anatomical one");
+  cmd->add_option("study", opt->study,
+                  "Study config (.json): its anatomical (fixed) and functional (moving) volumes "
+                  "and its \"registration\" settings (affine, rotation_search_deg); instead of "
+                  "--fixed and --moving");
   cmd->add_option("--fixed", opt->fixed,
-                  "Anatomical (reference) volume: DICOM folder or file, NIfTI, MetaImage")
-      ->required();
-  cmd->add_option("--moving", opt->moving, "Functional volume to align")->required();
+                  "Anatomical (reference) volume: DICOM folder or file, NIfTI, MetaImage");
+  cmd->add_option("--moving", opt->moving, "Functional volume to align");
   cmd->add_option("-o,--output", opt->output, "Output folder (created if missing)")
       ->required()
       ->check(nonEmpty());
@@ -334,7 +394,7 @@ void addRegisterCommand(CLI::App& app) {
       ->check(CLI::Range(0.0, 180.0));
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
   addDicomOptions(*cmd, opt->dicom, true);
-  cmd->callback([opt] { runRegister(*opt); });
+  cmd->callback([opt, cmd] { runRegister(*opt, *cmd); });
 }
 
 }  // namespace mvw::app

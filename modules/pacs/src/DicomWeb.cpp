@@ -1,5 +1,6 @@
 // DICOMweb with libcurl: QIDO-RS (find, echo), WADO-RS (retrieve: the multipart/related answer
 // parsed here, strictly bounded), STOW-RS (store).
+#include <dlfcn.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -8,16 +9,20 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string_view>
 
 #include <curl/curl.h>
 #include <nlohmann/json.hpp>
 
 #include "Internal.h"
+#include "Multipart.h"
 #include "mvw/core/Error.h"
 
 namespace fs = std::filesystem;
@@ -27,12 +32,12 @@ namespace mvw::pacs::detail {
 
 namespace {
 
-// Bounds on what a server may send: a query answer, a retrieve, one part's headers, the parts.
+// Bounds on what a server may send: a query answer, a retrieve (its parts, their headers:
+// MultipartLimits), the matches of a query, an error answer kept for its message.
 constexpr std::size_t kMaxQueryBytes = 64u << 20;
 constexpr std::size_t kMaxRetrieveBytes = std::size_t{4} << 30;
-constexpr std::size_t kMaxPartHeaderBytes = 16u << 10;
-constexpr std::size_t kMaxParts = 100000;
 constexpr std::size_t kMaxMatches = 100000;
+constexpr std::size_t kMaxErrorBodyBytes = 64u << 10;
 
 struct Credentials {
   std::string user, password;
@@ -61,10 +66,66 @@ std::optional<Credentials> credentials() {
   return Credentials{line.substr(0, colon), line.substr(colon + 1)};
 }
 
-void curlInit() {
-  static std::once_flag once;
-  std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
+// libcurl, loaded on first use: only `mvw pacs` and `--store` reach a DICOMweb server, and
+// linked, libcurl brings 20 shared libraries of its own (TLS, LDAP, SSH, IDN...) that every
+// start of mvw would load and relocate (docs/performance-log.md#start-up). The types come
+// from <curl/curl.h>; the library is the one of the same ABI (soname libcurl.so.4).
+struct CurlLibrary {
+  decltype(&curl_global_init) globalInit = nullptr;
+  decltype(&curl_easy_init) easyInit = nullptr;
+  decltype(&curl_easy_cleanup) easyCleanup = nullptr;
+  decltype(&curl_easy_setopt) easySetopt = nullptr;
+  decltype(&curl_easy_perform) easyPerform = nullptr;
+  decltype(&curl_easy_getinfo) easyGetinfo = nullptr;
+  decltype(&curl_easy_strerror) easyStrerror = nullptr;
+  decltype(&curl_easy_escape) easyEscape = nullptr;
+  decltype(&curl_free) free = nullptr;
+  decltype(&curl_slist_append) slistAppend = nullptr;
+  decltype(&curl_slist_free_all) slistFreeAll = nullptr;
+};
+
+template <typename F>
+void bind(void* handle, F& f, const char* name) {
+  f = reinterpret_cast<F>(::dlsym(handle, name));
+  if (!f) throw Error(std::string("libcurl.so.4 has no ") + name);
 }
+
+// Loaded once per process, initialised (curl_global_init) and never unloaded.
+const CurlLibrary& curl() {
+  static const CurlLibrary lib = [] {
+    void* h = ::dlopen("libcurl.so.4", RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+      const char* why = ::dlerror();
+      throw Error(std::string("cannot load libcurl.so.4 (DICOMweb): ") + (why ? why : "?"));
+    }
+    CurlLibrary l;
+    bind(h, l.globalInit, "curl_global_init");
+    bind(h, l.easyInit, "curl_easy_init");
+    bind(h, l.easyCleanup, "curl_easy_cleanup");
+    bind(h, l.easySetopt, "curl_easy_setopt");
+    bind(h, l.easyPerform, "curl_easy_perform");
+    bind(h, l.easyGetinfo, "curl_easy_getinfo");
+    bind(h, l.easyStrerror, "curl_easy_strerror");
+    bind(h, l.easyEscape, "curl_easy_escape");
+    bind(h, l.free, "curl_free");
+    bind(h, l.slistAppend, "curl_slist_append");
+    bind(h, l.slistFreeAll, "curl_slist_free_all");
+    l.globalInit(CURL_GLOBAL_DEFAULT);
+    return l;
+  }();
+  return lib;
+}
+
+// A libcurl easy handle, cleaned up with the loaded library's function.
+struct Easy {
+  CURL* c = curl().easyInit();
+  Easy() = default;
+  Easy(const Easy&) = delete;
+  Easy& operator=(const Easy&) = delete;
+  ~Easy() {
+    if (c) curl().easyCleanup(c);
+  }
+};
 
 struct Response {
   long status = 0;
@@ -72,18 +133,51 @@ struct Response {
   std::string body;
 };
 
+// Where the body of a successful (2xx) answer goes while it arrives, instead of into memory:
+// the bytes and the answer's Content-Type. Throwing ends the transfer; request() rethrows.
+using BodyStream = std::function<void(const char* bytes, std::size_t n, const std::string& type)>;
+
 struct Sink {
-  std::string* body;
-  std::size_t limit;
+  std::string* body = nullptr;
+  std::size_t limit = 0;
   bool overflow = false;
+  CURL* curl = nullptr;
+  const BodyStream* stream = nullptr;
+  int streaming = -1;  // with a stream: -1 not known yet, 1 a 2xx answer, 0 an error answer
+  std::string contentType;
+  std::uint64_t total = 0;
+  std::exception_ptr error;  // thrown by the stream: nothing may unwind through libcurl
 };
 
 std::size_t writeBody(char* data, std::size_t size, std::size_t n, void* user) {
   auto* sink = static_cast<Sink*>(user);
   const std::size_t bytes = size * n;
-  if (sink->body->size() + bytes > sink->limit) {
+  sink->total += bytes;
+  if (sink->total > sink->limit) {
     sink->overflow = true;
     return 0;
+  }
+  if (sink->stream) {
+    if (sink->streaming < 0) {  // the headers are in: the status and the type are known
+      long status = 0;
+      char* type = nullptr;
+      curl().easyGetinfo(sink->curl, CURLINFO_RESPONSE_CODE, &status);
+      curl().easyGetinfo(sink->curl, CURLINFO_CONTENT_TYPE, &type);
+      sink->streaming = status >= 200 && status < 300 ? 1 : 0;
+      if (type) sink->contentType = type;
+    }
+    if (sink->streaming == 0) {  // an error answer: its start, for the message
+      if (sink->body->size() < kMaxErrorBodyBytes)
+        sink->body->append(data, std::min(bytes, kMaxErrorBodyBytes - sink->body->size()));
+      return bytes;
+    }
+    try {
+      (*sink->stream)(data, bytes, sink->contentType);
+    } catch (...) {
+      sink->error = std::current_exception();
+      return 0;
+    }
+    return bytes;
   }
   sink->body->append(data, bytes);
   return bytes;
@@ -118,55 +212,60 @@ std::string reason(long status) {
 
 Response request(const Server& server, const std::string& url, const std::string& accept,
                  std::size_t limit, const Options& options, const std::string* postBody = nullptr,
-                 const std::string& postType = "") {
-  curlInit();
-  std::unique_ptr<CURL, void (*)(CURL*)> curl(curl_easy_init(), curl_easy_cleanup);
-  if (!curl) throw Error("curl_easy_init failed");
-  CURL* c = curl.get();
+                 const std::string& postType = "", const BodyStream* stream = nullptr) {
+  const CurlLibrary& lib = curl();
+  Easy easy;
+  if (!easy.c) throw Error("curl_easy_init failed");
+  CURL* c = easy.c;
   Response r;
-  Sink sink{&r.body, limit};
+  Sink sink;
+  sink.body = &r.body;
+  sink.limit = limit;
+  sink.curl = c;
+  sink.stream = stream;
   char errors[CURL_ERROR_SIZE] = {0};
   curl_slist* headers = nullptr;
-  headers = curl_slist_append(headers, ("Accept: " + accept).c_str());
-  if (postBody) headers = curl_slist_append(headers, ("Content-Type: " + postType).c_str());
-  std::unique_ptr<curl_slist, void (*)(curl_slist*)> headerGuard(headers, curl_slist_free_all);
-  curl_easy_setopt(c, CURLOPT_URL, url.c_str());
-  curl_easy_setopt(c, CURLOPT_HTTPHEADER, headers);
-  curl_easy_setopt(c, CURLOPT_WRITEFUNCTION, writeBody);
-  curl_easy_setopt(c, CURLOPT_WRITEDATA, &sink);
-  curl_easy_setopt(c, CURLOPT_ERRORBUFFER, errors);
-  curl_easy_setopt(c, CURLOPT_NOSIGNAL, 1L);
-  curl_easy_setopt(c, CURLOPT_PROTOCOLS_STR, "http,https");
-  curl_easy_setopt(c, CURLOPT_CONNECTTIMEOUT_MS,
-                   static_cast<long>(options.connectTimeoutS * 1000.0));
+  headers = lib.slistAppend(headers, ("Accept: " + accept).c_str());
+  if (postBody) headers = lib.slistAppend(headers, ("Content-Type: " + postType).c_str());
+  std::unique_ptr<curl_slist, void (*)(curl_slist*)> headerGuard(headers, lib.slistFreeAll);
+  lib.easySetopt(c, CURLOPT_URL, url.c_str());
+  lib.easySetopt(c, CURLOPT_HTTPHEADER, headers);
+  lib.easySetopt(c, CURLOPT_WRITEFUNCTION, writeBody);
+  lib.easySetopt(c, CURLOPT_WRITEDATA, &sink);
+  lib.easySetopt(c, CURLOPT_ERRORBUFFER, errors);
+  lib.easySetopt(c, CURLOPT_NOSIGNAL, 1L);
+  lib.easySetopt(c, CURLOPT_PROTOCOLS_STR, "http,https");
+  lib.easySetopt(c, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(options.connectTimeoutS * 1000.0));
   // The read time-out: no byte for this long ends the transfer.
-  curl_easy_setopt(c, CURLOPT_LOW_SPEED_LIMIT, 1L);
-  curl_easy_setopt(c, CURLOPT_LOW_SPEED_TIME,
-                   std::max(1L, static_cast<long>(options.readTimeoutS + 0.5)));
-  curl_easy_setopt(c, CURLOPT_ACCEPT_ENCODING, "");
+  lib.easySetopt(c, CURLOPT_LOW_SPEED_LIMIT, 1L);
+  lib.easySetopt(c, CURLOPT_LOW_SPEED_TIME,
+                 std::max(1L, static_cast<long>(options.readTimeoutS + 0.5)));
+  lib.easySetopt(c, CURLOPT_ACCEPT_ENCODING, "");
   if (options.insecure) {
-    curl_easy_setopt(c, CURLOPT_SSL_VERIFYPEER, 0L);
-    curl_easy_setopt(c, CURLOPT_SSL_VERIFYHOST, 0L);
+    lib.easySetopt(c, CURLOPT_SSL_VERIFYPEER, 0L);
+    lib.easySetopt(c, CURLOPT_SSL_VERIFYHOST, 0L);
   }
   if (auto cred = credentials()) {
-    curl_easy_setopt(c, CURLOPT_HTTPAUTH, CURLAUTH_BASIC);
-    curl_easy_setopt(c, CURLOPT_USERNAME, cred->user.c_str());
-    curl_easy_setopt(c, CURLOPT_PASSWORD, cred->password.c_str());
+    lib.easySetopt(c, CURLOPT_HTTPAUTH, CURLAUTH_BASIC);
+    lib.easySetopt(c, CURLOPT_USERNAME, cred->user.c_str());
+    lib.easySetopt(c, CURLOPT_PASSWORD, cred->password.c_str());
   }
   if (postBody) {
-    curl_easy_setopt(c, CURLOPT_POST, 1L);
-    curl_easy_setopt(c, CURLOPT_POSTFIELDS, postBody->data());
-    curl_easy_setopt(c, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(postBody->size()));
+    lib.easySetopt(c, CURLOPT_POST, 1L);
+    lib.easySetopt(c, CURLOPT_POSTFIELDS, postBody->data());
+    lib.easySetopt(c, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(postBody->size()));
   }
-  const CURLcode code = curl_easy_perform(c);
+  if (stream) lib.easySetopt(c, CURLOPT_BUFFERSIZE, 256L << 10);  // fewer, larger slices
+  const CURLcode code = lib.easyPerform(c);
+  if (sink.error) std::rethrow_exception(sink.error);
   if (sink.overflow)
     throw ServiceError(server.text + ": the answer exceeds " + std::to_string(limit >> 20) + " MB");
   if (code != CURLE_OK)
-    throw ServiceError(server.text + ": " + curl_easy_strerror(code) +
+    throw ServiceError(server.text + ": " + lib.easyStrerror(code) +
                        (errors[0] ? std::string(" (") + errors + ")" : std::string()));
-  curl_easy_getinfo(c, CURLINFO_RESPONSE_CODE, &r.status);
+  lib.easyGetinfo(c, CURLINFO_RESPONSE_CODE, &r.status);
   char* type = nullptr;
-  curl_easy_getinfo(c, CURLINFO_CONTENT_TYPE, &type);
+  lib.easyGetinfo(c, CURLINFO_CONTENT_TYPE, &type);
   if (type) r.contentType = type;
   if (r.status >= 300) {
     const std::string said = printable(r.body, 200);
@@ -177,11 +276,10 @@ Response request(const Server& server, const std::string& url, const std::string
 }
 
 std::string escape(const std::string& text) {
-  curlInit();
-  std::unique_ptr<CURL, void (*)(CURL*)> curl(curl_easy_init(), curl_easy_cleanup);
-  char* e = curl_easy_escape(curl.get(), text.c_str(), static_cast<int>(text.size()));
+  Easy easy;
+  char* e = curl().easyEscape(easy.c, text.c_str(), static_cast<int>(text.size()));
   std::string out = e ? e : "";
-  curl_free(e);
+  curl().free(e);
   return out;
 }
 
@@ -287,85 +385,74 @@ std::vector<Match> webFind(const Server& server, const std::string& level, const
 
 namespace {
 
-// The boundary parameter of a multipart/related Content-Type.
-std::string boundaryOf(const Server& server, const std::string& contentType) {
-  std::string lowerType = contentType;
-  std::transform(lowerType.begin(), lowerType.end(), lowerType.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  if (lowerType.rfind("multipart/related", 0) != 0)
-    throw ServiceError(server.text + ": answered the WADO-RS request with '" +
-                       printable(contentType, 80) + "', not multipart/related");
-  const auto at = lowerType.find("boundary=");
-  if (at == std::string::npos)
-    throw ServiceError(server.text + ": answered multipart/related without a boundary");
-  std::string b = contentType.substr(at + 9);
-  if (!b.empty() && b.front() == '"') {
-    const auto end = b.find('"', 1);
-    if (end == std::string::npos)
-      throw ServiceError(server.text + ": answered a multipart boundary without its closing quote");
-    b = b.substr(1, end - 1);
-  } else {
-    b = b.substr(0, b.find_first_of("; \t"));
+// Each part of a WADO-RS answer written to <staging>/.part-N while it arrives, and handed to the
+// receiver (parsed, its UIDs checked, renamed to <SOPInstanceUID>.dcm) as soon as it ends. A
+// part left unfinished (the answer broke off) is removed.
+class PartFiles : public MultipartSink {
+ public:
+  explicit PartFiles(Receiver& receiver) : receiver_(receiver) {}
+  ~PartFiles() override {
+    if (file_) {
+      std::fclose(file_);
+      std::error_code ec;
+      fs::remove(path_, ec);
+    }
   }
-  if (b.empty() || b.size() > 70)
-    throw ServiceError(server.text + ": answered a multipart boundary of " +
-                       std::to_string(b.size()) + " characters (1 .. 70 allowed)");
-  return b;
-}
+  PartFiles(const PartFiles&) = delete;
+  PartFiles& operator=(const PartFiles&) = delete;
 
-// Each part of a multipart/related body (RFC 2046), written whole to the staging folder and
-// handed to the receiver. Bounded: parts, header sizes; a body that ends without its closing
-// delimiter broke off.
-void parseMultipart(const Server& server, const std::string& contentType, std::string_view body,
-                    Receiver& receiver) {
-  const std::string delimiter = "--" + boundaryOf(server, contentType);
-  auto brokeOff = [&](const std::string& why) {
-    throw ServiceError(server.text + ": the WADO-RS answer " + why);
+  void begin(std::size_t index) override {
+    path_ = receiver_.staging() / (".part-" + std::to_string(index));
+    file_ = std::fopen(path_.c_str(), "wb");
+    if (!file_) throw Error("cannot write " + path_.string());
+  }
+  void data(const char* bytes, std::size_t n) override {
+    if (std::fwrite(bytes, 1, n, file_) != n) throw Error("cannot write " + path_.string());
+  }
+  void end() override {
+    const int closed = std::fclose(file_);
+    file_ = nullptr;
+    if (closed != 0) throw Error("cannot write " + path_.string());
+    receiver_.acceptFile(path_);
+  }
+
+ private:
+  Receiver& receiver_;
+  fs::path path_;
+  std::FILE* file_ = nullptr;
+};
+
+// One WADO-RS request, its multipart/related answer parsed while it downloads.
+void retrieveMultipart(const Server& server, const std::string& url, Receiver& receiver,
+                       const Options& options) {
+  const std::string accept = "multipart/related; type=\"application/dicom\"; transfer-syntax=*";
+  PartFiles files(receiver);
+  std::optional<MultipartParser> parser;
+  // A broken answer is the server's failure, named as such.
+  auto serverFailed = [&](const MultipartError& e) {
+    return ServiceError(server.text + ": " + e.what());
   };
-  std::size_t pos = body.find(delimiter);
-  if (pos == std::string_view::npos) brokeOff("holds no multipart delimiter");
-  pos += delimiter.size();
-  std::size_t parts = 0;
-  const std::string next = "\r\n" + delimiter;
-  for (;;) {
-    if (body.substr(pos, 2) == "--") return;  // the closing delimiter
-    // Transport padding, then CRLF.
-    while (pos < body.size() && (body[pos] == ' ' || body[pos] == '\t')) ++pos;
-    if (body.substr(pos, 2) != "\r\n") brokeOff("broke off after a delimiter");
-    pos += 2;
-    const std::size_t headersEnd = body.find("\r\n\r\n", pos);
-    std::size_t contentStart;
-    if (body.substr(pos, 2) == "\r\n") {
-      contentStart = pos + 2;  // a part without headers
-    } else {
-      if (headersEnd == std::string_view::npos || headersEnd - pos > kMaxPartHeaderBytes)
-        brokeOff("has a part whose headers do not end within " +
-                 std::to_string(kMaxPartHeaderBytes) + " bytes");
-      std::string headers(body.substr(pos, headersEnd - pos));
-      std::transform(headers.begin(), headers.end(), headers.begin(),
-                     [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-      const auto typeAt = headers.find("content-type:");
-      if (typeAt != std::string::npos) {
-        const std::string type =
-            headers.substr(typeAt + 13, headers.find("\r\n", typeAt) - typeAt - 13);
-        if (type.find("application/dicom") == std::string::npos)
-          brokeOff("has a part of type '" + printable(type, 60) + "', not application/dicom");
-      }
-      contentStart = headersEnd + 4;
+  auto start = [&](const std::string& contentType) {
+    try {
+      parser.emplace(multipartBoundary(contentType), files);
+    } catch (const MultipartError& e) {
+      throw serverFailed(e);
     }
-    const std::size_t contentEnd = body.find(next, contentStart);
-    if (contentEnd == std::string_view::npos) brokeOff("broke off inside a part");
-    if (++parts > kMaxParts) brokeOff("has more than " + std::to_string(kMaxParts) + " parts");
-    const fs::path tmp = receiver.staging() / (".part-" + std::to_string(parts));
-    {
-      std::FILE* f = std::fopen(tmp.c_str(), "wb");
-      if (!f) throw Error("cannot write " + tmp.string());
-      const std::size_t n = contentEnd - contentStart;
-      const bool ok = std::fwrite(body.data() + contentStart, 1, n, f) == n;
-      if (std::fclose(f) != 0 || !ok) throw Error("cannot write " + tmp.string());
+  };
+  const BodyStream stream = [&](const char* bytes, std::size_t n, const std::string& type) {
+    if (!parser) start(type);
+    try {
+      parser->feed(bytes, n);
+    } catch (const MultipartError& e) {
+      throw serverFailed(e);
     }
-    receiver.acceptFile(tmp);
-    pos = contentEnd + next.size();
+  };
+  const Response r = request(server, url, accept, kMaxRetrieveBytes, options, nullptr, "", &stream);
+  if (!parser) start(r.contentType);  // an empty answer
+  try {
+    parser->finish();
+  } catch (const MultipartError& e) {
+    throw serverFailed(e);
   }
 }
 
@@ -375,17 +462,13 @@ void webRetrieve(const Server& server, const std::string& studyUid, const std::s
                  const std::vector<std::string>& instances, Receiver& receiver,
                  const Options& options) {
   warnInsecure(server, options);
-  const std::string accept = "multipart/related; type=\"application/dicom\"; transfer-syntax=*";
   const std::string series = server.baseUrl + "/studies/" + studyUid + "/series/" + seriesUid;
   std::vector<std::string> urls;
   if (instances.empty())
     urls.push_back(series);
   else
     for (const std::string& uid : instances) urls.push_back(series + "/instances/" + uid);
-  for (const std::string& url : urls) {
-    Response r = request(server, url, accept, kMaxRetrieveBytes, options);
-    parseMultipart(server, r.contentType, r.body, receiver);
-  }
+  for (const std::string& url : urls) retrieveMultipart(server, url, receiver, options);
 }
 
 void webStore(const Server& server, const std::vector<fs::path>& files, const Options& options) {

@@ -293,6 +293,15 @@ std::vector<std::string> missingInstances(const fs::path& dir, const std::set<st
   return missing;
 }
 
+// The listed instances with no <uid>.dcm in `dir` (each file there was checked on receipt).
+std::vector<std::string> absentInstances(const fs::path& dir, const std::set<std::string>& uids) {
+  std::vector<std::string> absent;
+  std::error_code ec;
+  for (const std::string& uid : uids)
+    if (!fs::is_regular_file(dir / (uid + ".dcm"), ec)) absent.push_back(uid);
+  return absent;
+}
+
 }  // namespace
 
 Transfer get(const Server& server, const std::string& studyUid,
@@ -407,6 +416,9 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
         resuming = true;
     std::set<std::string> listed;
     const long stated = statedCount(series);
+    // Every instance a Receiver accepts was parsed and its UIDs checked as it arrived: it is not
+    // parsed again here. Those kept from an interrupted retrieve are (missingInstances).
+    bool allReceivedNow = false;
     if (!resuming && stated > 0) {
       // A fresh retrieve: the whole series, complete when it holds as many verified instances
       // as the server states (the listing is needed only to resume).
@@ -419,12 +431,15 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
         throw ServiceError(server.text + ": the retrieve of series " + seriesUid + " ended with " +
                            std::to_string(listed.size()) + " of the " + std::to_string(stated) +
                            " instances it holds");
+      allReceivedNow = true;
     } else {
       listed = instanceUids(findInstances(server, studyUid, seriesUid, options));
     }
     if (listed.empty())
       throw ServiceError(server.text + ": lists no instances in series " + seriesUid);
-    std::vector<std::string> missing = missingInstances(partial, listed, studyUid, seriesUid);
+    std::vector<std::string> missing = allReceivedNow
+                                           ? std::vector<std::string>{}
+                                           : missingInstances(partial, listed, studyUid, seriesUid);
     if (!missing.empty()) {
       detail::Receiver receiver(server, partial, {studyUid, {seriesUid}}, options.progress);
       // Resuming a few: fetch those alone; otherwise the series in one request.
@@ -432,7 +447,7 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
       retrieve(server, studyUid, seriesUid, resume ? missing : std::vector<std::string>{}, receiver,
                options);
       receiver.report(true);
-      missing = missingInstances(partial, listed, studyUid, seriesUid);
+      missing = absentInstances(partial, listed);
       if (!missing.empty())
         throw ServiceError(server.text + ": the retrieve of series " + seriesUid + " ended with " +
                            std::to_string(missing.size()) + " of " + std::to_string(listed.size()) +
@@ -457,9 +472,9 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
     std::ofstream(tmp) << seriesUid << "\n";
     fs::rename(tmp, selectionFile);
   }
-  auto dir = completeFolder(seriesUid);
-  if (!dir) throw ServiceError(server.text + ": series " + seriesUid + " did not verify");
-  return *dir;
+  // Verified: complete as found (completeFolder), or each instance as it arrived and those
+  // kept from an interrupted retrieve by missingInstances. The next read checks it all again.
+  return studyDir / seriesUid;
 }
 
 }  // namespace mvw::pacs
