@@ -271,16 +271,46 @@ void PacsBrowser::open() {
   }
   const pacs::Server server = chosenServer();
   const pacs::Options o = options();
-  std::vector<std::pair<Role, std::string>> wanted;
+  struct Wanted {
+    Role role;
+    std::string uid, total;  // total: the instances the server states ("" where it does not)
+  };
+  std::vector<Wanted> wanted;
   for (Role role : {Role::Anatomical, Role::Functional, Role::Segmentation})
-    if (!chosen(role).empty()) wanted.emplace_back(role, chosen(role));
+    if (!chosen(role).empty()) {
+      std::string total;
+      for (const pacs::Match& m : series_)
+        if (field(m, "SeriesInstanceUID") == chosen(role))
+          total = field(m, "NumberOfSeriesRelatedInstances");
+      wanted.push_back({role, chosen(role), total});
+    }
   start(Step::Open, "opening", [this, server, o, wanted, study](Outcome& out) mutable {
     // Into the verified cache with this server's calling AE title first; the study loader
     // then reads each series from there, offline, as for `mvw view STUDY.json`.
     for (std::size_t i = 0; i < wanted.size(); ++i) {
-      setActivity("retrieving the " + std::string(roleName(wanted[i].first)) + " series (" +
-                  std::to_string(i + 1) + " of " + std::to_string(wanted.size()) + ")");
-      pacs::cachedSeries(server, study.anatomical.study, wanted[i].second, o);
+      const std::string step = "retrieving the " + std::string(roleName(wanted[i].role)) +
+                               " series (" + std::to_string(i + 1) + " of " +
+                               std::to_string(wanted.size()) + ")";
+      setActivity(step);
+      {
+        std::lock_guard lock(activityMutex_);
+        fraction_ = wanted[i].total.empty() ? -1.0f : 0.0f;
+      }
+      pacs::Options withProgress = o;
+      const std::string total = wanted[i].total;
+      withProgress.onProgress = [this, step, total](const pacs::Transfer& t) {
+        char text[128];
+        const double mb = static_cast<double>(t.bytes) / 1e6;
+        std::snprintf(text, sizeof text, ": %d%s%s images, %.1f MB, %.1f MB/s", t.instances,
+                      total.empty() ? "" : " of ", total.c_str(), mb,
+                      t.seconds > 0 ? mb / t.seconds : 0.0);
+        setActivity(step + text);
+        std::lock_guard lock(activityMutex_);
+        lastProgress_ = step + text;
+        const double stated = total.empty() ? 0.0 : std::atof(total.c_str());
+        fraction_ = stated > 0 ? static_cast<float>(std::min(1.0, t.instances / stated)) : -1.0f;
+      };
+      pacs::cachedSeries(server, study.anatomical.study, wanted[i].uid, withProgress);
     }
     setActivity(study.registration.method == config::RegistrationMethod::None
                     ? "reading the series"
@@ -294,6 +324,16 @@ void PacsBrowser::open() {
 void PacsBrowser::setActivity(std::string what) {
   std::lock_guard lock(activityMutex_);
   activity_ = std::move(what);
+}
+
+float PacsBrowser::progress() const {
+  std::lock_guard lock(activityMutex_);
+  return running_ ? fraction_ : -1.0f;
+}
+
+bool PacsBrowser::retrieving() const {
+  std::lock_guard lock(activityMutex_);
+  return running_ && !lastProgress_.empty();
 }
 
 std::string PacsBrowser::activity() const {
@@ -317,6 +357,11 @@ void PacsBrowser::start(Step step, std::string what, std::function<void(Outcome&
   error_.clear();
   status_.clear();
   setActivity(std::move(what));
+  {
+    std::lock_guard lock(activityMutex_);
+    lastProgress_.clear();
+    fraction_ = -1.0f;
+  }
   started_ = std::chrono::steady_clock::now();
   thread_ = std::jthread([this, job = std::move(job)] {
     try {
@@ -391,8 +436,13 @@ void PacsBrowser::writeReport(const std::filesystem::path& file) const {
     j["chosen"][roleName(role)] = chosen(role);
   j["registration"] = config::toString(registration);
   j["status"] = status_;
+  {
+    std::lock_guard lock(activityMutex_);
+    j["last_progress"] = lastProgress_;
+  }
   j["error"] = error_;
   j["busy"] = running_;
+  j["activity"] = activity();
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   out << j.dump(2) << "\n";
   if (!out) throw InputError(file, "cannot write the PACS report");

@@ -108,6 +108,11 @@ class PacsBrowser {
 
   // Whether a step runs or has ended with an outcome poll() has not yet taken.
   bool busy() const { return running_; }
+  // The running retrieve's fraction of its series (instances of those the server states), or
+  // -1 when none runs or the server states no count.
+  float progress() const;
+  // Whether the running open's retrieve has received an instance (its progress shows).
+  bool retrieving() const;
   // What the running step does, with its time ("retrieving the functional series (2 of 2),
   // 3.1 s"); "" when idle.
   std::string activity() const;
@@ -121,7 +126,7 @@ class PacsBrowser {
   // well (the viewer shows it in place of its current one).
   std::unique_ptr<study::Session> poll();
   // The browser's state as JSON (tests): server, studies, study, series, chosen, registration,
-  // status, error.
+  // status, error, and the last retrieve progress shown (last_progress).
   void writeReport(const std::filesystem::path& file) const;
   // Waits for the running step (tests without a window), then poll().
   std::unique_ptr<study::Session> wait();
@@ -153,7 +158,9 @@ class PacsBrowser {
   Step step_ = Step::Search;
   std::chrono::steady_clock::time_point started_;
   mutable std::mutex activityMutex_;
-  std::string activity_;  // written by the worker (the retrieve's steps), read by the panel
+  std::string activity_;      // written by the worker (the retrieve's steps), read by the panel
+  std::string lastProgress_;  // the last retrieve progress said (the report)
+  float fraction_ = -1.0f;    // of the series being retrieved
   std::atomic<bool> done_{false};
   Outcome outcome_;  // written by the worker before done_, read after it
   std::jthread thread_;

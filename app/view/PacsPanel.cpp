@@ -220,9 +220,10 @@ void PacsPanel::draw(float left) {
     drawOpen();
   }
   ImGui::Separator();
-  if (browser_.busy())
+  if (browser_.busy()) {
+    if (const float f = browser_.progress(); f >= 0.0f) ImGui::ProgressBar(f, ImVec2(-1, 0));
     wrapped(kBusy, browser_.activity());
-  else if (!browser_.error().empty())
+  } else if (!browser_.error().empty())
     wrapped(kError, "Failed: " + browser_.error());
   else if (!browser_.status().empty())
     wrapped(kQuiet, browser_.status());

@@ -288,6 +288,18 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
       in.fail("pacs-registration: unknown method '" + method + "' (none, rigid, affine)");
   } else if (cmd == "pacs-open") {
     c.kind = Kind::PacsOpen;
+    if (in.more()) {
+      const std::string how = in.word("nowait");
+      if (how != "nowait") in.fail("pacs-open: unknown option '" + how + "' (nowait)");
+      c.frames = -1;  // not waited for
+    }
+  } else if (cmd == "pacs-wait") {
+    c.kind = Kind::PacsWait;
+    if (in.more()) {
+      const std::string what = in.word("progress");
+      if (what != "progress") in.fail("pacs-wait: unknown option '" + what + "' (progress)");
+      c.frames = -1;
+    }
   } else if (cmd == "pacs-report") {
     c.kind = Kind::PacsReport;
     c.file = in.word("file");
@@ -330,8 +342,10 @@ void ViewerScript::dragIncrement(ViewerState& state) {
 
 bool ViewerScript::step(ViewerState* statePointer, PacsBrowser* pacs) {
   if (waitingPacs_) {
-    if (pacs && pacs->busy()) return true;  // the search, the series or the open still runs
-    waitingPacs_ = false;
+    // The search, the series or the open still runs (or, for pacs-wait progress, its retrieve
+    // has received nothing yet).
+    if (pacs && pacs->busy() && !(waitingProgress_ && pacs->retrieving())) return true;
+    waitingPacs_ = waitingProgress_ = false;
   }
   if (next_ < commands_.size() && commands_[next_].kind >= Kind::PacsServer &&
       commands_[next_].kind <= Kind::PacsReport) {
@@ -459,6 +473,7 @@ bool ViewerScript::step(ViewerState* statePointer, PacsBrowser* pacs) {
     case Kind::PacsSeries:
     case Kind::PacsRegistration:
     case Kind::PacsOpen:
+    case Kind::PacsWait:
     case Kind::PacsReport:
       break;  // run above, with or without a study
     case Kind::Quit:
@@ -472,7 +487,8 @@ void ViewerScript::runPacs(const Command& c, PacsBrowser* pacs) {
   const std::string where = "line " + std::to_string(c.line) + ": ";
   auto fail = [&](const std::string& problem) { throw InputError(source_, where + problem); };
   if (!pacs) fail("the PACS commands need the viewer's PACS panel");
-  if (c.kind != Kind::PacsReport) pacs->requestWindow();  // what the script does, on screen
+  if (c.kind != Kind::PacsReport && c.kind != Kind::PacsWait)
+    pacs->requestWindow();  // what the script does, on screen
   try {
     switch (c.kind) {
       case Kind::PacsServer:
@@ -518,7 +534,11 @@ void ViewerScript::runPacs(const Command& c, PacsBrowser* pacs) {
         break;
       case Kind::PacsOpen:
         pacs->open();
+        waitingPacs_ = c.frames != -1;
+        break;
+      case Kind::PacsWait:
         waitingPacs_ = true;
+        waitingProgress_ = c.frames == -1;
         break;
       case Kind::PacsReport:
         pacs->writeReport(c.file);

@@ -45,9 +45,12 @@
 //   pacs-series ROLE SERIES|none        the series ROLE (anatomical, functional, segmentation)
 //                                       takes: its UID, number, modality or description
 //   pacs-registration METHOD            none, rigid, affine (the study's registration rule)
-//   pacs-open                           retrieve and open the chosen series as the study shown;
+//   pacs-open [nowait]                  retrieve and open the chosen series as the study shown;
 //                                       waits until it is open or has failed (the panel says
-//                                       why, and the current study stays)
+//                                       why, and the current study stays); nowait: goes on
+//                                       while it runs (the window keeps drawing)
+//   pacs-wait [progress]                wait for the PACS window's running step to end; progress:
+//                                       only until its retrieve has received an instance
 //   pacs-report FILE                    the PACS panel's state, JSON: server, studies, series,
 //                                       chosen series, status, error
 //   quit
@@ -104,6 +107,7 @@ class ViewerScript {
       PacsSeries,
       PacsRegistration,
       PacsOpen,
+      PacsWait,
       PacsReport,
       Quit
     };
@@ -150,8 +154,9 @@ class ViewerScript {
   std::vector<Command> commands_;
   std::filesystem::path source_;
   std::size_t next_ = 0;
-  bool waitingPacs_ = false;
-  ViewerRequests idleRequests_;  // a pacs-* line's step runs: the next line waits for it
+  bool waitingPacs_ = false;      // a pacs-* line's step runs: the next line waits for it
+  bool waitingProgress_ = false;  // ... only until its retrieve has received an instance
+  ViewerRequests idleRequests_;
   void runPacs(const Command& c, PacsBrowser* pacs);
   int wait_ = 0;
   // The next 1/N of the drag-frames command in progress, as an interactive frame.

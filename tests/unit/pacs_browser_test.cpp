@@ -215,10 +215,18 @@ TEST(PacsBrowser, ScriptCommandsParseAndNameTheirLine) {
       "pacs-series segmentation none\n"
       "pacs-registration rigid\n"
       "pacs-open\n"
-      "pacs-report out/pacs.json\n",
+      "pacs-report out/pacs.json\n"
+      "pacs-open nowait\n"
+      "pacs-wait\n"
+      "pacs-wait progress\n",
       "test.script");
   const auto& c = s.commands();
-  ASSERT_EQ(c.size(), 8u);
+  ASSERT_EQ(c.size(), 11u);
+  EXPECT_EQ(c[10].frames, -1);
+  EXPECT_EQ(c[6].kind, ViewerScript::Command::Kind::PacsOpen);
+  EXPECT_NE(c[6].frames, -1);  // waited for
+  EXPECT_EQ(c[8].frames, -1);  // nowait
+  EXPECT_EQ(c[9].kind, ViewerScript::Command::Kind::PacsWait);
   EXPECT_EQ(c[0].text, "Clinic PACS");
   EXPECT_EQ(c[1].query.patientId, "P-7");
   EXPECT_EQ(c[1].query.modality, "PT");
@@ -227,8 +235,9 @@ TEST(PacsBrowser, ScriptCommandsParseAndNameTheirLine) {
   EXPECT_EQ(c[3].text, "CT low dose");
   EXPECT_EQ(c[4].role, Role::Segmentation);
   EXPECT_EQ(c[5].registration, config::RegistrationMethod::Rigid);
-  for (const char* bad : {"pacs-search patient=x", "pacs-series liver CT", "pacs-server",
-                          "pacs-registration warp", "pacs-open now", "pacs-search modality"}) {
+  for (const char* bad :
+       {"pacs-search patient=x", "pacs-series liver CT", "pacs-server", "pacs-registration warp",
+        "pacs-open now", "pacs-search modality", "pacs-wait 3", "pacs-wait images"}) {
     try {
       ViewerScript::parse(std::string("wait 1\n") + bad + "\n", "test.script");
       ADD_FAILURE() << bad;
