@@ -34,11 +34,6 @@ std::string personName(std::string name) {
   return name;
 }
 
-std::string dicomDate(const std::string& d) {
-  if (d.size() != 8) return d;
-  return d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2);
-}
-
 }  // namespace
 
 std::filesystem::path defaultServersFile() {
@@ -101,6 +96,11 @@ std::vector<PacsServerEntry> loadServers(const std::filesystem::path& file) {
     servers.push_back(std::move(entry));
   }
   return servers;
+}
+
+std::string PacsBrowser::dicomDate(const std::string& d) {
+  if (d.size() != 8 || d.find_first_not_of("0123456789") != std::string::npos) return d;
+  return d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2);
 }
 
 const char* PacsBrowser::roleName(Role role) {
@@ -199,7 +199,8 @@ std::string PacsBrowser::describeSeries(const std::string& seriesUid) const {
   if (seriesUid.empty()) return "none";
   for (const pacs::Match& s : series_)
     if (field(s, "SeriesInstanceUID") == seriesUid) {
-      std::string text = "#" + field(s, "SeriesNumber") + "  " + field(s, "Modality");
+      const std::string number = field(s, "SeriesNumber");
+      std::string text = (number.empty() ? "" : "#" + number + "  ") + field(s, "Modality");
       if (const std::string d = field(s, "SeriesDescription"); !d.empty()) text += "  " + d;
       if (const std::string n = field(s, "NumberOfSeriesRelatedInstances"); !n.empty())
         text += "  (" + n + " images)";
@@ -421,6 +422,8 @@ void PacsBrowser::takeSeries(std::vector<pacs::Match> series) {
         functionalKind = std::string(modality) == "PT" ? config::FunctionalKind::Pet
                                                        : config::FunctionalKind::Spect;
       }
+  // A PET (or SPECT) without a CT or MR is read alone, as its own anatomy.
+  if (chosen(Role::Anatomical).empty()) std::swap(chosen_[0], chosen_[1]);
 }
 
 void PacsBrowser::writeReport(const std::filesystem::path& file) const {

@@ -81,7 +81,8 @@ class PacsBrowser {
   const std::vector<pacs::Match>& series() const { return series_; }
   // What a search or a study's series query found (poll() gives them their outcome; tests give
   // them by hand). takeSeries makes a first choice a reader would: the first CT (else MR) as
-  // the anatomy, the first PT (else NM) as the functional volume.
+  // the anatomy, the first PT (else NM) as the functional volume; without a CT or MR, that PT
+  // as the anatomy alone. No segmentation: the reader chooses one.
   void takeStudies(std::vector<pacs::Match> studies);
   void takeSeries(std::vector<pacs::Match> series);
 
@@ -94,6 +95,7 @@ class PacsBrowser {
   // The chosen series's line for the panel: "3  CT  Cranium CT  (108 images)"; "none".
   std::string describeSeries(const std::string& seriesUid) const;
   static std::string describeStudy(const pacs::Match& study);
+  static std::string dicomDate(const std::string& yyyymmdd);  // "2026-11-30"
 
   config::RegistrationMethod registration = config::RegistrationMethod::None;
   config::FunctionalKind functionalKind = config::FunctionalKind::Pet;

@@ -122,7 +122,9 @@ void PacsPanel::drawStudies() {
     for (const char* key : {"PatientID", "StudyDate", "ModalitiesInStudy", "StudyDescription",
                             "NumberOfStudyRelatedSeries"}) {
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(field(s, key).c_str());
+      const std::string value = field(s, key);
+      ImGui::TextUnformatted(
+          (std::strcmp(key, "StudyDate") == 0 ? PacsBrowser::dicomDate(value) : value).c_str());
     }
   }
   ImGui::EndTable();

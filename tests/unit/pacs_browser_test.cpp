@@ -184,6 +184,13 @@ TEST(PacsBrowser, ChoicesMakeAStudyConfigNamingPacsSeries) {
   b.wait();
   b.takeSeries(series());
   EXPECT_EQ(b.studyConfig().name, "PACS study CT\\PT 2026-11-30 (Research)");
+  // A PET without a CT or MR: read alone, as its own anatomy.
+  std::vector<pacs::Match> petAlone = series();
+  petAlone.erase(petAlone.begin());
+  b.takeSeries(petAlone);
+  EXPECT_EQ(b.chosen(Role::Anatomical), "1.2.3.4.2");
+  EXPECT_EQ(b.chosen(Role::Functional), "");
+  EXPECT_FALSE(b.studyConfig().functional);
 
   b.setSeries(Role::Anatomical, "");
   EXPECT_THROW(b.studyConfig(), InputError);
