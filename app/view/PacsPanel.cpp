@@ -86,7 +86,22 @@ void PacsPanel::drawSearch() {
   };
   keyField("patient ID", "##patient-id", q.patientId, nullptr, false);
   keyField("patient name", "##patient-name", q.patientName, "Doe* (wildcards * ?)", true);
-  keyField("study date", "##study-date", q.studyDate, "YYYYMMDD-YYYYMMDD", false);
+  // The study date as a range, from and to (either may stay empty: from onwards, up to), kept
+  // as the query's DICOM range "FROM-TO" (a script's study-date= shows here the same way).
+  const auto dash = q.studyDate.find('-');
+  std::string from = q.studyDate.substr(0, dash);
+  std::string to = dash == std::string::npos ? std::string() : q.studyDate.substr(dash + 1);
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextUnformatted("study date");
+  ImGui::SameLine(label + ImGui::GetStyle().WindowPadding.x);
+  ImGui::SetNextItemWidth(input * 0.5f - 12.0f * scale_);
+  bool dateChanged = inputString("##date-from", from, "YYYYMMDD");
+  ImGui::SameLine();
+  ImGui::TextUnformatted("to");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(input * 0.5f - 12.0f * scale_);
+  dateChanged |= inputString("##date-to", to, "YYYYMMDD");
+  if (dateChanged) q.studyDate = to.empty() && from.empty() ? "" : from + "-" + to;
   keyField("modality", "##modality", q.modality, "CT, PT, MR", true);
   ImGui::SameLine(0.0f, 24.0f * scale_);
   ImGui::BeginDisabled(browser_.busy());
