@@ -137,6 +137,18 @@ void PacsBrowser::selectServer(int index) {
   status_.clear();
 }
 
+const char* PacsBrowser::failedStep() const {
+  switch (step_) {
+    case Step::Search:
+      return "Search";
+    case Step::Series:
+      return "The study's series";
+    case Step::Open:
+      break;
+  }
+  return "Open";
+}
+
 bool PacsBrowser::takeWindowRequest() { return std::exchange(windowRequested_, false); }
 
 bool PacsBrowser::selectServer(const std::string& name) {
@@ -267,6 +279,7 @@ void PacsBrowser::open() {
   try {
     study = studyConfig();
   } catch (const InputError& e) {
+    step_ = Step::Open;
     error_ = e.problem();
     return;
   }

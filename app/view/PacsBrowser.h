@@ -118,8 +118,10 @@ class PacsBrowser {
   // What the running step does, with its time ("retrieving the functional series (2 of 2),
   // 3.1 s"); "" when idle.
   std::string activity() const;
-  // The last step's failure (the server's message), or "".
+  // The last step's failure (the server's message), or "", and what failed ("Search",
+  // "The study's series", "Open").
   const std::string& error() const { return error_; }
+  const char* failedStep() const;
   // A failure after the step (the viewer could not show the loaded study): said as error().
   void fail(std::string why) { error_ = std::move(why), status_.clear(); }
   // What the last step did ("3 studies", "opened ..."), or "".

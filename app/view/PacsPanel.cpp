@@ -241,7 +241,7 @@ void PacsPanel::draw(float left) {
     if (const float f = browser_.progress(); f >= 0.0f) ImGui::ProgressBar(f, ImVec2(-1, 0));
     wrapped(kBusy, browser_.activity());
   } else if (!browser_.error().empty())
-    wrapped(kError, "Failed: " + browser_.error());
+    wrapped(kError, std::string(browser_.failedStep()) + " failed: " + browser_.error());
   else if (!browser_.status().empty())
     wrapped(kQuiet, browser_.status());
   ImGui::End();

@@ -259,7 +259,13 @@ int runViewer(ViewerOptions options) {
     open = std::make_unique<OpenStudy>(context, std::move(options.session), scale);
   pacsPanel.setVisible(!open);
   auto showPacs = [&pacsPanel] { pacsPanel.setVisible(true); };
-  if (open) open->panel().setOpenPacs(showPacs);
+  // The window's title names the study shown (one opened from the PACS names its server).
+  auto shown = [&] {
+    open->panel().setOpenPacs(showPacs);
+    const std::string& name = open->session().config().name;
+    glfwSetWindowTitle(context.window(), ("mvw view" + (name.empty() ? "" : ": " + name)).c_str());
+  };
+  if (open) shown();
 
   auto lastSwap = std::chrono::steady_clock::now();
 
@@ -279,7 +285,7 @@ int runViewer(ViewerOptions options) {
         auto next = std::make_unique<OpenStudy>(context, std::move(loaded), scale);
         open.reset();  // the old study's GL objects go before the new one's first frame
         open = std::move(next);
-        open->panel().setOpenPacs(showPacs);
+        shown();
         pacsPanel.setVisible(false);
         browser.takeWindowRequest();  // the open's own request: the window has done its job
       } catch (const Error& e) {

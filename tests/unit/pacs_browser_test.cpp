@@ -197,6 +197,7 @@ TEST(PacsBrowser, ChoicesMakeAStudyConfigNamingPacsSeries) {
   b.open();  // refused before any network: said as the error
   EXPECT_FALSE(b.busy());
   EXPECT_EQ(b.error(), "no anatomical series chosen");
+  EXPECT_STREQ(b.failedStep(), "Open");
 }
 
 TEST(PacsBrowser, AServerThatCannotBeReachedFailsInTheBackground) {
@@ -211,6 +212,7 @@ TEST(PacsBrowser, AServerThatCannotBeReachedFailsInTheBackground) {
   EXPECT_FALSE(b.busy());
   EXPECT_NE(b.error().find("http://127.0.0.1:1/dicom-web"), std::string::npos) << b.error();
   EXPECT_TRUE(b.studies().empty());
+  EXPECT_STREQ(b.failedStep(), "Search");
 }
 
 TEST(PacsBrowser, ScriptCommandsParseAndNameTheirLine) {
