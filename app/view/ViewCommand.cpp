@@ -1,7 +1,9 @@
 #include "ViewCommand.h"
 
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 
 #include <CLI/CLI.hpp>
 
@@ -14,17 +16,36 @@ namespace mvw::app {
 namespace {
 
 struct ViewOptions {
-  std::string study, anatomical, functional, script, frameLog;
+  std::string study, anatomical, functional, script, frameLog, servers;
   int width = 1400, height = 900;
   double uiScale = 1.0;
 };
 
 void runView(const ViewOptions& o) {
+  ViewerOptions v;
+  // The PACS servers: --servers FILE must be right (bad input otherwise); a bad default file
+  // is said in the PACS window and the viewer opens all the same.
+  if (!o.servers.empty()) {
+    v.serversFile = o.servers;
+    v.servers = loadServers(v.serversFile);
+  } else {
+    v.serversFile = defaultServersFile();
+    std::error_code ec;
+    if (std::filesystem::exists(v.serversFile, ec)) try {
+        v.servers = loadServers(v.serversFile);
+      } catch (const InputError& e) {
+        v.serversProblem = e.what();
+      }
+  }
   config::StudyConfig study;
   if (!o.study.empty()) {
     study = config::loadStudyConfig(o.study);
+  } else if (o.anatomical.empty() && !v.servers.empty()) {
+    // Nothing to open yet: the window opens on the PACS window.
   } else {
-    if (o.anatomical.empty()) throw InputError("mvw view", "give a study config or --anatomical");
+    if (o.anatomical.empty())
+      throw InputError("mvw view", "give a study config or --anatomical, or list PACS servers in " +
+                                       v.serversFile.string() + " (or --servers FILE)");
     study.anatomical.path = o.anatomical;
     if (!o.functional.empty()) {
       study.functional = config::VolumeSource{};
@@ -32,11 +53,12 @@ void runView(const ViewOptions& o) {
       study.functional->frame = config::defaultFrame(study.functionalKind);
     }
   }
-  ViewerOptions v;
   // Everything the study names is read and placed before the window opens: bad input is
   // reported with nothing drawn.
-  v.session.emplace(std::move(study));
-  v.session->load();
+  if (!o.study.empty() || !o.anatomical.empty()) {
+    v.session = std::make_unique<study::Session>(std::move(study));
+    v.session->load();
+  }
   v.script = o.script;
   v.frameLog = o.frameLog;
   v.width = o.width;
@@ -69,6 +91,9 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--functional", o->functional, "Functional volume");
   cmd->add_option("--script", o->script,
                   "Scripted events, one per line (tests; see app/view/ViewerScript.h)");
+  cmd->add_option("--servers", o->servers,
+                  "PACS servers for the PACS window, JSON (default "
+                  "$XDG_CONFIG_HOME/mvw/servers.json; docs/user-guide/pacs.md)");
   cmd->add_option("--frame-log", o->frameLog,
                   "Write one CSV line per drawn frame: its time, the 3D pane's render time and "
                   "size, whether it was a drag frame (benchmarks of interactivity)");

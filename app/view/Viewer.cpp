@@ -16,6 +16,8 @@
 #include <glm/common.hpp>
 
 #include "GlfwContext.h"
+#include "PacsBrowser.h"
+#include "PacsPanel.h"
 #include "ViewerPanel.h"
 #include "ViewerScript.h"
 #include "ViewerState.h"
@@ -139,6 +141,96 @@ Image paneOf(const Image& window, glm::ivec2 origin, glm::ivec2 size) {
   return pane;
 }
 
+// One open study and what shows it: the session (its volumes), the renderer holding them in GL,
+// the panes' textures, the state and the panel. Opening a study from the PACS replaces the
+// whole of it; the window, ImGui and the PACS browser stay. Members are destroyed in reverse:
+// the panel, then the state (a running registration, which reads the volumes, is waited for),
+// the GL objects while the context still exists, the volumes last.
+class OpenStudy {
+ public:
+  OpenStudy(GlfwContext& context, std::unique_ptr<mvw::study::Session> loaded, float scale)
+      : session_(std::move(loaded)), renderer_(context, session_->anatomical()) {
+    const mvw::study::Session& session = *session_;
+    const Volume* functional = session.functional();
+    session.attach(renderer_);
+    ViewerScene scene;
+    if (functional) {
+      scene.registration = ViewerRegistration::describePlacement(
+          config::toString(session.config().registration.method), session.placement()->report);
+      scene.functionalRange = renderer_.functionalRange();
+      scene.anatomicalFromFunctional = session.anatomicalFromFunctional();
+    }
+    if (const mvw::study::SegmentOverlay* segments = session.segments()) {
+      // Each segment's centre (the mean of its voxel centres), where the outlines put it.
+      const glm::dmat4 placed = mvw::study::anatomicalFromSegmentation(
+          *segments, functional, functional ? session.anatomicalFromFunctional() : glm::dmat4(1.0));
+      const Volume& masks = segments->masks;
+      const glm::ivec3 d = masks.dimensions();
+      for (int c = 0; c < masks.components(); ++c) {
+        glm::dvec3 sum(0.0);
+        double count = 0.0;
+        for (int k = 0; k < d.z; ++k)
+          for (int j = 0; j < d.y; ++j)
+            for (int i = 0; i < d.x; ++i)
+              if (masks.value(i, j, k, c) != 0.0) sum += glm::dvec3(i, j, k), count += 1.0;
+        if (count == 0.0) continue;
+        const glm::dvec3 world = masks.worldFromIndexPoint(sum / count);
+        scene.segmentCentres.push_back({segments->names[static_cast<std::size_t>(c)],
+                                        glm::dvec3(placed * glm::dvec4(world, 1.0))});
+      }
+    }
+    scene.centre = renderer_.centre();
+    scene.radius = renderer_.radius();
+    scene.valueRange = renderer_.valueRange();
+    state_ =
+        std::make_unique<ViewerState>(session.config(), session.anatomical(), functional, scene);
+    panel_ = std::make_unique<ViewerPanel>(*state_, textures_, scale);
+    // The functional volume as an image of its own (the PET/CT layout's MIP), uploaded once
+    // the layout first asks for it.
+    functionalRenderer_ = [this, &context, functional]() -> render::VolumeRenderer& {
+      if (!functionalRendererHeld_)
+        functionalRendererHeld_ = std::make_unique<render::VolumeRenderer>(context, *functional);
+      return *functionalRendererHeld_;
+    };
+  }
+  OpenStudy(const OpenStudy&) = delete;
+  OpenStudy& operator=(const OpenStudy&) = delete;
+
+  const mvw::study::Session& session() const { return *session_; }
+  render::VolumeRenderer& renderer() { return renderer_; }
+  ViewerState& state() { return *state_; }
+  ViewerPanel& panel() { return *panel_; }
+  ViewerPanel::PaneTextures& textures() { return textures_; }
+  const std::function<render::VolumeRenderer&()>& functionalRenderer() const {
+    return functionalRenderer_;
+  }
+
+ private:
+  std::unique_ptr<mvw::study::Session> session_;
+  render::VolumeRenderer renderer_;
+  ViewerPanel::PaneTextures textures_;
+  std::unique_ptr<render::VolumeRenderer> functionalRendererHeld_;
+  std::function<render::VolumeRenderer&()> functionalRenderer_;
+  std::unique_ptr<ViewerState> state_;
+  std::unique_ptr<ViewerPanel> panel_;
+};
+
+// The window without a study (mvw view with PACS servers and nothing to open yet): what to do.
+void drawNoStudy(float scale) {
+  ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowSize(io.DisplaySize);
+  ImGui::Begin("mvw", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::BeginChild("panel", ImVec2(340.0f * scale, 0), true);
+  ImGui::TextWrapped(
+      "No study open. Choose one in the PACS window, or start mvw view with a "
+      "study config (mvw view STUDY.json).");
+  ImGui::EndChild();
+  ImGui::End();
+}
+
 }  // namespace
 
 int runViewer(ViewerOptions options) {
@@ -153,86 +245,94 @@ int runViewer(ViewerOptions options) {
     if (!frameLog) throw InputError(options.frameLog, "cannot write the frame log");
     frameLog << "frame,ms,render3d_ms,render3d_width,render3d_height,interactive,drag_divisor\n";
   }
-  const mvw::study::Session& session = *options.session;
-  const Volume* functional = session.functional();
-
-  // Declaration order is teardown order in reverse: the state (and a running registration,
-  // which reads the volumes) goes first, the GL objects while the context still exists.
+  const float scale = static_cast<float>(options.uiScale);
+  // The PACS browser outlives every study it opens (declared before them: a running retrieve
+  // is joined after the study's GL objects are gone, before the window closes).
   GlfwContext context(glm::ivec2(options.width, options.height), "mvw view");
-  ImGuiSession imgui(context.window(), static_cast<float>(options.uiScale));
-  render::VolumeRenderer renderer(context, session.anatomical());
-  session.attach(renderer);
-  ViewerScene scene;
-  if (functional) {
-    scene.registration = ViewerRegistration::describePlacement(
-        config::toString(session.config().registration.method), session.placement()->report);
-    scene.functionalRange = renderer.functionalRange();
-    scene.anatomicalFromFunctional = session.anatomicalFromFunctional();
-  }
-  if (const mvw::study::SegmentOverlay* segments = session.segments()) {
-    // Each segment's centre (the mean of its voxel centres), where the outlines put it.
-    const glm::dmat4 placed = mvw::study::anatomicalFromSegmentation(
-        *segments, functional, functional ? session.anatomicalFromFunctional() : glm::dmat4(1.0));
-    const Volume& masks = segments->masks;
-    const glm::ivec3 d = masks.dimensions();
-    for (int c = 0; c < masks.components(); ++c) {
-      glm::dvec3 sum(0.0);
-      double count = 0.0;
-      for (int k = 0; k < d.z; ++k)
-        for (int j = 0; j < d.y; ++j)
-          for (int i = 0; i < d.x; ++i)
-            if (masks.value(i, j, k, c) != 0.0) sum += glm::dvec3(i, j, k), count += 1.0;
-      if (count == 0.0) continue;
-      const glm::dvec3 world = masks.worldFromIndexPoint(sum / count);
-      scene.segmentCentres.push_back({segments->names[static_cast<std::size_t>(c)],
-                                      glm::dvec3(placed * glm::dvec4(world, 1.0))});
-    }
-  }
-  scene.centre = renderer.centre();
-  scene.radius = renderer.radius();
-  scene.valueRange = renderer.valueRange();
+  ImGuiSession imgui(context.window(), scale);
   render::WindowFramebuffer framebuffer(context);
-  ViewerPanel::PaneTextures textures;
-  ViewerState state(session.config(), session.anatomical(), functional, scene);
-  ViewerPanel panel(state, textures, static_cast<float>(options.uiScale));
-  // The functional volume as an image of its own (the PET/CT layout's MIP), uploaded once the
-  // layout first asks for it.
-  std::unique_ptr<render::VolumeRenderer> functionalRendererHeld;
-  const std::function<render::VolumeRenderer&()> functionalRenderer =
-      [&]() -> render::VolumeRenderer& {
-    if (!functionalRendererHeld)
-      functionalRendererHeld = std::make_unique<render::VolumeRenderer>(context, *functional);
-    return *functionalRendererHeld;
+  PacsBrowser browser;
+  browser.setServers(std::move(options.servers), options.serversFile, options.serversProblem);
+  PacsPanel pacsPanel(browser, scale);
+  std::unique_ptr<OpenStudy> open;
+  if (options.session)
+    open = std::make_unique<OpenStudy>(context, std::move(options.session), scale);
+  pacsPanel.setVisible(!open);
+  auto showPacs = [&pacsPanel] { pacsPanel.setVisible(true); };
+  // The window's title names the study shown (one opened from the PACS names its server).
+  auto shown = [&] {
+    open->panel().setOpenPacs(showPacs);
+    const std::string& name = open->session().config().name;
+    glfwSetWindowTitle(context.window(), ("mvw view" + (name.empty() ? "" : ": " + name)).c_str());
   };
+  if (open) shown();
 
   auto lastSwap = std::chrono::steady_clock::now();
 
   int frames = 0;
-  while (!glfwWindowShouldClose(context.window()) && !state.requests().quitRequested()) {
+  bool quit = false;
+  while (!glfwWindowShouldClose(context.window()) && !quit &&
+         !(open && open->state().requests().quitRequested())) {
     glfwPollEvents();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (auto anatomicalFromFunctional = state.finishRegistration())
-      session.attach(renderer, *anatomicalFromFunctional);
-    const bool dragging = panel.draw() || state.requests().scriptedInteraction();
-    const int divisor = state.dragDivisor();  // the one this frame renders with
-    state.advanceOrbit();  // one step per drawn frame while the 3D view spins or rocks
-    const Render3d rendered3d = renderDirtyPanes(state, renderer, functionalRenderer,
-                                                 session.segments(), textures, dragging);
+    // A study retrieved and loaded from the PACS takes the current one's place; one the GL
+    // side cannot take (a volume too large for a texture) leaves the current study shown and
+    // says why in the PACS window.
+    if (std::unique_ptr<mvw::study::Session> loaded = browser.poll()) {
+      try {
+        auto next = std::make_unique<OpenStudy>(context, std::move(loaded), scale);
+        open.reset();  // the old study's GL objects go before the new one's first frame
+        open = std::move(next);
+        shown();
+        pacsPanel.setVisible(false);
+        browser.takeWindowRequest();  // the open's own request: the window has done its job
+      } catch (const Error& e) {
+        browser.fail(e.what());
+      }
+    }
+    bool dragging = false;
+    Render3d rendered3d;
+    int divisor = 0;
+    if (open) {
+      ViewerState& state = open->state();
+      if (auto anatomicalFromFunctional = state.finishRegistration())
+        open->session().attach(open->renderer(), *anatomicalFromFunctional);
+      dragging = open->panel().draw() || state.requests().scriptedInteraction();
+      divisor = state.dragDivisor();  // the one this frame renders with
+      state.advanceOrbit();           // one step per drawn frame while the 3D view spins or rocks
+    } else {
+      drawNoStudy(scale);
+    }
+    if (browser.takeWindowRequest()) pacsPanel.setVisible(true);
+    pacsPanel.draw(340.0f * scale);
+    if (open)
+      rendered3d = renderDirtyPanes(open->state(), open->renderer(), open->functionalRenderer(),
+                                    open->session().segments(), open->textures(), dragging);
     ImGui::Render();
     framebuffer.clear({0.08f, 0.08f, 0.1f, 1.0f});
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     // Scripts act on a frame that is fully drawn; so do screenshots (the back buffer).
-    if (!script.empty() && frames > 1 && !script.step(state)) state.requests().requestQuit();
-    if (auto file = state.requests().takeScreenshotRequest()) {
-      io::writePng(framebuffer.read(), *file);
-      state.requests().setStatus("saved " + file->string());
+    if (!script.empty() && frames > 1 && !script.step(open ? &open->state() : nullptr, &browser)) {
+      if (open)
+        open->state().requests().requestQuit();
+      else
+        quit = true;
     }
-    if (auto shot = state.requests().takePaneScreenshotRequest())
-      io::writePng(
-          paneOf(framebuffer.read(), state.paneOrigin(shot->first), state.paneSize(shot->first)),
-          shot->second);
+    if (auto file = script.idleRequests().takeScreenshotRequest())
+      io::writePng(framebuffer.read(), *file);  // asked while no study was open
+    if (open) {
+      ViewerState& state = open->state();
+      if (auto file = state.requests().takeScreenshotRequest()) {
+        io::writePng(framebuffer.read(), *file);
+        state.requests().setStatus("saved " + file->string());
+      }
+      if (auto shot = state.requests().takePaneScreenshotRequest())
+        io::writePng(
+            paneOf(framebuffer.read(), state.paneOrigin(shot->first), state.paneSize(shot->first)),
+            shot->second);
+    }
     glfwSwapBuffers(context.window());
     if (frameLog.is_open()) {
       const auto now = std::chrono::steady_clock::now();
@@ -243,8 +343,10 @@ int runViewer(ViewerOptions options) {
       lastSwap = now;
     }
     ++frames;
-    if (!state.anyDirty() && script.empty() && !state.registration().running())
-      glfwWaitEventsTimeout(0.05);  // idle: no busy loop
+    const bool idle =
+        !open || (!open->state().anyDirty() && !open->state().registration().running());
+    if (idle && script.empty())
+      glfwWaitEventsTimeout(0.05);  // idle: no busy loop (a PACS step's time still ticks on)
   }
   return 0;
 }

@@ -2,17 +2,24 @@
 // `mvw view`: a 3D view and the three orthogonal MPR views with a linked crosshair, and a
 // control panel (Dear ImGui), on the same renderer and shaders as the headless path.
 #include <filesystem>
-#include <optional>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "PacsBrowser.h"
 #include "mvw/study/Session.h"
 
 namespace mvw::app {
 
 struct ViewerOptions {
   // The study, loaded (Session::load); its config's file may be empty (volumes given on the
-  // command line).
-  std::optional<study::Session> session;
+  // command line). Null: the window opens on the PACS window alone.
+  std::unique_ptr<study::Session> session;
+  // The PACS servers the PACS window offers (servers.json), the file they came from, and why
+  // the default file could not be used (shown in the PACS window).
+  std::vector<PacsServerEntry> servers;
+  std::filesystem::path serversFile;
+  std::string serversProblem;
   std::filesystem::path script;  // scripted events, for tests (see ViewerScript.h)
   // One CSV line per drawn frame (frame, ms since the previous frame's swap, the 3D pane's
   // render ms and size where it rendered, interactive, drag divisor); empty: none.

@@ -268,6 +268,7 @@ void ViewerPanel::drawControls() {
   // room on its right for the longest label, at any font scale (issue 36 item 8: "overlay
   // colou", "step mm (0 au" at the default width).
   ImGui::TextWrapped("%s", state_.study().name.empty() ? "mvw view" : state_.study().name.c_str());
+  if (openPacs_ && ImGui::Button("Open from the PACS...")) openPacs_();
   ImGui::Separator();
   float label = 0.0f;
   for (const char* text :

@@ -4,6 +4,8 @@
 // it changes goes through ViewerState; it draws the panes' textures as the window loop
 // uploaded them.
 #include <array>
+#include <functional>
+#include <utility>
 
 #include <glm/vec3.hpp>
 
@@ -24,6 +26,8 @@ class ViewerPanel {
   // Between ImGui::NewFrame and ImGui::Render; returns whether a pane is being dragged
   // (the 3D pane then renders coarse).
   bool draw();
+  // What the panel's "Open from the PACS" button does (no button without it).
+  void setOpenPacs(std::function<void()> open) { openPacs_ = std::move(open); }
 
  private:
   void drawPane(int pane, ImVec2 pos, ImVec2 size);
@@ -34,6 +38,7 @@ class ViewerPanel {
   const PaneTextures& textures_;
   float scale_ = 1.0f;
   bool dragging_ = false;
+  std::function<void()> openPacs_;
 };
 
 }  // namespace mvw::app

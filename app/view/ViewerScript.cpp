@@ -50,6 +50,13 @@ class LineReader {
          "' (3d, axial, coronal, sagittal; in the PET/CT layout also mip, anatomical, "
          "functional, fused)");
   }
+  // The rest of the line, its words joined by one space (a server's name, a description).
+  std::string rest(const char* what) {
+    if (!more()) fail(command() + ": missing " + what);
+    std::string text;
+    while (more()) text += (text.empty() ? "" : " ") + tokens_[next_++];
+    return text;
+  }
   void end() const {
     if (more()) fail(command() + ": unexpected '" + tokens_[next_] + "'");
   }
@@ -229,6 +236,73 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
     c.file = in.word("file");
   } else if (cmd == "clear-measurements") {
     c.kind = Kind::ClearMeasurements;
+  } else if (cmd == "pacs-server") {
+    c.kind = Kind::PacsServer;
+    c.text = in.rest("server name");
+  } else if (cmd == "pacs-search") {
+    c.kind = Kind::PacsSearch;
+    while (in.more()) {
+      const std::string kv = in.word("KEY=VALUE");
+      const auto eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) in.fail("pacs-search: '" + kv + "' is not KEY=VALUE");
+      const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+      if (key == "patient-id")
+        c.query.patientId = value;
+      else if (key == "patient-name")
+        c.query.patientName = value;
+      else if (key == "study-date")
+        c.query.studyDate = value;
+      else if (key == "modality")
+        c.query.modality = value;
+      else if (key == "accession")
+        c.query.accession = value;
+      else
+        in.fail("pacs-search: unknown key '" + key +
+                "' (patient-id, patient-name, study-date, modality, accession)");
+    }
+  } else if (cmd == "pacs-study") {
+    c.kind = Kind::PacsStudy;
+    c.text = in.word("study (N or UID)");
+  } else if (cmd == "pacs-series") {
+    c.kind = Kind::PacsSeries;
+    const std::string role = in.word("role");
+    if (role == "anatomical")
+      c.role = PacsBrowser::Role::Anatomical;
+    else if (role == "functional")
+      c.role = PacsBrowser::Role::Functional;
+    else if (role == "segmentation")
+      c.role = PacsBrowser::Role::Segmentation;
+    else
+      in.fail("pacs-series: unknown role '" + role + "' (anatomical, functional, segmentation)");
+    c.text = in.rest("series (UID, number, modality, description or none)");
+  } else if (cmd == "pacs-registration") {
+    c.kind = Kind::PacsRegistration;
+    const std::string method = in.word("method");
+    if (method == "none")
+      c.registration = config::RegistrationMethod::None;
+    else if (method == "rigid")
+      c.registration = config::RegistrationMethod::Rigid;
+    else if (method == "affine")
+      c.registration = config::RegistrationMethod::Affine;
+    else
+      in.fail("pacs-registration: unknown method '" + method + "' (none, rigid, affine)");
+  } else if (cmd == "pacs-open") {
+    c.kind = Kind::PacsOpen;
+    if (in.more()) {
+      const std::string how = in.word("nowait");
+      if (how != "nowait") in.fail("pacs-open: unknown option '" + how + "' (nowait)");
+      c.frames = -1;  // not waited for
+    }
+  } else if (cmd == "pacs-wait") {
+    c.kind = Kind::PacsWait;
+    if (in.more()) {
+      const std::string what = in.word("progress");
+      if (what != "progress") in.fail("pacs-wait: unknown option '" + what + "' (progress)");
+      c.frames = -1;
+    }
+  } else if (cmd == "pacs-report") {
+    c.kind = Kind::PacsReport;
+    c.file = in.word("file");
   } else if (cmd == "quit") {
     c.kind = Kind::Quit;
   } else {
@@ -246,6 +320,7 @@ ViewerScript ViewerScript::parse(const std::string& text, const std::filesystem:
   int number = 0;
   for (std::string line; std::getline(in, line);)
     script.commands_.push_back(parseLine(line, source, ++number));
+  script.source_ = source;
   return script;
 }
 
@@ -265,7 +340,31 @@ void ViewerScript::dragIncrement(ViewerState& state) {
   state.requests().setScriptedInteraction(true);
 }
 
-bool ViewerScript::step(ViewerState& state) {
+bool ViewerScript::step(ViewerState* statePointer, PacsBrowser* pacs) {
+  if (waitingPacs_) {
+    // The search, the series or the open still runs (or, for pacs-wait progress, its retrieve
+    // has received nothing yet).
+    if (pacs && pacs->busy() && !(waitingProgress_ && pacs->retrieving())) return true;
+    waitingPacs_ = waitingProgress_ = false;
+  }
+  if (next_ < commands_.size() && commands_[next_].kind >= Kind::PacsServer &&
+      commands_[next_].kind <= Kind::PacsReport) {
+    runPacs(commands_[next_++], pacs);
+    return true;
+  }
+  if (!statePointer) {  // no study open: waits, screenshots, the PACS and quit only
+    if (wait_ > 0) return --wait_, true;
+    if (next_ >= commands_.size()) return false;
+    const Command& c = commands_[next_++];
+    if (c.kind == Kind::Wait) wait_ = c.frames;
+    if (c.kind == Kind::Quit) return false;
+    if (c.kind == Kind::Screenshot) idleRequests_.requestScreenshot(c.file);
+    if (c.kind != Kind::Nothing && c.kind != Kind::Wait && c.kind != Kind::Screenshot)
+      throw InputError(source_, "line " + std::to_string(c.line) +
+                                    ": no study is open (open one from the PACS first)");
+    return true;
+  }
+  ViewerState& state = *statePointer;
   if (dragging_) {
     // One increment per drawn frame, every frame of it interactive; the frame after the last
     // increment's is not, so the pane refines at full resolution as after a real drag.
@@ -368,11 +467,89 @@ bool ViewerScript::step(ViewerState& state) {
     case Kind::ClearMeasurements:
       state.measurements().clear();
       break;
+    case Kind::PacsServer:
+    case Kind::PacsSearch:
+    case Kind::PacsStudy:
+    case Kind::PacsSeries:
+    case Kind::PacsRegistration:
+    case Kind::PacsOpen:
+    case Kind::PacsWait:
+    case Kind::PacsReport:
+      break;  // run above, with or without a study
     case Kind::Quit:
       state.requests().requestQuit();
       break;
   }
   return true;
+}
+
+void ViewerScript::runPacs(const Command& c, PacsBrowser* pacs) {
+  const std::string where = "line " + std::to_string(c.line) + ": ";
+  auto fail = [&](const std::string& problem) { throw InputError(source_, where + problem); };
+  if (!pacs) fail("the PACS commands need the viewer's PACS panel");
+  if (c.kind != Kind::PacsReport && c.kind != Kind::PacsWait)
+    pacs->requestWindow();  // what the script does, on screen
+  try {
+    switch (c.kind) {
+      case Kind::PacsServer:
+        if (!pacs->selectServer(c.text)) {
+          std::string names;
+          for (const PacsServerEntry& s : pacs->servers())
+            names += (names.empty() ? "" : ", ") + s.name;
+          fail("pacs-server: no server named '" + c.text + "' in " + pacs->serversFile().string() +
+               " (" + (names.empty() ? "none" : names) + ")");
+        }
+        break;
+      case Kind::PacsSearch:
+        if (pacs->server() < 0) fail("pacs-search: no server chosen (pacs-server NAME)");
+        pacs->query() = c.query;
+        pacs->search();
+        waitingPacs_ = true;
+        break;
+      case Kind::PacsStudy: {
+        const auto& studies = pacs->studies();
+        int index = -1;
+        for (std::size_t i = 0; i < studies.size(); ++i) {
+          const auto it = studies[i].find("StudyInstanceUID");
+          if (it != studies[i].end() && it->second == c.text) index = static_cast<int>(i);
+        }
+        if (index < 0 && !c.text.empty() &&
+            c.text.find_first_not_of("0123456789") == std::string::npos && c.text.size() < 6)
+          index = std::stoi(c.text) - 1;
+        if (index < 0 || index >= static_cast<int>(studies.size()))
+          fail("pacs-study: no study '" + c.text + "' among the " + std::to_string(studies.size()) +
+               " found");
+        pacs->chooseStudy(index);
+        waitingPacs_ = true;
+        break;
+      }
+      case Kind::PacsSeries:
+        if (c.text == "none")
+          pacs->setSeries(c.role, "");
+        else
+          pacs->chooseSeries(c.role, c.text);
+        break;
+      case Kind::PacsRegistration:
+        pacs->registration = c.registration;
+        break;
+      case Kind::PacsOpen:
+        pacs->open();
+        waitingPacs_ = c.frames != -1;
+        break;
+      case Kind::PacsWait:
+        waitingPacs_ = true;
+        waitingProgress_ = c.frames == -1;
+        break;
+      case Kind::PacsReport:
+        pacs->writeReport(c.file);
+        break;
+      default:
+        break;
+    }
+  } catch (const InputError& e) {
+    if (e.file() == source_) throw;
+    fail(std::string(e.what()));
+  }
 }
 
 }  // namespace mvw::app

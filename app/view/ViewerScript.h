@@ -36,17 +36,36 @@
 //                                       crosshair goes to its centre
 //   roi-stats FILE                      every sphere's statistics, JSON (mvw stats's fields)
 //   clear-measurements                  no sphere, no ruler
+//   pacs-server NAME                    the PACS panel opens on the server of servers.json so
+//                                       named (PacsBrowser)
+//   pacs-search [KEY=VALUE ...]         a study search, waited for; KEY: patient-id,
+//                                       patient-name, study-date, modality, accession
+//   pacs-study N|UID                    the N-th study found (1: the first) or the one of that
+//                                       Study Instance UID; its series asked for, waited for
+//   pacs-series ROLE SERIES|none        the series ROLE (anatomical, functional, segmentation)
+//                                       takes: its UID, number, modality or description
+//   pacs-registration METHOD            none, rigid, affine (the study's registration rule)
+//   pacs-open [nowait]                  retrieve and open the chosen series as the study shown;
+//                                       waits until it is open or has failed (the panel says
+//                                       why, and the current study stays); nowait: goes on
+//                                       while it runs (the window keeps drawing)
+//   pacs-wait [progress]                wait for the PACS window's running step to end; progress:
+//                                       only until its retrieve has received an instance
+//   pacs-report FILE                    the PACS panel's state, JSON: server, studies, series,
+//                                       chosen series, status, error
 //   quit
 // PANE: 3d, axial, coronal, sagittal; or mip, anatomical, functional, fused (the same slots,
 // as the PET/CT layout shows them). Blank lines and lines starting with # are skipped (each
 // still takes a frame, as every line does). The whole script is checked when it is read, so a
-// typo is reported before the window opens, naming the file and the line.
+// typo is reported before the window opens, naming the file and the line; what only the run
+// can tell (a server not in the list, a series that matches none) names them too.
 #include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "PacsBrowser.h"
 #include "ViewerState.h"
 
 namespace mvw::app {
@@ -82,6 +101,14 @@ class ViewerScript {
       Sphere,
       RoiStats,
       ClearMeasurements,
+      PacsServer,
+      PacsSearch,
+      PacsStudy,
+      PacsSeries,
+      PacsRegistration,
+      PacsOpen,
+      PacsWait,
+      PacsReport,
       Quit
     };
     Kind kind = Kind::Nothing;
@@ -101,6 +128,10 @@ class ViewerScript {
     config::ViewerLayout layout = config::ViewerLayout::Standard;
     int label = 0;  // glyph-label
     config::LabelGlyphKind labelKind = config::LabelGlyphKind::Bumps;
+    std::string text;  // pacs-server: the name; pacs-study: N or UID; pacs-series: SERIES
+    pacs::StudyQuery query;
+    PacsBrowser::Role role = PacsBrowser::Role::Anatomical;
+    config::RegistrationMethod registration = config::RegistrationMethod::None;
   };
 
   ViewerScript() = default;
@@ -112,12 +143,21 @@ class ViewerScript {
   const std::vector<Command>& commands() const { return commands_; }
   // Called once per fully drawn frame: runs the next line on the state (or waits); returns
   // false once every line has run. Errors the state throws (a file that cannot be written)
-  // propagate.
-  bool step(ViewerState& state);
+  // propagate. state: null while no study is open (a line that needs one is an InputError);
+  // pacs: the PACS browser the pacs-* lines drive (null: they are an InputError).
+  bool step(ViewerState* state, PacsBrowser* pacs);
+  bool step(ViewerState& state) { return step(&state, nullptr); }
+  // While no study is open, a screenshot line asks here (the window loop takes it).
+  ViewerRequests& idleRequests() { return idleRequests_; }
 
  private:
   std::vector<Command> commands_;
+  std::filesystem::path source_;
   std::size_t next_ = 0;
+  bool waitingPacs_ = false;      // a pacs-* line's step runs: the next line waits for it
+  bool waitingProgress_ = false;  // ... only until its retrieve has received an instance
+  ViewerRequests idleRequests_;
+  void runPacs(const Command& c, PacsBrowser* pacs);
   int wait_ = 0;
   // The next 1/N of the drag-frames command in progress, as an interactive frame.
   void dragIncrement(ViewerState& state);

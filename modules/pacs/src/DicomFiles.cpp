@@ -84,6 +84,7 @@ void Receiver::acceptFile(const fs::path& file) {
 }
 
 void Receiver::report(bool final) {
+  if (onProgress_ && !final) onProgress_(transfer());
   if (!progress_) return;
   const auto now = std::chrono::steady_clock::now();
   if (!final && now - lastReport_ < std::chrono::milliseconds(500)) return;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -33,6 +34,8 @@ class Receiver {
   // the object is not what was asked for.
   void acceptFile(const std::filesystem::path& file);
   void addBytes(std::uint64_t n) { bytes_ += n; }
+  // Told after each instance received (Options::onProgress).
+  void setOnProgress(std::function<void(const Transfer&)> f) { onProgress_ = std::move(f); }
   void report(bool final);
   Transfer transfer() const;
   const std::filesystem::path& staging() const { return staging_; }
@@ -48,6 +51,7 @@ class Receiver {
   std::filesystem::path staging_;
   Expect expect_;
   bool progress_;
+  std::function<void(const Transfer&)> onProgress_;
   bool lineOpen_ = false;
   std::set<std::string> received_;
   std::map<std::string, long> perSeries_;

@@ -316,6 +316,7 @@ Transfer get(const Server& server, const std::string& studyUid,
   fs::remove_all(guard.dir);
   fs::create_directories(guard.dir);
   detail::Receiver receiver(server, guard.dir, {studyUid, seriesUids}, options.progress);
+  receiver.setOnProgress(options.onProgress);
   for (const Match& m : chosen) {
     const std::string& uid = m.at("SeriesInstanceUID");
     // Complete: as many instances as the server states, each of this series (the receiver
@@ -423,6 +424,7 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
       // A fresh retrieve: the whole series, complete when it holds as many verified instances
       // as the server states (the listing is needed only to resume).
       detail::Receiver receiver(server, partial, {studyUid, {seriesUid}}, options.progress);
+      receiver.setOnProgress(options.onProgress);
       retrieve(server, studyUid, seriesUid, {}, receiver, options);
       receiver.report(true);
       for (const auto& e : fs::directory_iterator(partial))
@@ -442,6 +444,7 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
                                            : missingInstances(partial, listed, studyUid, seriesUid);
     if (!missing.empty()) {
       detail::Receiver receiver(server, partial, {studyUid, {seriesUid}}, options.progress);
+      receiver.setOnProgress(options.onProgress);
       // Resuming a few: fetch those alone; otherwise the series in one request.
       const bool resume = missing.size() < listed.size();
       retrieve(server, studyUid, seriesUid, resume ? missing : std::vector<std::string>{}, receiver,

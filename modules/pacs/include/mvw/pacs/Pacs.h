@@ -30,6 +30,13 @@ struct Server {
 // Throws InputError (naming SERVER) for anything else, and for credentials in a URL.
 Server parseServer(const std::string& text);
 
+// What a retrieve or a store moved, and in how long.
+struct Transfer {
+  int instances = 0;
+  std::uint64_t bytes = 0;
+  double seconds = 0.0;
+};
+
 struct Options {
   std::string callingAet = "MVW";
   double connectTimeoutS = 10.0;
@@ -40,6 +47,9 @@ struct Options {
   std::string moveToAet;
   int movePort = 0;
   bool progress = true;  // instances and MB/s on stderr
+  // Called (on the retrieving thread) after each instance a retrieve receives with what it has
+  // received so far (the viewer's PACS window shows it); empty: none.
+  std::function<void(const Transfer&)> onProgress;
   // The verified cache (cachedSeries); empty: $XDG_CACHE_HOME/mvw/dicom or ~/.cache/mvw/dicom.
   std::filesystem::path cacheDir;
 };
@@ -81,12 +91,6 @@ std::vector<Match> findInstances(const Server& server, const std::string& studyU
 // description (case-insensitive). InputError when none or several match.
 Match selectSeries(const Server& server, const std::vector<Match>& series,
                    const std::string& studyUid, const std::string& selection);
-
-struct Transfer {
-  int instances = 0;
-  std::uint64_t bytes = 0;
-  double seconds = 0.0;
-};
 
 // Every instance of the chosen series (all series of the study when `series` is empty) into
 // `outDir`, one file per instance named <SOPInstanceUID>.dcm. Staged in a hidden folder inside
