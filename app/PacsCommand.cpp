@@ -43,11 +43,6 @@ void addConnection(CLI::App* cmd, PacsCli& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "no progress on stderr");
 }
 
-std::string field(const pacs::Match& m, const char* key) {
-  auto it = m.find(key);
-  return it == m.end() ? std::string() : it->second;
-}
-
 void printMatches(const std::vector<pacs::Match>& matches, bool json, bool series) {
   if (json) {
     for (const pacs::Match& m : matches) std::cout << nlohmann::json(m).dump() << "\n";
@@ -58,10 +53,11 @@ void printMatches(const std::vector<pacs::Match>& matches, bool json, bool serie
               << std::setw(10) << "instances" << std::setw(34) << "description"
               << "SeriesInstanceUID\n";
     for (const pacs::Match& m : matches)
-      std::cout << std::setw(7) << field(m, "SeriesNumber") << std::setw(9) << field(m, "Modality")
-                << std::setw(10) << field(m, "NumberOfSeriesRelatedInstances") << std::setw(34)
-                << field(m, "SeriesDescription").substr(0, 32) << field(m, "SeriesInstanceUID")
-                << "\n";
+      std::cout << std::setw(7) << pacs::matchValue(m, "SeriesNumber") << std::setw(9)
+                << pacs::matchValue(m, "Modality") << std::setw(10)
+                << pacs::matchValue(m, "NumberOfSeriesRelatedInstances") << std::setw(34)
+                << pacs::matchValue(m, "SeriesDescription").substr(0, 32)
+                << pacs::matchValue(m, "SeriesInstanceUID") << "\n";
     return;
   }
   std::cout << std::left << std::setw(24) << "patient" << std::setw(14) << "patient id"
@@ -69,11 +65,13 @@ void printMatches(const std::vector<pacs::Match>& matches, bool json, bool serie
             << std::setw(30) << "description"
             << "StudyInstanceUID\n";
   for (const pacs::Match& m : matches)
-    std::cout << std::setw(24) << field(m, "PatientName").substr(0, 22) << std::setw(14)
-              << field(m, "PatientID").substr(0, 12) << std::setw(10) << field(m, "StudyDate")
-              << std::setw(11) << field(m, "ModalitiesInStudy").substr(0, 10) << std::setw(8)
-              << field(m, "NumberOfStudyRelatedSeries") << std::setw(30)
-              << field(m, "StudyDescription").substr(0, 28) << field(m, "StudyInstanceUID") << "\n";
+    std::cout << std::setw(24) << pacs::matchValue(m, "PatientName").substr(0, 22) << std::setw(14)
+              << pacs::matchValue(m, "PatientID").substr(0, 12) << std::setw(10)
+              << pacs::matchValue(m, "StudyDate") << std::setw(11)
+              << pacs::matchValue(m, "ModalitiesInStudy").substr(0, 10) << std::setw(8)
+              << pacs::matchValue(m, "NumberOfStudyRelatedSeries") << std::setw(30)
+              << pacs::matchValue(m, "StudyDescription").substr(0, 28)
+              << pacs::matchValue(m, "StudyInstanceUID") << "\n";
 }
 
 }  // namespace
@@ -81,8 +79,8 @@ void printMatches(const std::vector<pacs::Match>& matches, bool json, bool serie
 void addServerOptions(CLI::App& cmd, pacs::Options& options) {
   cmd.add_option("--calling-aet", options.callingAet, "DIMSE: mvw's AE title (default MVW)")
       ->check([](const std::string& s) {
-        return s.empty() || s.size() > 16 ? std::string("an AE title has 1 to 16 characters")
-                                          : std::string();
+        return pacs::isAeTitle(s) ? std::string()
+                                  : std::string("an AE title has 1 to 16 characters");
       });
   cmd.add_flag("--insecure", options.insecure,
                "HTTPS: do not verify the server's certificate (said on stderr)");

@@ -18,11 +18,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string field(const pacs::Match& m, const char* key) {
-  auto it = m.find(key);
-  return it == m.end() ? std::string() : it->second;
-}
-
 // A DICOM person name as people read it: "Doe^John" -> "Doe, John".
 std::string personName(std::string name) {
   if (const auto caret = name.find('^'); caret != std::string::npos) {
@@ -83,7 +78,7 @@ std::vector<PacsServerEntry> loadServers(const std::filesystem::path& file) {
     entry.name = s["name"].get<std::string>();
     entry.url = s["url"].get<std::string>();
     if (s.contains("calling_aet")) entry.callingAet = s["calling_aet"].get<std::string>();
-    if (entry.callingAet.empty() || entry.callingAet.size() > 16)
+    if (!pacs::isAeTitle(entry.callingAet))
       throw InputError(file, where + ".calling_aet '" + entry.callingAet +
                                  "': an AE title has 1 to 16 characters");
     try {
@@ -189,7 +184,8 @@ void PacsBrowser::chooseStudy(int index) {
   if (study_ < 0) return;
   const pacs::Server server = chosenServer();
   const pacs::Options o = options();
-  const std::string uid = field(studies_[static_cast<std::size_t>(study_)], "StudyInstanceUID");
+  const std::string uid =
+      pacs::matchValue(studies_[static_cast<std::size_t>(study_)], "StudyInstanceUID");
   start(Step::Series, "asking for the study's series",
         [server, o, uid](Outcome& out) { out.matches = pacs::findSeries(server, uid, o); });
 }
@@ -200,9 +196,10 @@ void PacsBrowser::setSeries(Role role, std::string seriesUid) {
 
 void PacsBrowser::chooseSeries(Role role, const std::string& selection) {
   if (study_ < 0) throw InputError(serversFile_, "no study chosen");
-  const std::string uid = field(studies_[static_cast<std::size_t>(study_)], "StudyInstanceUID");
-  setSeries(role, field(pacs::selectSeries(chosenServer(), series_, uid, selection),
-                        "SeriesInstanceUID"));
+  const std::string uid =
+      pacs::matchValue(studies_[static_cast<std::size_t>(study_)], "StudyInstanceUID");
+  setSeries(role, pacs::matchValue(pacs::selectSeries(chosenServer(), series_, uid, selection),
+                                   "SeriesInstanceUID"));
 }
 
 const std::string& PacsBrowser::chosen(Role role) const { return chosen_[static_cast<int>(role)]; }
@@ -210,11 +207,13 @@ const std::string& PacsBrowser::chosen(Role role) const { return chosen_[static_
 std::string PacsBrowser::describeSeries(const std::string& seriesUid) const {
   if (seriesUid.empty()) return "none";
   for (const pacs::Match& s : series_)
-    if (field(s, "SeriesInstanceUID") == seriesUid) {
-      const std::string number = field(s, "SeriesNumber");
-      std::string text = (number.empty() ? "" : "#" + number + "  ") + field(s, "Modality");
-      if (const std::string d = field(s, "SeriesDescription"); !d.empty()) text += "  " + d;
-      if (const std::string n = field(s, "NumberOfSeriesRelatedInstances"); !n.empty())
+    if (pacs::matchValue(s, "SeriesInstanceUID") == seriesUid) {
+      const std::string number = pacs::matchValue(s, "SeriesNumber");
+      std::string text =
+          (number.empty() ? "" : "#" + number + "  ") + pacs::matchValue(s, "Modality");
+      if (const std::string d = pacs::matchValue(s, "SeriesDescription"); !d.empty())
+        text += "  " + d;
+      if (const std::string n = pacs::matchValue(s, "NumberOfSeriesRelatedInstances"); !n.empty())
         text += "  (" + n + " images)";
       return text;
     }
@@ -222,12 +221,13 @@ std::string PacsBrowser::describeSeries(const std::string& seriesUid) const {
 }
 
 std::string PacsBrowser::describeStudy(const pacs::Match& s) {
-  std::string text = personName(field(s, "PatientName"));
+  std::string text = personName(pacs::matchValue(s, "PatientName"));
   if (text.empty()) text = "(no name)";
-  if (const std::string id = field(s, "PatientID"); !id.empty()) text += "  ID " + id;
-  if (const std::string d = field(s, "StudyDate"); !d.empty()) text += "  " + dicomDate(d);
-  if (const std::string m = field(s, "ModalitiesInStudy"); !m.empty()) text += "  " + m;
-  if (const std::string d = field(s, "StudyDescription"); !d.empty()) text += "  " + d;
+  if (const std::string id = pacs::matchValue(s, "PatientID"); !id.empty()) text += "  ID " + id;
+  if (const std::string d = pacs::matchValue(s, "StudyDate"); !d.empty())
+    text += "  " + dicomDate(d);
+  if (const std::string m = pacs::matchValue(s, "ModalitiesInStudy"); !m.empty()) text += "  " + m;
+  if (const std::string d = pacs::matchValue(s, "StudyDescription"); !d.empty()) text += "  " + d;
   return text;
 }
 
@@ -240,20 +240,22 @@ config::StudyConfig PacsBrowser::studyConfig() const {
   config::StudyConfig study;
   // Who and what, as the reader knows the study: patient, description, else its modalities
   // and date; and from which server.
-  const std::string patient = personName(field(s, "PatientName"));
-  study.name = patient.empty() ? field(s, "PatientID") : patient;
-  if (const std::string d = field(s, "StudyDescription"); !d.empty())
+  const std::string patient = personName(pacs::matchValue(s, "PatientName"));
+  study.name = patient.empty() ? pacs::matchValue(s, "PatientID") : patient;
+  if (const std::string d = pacs::matchValue(s, "StudyDescription"); !d.empty())
     study.name += (study.name.empty() ? "" : " ") + d;
   if (study.name.empty()) {
     study.name = "PACS study";
-    if (const std::string m = field(s, "ModalitiesInStudy"); !m.empty()) study.name += " " + m;
-    if (const std::string d = field(s, "StudyDate"); !d.empty()) study.name += " " + dicomDate(d);
+    if (const std::string m = pacs::matchValue(s, "ModalitiesInStudy"); !m.empty())
+      study.name += " " + m;
+    if (const std::string d = pacs::matchValue(s, "StudyDate"); !d.empty())
+      study.name += " " + dicomDate(d);
   }
   study.name += " (" + server.name + ")";
   auto source = [&](Role role) {
     config::VolumeSource v;
     v.pacs = server.url;
-    v.study = field(s, "StudyInstanceUID");
+    v.study = pacs::matchValue(s, "StudyInstanceUID");
     v.series = chosen(role);
     return v;
   };
@@ -294,8 +296,8 @@ void PacsBrowser::open() {
     if (!chosen(role).empty()) {
       std::string total;
       for (const pacs::Match& m : series_)
-        if (field(m, "SeriesInstanceUID") == chosen(role))
-          total = field(m, "NumberOfSeriesRelatedInstances");
+        if (pacs::matchValue(m, "SeriesInstanceUID") == chosen(role))
+          total = pacs::matchValue(m, "NumberOfSeriesRelatedInstances");
       wanted.push_back({role, chosen(role), total});
     }
   start(Step::Open, "opening", [this, server, o, wanted, study](Outcome& out) mutable {
@@ -426,12 +428,12 @@ void PacsBrowser::takeSeries(std::vector<pacs::Match> series) {
   status_ = std::to_string(series_.size()) + " series";
   for (const char* modality : {"CT", "MR"})
     for (const pacs::Match& s : series_)
-      if (chosen(Role::Anatomical).empty() && field(s, "Modality") == modality)
-        setSeries(Role::Anatomical, field(s, "SeriesInstanceUID"));
+      if (chosen(Role::Anatomical).empty() && pacs::matchValue(s, "Modality") == modality)
+        setSeries(Role::Anatomical, pacs::matchValue(s, "SeriesInstanceUID"));
   for (const char* modality : {"PT", "NM"})
     for (const pacs::Match& s : series_)
-      if (chosen(Role::Functional).empty() && field(s, "Modality") == modality) {
-        setSeries(Role::Functional, field(s, "SeriesInstanceUID"));
+      if (chosen(Role::Functional).empty() && pacs::matchValue(s, "Modality") == modality) {
+        setSeries(Role::Functional, pacs::matchValue(s, "SeriesInstanceUID"));
         functionalKind = std::string(modality) == "PT" ? config::FunctionalKind::Pet
                                                        : config::FunctionalKind::Spect;
       }
@@ -445,8 +447,9 @@ void PacsBrowser::writeReport(const std::filesystem::path& file) const {
   j["servers_problem"] = serversProblem_;
   j["server"] = server_ >= 0 ? servers_[static_cast<std::size_t>(server_)].name : "";
   j["studies"] = studies_;
-  j["study"] = study_ >= 0 ? field(studies_[static_cast<std::size_t>(study_)], "StudyInstanceUID")
-                           : std::string();
+  j["study"] =
+      study_ >= 0 ? pacs::matchValue(studies_[static_cast<std::size_t>(study_)], "StudyInstanceUID")
+                  : std::string();
   j["series"] = series_;
   for (Role role : {Role::Anatomical, Role::Functional, Role::Segmentation})
     j["chosen"][roleName(role)] = chosen(role);

@@ -17,11 +17,6 @@ const ImVec4 kBusy(1.0f, 0.85f, 0.3f, 1.0f);
 const ImVec4 kQuiet(0.65f, 0.65f, 0.7f, 1.0f);
 const ImVec4 kChosen(0.45f, 0.9f, 1.0f, 1.0f);
 
-std::string field(const pacs::Match& m, const char* key) {
-  auto it = m.find(key);
-  return it == m.end() ? std::string() : it->second;
-}
-
 // An InputText on a std::string (Debian's libimgui has no imgui_stdlib).
 bool inputString(const char* label, std::string& text, const char* hint = nullptr) {
   char buffer[256] = {};
@@ -126,7 +121,7 @@ void PacsPanel::drawStudies() {
     const pacs::Match& s = studies[std::size_t(i)];
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    std::string name = field(s, "PatientName");
+    std::string name = pacs::matchValue(s, "PatientName");
     std::replace(name.begin(), name.end(), '^', ' ');
     const std::string label = (name.empty() ? "(no name)" : name) + "##study" + std::to_string(i);
     ImGui::BeginDisabled(browser_.busy());
@@ -137,7 +132,7 @@ void PacsPanel::drawStudies() {
     for (const char* key : {"PatientID", "StudyDate", "ModalitiesInStudy", "StudyDescription",
                             "NumberOfStudyRelatedSeries"}) {
       ImGui::TableNextColumn();
-      const std::string value = field(s, key);
+      const std::string value = pacs::matchValue(s, key);
       ImGui::TextUnformatted(
           (std::strcmp(key, "StudyDate") == 0 ? PacsBrowser::dicomDate(value) : value).c_str());
     }
@@ -166,7 +161,7 @@ void PacsPanel::drawSeries() {
   ImGui::TableHeadersRow();
   for (int i = 0; i < static_cast<int>(series.size()); ++i) {
     const pacs::Match& s = series[std::size_t(i)];
-    const std::string uid = field(s, "SeriesInstanceUID");
+    const std::string uid = pacs::matchValue(s, "SeriesInstanceUID");
     ImGui::TableNextRow();
     ImGui::PushID(i);
     for (Role role : {Role::Anatomical, Role::Functional, Role::Segmentation}) {
@@ -183,9 +178,9 @@ void PacsPanel::drawSeries() {
          {"SeriesNumber", "Modality", "SeriesDescription", "NumberOfSeriesRelatedInstances"}) {
       ImGui::TableNextColumn();
       if (used)
-        ImGui::TextColored(kChosen, "%s", field(s, key).c_str());
+        ImGui::TextColored(kChosen, "%s", pacs::matchValue(s, key).c_str());
       else
-        ImGui::TextUnformatted(field(s, key).c_str());
+        ImGui::TextUnformatted(pacs::matchValue(s, key).c_str());
     }
     ImGui::PopID();
   }

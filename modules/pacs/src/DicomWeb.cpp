@@ -329,10 +329,7 @@ double webEcho(const Server& server, const Options& options) {
 std::vector<Match> webFind(const Server& server, const std::string& level, const Match& keys,
                            const Options& options) {
   warnInsecure(server, options);
-  auto key = [&](const char* k) {
-    auto it = keys.find(k);
-    return it == keys.end() ? std::string() : it->second;
-  };
+  auto key = [&](const char* k) { return matchValue(keys, k); };
   std::string url = server.baseUrl;
   std::set<std::string> inPath;
   if (level == "STUDY") {
@@ -428,31 +425,19 @@ void retrieveMultipart(const Server& server, const std::string& url, Receiver& r
   const std::string accept = "multipart/related; type=\"application/dicom\"; transfer-syntax=*";
   PartFiles files(receiver);
   std::optional<MultipartParser> parser;
-  // A broken answer is the server's failure, named as such.
-  auto serverFailed = [&](const MultipartError& e) {
-    return ServiceError(server.text + ": " + e.what());
-  };
-  auto start = [&](const std::string& contentType) {
-    try {
-      parser.emplace(multipartBoundary(contentType), files);
-    } catch (const MultipartError& e) {
-      throw serverFailed(e);
-    }
-  };
   const BodyStream stream = [&](const char* bytes, std::size_t n, const std::string& type) {
-    if (!parser) start(type);
-    try {
-      parser->feed(bytes, n);
-    } catch (const MultipartError& e) {
-      throw serverFailed(e);
-    }
+    if (!parser) parser.emplace(multipartBoundary(type), files);
+    parser->feed(bytes, n);
   };
-  const Response r = request(server, url, accept, kMaxRetrieveBytes, options, nullptr, "", &stream);
-  if (!parser) start(r.contentType);  // an empty answer
+  // A broken answer is the server's failure, named as such (the stream's exception comes back
+  // out of request(), which rethrows it after the transfer).
   try {
+    const Response r =
+        request(server, url, accept, kMaxRetrieveBytes, options, nullptr, "", &stream);
+    if (!parser) parser.emplace(multipartBoundary(r.contentType), files);  // an empty answer
     parser->finish();
   } catch (const MultipartError& e) {
-    throw serverFailed(e);
+    throw ServiceError(server.text + ": " + e.what());
   }
 }
 

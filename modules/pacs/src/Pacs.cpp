@@ -99,6 +99,13 @@ bool isUid(const std::string& text) {
   return true;
 }
 
+bool isAeTitle(const std::string& text) { return !text.empty() && text.size() <= 16; }
+
+std::string matchValue(const Match& match, const char* keyword) {
+  const auto it = match.find(keyword);
+  return it == match.end() ? std::string() : it->second;
+}
+
 Options& studyOptions() {
   static Options options;
   return options;
@@ -188,28 +195,24 @@ std::vector<Match> findInstances(const Server& server, const std::string& studyU
 
 Match selectSeries(const Server& server, const std::vector<Match>& series,
                    const std::string& studyUid, const std::string& selection) {
-  auto field = [](const Match& m, const char* k) {
-    auto it = m.find(k);
-    return it == m.end() ? std::string() : it->second;
-  };
   std::vector<const Match*> hits;
   for (const Match& m : series)
-    if (field(m, "SeriesInstanceUID") == selection) return m;
+    if (matchValue(m, "SeriesInstanceUID") == selection) return m;
   for (const Match& m : series)
-    if (field(m, "SeriesNumber") == selection) hits.push_back(&m);
+    if (matchValue(m, "SeriesNumber") == selection) hits.push_back(&m);
   if (hits.empty())
     for (const Match& m : series)
-      if (lower(field(m, "Modality")) == lower(selection)) hits.push_back(&m);
+      if (lower(matchValue(m, "Modality")) == lower(selection)) hits.push_back(&m);
   if (hits.empty())
     for (const Match& m : series)
       if (!selection.empty() &&
-          lower(field(m, "SeriesDescription")).find(lower(selection)) != std::string::npos)
+          lower(matchValue(m, "SeriesDescription")).find(lower(selection)) != std::string::npos)
         hits.push_back(&m);
   if (hits.size() == 1) return *hits.front();
   std::string list;
   for (const Match& m : series)
-    list += "\n  " + field(m, "SeriesNumber") + " " + field(m, "Modality") + " '" +
-            field(m, "SeriesDescription") + "' " + field(m, "SeriesInstanceUID");
+    list += "\n  " + matchValue(m, "SeriesNumber") + " " + matchValue(m, "Modality") + " '" +
+            matchValue(m, "SeriesDescription") + "' " + matchValue(m, "SeriesInstanceUID");
   throw InputError(server.text, std::string(hits.empty() ? "no series" : "several series") +
                                     " of study " + studyUid + " match '" + selection +
                                     "'; its series:" + list);

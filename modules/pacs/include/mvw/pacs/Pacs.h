@@ -65,9 +65,16 @@ Options& studyOptions();
 // names a file.
 bool isUid(const std::string& text);
 
+// A DICOM AE title as mvw accepts one (--calling-aet, servers.json's calling_aet): 1..16
+// characters.
+bool isAeTitle(const std::string& text);
+
 // One query match keyed by DICOM keyword (StudyInstanceUID, Modality, ...); several values
 // joined by '\'.
 using Match = std::map<std::string, std::string>;
+
+// The value of KEYWORD in a match; empty when the server did not send it.
+std::string matchValue(const Match& match, const char* keyword);
 
 struct StudyQuery {
   std::string patientId;
