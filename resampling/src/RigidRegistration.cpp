@@ -369,8 +369,6 @@ glm::dmat4 affineFromCoordinates(const std::vector<double>& x, const glm::dvec3&
 
 namespace {
 
-// The registration with the sample points in fixedVolume. `blamed`: the volume an overlap or
-// collapse error names (the caller's moving volume, whichever role it has here).
 // The largest distance, over the corners of a volume's box, between where two maps put them.
 double largestDisplacementMm(const Volume& v, const glm::dmat4& a, const glm::dmat4& b) {
   const glm::dvec3 last(v.dimensions() - 1);
@@ -384,101 +382,256 @@ double largestDisplacementMm(const Volume& v, const glm::dmat4& a, const glm::dm
   return largest;
 }
 
-RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movingVolume,
-                                  const RegistrationOptions& options, const Volume& blamed) {
-  const auto start = Clock::now();
-  detail::WorkerPool pool(options.threads);
-  // The fixed image is used as stored (no full-resolution float copy of a CT); a
-  // multi-component one is reduced to its first component.
-  const Volume fixedFirst =
-      fixedVolume.components() == 1 ? Volume() : detail::firstComponentAsFloat(fixedVolume);
-  const Volume& fixed = fixedVolume.components() == 1 ? fixedVolume : fixedFirst;
-  const Volume moving = detail::firstComponentAsFloat(movingVolume);
-
-  std::vector<double> smoothing = options.smoothingMm;
-  if (smoothing.empty()) {
-    const double r = std::max(voxelSize(fixed), voxelSize(moving));
-    smoothing = {2.0 * r, r, 0.0};
+// The pyramid, built once: level images smoothed from the full-resolution ones (not from each
+// other, so each level's sigma is exactly the one asked for). The fixed image is used as
+// stored (no full-resolution float copy of a CT); a multi-component one is reduced to its
+// first component. Holds a reference into itself: neither copied nor moved.
+class Pyramid {
+ public:
+  Pyramid(const Volume& fixedVolume, const Volume& movingVolume, const RegistrationOptions& options,
+          detail::WorkerPool& pool)
+      : options_(options),
+        fixedFirst_(fixedVolume.components() == 1 ? Volume()
+                                                  : detail::firstComponentAsFloat(fixedVolume)),
+        fixed_(fixedVolume.components() == 1 ? fixedVolume : fixedFirst_),
+        moving_(detail::firstComponentAsFloat(movingVolume)),
+        smoothing_(options.smoothingMm),
+        fixedVoxel_(voxelSize(fixed_)),
+        movingVoxel_(voxelSize(moving_)) {
+    if (smoothing_.empty()) {
+      const double r = std::max(voxelSize(fixed_), voxelSize(moving_));
+      smoothing_ = {2.0 * r, r, 0.0};
+    }
+    for (double sigma : smoothing_) {
+      fixedSigma_.push_back(sigma > 0 ? sigma : matching(fixedVoxel_));
+      movingSigma_.push_back(sigma > 0 ? sigma : matching(movingVoxel_));
+      fixedLevels_.push_back(fixedSigma_.back() > 0
+                                 ? detail::smoothAndShrink(fixed_, fixedSigma_.back(), pool)
+                                 : Volume());
+      movingLevels_.push_back(movingSigma_.back() > 0
+                                  ? detail::smoothAndShrink(moving_, movingSigma_.back(), pool)
+                                  : Volume());
+    }
   }
-  auto samplesAt = [&](std::size_t level) {
-    if (options.samples.empty()) return 5000;
-    return options.samples[std::min(level, options.samples.size() - 1)];
-  };
+  Pyramid(const Pyramid&) = delete;
+  Pyramid& operator=(const Pyramid&) = delete;
 
-  // The pyramid, built once: level images smoothed from the full-resolution ones (not from
-  // each other, so each level's sigma is exactly the one asked for).
-  std::vector<Volume> fixedLevels, movingLevels;
+  std::size_t levels() const { return smoothing_.size(); }
+  double smoothingMm(std::size_t l) const { return smoothing_[l]; }
+  // The full-resolution images (the fixed one as stored, the moving one as float).
+  const Volume& fixed() const { return fixed_; }
+  const Volume& moving() const { return moving_; }
+  const Volume& fixedAt(std::size_t l) const {
+    return fixedSigma_[l] > 0 ? fixedLevels_[l] : fixed_;
+  }
+  const Volume& movingAt(std::size_t l) const {
+    return movingSigma_[l] > 0 ? movingLevels_[l] : moving_;
+  }
+  double coarserVoxel() const { return std::max(fixedVoxel_, movingVoxel_); }
+  double marginAt(std::size_t l) const {
+    return options_.faceMargin * std::max(smoothing_[l], std::max(fixedVoxel_, movingVoxel_));
+  }
+  int samplesAt(std::size_t level) const {
+    if (options_.samples.empty()) return 5000;
+    return options_.samples[std::min(level, options_.samples.size() - 1)];
+  }
+
+ private:
   // At a level of smoothing 0 the finer image is still smoothed to about the coarser one's
   // resolution (see RegistrationOptions::resolutionMatching).
-  const double fixedVoxel = voxelSize(fixed), movingVoxel = voxelSize(moving);
-  auto matching = [&](double ownVoxel) {
-    const double coarse = std::max(fixedVoxel, movingVoxel);
-    if (options.resolutionMatching <= 0.0 || ownVoxel * 1.5 > coarse) return 0.0;
-    const double target = options.resolutionMatching * coarse,
-                 own = options.resolutionMatching * ownVoxel;
+  double matching(double ownVoxel) const {
+    const double coarse = std::max(fixedVoxel_, movingVoxel_);
+    if (options_.resolutionMatching <= 0.0 || ownVoxel * 1.5 > coarse) return 0.0;
+    const double target = options_.resolutionMatching * coarse,
+                 own = options_.resolutionMatching * ownVoxel;
     return std::sqrt(target * target - own * own);
-  };
-  std::vector<double> fixedSigma, movingSigma;
-  for (double sigma : smoothing) {
-    fixedSigma.push_back(sigma > 0 ? sigma : matching(fixedVoxel));
-    movingSigma.push_back(sigma > 0 ? sigma : matching(movingVoxel));
-    fixedLevels.push_back(
-        fixedSigma.back() > 0 ? detail::smoothAndShrink(fixed, fixedSigma.back(), pool) : Volume());
-    movingLevels.push_back(movingSigma.back() > 0
-                               ? detail::smoothAndShrink(moving, movingSigma.back(), pool)
-                               : Volume());
   }
-  auto fixedAt = [&](std::size_t l) -> const Volume& {
-    return fixedSigma[l] > 0 ? fixedLevels[l] : fixed;
-  };
-  auto movingAt = [&](std::size_t l) -> const Volume& {
-    return movingSigma[l] > 0 ? movingLevels[l] : moving;
-  };
-  auto marginAt = [&](std::size_t l) {
-    return options.faceMargin * std::max(smoothing[l], std::max(fixedVoxel, movingVoxel));
-  };
 
-  RegistrationResult result;
-  // Initialisation on the coarsest images: centroids need no detail.
-  {
-    Initialisation init = options.initialisation;
-    const glm::dvec3 fixedCom = centreOfMass(fixedAt(0)), movingCom = centreOfMass(movingAt(0));
-    if (init == Initialisation::Automatic)
-      init = insideVolume(fixedVolume, movingCom) && insideVolume(movingVolume, fixedCom)
-                 ? Initialisation::WorldCoordinates
-                 : Initialisation::CentreOfMass;
-    glm::dvec3 centre = fixedCom, translation(0.0);
-    if (init == Initialisation::CentreOfMass) translation = movingCom - fixedCom;
-    if (init == Initialisation::GeometricCentre) {
-      centre = geometricCentre(fixed);
-      translation = geometricCentre(moving) - centre;
-    }
-    result.initialisation = init;
-    result.initialTranslationMm = translation;
-    result.parameters.translation = translation;
-    result.transform =
-        Transform::fromMovingFromFixed(rigidMatrix(result.parameters, centre), centre);
+  const RegistrationOptions& options_;
+  const Volume fixedFirst_;
+  const Volume& fixed_;
+  const Volume moving_;
+  std::vector<double> smoothing_;
+  const double fixedVoxel_, movingVoxel_;
+  std::vector<double> fixedSigma_, movingSigma_;
+  std::vector<Volume> fixedLevels_, movingLevels_;
+};
+
+// Initialisation on the coarsest images: centroids need no detail. Sets the result's
+// initialisation, initial translation, parameters and transform (whose centre the later
+// stages turn about).
+void initialise(const Pyramid& pyramid, const Volume& fixedVolume, const Volume& movingVolume,
+                const RegistrationOptions& options, RegistrationResult& result) {
+  Initialisation init = options.initialisation;
+  const glm::dvec3 fixedCom = centreOfMass(pyramid.fixedAt(0)),
+                   movingCom = centreOfMass(pyramid.movingAt(0));
+  if (init == Initialisation::Automatic)
+    init = insideVolume(fixedVolume, movingCom) && insideVolume(movingVolume, fixedCom)
+               ? Initialisation::WorldCoordinates
+               : Initialisation::CentreOfMass;
+  glm::dvec3 centre = fixedCom, translation(0.0);
+  if (init == Initialisation::CentreOfMass) translation = movingCom - fixedCom;
+  if (init == Initialisation::GeometricCentre) {
+    centre = geometricCentre(pyramid.fixed());
+    translation = geometricCentre(pyramid.moving()) - centre;
   }
+  result.initialisation = init;
+  result.initialTranslationMm = translation;
+  result.parameters.translation = translation;
+  result.transform = Transform::fromMovingFromFixed(rigidMatrix(result.parameters, centre), centre);
+}
+
+// One line per level to options.progress; `run` -1 when there is one run (or for the affine
+// stage).
+void reportLevel(const RegistrationOptions& options, std::size_t level, std::size_t levels,
+                 const LevelReport& report, int run, int runs) {
+  if (!options.progress) return;
+  char prefix[32] = "";
+  if (run >= 0) std::snprintf(prefix, sizeof prefix, " run %d/%d", run + 1, runs);
+  char line[240];
+  std::snprintf(line, sizeof line,
+                "%s%s level %zu/%zu: sigma %.1f mm, %d iterations, MI %.4f -> %.4f%s, %.2f s",
+                report.stage.c_str(), prefix, level + 1, levels, report.smoothingMm,
+                report.iterations, report.metricStart, report.metricEnd,
+                report.converged ? "" : " (not converged)", report.seconds);
+  options.progress(line);
+}
+
+// What the rigid stage of one level shares with its rotation search.
+struct RigidLevel {
+  const Objective& rigid;
+  const MattesMutualInformation& metric;
+  glm::dvec3 centre;
+  double scale = 1.0;
+  double firstStep = 0.0;
+  int minimumValid = 0;
+};
+
+// The rotation search on the first level: score a lattice of rotations about the centre
+// (translation as initialised), then climb from the best few on this level and keep the
+// highest. The level's count covers every candidate's climb, the end state the best one's.
+void searchRotations(const RigidLevel& level, const RegistrationOptions& options,
+                     std::vector<double>& x, Evaluation& current, LevelReport& report,
+                     RegistrationResult& result) {
+  const double scale = level.scale;
+  const double range = options.rotationSearchRangeDeg * std::numbers::pi / 180.0;
+  const double stepAngle = std::max(1.0, options.rotationSearchStepDeg) * std::numbers::pi / 180.0;
+  const int steps = static_cast<int>(std::floor(range / stepAngle + 1e-9));
+  std::vector<std::pair<double, std::vector<double>>> scored;
+  for (int a = -steps; a <= steps; ++a)
+    for (int b = -steps; b <= steps; ++b)
+      for (int c = -steps; c <= steps; ++c) {
+        std::vector<double> p = x;
+        p[0] += a * stepAngle * scale;
+        p[1] += b * stepAngle * scale;
+        p[2] += c * stepAngle * scale;
+        const auto r =
+            level.metric.evaluate(rigidMatrix(rigidFromCoordinates(p, scale), level.centre));
+        ++result.searchedRotations;
+        if (r.validSamples >= level.minimumValid) scored.emplace_back(r.value, std::move(p));
+      }
+  std::sort(scored.begin(), scored.end(),
+            [](const auto& l, const auto& r) { return l.first > r.first; });
+  scored.resize(std::min<std::size_t>(
+      scored.size(), static_cast<std::size_t>(std::max(1, options.rotationSearchCandidates))));
+  double best = -1.0;
+  int iterations = 0, rejected = 0;
+  for (const auto& candidate : scored) {
+    std::vector<double> p = candidate.second;
+    Evaluation e = level.rigid(p);
+    LevelReport climb = report;
+    ascend(p, e, level.rigid, level.firstStep, level.minimumValid, options, climb);
+    iterations += climb.iterations;
+    rejected += climb.rejectedSteps;
+    if (e.value > best) {
+      best = e.value;
+      x = std::move(p);
+      current = std::move(e);
+      report.metricEnd = climb.metricEnd;
+      report.validSamples = climb.validSamples;
+      report.finalStepMm = climb.finalStepMm;
+      report.converged = climb.converged;
+    }
+  }
+  report.iterations = iterations;
+  report.rejectedSteps = rejected;
+  if (!scored.empty()) result.searchAngles = rigidFromCoordinates(x, scale).angles;
+}
+
+// One level of one rigid run: x from the previous level's end to this level's. `blamed`: the
+// volume an overlap error names.
+LevelReport rigidLevel(const Pyramid& pyramid, std::size_t level, std::uint64_t runSeed,
+                       double firstStep, const RegistrationOptions& options, const Volume& blamed,
+                       std::vector<double>& x, RegistrationResult& result) {
+  const auto levelStart = Clock::now();
   const glm::dvec3 centre = result.transform.centre();
   const double scale = options.rotationScaleMm;
-  std::vector<double> x = rigidCoordinates(result.parameters, scale);
-
-  const int runs = std::max(1, options.runs);
-  auto progress = [&](std::size_t level, std::size_t levels, const LevelReport& report, int run) {
-    if (!options.progress) return;
-    char prefix[32] = "";
-    if (run >= 0) std::snprintf(prefix, sizeof prefix, " run %d/%d", run + 1, runs);
-    char line[240];
-    std::snprintf(line, sizeof line,
-                  "%s%s level %zu/%zu: sigma %.1f mm, %d iterations, MI %.4f -> %.4f%s, %.2f s",
-                  report.stage.c_str(), prefix, level + 1, levels, report.smoothingMm,
-                  report.iterations, report.metricStart, report.metricEnd,
-                  report.converged ? "" : " (not converged)", report.seconds);
-    options.progress(line);
+  const Volume& fixedLevel = pyramid.fixedAt(level);
+  const int nSamples = pyramid.samplesAt(level);
+  const MattesMutualInformation metric =
+      levelMetric(fixedLevel, pyramid.movingAt(level), nSamples, runSeed + level,
+                  pyramid.marginAt(level), options);
+  const Objective rigid = [&](const std::vector<double>& p) {
+    const auto r = metric.evaluateRigid(rigidFromCoordinates(p, scale), centre);
+    Evaluation e{r.value, r.validSamples,
+                 std::vector<double>(r.gradient.begin(), r.gradient.end())};
+    for (int a = 0; a < 3; ++a) e.gradient[static_cast<std::size_t>(a)] /= scale;
+    return e;
   };
 
-  // The rigid stage, `runs` times with their own points; the coordinates averaged.
-  const std::vector<double> initial = x;
+  LevelReport report;
+  report.smoothingMm = pyramid.smoothingMm(level);
+  report.fixedDimensions = fixedLevel.dimensions();
+  report.movingDimensions = pyramid.movingAt(level).dimensions();
+  report.samples = nSamples;
+  const int minimumValid = std::max(64, nSamples / 20);
+
+  Evaluation current = rigid(x);
+  report.metricStart = current.value;
+  if (level == 0 && options.rotationSearchRangeDeg > 0.0)
+    searchRotations({rigid, metric, centre, scale, firstStep, minimumValid}, options, x, current,
+                    report, result);
+  if (current.validSamples < minimumValid) {
+    const std::string when = level == 0
+                                 ? "after initialisation (" + toString(result.initialisation) + ")"
+                                 : "any more at level " + std::to_string(level + 1) +
+                                       " (the coarser levels drifted away: do the volumes "
+                                       "show the same anatomy?)";
+    throw InputError(nameOf(blamed, "moving volume"),
+                     "does not overlap the fixed volume " + when + ": " +
+                         std::to_string(current.validSamples) + " of " + std::to_string(nSamples) +
+                         " sample points fall inside it");
+  }
+  if (!(level == 0 && result.searchedRotations > 0))
+    ascend(x, current, rigid, firstStep, minimumValid, options, report);
+  report.seconds = secondsSince(levelStart);
+  return report;
+}
+
+// A later run's level added into the first run's (iterations and seconds summed, the metrics
+// summed to be averaged, the worst of the rest).
+void mergeLevel(LevelReport& merged, const LevelReport& report) {
+  merged.iterations += report.iterations;
+  merged.rejectedSteps += report.rejectedSteps;
+  merged.metricStart += report.metricStart;
+  merged.metricEnd += report.metricEnd;
+  merged.validSamples = std::min(merged.validSamples, report.validSamples);
+  merged.finalStepMm = std::max(merged.finalStepMm, report.finalStepMm);
+  merged.converged = merged.converged && report.converged;
+  merged.seconds += report.seconds;
+}
+
+// The rigid stage, `runs` times with their own points; the coordinates averaged. Averaged are
+// the runs that ended within the coarser voxel size (anywhere in the fixed box) of the one
+// with the highest metric: a run caught on another optimum is left out. Returns the averaged
+// coordinates and fills the result's levels, runs and iterations.
+std::vector<double> rigidRuns(const Pyramid& pyramid, const std::vector<double>& initial,
+                              const RegistrationOptions& options, const Volume& blamed,
+                              RegistrationResult& result) {
+  const glm::dvec3 centre = result.transform.centre();
+  const double scale = options.rotationScaleMm;
+  const int runs = std::max(1, options.runs);
+  std::vector<double> x = initial;
   std::vector<std::vector<double>> ends;
   std::vector<double> endMetric;
   for (int run = 0; run < runs; ++run) {
@@ -487,115 +640,20 @@ RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movin
     std::vector<LevelReport> runLevels;
     const std::uint64_t runSeed = options.seed + 7919ull * static_cast<std::uint64_t>(run);
     double firstStep = options.maxStepMm;
-    for (std::size_t level = 0; level < smoothing.size(); ++level, firstStep *= 0.5) {
-      const auto levelStart = Clock::now();
-      const Volume& fixedLevel = fixedAt(level);
-      const int nSamples = samplesAt(level);
-      const MattesMutualInformation metric = levelMetric(fixedLevel, movingAt(level), nSamples,
-                                                         runSeed + level, marginAt(level), options);
-      const Objective rigid = [&](const std::vector<double>& p) {
-        const auto r = metric.evaluateRigid(rigidFromCoordinates(p, scale), centre);
-        Evaluation e{r.value, r.validSamples,
-                     std::vector<double>(r.gradient.begin(), r.gradient.end())};
-        for (int a = 0; a < 3; ++a) e.gradient[static_cast<std::size_t>(a)] /= scale;
-        return e;
-      };
-
-      LevelReport report;
-      report.smoothingMm = smoothing[level];
-      report.fixedDimensions = fixedLevel.dimensions();
-      report.movingDimensions = movingAt(level).dimensions();
-      report.samples = nSamples;
-      const int minimumValid = std::max(64, nSamples / 20);
-      auto tooFewInside = [&](int valid, const std::string& when) {
-        return InputError(nameOf(blamed, "moving volume"), "does not overlap the fixed volume " +
-                                                               when + ": " + std::to_string(valid) +
-                                                               " of " + std::to_string(nSamples) +
-                                                               " sample points fall inside it");
-      };
-
-      Evaluation current = rigid(x);
-      report.metricStart = current.value;
-      if (level == 0 && options.rotationSearchRangeDeg > 0.0) {
-        // Score a lattice of rotations about the centre (translation as initialised), then
-        // climb from the best few on this level and keep the highest.
-        const double range = options.rotationSearchRangeDeg * std::numbers::pi / 180.0;
-        const double stepAngle =
-            std::max(1.0, options.rotationSearchStepDeg) * std::numbers::pi / 180.0;
-        const int steps = static_cast<int>(std::floor(range / stepAngle + 1e-9));
-        std::vector<std::pair<double, std::vector<double>>> scored;
-        for (int a = -steps; a <= steps; ++a)
-          for (int b = -steps; b <= steps; ++b)
-            for (int c = -steps; c <= steps; ++c) {
-              std::vector<double> p = x;
-              p[0] += a * stepAngle * scale;
-              p[1] += b * stepAngle * scale;
-              p[2] += c * stepAngle * scale;
-              const auto r = metric.evaluate(rigidMatrix(rigidFromCoordinates(p, scale), centre));
-              ++result.searchedRotations;
-              if (r.validSamples >= minimumValid) scored.emplace_back(r.value, std::move(p));
-            }
-        std::sort(scored.begin(), scored.end(),
-                  [](const auto& l, const auto& r) { return l.first > r.first; });
-        scored.resize(std::min<std::size_t>(
-            scored.size(),
-            static_cast<std::size_t>(std::max(1, options.rotationSearchCandidates))));
-        double best = -1.0;
-        int iterations = 0, rejected = 0;
-        for (const auto& candidate : scored) {
-          std::vector<double> p = candidate.second;
-          Evaluation e = rigid(p);
-          LevelReport climb = report;
-          ascend(p, e, rigid, firstStep, minimumValid, options, climb);
-          iterations += climb.iterations;
-          rejected += climb.rejectedSteps;
-          if (e.value > best) {
-            best = e.value;
-            x = std::move(p);
-            current = std::move(e);
-            report.metricEnd = climb.metricEnd;
-            report.validSamples = climb.validSamples;
-            report.finalStepMm = climb.finalStepMm;
-            report.converged = climb.converged;
-          }
-        }
-        // The level's count covers every candidate's climb, the end state the best one's.
-        report.iterations = iterations;
-        report.rejectedSteps = rejected;
-        if (!scored.empty()) result.searchAngles = rigidFromCoordinates(x, scale).angles;
-      }
-      if (current.validSamples < minimumValid)
-        throw tooFewInside(current.validSamples,
-                           level == 0
-                               ? "after initialisation (" + toString(result.initialisation) + ")"
-                               : "any more at level " + std::to_string(level + 1) +
-                                     " (the coarser levels drifted away: do the volumes "
-                                     "show the same anatomy?)");
-      if (!(level == 0 && result.searchedRotations > 0))
-        ascend(x, current, rigid, firstStep, minimumValid, options, report);
-      report.seconds = secondsSince(levelStart);
+    for (std::size_t level = 0; level < pyramid.levels(); ++level, firstStep *= 0.5) {
+      const LevelReport report =
+          rigidLevel(pyramid, level, runSeed, firstStep, options, blamed, x, result);
       result.iterations += report.iterations;
-      progress(level, smoothing.size(), report, runs > 1 ? run : -1);
+      reportLevel(options, level, pyramid.levels(), report, runs > 1 ? run : -1, runs);
       runLevels.push_back(report);
-      if (run == 0) {
+      if (run == 0)
         result.levels.push_back(report);
-      } else {
-        LevelReport& merged = result.levels[level];
-        merged.iterations += report.iterations;
-        merged.rejectedSteps += report.rejectedSteps;
-        merged.metricStart += report.metricStart;
-        merged.metricEnd += report.metricEnd;
-        merged.validSamples = std::min(merged.validSamples, report.validSamples);
-        merged.finalStepMm = std::max(merged.finalStepMm, report.finalStepMm);
-        merged.converged = merged.converged && report.converged;
-        merged.seconds += report.seconds;
-      }
+      else
+        mergeLevel(result.levels[level], report);
     }
     ends.push_back(x);
     endMetric.push_back(runLevels.back().metricEnd);
   }
-  // Averaged are the runs that ended within the coarser voxel size (anywhere in the fixed
-  // box) of the one with the highest metric: a run caught on another optimum is left out.
   const std::size_t best = static_cast<std::size_t>(
       std::max_element(endMetric.begin(), endMetric.end()) - endMetric.begin());
   const glm::dmat4 bestMatrix = rigidMatrix(rigidFromCoordinates(ends[best], scale), centre);
@@ -603,7 +661,7 @@ RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movin
   int averaged = 0;
   for (const std::vector<double>& end : ends) {
     const glm::dmat4 m = rigidMatrix(rigidFromCoordinates(end, scale), centre);
-    if (largestDisplacementMm(fixed, m, bestMatrix) > std::max(fixedVoxel, movingVoxel)) continue;
+    if (largestDisplacementMm(pyramid.fixed(), m, bestMatrix) > pyramid.coarserVoxel()) continue;
     for (std::size_t k = 0; k < x.size(); ++k) sum[k] += end[k];
     ++averaged;
   }
@@ -614,55 +672,79 @@ RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movin
   }
   result.runs = runs;
   result.runsAveraged = averaged;
+  return x;
+}
+
+// The second stage: all 12 parameters, from the rigid result, on the finest levels with the
+// same sample points as the rigid stage had there.
+void affineStage(const Pyramid& pyramid, const glm::dvec3& centre,
+                 const RegistrationOptions& options, const Volume& blamed,
+                 RegistrationResult& result) {
+  const double scale = options.rotationScaleMm;
+  glm::dmat4 m = result.transform.movingFromFixed();
+  std::vector<double> y = affineCoordinates(m, centre, scale);
+  const std::size_t levels = pyramid.levels();
+  const std::size_t first =
+      levels -
+      std::min<std::size_t>(levels, static_cast<std::size_t>(std::max(1, options.affineLevels)));
+  for (std::size_t level = first; level < levels; ++level) {
+    const auto levelStart = Clock::now();
+    const Volume& fixedLevel = pyramid.fixedAt(level);
+    const int nSamples = pyramid.samplesAt(level);
+    const MattesMutualInformation metric =
+        levelMetric(fixedLevel, pyramid.movingAt(level), nSamples, options.seed + level,
+                    pyramid.marginAt(level), options);
+    const Objective affine = [&](const std::vector<double>& p) {
+      const auto r = metric.evaluateAffine(affineFromCoordinates(p, centre, scale), centre);
+      Evaluation e{r.value, r.validSamples,
+                   std::vector<double>(r.affineGradient.begin(), r.affineGradient.end())};
+      for (int k = 0; k < 9; ++k) e.gradient[static_cast<std::size_t>(k)] /= scale;
+      return e;
+    };
+    LevelReport report;
+    report.stage = "affine";
+    report.smoothingMm = pyramid.smoothingMm(level);
+    report.fixedDimensions = fixedLevel.dimensions();
+    report.movingDimensions = pyramid.movingAt(level).dimensions();
+    report.samples = nSamples;
+    Evaluation current = affine(y);
+    report.metricStart = current.value;
+    const double step = options.maxStepMm * std::pow(0.5, static_cast<double>(level + 1));
+    ascend(y, current, affine, step, std::max(64, nSamples / 20), options, report);
+    report.seconds = secondsSince(levelStart);
+    result.iterations += report.iterations;
+    result.levels.push_back(report);
+    reportLevel(options, level, levels, report, -1, 1);
+  }
+  m = affineFromCoordinates(y, centre, scale);
+  if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-3)
+    throw InputError(nameOf(blamed, "moving volume"),
+                     "the affine stage collapsed the volume (determinant near 0)");
+  result.affine = true;
+  result.transform = Transform::fromMovingFromFixed(m, centre);
+  result.converged = result.levels.back().converged;
+}
+
+// The registration with the sample points in fixedVolume. `blamed`: the volume an overlap or
+// collapse error names (the caller's moving volume, whichever role it has here).
+RegistrationResult registerOneWay(const Volume& fixedVolume, const Volume& movingVolume,
+                                  const RegistrationOptions& options, const Volume& blamed) {
+  const auto start = Clock::now();
+  detail::WorkerPool pool(options.threads);
+  const Pyramid pyramid(fixedVolume, movingVolume, options, pool);
+
+  RegistrationResult result;
+  initialise(pyramid, fixedVolume, movingVolume, options, result);
+  const glm::dvec3 centre = result.transform.centre();
+  const double scale = options.rotationScaleMm;
+
+  const std::vector<double> x =
+      rigidRuns(pyramid, rigidCoordinates(result.parameters, scale), options, blamed, result);
   result.parameters = rigidFromCoordinates(x, scale);
   result.transform = Transform::fromMovingFromFixed(rigidMatrix(result.parameters, centre), centre);
   result.converged = !result.levels.empty() && result.levels.back().converged;
 
-  if (options.affine) {
-    // The second stage: all 12 parameters, from the rigid result, on the finest levels with
-    // the same sample points as the rigid stage had there.
-    glm::dmat4 m = result.transform.movingFromFixed();
-    std::vector<double> y = affineCoordinates(m, centre, scale);
-    const std::size_t levels = smoothing.size();
-    const std::size_t first =
-        levels -
-        std::min<std::size_t>(levels, static_cast<std::size_t>(std::max(1, options.affineLevels)));
-    for (std::size_t level = first; level < levels; ++level) {
-      const auto levelStart = Clock::now();
-      const Volume& fixedLevel = fixedAt(level);
-      const int nSamples = samplesAt(level);
-      const MattesMutualInformation metric = levelMetric(
-          fixedLevel, movingAt(level), nSamples, options.seed + level, marginAt(level), options);
-      const Objective affine = [&](const std::vector<double>& p) {
-        const auto r = metric.evaluateAffine(affineFromCoordinates(p, centre, scale), centre);
-        Evaluation e{r.value, r.validSamples,
-                     std::vector<double>(r.affineGradient.begin(), r.affineGradient.end())};
-        for (int k = 0; k < 9; ++k) e.gradient[static_cast<std::size_t>(k)] /= scale;
-        return e;
-      };
-      LevelReport report;
-      report.stage = "affine";
-      report.smoothingMm = smoothing[level];
-      report.fixedDimensions = fixedLevel.dimensions();
-      report.movingDimensions = movingAt(level).dimensions();
-      report.samples = nSamples;
-      Evaluation current = affine(y);
-      report.metricStart = current.value;
-      const double step = options.maxStepMm * std::pow(0.5, static_cast<double>(level + 1));
-      ascend(y, current, affine, step, std::max(64, nSamples / 20), options, report);
-      report.seconds = secondsSince(levelStart);
-      result.iterations += report.iterations;
-      result.levels.push_back(report);
-      progress(level, levels, report, -1);
-    }
-    m = affineFromCoordinates(y, centre, scale);
-    if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-3)
-      throw InputError(nameOf(blamed, "moving volume"),
-                       "the affine stage collapsed the volume (determinant near 0)");
-    result.affine = true;
-    result.transform = Transform::fromMovingFromFixed(m, centre);
-    result.converged = result.levels.back().converged;
-  }
+  if (options.affine) affineStage(pyramid, centre, options, blamed, result);
   result.seconds = secondsSince(start);
   return result;
 }

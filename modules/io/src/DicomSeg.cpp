@@ -98,33 +98,11 @@ Segmentation readDicomSegmentation(const fs::path& path, const ReadOptions& opti
   return detail::segmentationFromHeader(path, meta, parsed, options);
 }
 
-Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaData* meta,
-                                            const ParsedDicomFile& parsed,
-                                            const ReadOptions& given) {
-  const std::size_t maxBytes = given.maxBytes ? given.maxBytes : defaultMaxBytes();
-  const std::uintmax_t fileSize = detail::regularFileSize(path);
-  if (meta->Get(DC::SOPClassUID).AsString() != kSegmentationStorage)
-    throw InputError(path, "not a DICOM Segmentation (SOPClassUID " +
-                               meta->Get(DC::SOPClassUID).AsString() + ")");
-  Segmentation seg;
-  seg.type = meta->Get(DC::SegmentationType).AsString();
-  seg.frameOfReferenceUid = meta->Get(DC::FrameOfReferenceUID).AsString();
-  const long long rows = meta->Get(DC::Rows).AsInt64();
-  const long long cols = meta->Get(DC::Columns).AsInt64();
-  const long long frames = meta->Get(DC::NumberOfFrames).AsInt64();
-  const long long bits = meta->Get(DC::BitsAllocated).AsInt64();
-  if (rows <= 0 || cols <= 0 || rows > 65535 || cols > 65535)
-    throw InputError(path, "SEG: Rows or Columns missing or out of range");
-  if (frames <= 0 || frames > (1 << 20))
-    throw InputError(path,
-                     "SEG: NumberOfFrames missing or implausible (" + std::to_string(frames) + ")");
-  if (seg.type == "BINARY" ? bits != 1 : seg.type == "FRACTIONAL" ? bits != 8 : true)
-    throw InputError(path, "SEG: unsupported SegmentationType '" + seg.type +
-                               "' with BitsAllocated " + std::to_string(bits) +
-                               " (expected BINARY 1-bit or FRACTIONAL 8-bit)");
-  seg.frames = static_cast<int>(frames);
+namespace {
 
-  // Segments.
+// The SegmentSequence into seg.segments. Returns each segment number's component (the
+// segment's index).
+std::map<int, int> readSegments(const fs::path& path, vtkDICOMMetaData* meta, Segmentation& seg) {
   const vtkDICOMValue& segments = meta->Get(DC::SegmentSequence);
   const std::size_t segmentCount = segments.GetNumberOfValues();
   if (segmentCount == 0) throw InputError(path, "SEG: no SegmentSequence");
@@ -153,8 +131,18 @@ Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaDa
       throw InputError(path, "SEG: segment number " + std::to_string(out.number) + " repeated");
     seg.segments.push_back(out);
   }
+  return componentOf;
+}
 
-  // Geometry: one orientation and pixel spacing for all frames (shared, or the first frame's).
+// The plane every frame lies in: unit row and column directions, their normal, and the
+// pixel spacing along a row (i) and a column (j).
+struct FramePlane {
+  glm::dvec3 rowDir, colDir, normal;
+  double spacingI = 0.0, spacingJ = 0.0;
+};
+
+// One orientation and pixel spacing for all frames (shared, or the first frame's).
+FramePlane framePlane(const fs::path& path, vtkDICOMMetaData* meta, long long frames) {
   if (meta->Get(DC::PerFrameFunctionalGroupsSequence).GetNumberOfValues() !=
       static_cast<std::size_t>(frames))
     throw InputError(
@@ -180,10 +168,21 @@ Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaDa
     throw InputError(path, "SEG: PixelSpacing not positive");
   rowDir = glm::normalize(rowDir);
   colDir = glm::normalize(colDir);
-  const glm::dvec3 normal = glm::cross(rowDir, colDir);
+  return {rowDir, colDir, glm::cross(rowDir, colDir), spacingI, spacingJ};
+}
 
-  std::vector<glm::dvec3> positions(static_cast<std::size_t>(frames));
-  std::vector<int> frameComponent(static_cast<std::size_t>(frames));
+// Each frame's ImagePositionPatient and the component of the segment it carries (counted in
+// that segment's frames).
+struct FrameRefs {
+  std::vector<glm::dvec3> positions;
+  std::vector<int> component;
+};
+
+FrameRefs frameRefs(const fs::path& path, vtkDICOMMetaData* meta, long long frames,
+                    const std::map<int, int>& componentOf, Segmentation& seg) {
+  FrameRefs refs;
+  refs.positions.resize(static_cast<std::size_t>(frames));
+  refs.component.resize(static_cast<std::size_t>(frames));
   for (long long f = 0; f < frames; ++f) {
     const auto u = static_cast<unsigned>(f);
     const vtkDICOMValue& ipp = groupValue(meta, DC::PerFrameFunctionalGroupsSequence, u,
@@ -191,7 +190,7 @@ Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaDa
     if (!finite3(ipp))
       throw InputError(path,
                        "SEG: frame " + std::to_string(f + 1) + " has no ImagePositionPatient");
-    positions[u] = {ipp.GetDouble(0), ipp.GetDouble(1), ipp.GetDouble(2)};
+    refs.positions[u] = {ipp.GetDouble(0), ipp.GetDouble(1), ipp.GetDouble(2)};
     const vtkDICOMValue& ref =
         groupValue(meta, DC::PerFrameFunctionalGroupsSequence, u, DC::SegmentIdentificationSequence,
                    DC::ReferencedSegmentNumber);
@@ -199,22 +198,24 @@ Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaDa
     if (it == componentOf.end())
       throw InputError(path, "SEG: frame " + std::to_string(f + 1) +
                                  " refers to no segment of the SegmentSequence");
-    frameComponent[u] = it->second;
+    refs.component[u] = it->second;
     ++seg.segments[static_cast<std::size_t>(it->second)].frames;
   }
-  // All frames must share the in-plane origin; their distance along the normal picks the slice.
-  const glm::dvec3 inPlane0 = positions[0] - glm::dot(positions[0], normal) * normal;
-  const double tolerance = 0.05 * std::min(spacingI, spacingJ) + 1e-3;
-  std::vector<double> depth(positions.size());
-  for (std::size_t f = 0; f < positions.size(); ++f) {
-    depth[f] = glm::dot(positions[f], normal);
-    if (glm::length(positions[f] - depth[f] * normal - inPlane0) > tolerance)
-      throw InputError(path, "SEG: frame " + std::to_string(f + 1) +
-                                 " is shifted within its plane from frame 1 (frames on different "
-                                 "grids are not supported)");
-  }
-  std::vector<double> sorted = depth;
-  std::sort(sorted.begin(), sorted.end());
+  return refs;
+}
+
+// The slice grid the frames lie on: voxel 0's position, the slice distance, the number of
+// slices and each frame's slice.
+struct SliceGrid {
+  glm::dvec3 origin;
+  double step = 1.0;
+  int slices = 0;
+  std::vector<int> frameSlice;
+};
+
+// The slice distance: SpacingBetweenSlices, else the smallest gap between frame depths (in
+// `sorted` order) above `tolerance`, else SliceThickness, else 1 mm.
+double sliceStep(vtkDICOMMetaData* meta, const std::vector<double>& sorted, double tolerance) {
   double step = frameValue(meta, 0, DC::PixelMeasuresSequence, DC::SpacingBetweenSlices).AsDouble();
   if (!(step > 0 && std::isfinite(step))) {
     step = 0;
@@ -225,26 +226,51 @@ Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaDa
       step = frameValue(meta, 0, DC::PixelMeasuresSequence, DC::SliceThickness).AsDouble();
     if (!(step > 0 && std::isfinite(step))) step = 1.0;
   }
+  return step;
+}
+
+// All frames must share the in-plane origin; their distance along the normal picks the slice.
+SliceGrid sliceGrid(const fs::path& path, vtkDICOMMetaData* meta,
+                    const std::vector<glm::dvec3>& positions, const FramePlane& plane) {
+  const glm::dvec3 normal = plane.normal;
+  const glm::dvec3 inPlane0 = positions[0] - glm::dot(positions[0], normal) * normal;
+  const double tolerance = 0.05 * std::min(plane.spacingI, plane.spacingJ) + 1e-3;
+  std::vector<double> depth(positions.size());
+  for (std::size_t f = 0; f < positions.size(); ++f) {
+    depth[f] = glm::dot(positions[f], normal);
+    if (glm::length(positions[f] - depth[f] * normal - inPlane0) > tolerance)
+      throw InputError(path, "SEG: frame " + std::to_string(f + 1) +
+                                 " is shifted within its plane from frame 1 (frames on different "
+                                 "grids are not supported)");
+  }
+  std::vector<double> sorted = depth;
+  std::sort(sorted.begin(), sorted.end());
+  SliceGrid grid;
+  const double step = sliceStep(meta, sorted, tolerance);
   const double span = (sorted.back() - sorted.front()) / step;
   if (!(span < (1 << 16)))
     throw InputError(path,
                      "SEG: frames span more than 65536 slices of " + std::to_string(step) + " mm");
-  const int slices = static_cast<int>(std::lround(span)) + 1;
-  std::vector<int> frameSlice(positions.size());
+  grid.step = step;
+  grid.slices = static_cast<int>(std::lround(span)) + 1;
+  grid.frameSlice.resize(positions.size());
   for (std::size_t f = 0; f < positions.size(); ++f) {
     const double k = (depth[f] - sorted.front()) / step;
-    frameSlice[f] = static_cast<int>(std::lround(k));
-    if (std::abs(k - frameSlice[f]) * step > 0.1 * step + 1e-3)
+    grid.frameSlice[f] = static_cast<int>(std::lround(k));
+    if (std::abs(k - grid.frameSlice[f]) * step > 0.1 * step + 1e-3)
       throw InputError(path, "SEG: frame " + std::to_string(f + 1) +
                                  " lies between the slices of a " + std::to_string(step) +
                                  " mm grid");
   }
+  // Voxel 0: the slice index runs along the normal from the lowest frame.
+  grid.origin = inPlane0 + sorted.front() * normal;
+  return grid;
+}
 
-  const glm::ivec3 dims{static_cast<int>(cols), static_cast<int>(rows), slices};
-  const int components = static_cast<int>(segmentCount);
-  detail::checkedVolumeBytes(path, dims, components, 1, maxBytes);
-
-  // Pixel data: native (not encapsulated), rows * cols * frames * bits / 8 bytes, in the file.
+// Pixel data: native (not encapsulated), rows * cols * frames * bits / 8 bytes, in the file.
+std::vector<std::uint8_t> readPixelData(const fs::path& path, const detail::ParsedDicomFile& parsed,
+                                        long long rows, long long cols, long long frames,
+                                        long long bits, std::uintmax_t fileSize) {
   if (!parsed.pixelData) throw InputError(path, "SEG: no pixel data");
   if (parsed.pixelLength == 0xffffffffu)
     throw InputError(path, "SEG: compressed (encapsulated) pixel data is not supported");
@@ -267,26 +293,68 @@ Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaDa
   in.seekg(parsed.pixelOffset);
   if (!in.read(reinterpret_cast<char*>(pixels.data()), static_cast<std::streamsize>(need)))
     throw InputError(path, "SEG: cannot read the pixel data");
+  return pixels;
+}
+
+}  // namespace
+
+Segmentation detail::segmentationFromHeader(const fs::path& path, vtkDICOMMetaData* meta,
+                                            const ParsedDicomFile& parsed,
+                                            const ReadOptions& given) {
+  const std::size_t maxBytes = given.maxBytes ? given.maxBytes : defaultMaxBytes();
+  const std::uintmax_t fileSize = detail::regularFileSize(path);
+  if (meta->Get(DC::SOPClassUID).AsString() != kSegmentationStorage)
+    throw InputError(path, "not a DICOM Segmentation (SOPClassUID " +
+                               meta->Get(DC::SOPClassUID).AsString() + ")");
+  Segmentation seg;
+  seg.type = meta->Get(DC::SegmentationType).AsString();
+  seg.frameOfReferenceUid = meta->Get(DC::FrameOfReferenceUID).AsString();
+  const long long rows = meta->Get(DC::Rows).AsInt64();
+  const long long cols = meta->Get(DC::Columns).AsInt64();
+  const long long frames = meta->Get(DC::NumberOfFrames).AsInt64();
+  const long long bits = meta->Get(DC::BitsAllocated).AsInt64();
+  if (rows <= 0 || cols <= 0 || rows > 65535 || cols > 65535)
+    throw InputError(path, "SEG: Rows or Columns missing or out of range");
+  if (frames <= 0 || frames > (1 << 20))
+    throw InputError(path,
+                     "SEG: NumberOfFrames missing or implausible (" + std::to_string(frames) + ")");
+  if (seg.type == "BINARY" ? bits != 1 : seg.type == "FRACTIONAL" ? bits != 8 : true)
+    throw InputError(path, "SEG: unsupported SegmentationType '" + seg.type +
+                               "' with BitsAllocated " + std::to_string(bits) +
+                               " (expected BINARY 1-bit or FRACTIONAL 8-bit)");
+  seg.frames = static_cast<int>(frames);
+
+  const std::map<int, int> componentOf = readSegments(path, meta, seg);
+  const FramePlane plane = framePlane(path, meta, frames);
+  const FrameRefs refs = frameRefs(path, meta, frames, componentOf, seg);
+  const SliceGrid grid = sliceGrid(path, meta, refs.positions, plane);
+
+  const glm::ivec3 dims{static_cast<int>(cols), static_cast<int>(rows), grid.slices};
+  const int components = static_cast<int>(seg.segments.size());
+  detail::checkedVolumeBytes(path, dims, components, 1, maxBytes);
+  const std::vector<std::uint8_t> pixels =
+      readPixelData(path, parsed, rows, cols, frames, bits, fileSize);
 
   double maxFraction = meta->Get(DC::MaximumFractionalValue).AsDouble();
   if (!(maxFraction > 0)) maxFraction = 255.0;
 
   // World placement: column index along the row direction, row index along the column
   // direction, slice index along the normal from the lowest frame.
-  const glm::dvec3 origin = inPlane0 + sorted.front() * normal;
-  glm::dmat3 direction(rowDir, colDir, normal);
-  seg.masks = Volume(dims, components, ScalarType::UInt8,
-                     makeWorldFromIndex(origin, {spacingI, spacingJ, step}, direction));
+  glm::dmat3 direction(plane.rowDir, plane.colDir, plane.normal);
+  seg.masks = Volume(
+      dims, components, ScalarType::UInt8,
+      makeWorldFromIndex(grid.origin, {plane.spacingI, plane.spacingJ, grid.step}, direction));
+  const std::size_t framePixels = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
   std::uint8_t* out = seg.masks.dataAs<std::uint8_t>();
-  for (std::size_t f = 0; f < positions.size(); ++f) {
-    const std::size_t sliceBase = static_cast<std::size_t>(frameSlice[f]) * framePixels;
+  for (std::size_t f = 0; f < refs.positions.size(); ++f) {
+    const std::size_t sliceBase = static_cast<std::size_t>(grid.frameSlice[f]) * framePixels;
     for (std::size_t p = 0; p < framePixels; ++p) {
       const std::size_t bit = f * framePixels + p;
       const bool inside = bits == 1 ? ((pixels[bit >> 3] >> (bit & 7)) & 1) != 0
                                     : pixels[bit] * 2.0 >= maxFraction && pixels[bit] > 0;
       if (inside)
         out[(sliceBase + p) * static_cast<std::size_t>(components) +
-            static_cast<std::size_t>(frameComponent[f])] = 1;
+            static_cast<std::size_t>(refs.component[f])] = 1;
     }
   }
   auto& md = seg.masks.metadata();

@@ -61,15 +61,23 @@ bool isTrue(const std::string& v) {
   return !v.empty() && (v[0] == 'T' || v[0] == 't' || v[0] == '1');
 }
 
-}  // namespace
+// The header's fields up to ElementDataFile (the last one: the data may follow it in the
+// same file, at dataOffset).
+struct MetaHeader {
+  std::map<std::string, std::string> fields;
+  std::uintmax_t dataOffset = 0;
 
-Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
-  const std::uintmax_t fileSize = regularFileSize(path);
+  std::string get(const std::string& key) const {
+    auto it = fields.find(key);
+    return it == fields.end() ? std::string() : it->second;
+  }
+};
+
+MetaHeader readMetaHeader(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open the file");
-  std::map<std::string, std::string> fields;
+  MetaHeader header;
   std::string line;
-  std::uintmax_t dataOffset = 0;
   bool sawDataFile = false;
   while (std::getline(in, line)) {
     if (static_cast<long long>(in.tellg()) > (1 << 16))
@@ -80,45 +88,22 @@ Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
       throw InputError(path, "header line without '=': '" + trim(line).substr(0, 60) + "'");
     }
     const std::string key = trim(line.substr(0, eq));
-    if (!fields.emplace(key, trim(line.substr(eq + 1))).second)
+    if (!header.fields.emplace(key, trim(line.substr(eq + 1))).second)
       throw InputError(path, "the header gives " + key + " twice");
     if (key == "ElementDataFile") {
       sawDataFile = true;
-      dataOffset = static_cast<std::uintmax_t>(in.tellg());
+      header.dataOffset = static_cast<std::uintmax_t>(in.tellg());
       break;
     }
   }
   if (!sawDataFile) throw InputError(path, "MetaImage header has no ElementDataFile line");
-  auto get = [&](const std::string& key) -> std::string {
-    auto it = fields.find(key);
-    return it == fields.end() ? std::string() : it->second;
-  };
-  if (get("ObjectType") != "" && get("ObjectType") != "Image")
-    throw InputError(path, "ObjectType is '" + get("ObjectType") + "', not Image");
-  const std::string ndimsText = get("NDims");
-  const int ndims = ndimsText.empty() ? 0 : std::atoi(ndimsText.c_str());
-  if (ndims != 2 && ndims != 3)
-    throw InputError(path, "NDims must be 2 or 3, not '" + ndimsText + "'");
-  const auto dimSize = numbers(path, "DimSize", get("DimSize"), ndims);
-  glm::ivec3 dims(1);
-  for (int a = 0; a < ndims; ++a) {
-    if (dimSize[a] < 1 || dimSize[a] > (1 << 24) || dimSize[a] != std::floor(dimSize[a]))
-      throw InputError(path, "invalid DimSize value " + shortNumber(dimSize[a]));
-    dims[a] = static_cast<int>(dimSize[a]);
-  }
-  if (!get("BinaryData").empty() && !isTrue(get("BinaryData")))
-    throw InputError(path, "BinaryData = " + get("BinaryData") +
-                               ": the voxels are text, and mvw reads binary MetaImage data only");
-  const auto typeIt = kElementTypes.find(get("ElementType"));
-  if (typeIt == kElementTypes.end())
-    throw InputError(path, "unsupported ElementType '" + get("ElementType") + "'");
-  const ScalarType type = typeIt->second;
-  int channels = 1;
-  if (!get("ElementNumberOfChannels").empty()) {
-    channels = std::atoi(get("ElementNumberOfChannels").c_str());
-    if (channels < 1 || channels > 64) throw InputError(path, "invalid ElementNumberOfChannels");
-  }
+  return header;
+}
 
+// worldFromIndex from ElementSpacing (or ElementSize), Offset (or Origin, Position) and
+// TransformMatrix (or Rotation, Orientation) over `ndims` axes.
+glm::dmat4 metaWorldFromIndex(const fs::path& path, const MetaHeader& header, int ndims) {
+  auto get = [&](const std::string& key) { return header.get(key); };
   glm::dvec3 spacing(1.0), origin(0.0);
   glm::dmat3 direction(1.0);
   std::string spacingKey = !get("ElementSpacing").empty() ? "ElementSpacing" : "ElementSize";
@@ -144,14 +129,18 @@ Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
       throw InputError(path, std::string(key) + " is singular");
     break;
   }
+  return makeWorldFromIndex(origin, spacing, direction);
+}
 
-  const std::size_t bytes =
-      checkedVolumeBytes(path, dims, channels, scalarSize(type), options.maxBytes);
-  Volume volume(dims, channels, type, makeWorldFromIndex(origin, spacing, direction));
-
+// The `bytes` of image data into volume.data(): from the header's own file (LOCAL, whose
+// size is fileSize) or the data file beside it, after HeaderSize, zlib-compressed or raw, in
+// the byte order the header gives.
+void readMetaData(const fs::path& path, const MetaHeader& header, std::uintmax_t fileSize,
+                  std::size_t bytes, Volume& volume) {
+  auto get = [&](const std::string& key) { return header.get(key); };
   const std::string dataFile = get("ElementDataFile");
   fs::path dataPath = path;
-  std::uintmax_t offset = dataOffset;
+  std::uintmax_t offset = header.dataOffset;
   if (dataFile == "LIST")
     throw InputError(path, "ElementDataFile = LIST (one file per slice) is not supported");
   if (dataFile != "LOCAL") {
@@ -202,11 +191,51 @@ Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
   }
   const std::string msb = !get("ElementByteOrderMSB").empty() ? get("ElementByteOrderMSB")
                                                               : get("BinaryDataByteOrderMSB");
+  const ScalarType type = volume.scalarType();
   if (isTrue(msb) && scalarSize(type) > 1) {
     const std::size_t w = scalarSize(type);
     for (std::size_t i = 0; i < bytes; i += w)
       std::reverse(volume.data() + i, volume.data() + i + w);
   }
+}
+
+}  // namespace
+
+Volume readMetaImage(const fs::path& path, const ReadOptions& options) {
+  const std::uintmax_t fileSize = regularFileSize(path);
+  const MetaHeader header = readMetaHeader(path);
+  auto get = [&](const std::string& key) { return header.get(key); };
+  if (get("ObjectType") != "" && get("ObjectType") != "Image")
+    throw InputError(path, "ObjectType is '" + get("ObjectType") + "', not Image");
+  const std::string ndimsText = get("NDims");
+  const int ndims = ndimsText.empty() ? 0 : std::atoi(ndimsText.c_str());
+  if (ndims != 2 && ndims != 3)
+    throw InputError(path, "NDims must be 2 or 3, not '" + ndimsText + "'");
+  const auto dimSize = numbers(path, "DimSize", get("DimSize"), ndims);
+  glm::ivec3 dims(1);
+  for (int a = 0; a < ndims; ++a) {
+    if (dimSize[a] < 1 || dimSize[a] > (1 << 24) || dimSize[a] != std::floor(dimSize[a]))
+      throw InputError(path, "invalid DimSize value " + shortNumber(dimSize[a]));
+    dims[a] = static_cast<int>(dimSize[a]);
+  }
+  if (!get("BinaryData").empty() && !isTrue(get("BinaryData")))
+    throw InputError(path, "BinaryData = " + get("BinaryData") +
+                               ": the voxels are text, and mvw reads binary MetaImage data only");
+  const auto typeIt = kElementTypes.find(get("ElementType"));
+  if (typeIt == kElementTypes.end())
+    throw InputError(path, "unsupported ElementType '" + get("ElementType") + "'");
+  const ScalarType type = typeIt->second;
+  int channels = 1;
+  if (!get("ElementNumberOfChannels").empty()) {
+    channels = std::atoi(get("ElementNumberOfChannels").c_str());
+    if (channels < 1 || channels > 64) throw InputError(path, "invalid ElementNumberOfChannels");
+  }
+  const glm::dmat4 worldFromIndex = metaWorldFromIndex(path, header, ndims);
+
+  const std::size_t bytes =
+      checkedVolumeBytes(path, dims, channels, scalarSize(type), options.maxBytes);
+  Volume volume(dims, channels, type, worldFromIndex);
+  readMetaData(path, header, fileSize, bytes, volume);
   auto& meta = volume.metadata();
   meta.format = "MetaImage";
   meta.sourcePath = path.string();

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include <vtkImageData.h>
 #include <vtkMatrix4x4.h>
@@ -240,85 +241,56 @@ glm::dmat4 fromVtk(vtkMatrix4x4* v) {
 const glm::dmat4 kLpsFromRas = glm::dmat4(glm::dvec4(-1, 0, 0, 0), glm::dvec4(0, -1, 0, 0),
                                           glm::dvec4(0, 0, 1, 0), glm::dvec4(0, 0, 0, 1));
 
-}  // namespace
-
-Volume readNifti(const fs::path& path, const ReadOptions& options) {
-  regularFileSize(path);
-  NiftiHeaderFacts facts;
-  {
-    GzFile file(path);
-    facts = parseHeader(path, file);
-    int bytes = 0, channels = 0;
-    datatypeLayout(facts.datatype, &bytes, &channels);
-    long long components = channels;
-    for (int i = 4; i < 8; ++i) components *= facts.dim[i];
-    const glm::ivec3 dims{static_cast<int>(facts.dim[1]), static_cast<int>(facts.dim[2]),
-                          static_cast<int>(facts.dim[3])};
-    const std::size_t dataBytes = checkedVolumeBytes(
-        path, dims, components, static_cast<std::size_t>(bytes), options.maxBytes);
-    // Count the (decompressed) bytes that are really there before VTK allocates anything.
-    const fs::path image = imagePathFor(path, facts);
-    const std::uintmax_t need = dataBytes + static_cast<std::uintmax_t>(facts.voxOffset);
-    std::uintmax_t have = 0;
-    if (facts.singleFile) {
-      have = facts.consumed + file.skipCount(need > facts.consumed ? need - facts.consumed : 0);
-    } else {
-      companionFileSize(path, image);
-      GzFile img(image);
-      have = img.skipCount(need);
-    }
-    if (have < need)
-      throw InputError(
-          path, (facts.singleFile ? std::string("file") : "its image file " + image.string()) +
-                    " is truncated: header and image data need " + std::to_string(need) +
-                    " bytes, the file holds " + std::to_string(have));
+// Checks the header and counts the (decompressed) bytes that are really there, against the
+// file and options.maxBytes, before VTK allocates anything.
+NiftiHeaderFacts checkNiftiFile(const fs::path& path, const ReadOptions& options) {
+  GzFile file(path);
+  const NiftiHeaderFacts facts = parseHeader(path, file);
+  int bytes = 0, channels = 0;
+  datatypeLayout(facts.datatype, &bytes, &channels);
+  long long components = channels;
+  for (int i = 4; i < 8; ++i) components *= facts.dim[i];
+  const glm::ivec3 dims{static_cast<int>(facts.dim[1]), static_cast<int>(facts.dim[2]),
+                        static_cast<int>(facts.dim[3])};
+  const std::size_t dataBytes =
+      checkedVolumeBytes(path, dims, components, static_cast<std::size_t>(bytes), options.maxBytes);
+  const fs::path image = imagePathFor(path, facts);
+  const std::uintmax_t need = dataBytes + static_cast<std::uintmax_t>(facts.voxOffset);
+  std::uintmax_t have = 0;
+  if (facts.singleFile) {
+    have = facts.consumed + file.skipCount(need > facts.consumed ? need - facts.consumed : 0);
+  } else {
+    companionFileSize(path, image);
+    GzFile img(image);
+    have = img.skipCount(need);
   }
+  if (have < need)
+    throw InputError(path,
+                     (facts.singleFile ? std::string("file") : "its image file " + image.string()) +
+                         " is truncated: header and image data need " + std::to_string(need) +
+                         " bytes, the file holds " + std::to_string(have));
+  return facts;
+}
 
-  VtkMessageScope messages;
-  vtkNew<vtkNIFTIImageReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->TimeAsVectorOn();
-  reader->Update();
-  if (!messages.firstError().empty() || reader->GetErrorCode() != 0)
-    throw InputError(path, "NIfTI reader failed: " + messages.firstError());
-  vtkImageData* image = reader->GetOutput();
-  Volume volume = volumeFromImage(image, path);
-
-  double origin[3], spacing[3];
-  image->GetOrigin(origin);
-  image->GetSpacing(spacing);
-  vtkNIFTIImageHeader* header = reader->GetNIFTIHeader();
-  double unitScale = 1.0;  // NIfTI xyzt_units: 1 metre, 2 mm, 3 micron (0: unknown, mm assumed)
+// Millimetres per spatial unit of the header's xyzt_units: 1 metre, 2 mm, 3 micron (0:
+// unknown, mm assumed).
+double unitScaleOf(vtkNIFTIImageHeader* header) {
   switch (header->GetXYZTUnits() & 7) {
     case 1:
-      unitScale = 1000.0;
-      break;
+      return 1000.0;
     case 3:
-      unitScale = 0.001;
-      break;
+      return 0.001;
     default:
-      break;
+      return 1.0;
   }
-  for (int a = 0; a < 3; ++a) {
-    if (!std::isfinite(spacing[a]) || spacing[a] <= 0)
-      throw InputError(path, "invalid voxel size pixdim[" + std::to_string(a + 1) +
-                                 "] = " + std::to_string(spacing[a]));
-  }
+}
+
+// The sform where it is a usable geometry, else the qform, else the identity (axes toward R,
+// A, S), with notes; `fromSform` says whether the sform was taken.
+glm::dmat4 rasFromDataOf(const fs::path& path, vtkNIFTIImageReader* reader,
+                         std::vector<std::string>& notes, bool& fromSform) {
+  vtkNIFTIImageHeader* header = reader->GetNIFTIHeader();
   glm::dmat4 rasFromData(1.0);
-  auto& notes = volume.metadata().notes;
-  if (const int code = header->GetXYZTUnits() & 7; code >= 4)
-    notes.push_back("xyzt_units spatial code " + std::to_string(code) +
-                    " is no unit (1 metre, 2 mm, 3 micron): millimetres assumed");
-  // Beyond time (dim[4]): a 5-D image (vectors, tensors, several statistics per voxel) or
-  // more. Its values become frames like time points, said so.
-  if (facts.dim[5] > 1 || facts.dim[6] > 1 || facts.dim[7] > 1) {
-    std::string sizes;
-    for (int i = 4; i < 8; ++i)
-      sizes += (i > 4 ? " x " : "") + std::to_string(std::max<long long>(1, facts.dim[i]));
-    notes.push_back("dimensions 4 to 7 (" + sizes + ") are read as " +
-                    std::to_string(volume.components()) +
-                    " frames in storage order: the frame of a study is one of these");
-  }
   // A matrix that maps the voxel axes to three independent finite directions: an sform of
   // zeros, NaN or two equal rows (a broken writer) is no geometry.
   auto usable = [](const glm::dmat4& m) {
@@ -353,10 +325,44 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   } else {
     notes.push_back("no qform or sform in the header: axes assumed to point toward R, A, S");
   }
+  fromSform = hasSform && !sformBroken;
+  return rasFromData;
+}
+
+// worldFromIndex (LPS mm) from the reader's origin, spacing and the header's sform or qform,
+// with notes on the units, dimensions beyond time, the geometry chosen and zero voxel sizes.
+glm::dmat4 niftiWorldFromIndex(const fs::path& path, vtkNIFTIImageReader* reader,
+                               const NiftiHeaderFacts& facts, Volume& volume) {
+  vtkImageData* image = reader->GetOutput();
+  double origin[3], spacing[3];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  vtkNIFTIImageHeader* header = reader->GetNIFTIHeader();
+  const double unitScale = unitScaleOf(header);
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(spacing[a]) || spacing[a] <= 0)
+      throw InputError(path, "invalid voxel size pixdim[" + std::to_string(a + 1) +
+                                 "] = " + std::to_string(spacing[a]));
+  }
+  auto& notes = volume.metadata().notes;
+  if (const int code = header->GetXYZTUnits() & 7; code >= 4)
+    notes.push_back("xyzt_units spatial code " + std::to_string(code) +
+                    " is no unit (1 metre, 2 mm, 3 micron): millimetres assumed");
+  // Beyond time (dim[4]): a 5-D image (vectors, tensors, several statistics per voxel) or
+  // more. Its values become frames like time points, said so.
+  if (facts.dim[5] > 1 || facts.dim[6] > 1 || facts.dim[7] > 1) {
+    std::string sizes;
+    for (int i = 4; i < 8; ++i)
+      sizes += (i > 4 ? " x " : "") + std::to_string(std::max<long long>(1, facts.dim[i]));
+    notes.push_back("dimensions 4 to 7 (" + sizes + ") are read as " +
+                    std::to_string(volume.components()) +
+                    " frames in storage order: the frame of a study is one of these");
+  }
+  bool fromSform = false;
+  const glm::dmat4 rasFromData = rasFromDataOf(path, reader, notes, fromSform);
   // A zero pixdim is no voxel size: say which one was used instead (VTK puts 1 for a zero).
   for (int a = 1; a <= 3; ++a) {
     if (std::abs(header->GetPixDim(a)) > 0 || std::isnan(header->GetPixDim(a))) continue;
-    const bool fromSform = hasSform && !sformBroken;
     const double used =
         fromSform ? glm::length(glm::dvec3(rasFromData[a - 1])) * spacing[a - 1] : spacing[a - 1];
     char size[32];
@@ -372,12 +378,13 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   }
   glm::dmat4 unit(unitScale);
   unit[3][3] = 1.0;
-  volume.setWorldFromIndex(kLpsFromRas * unit * rasFromData * dataFromIndex);
-  if (reader->GetQFac() < 0)
-    notes.push_back("qfac = -1: slice order reversed to a right-handed index frame");
+  return kLpsFromRas * unit * rasFromData * dataFromIndex;
+}
 
-  // As nifti_clib reads them: a slope of 0 (or not a number) means no scaling; an intercept
-  // that is not a number is 0 beside a real slope (said, not dropped with the slope).
+// As nifti_clib reads them: a slope of 0 (or not a number) means no scaling; an intercept
+// that is not a number is 0 beside a real slope (said, not dropped with the slope).
+void applyNiftiRescale(Volume& volume, vtkNIFTIImageReader* reader) {
+  auto& notes = volume.metadata().notes;
   const double slope = reader->GetRescaleSlope();
   double intercept = reader->GetRescaleIntercept();
   if (slope != 0.0 && std::isfinite(slope) && !std::isfinite(intercept)) {
@@ -392,28 +399,51 @@ Volume readNifti(const fs::path& path, const ReadOptions& options) {
   } else if (!std::isfinite(slope)) {
     notes.push_back("scl_slope " + shortNumber(slope) + " is not a number: values used as stored");
   }
+}
+
+// A statistic map says so in its intent code: its values are the statistic, named as the unit
+// (the attribute window of an fMRI statistic map starts from it: study/ModalityDefaults).
+std::string intentUnit(int intentCode) {
+  switch (intentCode) {
+    case 2:
+      return "r";  // NIFTI_INTENT_CORREL
+    case 3:
+      return "t";  // NIFTI_INTENT_TTEST
+    case 4:
+      return "F";  // NIFTI_INTENT_FTEST
+    case 5:
+      return "z";  // NIFTI_INTENT_ZSCORE
+    default:
+      return "";
+  }
+}
+
+}  // namespace
+
+Volume readNifti(const fs::path& path, const ReadOptions& options) {
+  regularFileSize(path);
+  const NiftiHeaderFacts facts = checkNiftiFile(path, options);
+
+  VtkMessageScope messages;
+  vtkNew<vtkNIFTIImageReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->TimeAsVectorOn();
+  reader->Update();
+  if (!messages.firstError().empty() || reader->GetErrorCode() != 0)
+    throw InputError(path, "NIfTI reader failed: " + messages.firstError());
+  Volume volume = volumeFromImage(reader->GetOutput(), path);
+  volume.setWorldFromIndex(niftiWorldFromIndex(path, reader, facts, volume));
+  if (reader->GetQFac() < 0)
+    volume.metadata().notes.push_back(
+        "qfac = -1: slice order reversed to a right-handed index frame");
+  applyNiftiRescale(volume, reader);
+
   auto& meta = volume.metadata();
   meta.format = facts.version == 2 ? "NIfTI-2" : facts.version == 1 ? "NIfTI-1" : "Analyze 7.5";
   meta.sourcePath = path.string();
+  vtkNIFTIImageHeader* header = reader->GetNIFTIHeader();
   if (const char* d = header->GetDescrip(); d && *d) meta.seriesDescription = d;
-  // A statistic map says so in its intent code: its values are the statistic, named as the unit
-  // (the attribute window of an fMRI statistic map starts from it: study/ModalityDefaults).
-  switch (header->GetIntentCode()) {
-    case 2:
-      meta.unit = "r";  // NIFTI_INTENT_CORREL
-      break;
-    case 3:
-      meta.unit = "t";  // NIFTI_INTENT_TTEST
-      break;
-    case 4:
-      meta.unit = "F";  // NIFTI_INTENT_FTEST
-      break;
-    case 5:
-      meta.unit = "z";  // NIFTI_INTENT_ZSCORE
-      break;
-    default:
-      break;
-  }
+  if (const std::string unit = intentUnit(header->GetIntentCode()); !unit.empty()) meta.unit = unit;
   return volume;
 }
 
