@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "CliChecks.h"
+#include "CommandBody.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/ExitCode.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/resampling/PetPhantom.h"
@@ -302,8 +304,9 @@ void addBenchRegisterCommand(CLI::App& bench) {
       ->check(CLI::Range(0.0, 45.0));
   cmd->add_option("--max-mm", o->maxMm, "Random shifts up to this, per axis")
       ->check(CLI::Range(0.0, 50.0));
-  cmd->callback([o] {
-    if (!runBenchRegister(*o)) std::exit(3);  // after the table: a failed comparison, not a fault
+  setCommandBody(*cmd, [o] {
+    // After the table: a failed comparison, not a fault.
+    return runBenchRegister(*o) ? kExitSuccess : 3;
   });
 }
 
