@@ -1,8 +1,9 @@
 #include "BatchCommand.h"
 
+#include "CommandBody.h"
+
 #include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/ExitCode.h"
 #include "mvw/core/Version.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/validate/BatchManifest.h"
@@ -64,7 +66,7 @@ void addBatchCommand(CLI::App& app) {
   run->add_option("--jobs,-j", opt->jobs, "Studies at once")->check(CLI::Range(1, 256));
   run->add_option("--timeout", opt->timeoutS, "Seconds a study may take before it is killed")
       ->check(CLI::Range(1.0, 7 * 24 * 3600.0));
-  run->callback([opt] {
+  setCommandBody(*run, [opt] {
     const validate::BatchShard shard = validate::resolveBatchShard(opt->shard, opt->shards);
     const validate::BatchManifest manifest = validate::loadBatchManifest(opt->manifest);
     validate::BatchRunOptions o;
@@ -77,7 +79,7 @@ void addBatchCommand(CLI::App& app) {
     const validate::BatchRunCounts counts = validate::runBatch(manifest, o, std::cout);
     // A failed study is neither bad input to this command nor an internal fault: exit 1, the
     // studies said why (mvw batch report lists them).
-    if (counts.failed) std::exit(1);
+    return counts.failed ? kExitFailure : kExitSuccess;
   });
 
   CLI::App* report = batch->add_subcommand(
@@ -85,11 +87,11 @@ void addBatchCommand(CLI::App& app) {
       "Merge OUT's results into OUT/summary.csv, OUT/stats.csv and OUT/index.html; "
       "exit 0 only when every study is done");
   report->add_option("output", opt->out, "Output folder of mvw batch run")->required();
-  report->callback([opt] {
+  setCommandBody(*report, [opt] {
     const validate::BatchReportCounts c = validate::writeBatchReport(opt->out);
     std::cout << "batch report: " << c.done << " done, " << c.failed << " failed, " << c.notRun
               << " not run; " << (fs::path(opt->out) / "index.html").string() << "\n";
-    if (c.failed || c.notRun) std::exit(1);
+    return c.failed || c.notRun ? kExitFailure : kExitSuccess;
   });
 
   CLI::App* slurm = batch->add_subcommand(

@@ -1,10 +1,10 @@
 #include "ValidateCommand.h"
 
 #include "CliChecks.h"
+#include "CommandBody.h"
 #include "HeadlessGl.h"
 #include "RenderCommand.h"
 
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "mvw/core/ExitCode.h"
 #include "mvw/validate/ProcessPool.h"
 #include "mvw/validate/Validator.h"
 
@@ -44,24 +45,22 @@ void addValidateCommand(CLI::App& app) {
                   "Seconds one render process (its share of a study's cases) may take")
       ->check(positive());
   addGlOption(*cmd, o->gl);
-  cmd->callback([o] {
+  setCommandBody(*cmd, [o] {
     // A backend the user named must exist here (exit 2 now, not one failure per case). The
     // probe context is made in a child process: the renders are forked from this one, which
     // makes no GL context (a driver's threads and state do not survive a fork).
     if (!o->gl.empty() || resolveGl("").request != render::GlRequest::Auto) {
       const int status = validate::runInChild([gl = o->gl] { makeHeadlessContext(gl); });
-      if (status != 0) std::exit(status);  // the child said why on stderr
+      if (status != 0) return status;  // the child said why on stderr
     }
     // Each render process runs `mvw render STUDY -o OUT --gl GL`'s code.
     o->options.render = [gl = o->gl](const std::filesystem::path& study,
                                      const std::filesystem::path& outDir) {
       renderStudy(study, outDir, gl);
     };
-    if (!validate::runValidate(o->options)) {
-      // A failing case is neither bad input nor an internal fault: exit 1 without a message.
-      std::cout.flush();
-      std::exit(1);
-    }
+    // A failing case is neither bad input nor an internal fault, and the report said why: exit
+    // 1 without a message.
+    return validate::runValidate(o->options) ? kExitSuccess : kExitFailure;
   });
 }
 

@@ -1,10 +1,8 @@
 // mvw: multimodal volume workstation. One CLI, one subcommand per job.
-// Exit codes: 0 success, 1 internal fault, 2 bad input (file, config or command line), 3 a
-// server or the network failed (PACS, Slurm).
+// Exit codes (mvw/core/ExitCode.h): 0 success, 1 an internal fault or a failed comparison, 2 bad
+// input (file, config or command line), 3 a server or the network failed (PACS, Slurm).
 #include <cmath>
 #include <cstdlib>
-#include <exception>
-#include <filesystem>
 #include <functional>
 #include <iostream>
 
@@ -23,7 +21,7 @@
 #include "RenderCommand.h"
 #include "StatsCommand.h"
 #include "ValidateCommand.h"
-#include "mvw/core/Error.h"
+#include "mvw/core/ExitCode.h"
 #include "mvw/core/Version.h"
 #include "mvw/pacs/Pacs.h"
 #include "mvw/validate/BatchSlurm.h"
@@ -75,33 +73,21 @@ int main(int argc, char** argv) {
     for (CLI::App* sub : a->get_subcommands({})) requireFinite(sub);
   };
   requireFinite(&app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    // A command line mvw cannot use: one message in mvw's own form, exit 2.
-    std::cerr << "mvw: error: " << e.what() << " (mvw COMMAND --help lists the options)\n";
-    return 2;
-  } catch (const mvw::ServiceError& e) {
-    // A server that could not be reached or refused: neither the user's input nor mvw's fault.
-    std::cerr << "mvw: error: " << e.what() << "\n";
-    return 3;
-  } catch (const mvw::InputError& e) {
-    std::cerr << "mvw: error: " << e.what() << "\n";
-    return 2;
-  } catch (const mvw::Error& e) {
-    std::cerr << "mvw: internal error: " << e.what() << "\n";
-    return 1;
-  } catch (const std::filesystem::filesystem_error& e) {
-    // A path the user gave that the file system refused (permissions, a full disk).
-    std::cerr << "mvw: error: " << e.path1().string() << ": " << e.code().message() << "\n";
-    return 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "mvw: internal error: out of memory\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "mvw: internal error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  // Everything but the command line itself ends through mvw::exitCodeOf, as mvw validate's
+  // render processes do (mvw/core/ExitCode.h): one failure, one exit code, wherever it happens.
+  return mvw::runReportingErrors(
+      [&] {
+        try {
+          app.parse(argc, argv);  // runs the command
+        } catch (const CLI::RuntimeError& e) {
+          return e.get_exit_code();  // the command's own code (CommandBody.h), said already
+        } catch (const CLI::ParseError& e) {
+          if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+          // A command line mvw cannot use: one message in mvw's own form, exit 2.
+          std::cerr << "mvw: error: " << e.what() << " (mvw COMMAND --help lists the options)\n";
+          return mvw::kExitBadInput;
+        }
+        return mvw::kExitSuccess;
+      },
+      std::cerr);
 }

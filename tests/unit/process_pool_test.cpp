@@ -43,6 +43,7 @@ int testJob(const std::vector<std::string>& args) {
   if (what == "kill") ::raise(SIGKILL);
   if (what == "input") throw InputError("bad.json", "is bad");
   if (what == "fault") throw std::runtime_error("it broke");
+  if (what == "server") throw ServiceError("dicom://PACS@127.0.0.1:9: connection refused");
   if (what == "buffered") std::cout << "left in the buffer";  // no flush: the pool's
   return 0;
 }
@@ -57,7 +58,8 @@ std::string firstLine(const fs::path& file) {
 TEST(ProcessPool, ReportsExitCodesAndKillsAtTheTimeLimit) {
   const fs::path dir = test::scratchDir();
   ProcessPool pool(testJob);
-  const std::vector<std::string> kinds = {"exit3", "sleep", "kill", "input", "fault", "buffered"};
+  const std::vector<std::string> kinds = {"exit3", "sleep",    "kill",  "input",
+                                          "fault", "buffered", "server"};
   std::vector<ProcessJob> jobs;
   for (const std::string& k : kinds) jobs.push_back({{k}, dir / (k + ".log")});
   std::vector<ProcessResult> results(jobs.size());
@@ -66,19 +68,23 @@ TEST(ProcessPool, ReportsExitCodesAndKillsAtTheTimeLimit) {
     results[j] = r;
     ++calls;
   });
-  EXPECT_EQ(calls, 6);
+  EXPECT_EQ(calls, 7);
   EXPECT_EQ(results[0].status, 3);
   EXPECT_EQ(firstLine(dir / "exit3.log"), "out");
   EXPECT_EQ(results[1].status, kTimedOut);
   EXPECT_LT(results[1].seconds, 10.0);
   EXPECT_EQ(results[2].status, 128 + 9);
-  // Exceptions end the child as mvw's main ends mvw: 2 for bad input, 1 for a fault.
+  // Exceptions end the child as mvw's main ends mvw (exitCodeOf): 3 for a server that failed, 2
+  // for bad input, 1 for a fault.
   EXPECT_EQ(results[3].status, 2);
   EXPECT_EQ(firstLine(dir / "input.log"), "mvw: error: bad.json: is bad");
   EXPECT_EQ(results[4].status, 1);
   EXPECT_EQ(firstLine(dir / "fault.log"), "mvw: internal error: it broke");
   EXPECT_EQ(results[5].status, 0);
   EXPECT_EQ(firstLine(dir / "buffered.log"), "left in the buffer");
+  EXPECT_EQ(results[6].status, 3);
+  EXPECT_EQ(firstLine(dir / "server.log"),
+            "mvw: error: dicom://PACS@127.0.0.1:9: connection refused");
   // The pool goes on with another run; a log that cannot be written is an Error.
   calls = 0;
   pool.run({{{"exit3"}, dir / "again.log"}}, 1, 10.0,

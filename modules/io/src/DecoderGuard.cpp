@@ -6,6 +6,8 @@
 
 #include <unistd.h>
 
+#include "mvw/core/ExitCode.h"
+
 namespace mvw::io::detail {
 
 namespace {
@@ -19,7 +21,7 @@ constexpr int kSignals[4] = {SIGABRT, SIGSEGV, SIGBUS, SIGFPE};
 
 void onFatalSignal(int) {
   (void)!::write(STDERR_FILENO, gMessage, gMessageLength);
-  ::_exit(2);
+  ::_exit(kExitBadInput);
 }
 
 }  // namespace

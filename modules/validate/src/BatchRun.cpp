@@ -20,6 +20,7 @@
 #include "Sha256.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/ExitCode.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/validate/BatchReport.h"
 #include "mvw/validate/ProcessPool.h"
@@ -255,17 +256,19 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
     removeLeftovers(out, study->id);
     Pending p{study, out / (".work-" + study->id + "-" + std::to_string(::getpid())), {}, {}};
     fs::create_directories(p.work);
-    std::string problem;
-    try {
-      p.inputs = batchInputChecksums(*study);
-      p.command = batchCommand(*study, p.work);
-    } catch (const Error& e) {
-      problem = e.what();
-    } catch (const fs::filesystem_error& e) {
-      problem = e.what();
-    }
-    if (!problem.empty()) {
-      recordFailure(p, 2, "mvw: error: " + problem, 0.0);
+    // A study whose inputs cannot be read fails as its process would: the same code and message.
+    std::ostringstream problem;
+    const int status = runReportingErrors(
+        [&] {
+          p.inputs = batchInputChecksums(*study);
+          p.command = batchCommand(*study, p.work);
+          return kExitSuccess;
+        },
+        problem);
+    if (status != kExitSuccess) {
+      std::string message = problem.str();
+      if (!message.empty() && message.back() == '\n') message.pop_back();
+      recordFailure(p, status, message, 0.0);
       continue;
     }
     const nlohmann::json done = detail::readJsonOrNull(out / study->id / "done.json");

@@ -14,42 +14,21 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
-#include <new>
 #include <string>
 #include <vector>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/ExitCode.h"
 
 namespace mvw::validate {
 
 namespace {
 
 // ---------------------------------------------------------------------------------------
-// The child's end: the exit code and message mvw's main would give (app/main.cpp).
+// The child's end: the exit code and message mvw's main would give (mvw/core/ExitCode.h).
 
 [[noreturn]] void endChild(const std::function<int()>& body) {
-  int code = 1;
-  try {
-    code = body();
-  } catch (const InputError& e) {
-    std::cerr << "mvw: error: " << e.what() << "\n";
-    code = 2;
-  } catch (const Error& e) {
-    std::cerr << "mvw: internal error: " << e.what() << "\n";
-    code = 1;
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << "mvw: error: " << e.path1().string() << ": " << e.code().message() << "\n";
-    code = 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "mvw: internal error: out of memory\n";
-    code = 1;
-  } catch (const std::exception& e) {
-    std::cerr << "mvw: internal error: " << e.what() << "\n";
-    code = 1;
-  } catch (...) {
-    std::cerr << "mvw: internal error: an unknown exception\n";
-    code = 1;
-  }
+  const int code = runReportingErrors(body, std::cerr);
   // _exit: no atexit handlers or static destructors of the copied process run twice.
   std::cout.flush();
   std::cerr.flush();

@@ -1,8 +1,8 @@
 #pragma once
 // Two error tiers (docs/design.md#errors): programmer bugs are MVW_CHECKs (Check.h); bad data and
-// environment failures are exceptions derived from mvw::Error. Only app/ decides exit codes:
-// InputError -> 2 (bad file, bad config), ServiceError -> 3 (a server or the network failed),
-// any other Error -> 1 (internal fault).
+// environment failures are exceptions derived from mvw::Error. exitCodeOf (ExitCode.h) alone
+// turns them into exit codes: InputError -> 2 (bad file, bad config), ServiceError -> 3 (a
+// server or the network failed), any other Error -> 1 (internal fault).
 #include <filesystem>
 #include <stdexcept>
 #include <string>

@@ -20,8 +20,9 @@
 namespace mvw::validate {
 
 // What a job runs, in its child: its arguments in, its exit code out. An exception that
-// leaves it ends the child as mvw's main does: its message on stderr ("mvw: error: ..."), exit
-// 2 for bad input (InputError, a file system error), 1 for anything else.
+// leaves it ends the child as mvw's main does (mvw::exitCodeOf, mvw/core/ExitCode.h): its
+// message on stderr ("mvw: error: ..."), exit 3 for a server that failed, 2 for bad input, 1
+// for anything else.
 using JobFunction = std::function<int(const std::vector<std::string>& args)>;
 
 struct ProcessJob {
@@ -60,8 +61,8 @@ class ProcessPool {
 
 // Runs `body` in a forked child of this process, its output where this process's goes, and
 // returns the child's exit code as ProcessResult::status gives it; the child ends as a job does
-// (an exception: its message on stderr, exit 2 or 1). For what must not happen in this process
-// (`mvw validate` makes its probe GL context so, as the renders are forked from it).
+// (an exception: its message on stderr, mvw::exitCodeOf's code). For what must not happen in
+// this process (`mvw validate` makes its probe GL context so, as the renders are forked from it).
 int runInChild(const std::function<void()>& body);
 
 }  // namespace mvw::validate
