@@ -18,6 +18,7 @@
 
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/output/HeadlessGl.h"
 #include "mvw/render/Framing.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/study/StudyLoader.h"
@@ -48,7 +49,7 @@ void runBench(const BenchOptions& o) {
     modes.push_back(*m);
   }
   const auto study = config::loadStudyConfig(o.study);
-  auto context = makeHeadlessContext(o.gl);
+  auto context = output::makeHeadlessContext(o.gl);
   const Volume volume = mvw::study::readSource(study.anatomical);
   const auto t0 = std::chrono::steady_clock::now();
   render::VolumeRenderer renderer(*context, volume, render::parseGradientSource(o.gradient));

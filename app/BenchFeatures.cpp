@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mvw/config/StudyConfig.h"
+#include "mvw/output/HeadlessGl.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/study/Session.h"
 #include "mvw/study/ViewPlan.h"
@@ -49,7 +50,7 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   mvw::study::ViewOverrides overrides;
   overrides.size = o.size;
   mvw::study::Session session(config::loadStudyConfig(o.study), overrides);
-  auto context = makeHeadlessContext(o.gl);
+  auto context = output::makeHeadlessContext(o.gl);
   session.load();
   const config::StudyConfig& study = session.config();
   render::VolumeRenderer renderer(*context, session.anatomical());

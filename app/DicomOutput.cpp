@@ -84,12 +84,4 @@ void storeDicom(const DicomOutputOptions& o, const std::vector<fs::path>& files,
   }
 }
 
-std::string identityNote(const dicomout::DicomIdentity& id) {
-  if (id.fromDicom)
-    return "in the study " + id.studyInstanceUid + " of patient " + id.patientId +
-           " (from the DICOM source)";
-  return "in a NEW study " + id.studyInstanceUid + " for patient " + id.patientId + " (" +
-         id.patientName + "): the source is not DICOM";
-}
-
 }  // namespace mvw::app

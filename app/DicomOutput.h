@@ -41,7 +41,4 @@ void checkDicomOutput(const DicomOutputOptions& o, bool writing,
 void storeDicom(const DicomOutputOptions& o, const std::vector<std::filesystem::path>& files,
                 const std::filesystem::path& where, std::ostream& out);
 
-// The line that tells the reader whose study the objects went into.
-std::string identityNote(const dicomout::DicomIdentity& id);
-
 }  // namespace mvw::app

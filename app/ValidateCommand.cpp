@@ -3,9 +3,7 @@
 #include "CliChecks.h"
 #include "CommandBody.h"
 #include "HeadlessGl.h"
-#include "RenderCommand.h"
 
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -13,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mvw/core/ExitCode.h"
+#include "mvw/output/HeadlessGl.h"
 #include "mvw/validate/ProcessPool.h"
 #include "mvw/validate/Validator.h"
 
@@ -49,15 +48,11 @@ void addValidateCommand(CLI::App& app) {
     // A backend the user named must exist here (exit 2 now, not one failure per case). The
     // probe context is made in a child process: the renders are forked from this one, which
     // makes no GL context (a driver's threads and state do not survive a fork).
-    if (!o->gl.empty() || resolveGl("").request != render::GlRequest::Auto) {
-      const int status = validate::runInChild([gl = o->gl] { makeHeadlessContext(gl); });
+    if (!o->gl.empty() || output::resolveGl("").request != render::GlRequest::Auto) {
+      const int status = validate::runInChild([gl = o->gl] { output::makeHeadlessContext(gl); });
       if (status != 0) return status;  // the child said why on stderr
     }
-    // Each render process runs `mvw render STUDY -o OUT --gl GL`'s code.
-    o->options.render = [gl = o->gl](const std::filesystem::path& study,
-                                     const std::filesystem::path& outDir) {
-      renderStudy(study, outDir, gl);
-    };
+    o->options.gl = o->gl;
     // A failing case is neither bad input nor an internal fault, and the report said why: exit
     // 1 without a message.
     return validate::runValidate(o->options) ? kExitSuccess : kExitFailure;

@@ -24,9 +24,8 @@
 #include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/Png.h"
-#include "mvw/render/Annotations.h"
+#include "mvw/output/ViewAnnotations.h"
 #include "mvw/render/DisplayTexture.h"
-#include "mvw/render/SegmentLegend.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/render/WindowFramebuffer.h"
 #include "mvw/study/SegmentOverlay.h"
@@ -60,36 +59,6 @@ class ImGuiSession {
   ImGuiSession& operator=(const ImGuiSession&) = delete;
 };
 
-// The colour bar `mvw render` burns in (app/RenderCommand.cpp, which this must follow:
-// tests/view/viewer-xvfb compares the panes as shown with annotated headless renders byte for
-// byte): the overlay's or fusion's map, else the image's own over its window; grey: none.
-void drawColourBar(Image& shown, const ViewerState& state, const render::VolumeRenderer& renderer,
-                   const render::RenderSettings& s, bool functionalImage) {
-  const Volume* functional = state.functional();
-  if (functionalImage) {  // the PET/CT layout's MIP: the functional volume's own window
-    render::drawColourBar(shown, s.level - 0.5 * s.window, s.level + 0.5 * s.window,
-                          functional->metadata().unit, *s.imageColors,
-                          ViewerState::volumeName(*functional, "functional"));
-    return;
-  }
-  const bool overlayShown = render::showsFunctional(s, functional != nullptr);
-  if (overlayShown) {
-    auto [flo, fhi] = renderer.functionalRange();
-    if (s.functionalHigh > s.functionalLow) flo = s.functionalLow, fhi = s.functionalHigh;
-    const std::string name = ViewerState::volumeName(*functional, "functional");
-    if (s.overlayColors)
-      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, *s.overlayColors, name);
-    else
-      render::drawColourBar(shown, flo, fhi, functional->metadata().unit, name);
-  } else if (render::showsImageColors(s)) {
-    const auto [lo, hi] = state.scene().valueRange;
-    const WindowLevel w = windowOrFullRange(s.window, s.level, lo, hi);
-    render::drawColourBar(shown, w.level - 0.5 * w.window, w.level + 0.5 * w.window,
-                          state.anatomical().metadata().unit, *s.imageColors,
-                          ViewerState::volumeName(state.anatomical(), "anatomical"));
-  }
-}
-
 // What the 3D pane's render of a frame took and at what size (frame log).
 struct Render3d {
   double milliseconds = 0.0;
@@ -97,9 +66,9 @@ struct Render3d {
 };
 
 // segments: the study's segmentation (null: none), whose legend the MPR panes show with the
-// outlines, as `mvw render` burns it in (app/RenderCommand.cpp). functionalRenderer: a
-// renderer of the functional volume, made on first use, for the panes that show it as their
-// image (the PET/CT layout's MIP).
+// outlines. Each pane is annotated by `mvw render`'s painter (output::drawAnnotations).
+// functionalRenderer: a renderer of the functional volume, made on first use, for the panes
+// that show it as their image (the PET/CT layout's MIP).
 Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
                           const std::function<render::VolumeRenderer&()>& functionalRenderer,
                           const mvw::study::SegmentOverlay* segments,
@@ -112,18 +81,22 @@ Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
     render::RenderedFrame f = (functionalImage ? functionalRenderer() : renderer).render(s);
     if (p == k3d) rendered3d = {f.milliseconds, s.size};
     Image shown = f.image;
-    render::annotate(shown, f.camera, state.caption(p, s));
-    render::GlyphLegend legend = state.glyphLegend(p, s);
-    // Glyph kinds (issue 40): each icon drawn by the view's own glyph shading.
-    if (render::usesGlyphKinds(s)) renderer.renderGlyphIcons(s, legend);
-    render::drawGlyphLegend(shown, legend);
-    drawColourBar(shown, state, renderer, s, functionalImage);
-    if (segments && s.mode == render::RenderMode::Mpr && s.segmentOutlines) {
-      std::vector<render::LegendEntry> segmentLegend;
-      for (std::size_t i = 0; i < segments->names.size(); ++i)
-        segmentLegend.push_back({segments->names[i], segments->colours[i]});
-      render::drawSegmentLegend(shown, segmentLegend);
+    output::ViewAnnotations a;
+    a.caption = state.caption(p, s);
+    a.glyphLegend = state.glyphLegend(p, s);
+    if (functionalImage) {  // the PET/CT layout's MIP: the functional volume's own window
+      const Volume& functional = *state.functional();
+      a.colourBar = output::ColourBar{s.level - 0.5 * s.window, s.level + 0.5 * s.window,
+                                      functional.metadata().unit, s.imageColors,
+                                      ViewerState::volumeName(functional, "functional")};
+    } else {
+      const auto [lo, hi] = state.scene().valueRange;
+      a.colourBar =
+          output::colourBarOf(s, state.anatomical(), state.functional(), renderer.functionalRange(),
+                              windowOrFullRange(s.window, s.level, lo, hi));
     }
+    a.segmentLegend = output::segmentLegendOf(s, segments);
+    output::drawAnnotations(shown, f.camera, s, a, renderer);
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting, f.milliseconds);
   }

@@ -169,4 +169,12 @@ DicomIdentity identityOf(const Volume& volume, const GivenIdentity& given) {
   return id;
 }
 
+std::string identityNote(const DicomIdentity& id) {
+  if (id.fromDicom)
+    return "in the study " + id.studyInstanceUid + " of patient " + id.patientId +
+           " (from the DICOM source)";
+  return "in a NEW study " + id.studyInstanceUid + " for patient " + id.patientId + " (" +
+         id.patientName + "): the source is not DICOM";
+}
+
 }  // namespace mvw::dicomout

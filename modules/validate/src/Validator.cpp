@@ -22,6 +22,7 @@
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/Png.h"
+#include "mvw/output/StudyRender.h"
 #include "mvw/study/StudyLoader.h"
 #include "mvw/validate/Checksums.h"
 #include "mvw/validate/ImageMetrics.h"
@@ -525,7 +526,6 @@ class CaseJudge {
 }  // namespace
 
 bool runValidate(const ValidateOptions& o) {
-  if (!o.render) throw Error("mvw::validate::runValidate: ValidateOptions::render is not set");
   const Suite suite = loadSuite(o.suite);
   // The goldens' checksums, read before anything renders (a bad manifest is bad input).
   std::optional<ChecksumManifest> manifest, updated;
@@ -540,8 +540,12 @@ bool runValidate(const ValidateOptions& o) {
   // The render processes are forked from a launcher forked now, before this process reads a
   // volume (VTK) or judges an image (OpenCV): both start TBB worker threads, whose state a
   // child forked from this process later would hold half-copied.
-  ProcessPool pool([render = o.render](const std::vector<std::string>& args) {
-    render(args.at(0), args.at(1));
+  ProcessPool pool([gl = o.gl](const std::vector<std::string>& args) {
+    output::RenderRequest request;
+    request.study = args.at(0);
+    request.outDir = args.at(1);
+    request.gl = gl;
+    output::renderStudy(request, std::cout, std::cerr);
     return 0;
   });
   const WorkDir work;

@@ -54,4 +54,8 @@ void checkUidRoot(const std::string& root, const std::string& what);
 // A source that is not DICOM gets a new study UID and frame of reference UID.
 DicomIdentity identityOf(const Volume& volume, const GivenIdentity& given = {});
 
+// The words that tell the reader whose study the objects went into ("in the study UID of
+// patient ID (from the DICOM source)", or a new study for a source that is not DICOM).
+std::string identityNote(const DicomIdentity& id);
+
 }  // namespace mvw::dicomout

@@ -1,0 +1,234 @@
+#include "mvw/output/StudyRender.h"
+
+#include <cstdio>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "RenderRecord.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+#include "mvw/core/WindowLevel.h"
+#include "mvw/dicomout/SecondaryCapture.h"
+#include "mvw/io/AtomicFile.h"
+#include "mvw/io/MovieWriter.h"
+#include "mvw/io/Png.h"
+#include "mvw/output/HeadlessGl.h"
+#include "mvw/output/Staging.h"
+#include "mvw/output/ViewAnnotations.h"
+#include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/Caption.h"
+#include "mvw/study/Session.h"
+
+namespace mvw::output {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string frameName(int k) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame-%03d.png", k);
+  return buf;
+}
+
+// A view's image as the reader sees it: the render, and (annotate) what ViewAnnotations.h lists.
+struct ViewPainter {
+  render::VolumeRenderer& renderer;
+  const study::Session& session;
+  const study::PlannedView& view;
+  WindowLevel shown;
+  std::string caption;
+  bool overlayShown;
+
+  render::RenderedFrame operator()(const render::RenderSettings& settings) const {
+    render::RenderedFrame f = renderer.render(settings);
+    if (!view.config.annotate) return f;
+    const Volume* functional = session.functional();
+    ViewAnnotations a;
+    a.caption = caption;
+    if (functional)
+      a.glyphLegend =
+          study::glyphLegend(view, functional->metadata().unit, renderer.functionalRange());
+    a.colourBar =
+        colourBarOf(settings, session.anatomical(), functional, renderer.functionalRange(), shown);
+    a.segmentLegend = segmentLegendOf(settings, session.segments());
+    drawAnnotations(f.image, f.camera, settings, a, renderer);
+    return f;
+  }
+};
+
+// The rest of an orbit's frames (frame 0 is the still itself, at the view's own azimuth),
+// written with the movie into the staging folder; returns render.json's "orbit" record.
+nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame& still,
+                           Staging& staging, std::vector<Image>* keep) {
+  const config::ViewConfig& c = paint.view.config;
+  const fs::path folder = staging.dir() / c.name;
+  fs::create_directories(folder);
+  const std::string movieName = c.name + ".mp4";
+  io::MovieWriter movie(staging.dir() / movieName, still.image.width, still.image.height,
+                        c.orbitFps);
+  const std::vector<double> azimuths = config::orbitAzimuths(c);
+  nlohmann::json files = nlohmann::json::array();
+  double ms = still.milliseconds;
+  for (std::size_t k = 0; k < azimuths.size(); ++k) {
+    render::RenderedFrame f;
+    if (k == 0) {
+      f.image = still.image;
+    } else {
+      render::RenderSettings turned = paint.view.settings;
+      turned.camera.azimuthDeg = azimuths[k];
+      f = paint(turned);
+      ms += f.milliseconds;
+    }
+    const std::string name = frameName(static_cast<int>(k));
+    io::writePng(f.image, folder / name);
+    movie.add(f.image);
+    if (keep) keep->push_back(f.image);
+    files.push_back(c.name + "/" + name);
+  }
+  movie.finish();
+  nlohmann::json r = {{"mode", config::toString(c.orbitMode)},
+                      {"frames", azimuths.size()},
+                      {"azimuths_deg", azimuths},
+                      {"folder", c.name},
+                      {"files", files},
+                      {"movie", movieName},
+                      {"movie_codec", "mp4v (MPEG-4 Part 2), OpenCV VideoWriter"},
+                      {"movie_size", {movie.width(), movie.height()}},
+                      {"fps", c.orbitFps},
+                      {"ms_all_frames", ms}};
+  if (c.orbitMode == config::OrbitMode::Rock) r["range_deg"] = c.orbitRangeDeg;
+  return r;
+}
+
+struct Output {
+  std::string file;
+  Image image;
+  nlohmann::json record;
+  std::vector<std::string> dicomFiles;  // with --dicom: the view's objects, in staging
+};
+
+// Everything is written into the staging folder before anything moves into place: a failure
+// (a full disk) leaves no partial output. The moves are renames within one file system.
+void writeOutputs(const fs::path& outDir, std::vector<Output>& outputs,
+                  const std::vector<std::string>& orbits, nlohmann::json report, Staging& staging) {
+  try {
+    for (const auto& out : outputs) {
+      io::writePng(out.image, staging.dir() / out.file);
+      report["views"].push_back(out.record);
+    }
+    io::writeTextAtomically(staging.dir() / "render.json", report.dump(2) + "\n");
+  } catch (const Error& e) {
+    throw InputError(outDir,
+                     std::string("cannot write the renders (is the disk full?): ") + e.what());
+  }
+  fs::create_directories(outDir);
+  for (const auto& out : outputs) {
+    fs::rename(staging.dir() / out.file, outDir / out.file);
+    for (const std::string& name : out.dicomFiles) fs::rename(staging.dir() / name, outDir / name);
+  }
+  for (const std::string& name : orbits) {
+    const fs::path folder = outDir / name;
+    fs::remove_all(folder);  // an earlier run's frames
+    fs::rename(staging.dir() / name, folder);
+    fs::rename(staging.dir() / (name + ".mp4"), outDir / (name + ".mp4"));
+  }
+  fs::rename(staging.dir() / "render.json", outDir / "render.json");
+}
+
+// With --dicom: a view's still as a Secondary Capture and its orbit as one multi-frame SC, in
+// a new series of the anatomical source's study (one series per view), written into staging.
+std::vector<std::string> writeViewDicom(const study::PlannedView& v, const Image& still,
+                                        const std::vector<Image>& orbit, double fps,
+                                        const dicomout::DicomIdentity& id, int seriesNumber,
+                                        Staging& staging) {
+  const config::ViewConfig& c = v.config;
+  dicomout::SeriesInfo series;
+  series.seriesInstanceUid = dicomout::newUid();
+  series.seriesNumber = seriesNumber;
+  series.description =
+      "mvw " + c.name + " (" + toString(c.mode) + ", " + config::toString(c.view) + ")";
+  dicomout::CaptureInfo info;
+  info.burnedInAnnotation = c.annotate;
+  info.derivation = "mvw render: " + std::string(toString(c.mode)) + " of the " +
+                    config::toString(c.view) + " view";
+  std::vector<std::string> names{c.name + ".dcm"};
+  dicomout::writeSecondaryCapture(staging.dir() / names.back(), {still}, id, series, info);
+  if (!orbit.empty()) {
+    info.instanceNumber = 2;
+    info.frameTimeMs = 1000.0 / fps;
+    info.derivation += ", orbit of " + std::to_string(orbit.size()) + " frames";
+    names.push_back(c.name + "-orbit.dcm");
+    dicomout::writeSecondaryCapture(staging.dir() / names.back(), orbit, id, series, info);
+  }
+  return names;
+}
+
+}  // namespace
+
+RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::ostream& log) {
+  config::StudyConfig studyConfig = config::loadStudyConfig(request.study);
+  checkOutputFolder(request.outDir);
+  study::Session session(std::move(studyConfig), request.overrides);
+  // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
+  auto context = makeHeadlessContext(request.gl);
+  session.load();
+  // Before any render: a source without a DICOM identity needs one from the command line.
+  std::optional<dicomout::DicomIdentity> identity;
+  if (request.dicom) identity = dicomout::identityOf(session.anatomical(), request.given);
+  render::VolumeRenderer renderer(*context, session.anatomical(),
+                                  render::parseGradientSource(request.gradient));
+  session.attach(renderer);
+  const auto [lo, hi] = renderer.valueRange();
+  std::vector<Output> outputs;
+  Staging staging(request.outDir);
+  std::vector<std::string> orbits;  // views whose frames and movie wait in staging
+  int dicomObjects = 0;
+  for (const study::PlannedView& v : session.views(renderer)) {
+    const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
+    const ViewPainter paint{renderer,
+                            session,
+                            v,
+                            shown,
+                            study::viewCaption(v, shown),
+                            render::showsFunctional(v.settings, session.functional() != nullptr)};
+    render::RenderedFrame frame = paint(v.settings);
+    nlohmann::json record = viewRecord(v, session, renderer, shown, paint.overlayShown, frame, log);
+    std::vector<Image> orbitFrames;
+    if (v.config.orbit > 0) {
+      record["orbit"] = renderOrbit(paint, frame, staging, identity ? &orbitFrames : nullptr);
+      orbits.push_back(v.config.name);
+    }
+    std::vector<std::string> dicomFiles;
+    if (identity) {
+      dicomFiles = writeViewDicom(v, frame.image, orbitFrames, v.config.orbitFps, *identity,
+                                  1000 + static_cast<int>(outputs.size()) + 1, staging);
+      record["dicom"] = dicomFiles;
+      dicomObjects += static_cast<int>(dicomFiles.size());
+    }
+    outputs.push_back({v.config.name + ".png", std::move(frame.image), record, dicomFiles});
+    log << "rendered " << v.config.name << " (" << toString(v.config.mode) << ", "
+        << config::toString(v.config.view) << ") in " << static_cast<int>(frame.milliseconds)
+        << " ms\n";
+  }
+  writeOutputs(request.outDir, outputs, orbits, studyRecord(session, renderer, *context), staging);
+  out << "wrote " << outputs.size() << " view(s) and render.json to " << request.outDir.string()
+      << "\n";
+  RenderedStudy rendered;
+  rendered.views = static_cast<int>(outputs.size());
+  if (identity) {
+    out << "wrote " << dicomObjects << " DICOM Secondary Capture object(s) "
+        << dicomout::identityNote(*identity) << "\n";
+    // Only once every view is rendered and every object written: exactly this run's objects.
+    for (const Output& o : outputs)
+      for (const std::string& name : o.dicomFiles)
+        rendered.dicomFiles.push_back(request.outDir / name);
+  }
+  return rendered;
+}
+
+}  // namespace mvw::output
