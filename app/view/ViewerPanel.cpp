@@ -429,7 +429,9 @@ void ViewerPanel::drawControls() {
                        registration == "none" ? "none (world coordinates)" : registration.c_str());
     if (state_.registration().running())
       ImGui::Text("registering (mutual information)... %.1f s", state_.registration().seconds());
-    else if (ImGui::Button("re-run registration (rigid MI)"))
+    else if (ImGui::Button(
+                 ("re-run registration (" + std::string(state_.registration().method()) + " MI)")
+                     .c_str()))
       state_.registration().start();
   }
   ImGui::Separator();

@@ -239,7 +239,8 @@ class ViewerState : public PaneGeometry {
   // with the state as the study's "measurements", restored on opening).
   ViewerMeasurements& measurements() { return measurements_; }
   const ViewerMeasurements& measurements() const { return measurements_; }
-  // The registration re-run in the background (rigid MI, as `mvw register`).
+  // The registration re-run in the background (MI with the study's registration options, as
+  // placing the study and `mvw register STUDY.json` run it).
   ViewerRegistration& registration() { return registration_; }
   const ViewerRegistration& registration() const { return registration_; }
   // The window calls this once per frame: once a re-run has ended, the new
