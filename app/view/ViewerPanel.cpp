@@ -18,6 +18,9 @@
 
 namespace mvw::app {
 
+// The window draws the window-free viewer (mvw::viewer) and acts through it throughout.
+using namespace mvw::viewer;
+
 namespace {
 const char* kModeLabels[] = {"composite", "isosurface", "mip (depth cue: D)", "minip", "average"};
 

@@ -1,7 +1,7 @@
 // The registration re-run in the background: its line for the panel, a finished run moving the
 // functional volume, a failed one saying why, and a running one that is waited for however the
 // viewer ends (a joinable thread destroyed would terminate the process).
-#include "ViewerRegistration.h"
+#include "mvw/viewer/ViewerRegistration.h"
 
 #include <atomic>
 #include <chrono>
@@ -16,11 +16,11 @@
 
 #include "RegistrationTestUtil.h"
 #include "TestUtil.h"
-#include "ViewerScript.h"
-#include "ViewerState.h"
 #include "ViewerTestUtil.h"
+#include "mvw/viewer/ViewerScript.h"
+#include "mvw/viewer/ViewerState.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 using ViewerRegistrationTest = ViewerFixture;
@@ -137,4 +137,4 @@ TEST_F(ViewerRegistrationTest, FailedRegistrationSaysWhy) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer

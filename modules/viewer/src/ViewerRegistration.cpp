@@ -1,4 +1,4 @@
-#include "ViewerRegistration.h"
+#include "mvw/viewer/ViewerRegistration.h"
 
 #include <string>
 #include <utility>
@@ -7,7 +7,7 @@
 
 #include "mvw/resampling/RigidRegistration.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 ViewerRegistration::ViewerRegistration(const Volume& anatomical, const Volume* functional,
                                        std::string description,
@@ -46,4 +46,4 @@ std::optional<RegistrationWorker::Outcome> ViewerRegistration::finish() {
   return outcome;
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

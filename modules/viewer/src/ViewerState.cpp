@@ -1,4 +1,4 @@
-#include "ViewerState.h"
+#include "mvw/viewer/ViewerState.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,7 @@
 #include "mvw/study/Session.h"
 #include "mvw/study/ViewPlan.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 namespace {
 
@@ -723,4 +723,4 @@ std::string ViewerState::readout(const glm::dvec3& world) const {
   return text;
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -11,11 +11,11 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "RegistrationWorker.h"
 #include "mvw/core/Volume.h"
 #include "mvw/resampling/RigidRegistration.h"
+#include "mvw/viewer/RegistrationWorker.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 class ViewerRegistration {
  public:
@@ -54,4 +54,4 @@ class ViewerRegistration {
   RegistrationWorker worker_;  // last: joined before the job (and what it reads) goes away
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer
