@@ -28,6 +28,7 @@
 #include "mvw/resampling/Resample.h"
 #include "mvw/resampling/RigidRegistration.h"
 #include "mvw/resampling/Transform.h"
+#include "mvw/study/FunctionalPlacement.h"
 #include "mvw/study/StudyLoader.h"
 
 namespace mvw::app {
@@ -151,6 +152,9 @@ Inputs readInputs(const RegisterOptions& opt,
 void runRegister(RegisterOptions opt, const CLI::App& cmd) {
   // STUDY.json, or --fixed and --moving: one of the two.
   std::optional<config::StudyConfig> studyConfig;
+  // The study's registration settings (study::registrationOptionsOf, as placing the study and
+  // the viewer's re-run map them), then the command line's over them.
+  RegistrationOptions options;
   if (!opt.study.empty()) {
     for (const char* o : {"--fixed", "--moving", "--fixed-series", "--moving-series"})
       if (cmd.count(o))
@@ -163,10 +167,8 @@ void runRegister(RegisterOptions opt, const CLI::App& cmd) {
     studyConfig = config::loadStudyConfig(opt.study);
     if (!studyConfig->functional)
       throw InputError(opt.study, "the study names no functional volume: nothing to register");
-    // Its registration settings, where the command line does not say otherwise.
     const config::RegistrationConfig& r = studyConfig->registration;
-    if (r.method == config::RegistrationMethod::Affine) opt.affine = true;
-    if (!cmd.count("--rotation-search")) opt.rotationSearchDeg = r.rotationSearchDeg;
+    options = study::registrationOptionsOf(r);
     if (r.method == config::RegistrationMethod::File)
       std::cerr << "mvw register: note: the study places its functional volume by "
                 << r.transform.string() << "; registering anew (rigid"
@@ -199,11 +201,10 @@ void runRegister(RegisterOptions opt, const CLI::App& cmd) {
     movingId = dicomout::identityOf(moving, movingGiven);
   }
 
-  RegistrationOptions options;
   options.seed = opt.seed;
   options.initialisation = kInitialisations.at(opt.initialisation);
-  options.affine = opt.affine;
-  options.rotationSearchRangeDeg = opt.rotationSearchDeg;
+  if (opt.affine) options.affine = true;
+  if (cmd.count("--rotation-search")) options.rotationSearchRangeDeg = opt.rotationSearchDeg;
   if (::isatty(STDERR_FILENO))
     options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   const RegistrationResult r = registerRigid(fixed, moving, options);
@@ -259,7 +260,7 @@ void runRegister(RegisterOptions opt, const CLI::App& cmd) {
   j["method"] = std::string(r.affine ? "rigid then affine" : "rigid") +
                 ", Mattes mutual information, quasi-Newton (BFGS) ascent";
   if (r.searchedRotations > 0)
-    j["rotation_search"] = {{"range_deg", opt.rotationSearchDeg},
+    j["rotation_search"] = {{"range_deg", options.rotationSearchRangeDeg},
                             {"rotations_scored", r.searchedRotations},
                             {"best_angles_deg", vec(r.searchAngles * (180.0 / std::numbers::pi))}};
   j["runs"] = r.runs;

@@ -8,6 +8,9 @@
 
 namespace mvw::app {
 
+// The window draws the window-free viewer (mvw::viewer) and acts through it throughout.
+using namespace mvw::viewer;
+
 namespace {
 
 using Role = PacsBrowser::Role;

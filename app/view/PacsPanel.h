@@ -2,14 +2,14 @@
 // The viewer's PACS window (Dear ImGui, issue 37 item 3): the server, the search, the studies
 // found, the chosen study's series with the role each takes (anatomical, functional,
 // segmentation), the registration rule, Open, and what the background step does or why it
-// failed. Everything it changes goes through PacsBrowser.
-#include "PacsBrowser.h"
+// failed. Everything it changes goes through viewer::PacsBrowser.
+#include "mvw/viewer/PacsBrowser.h"
 
 namespace mvw::app {
 
 class PacsPanel {
  public:
-  PacsPanel(PacsBrowser& browser, float scale) : browser_(browser), scale_(scale) {}
+  PacsPanel(viewer::PacsBrowser& browser, float scale) : browser_(browser), scale_(scale) {}
 
   bool visible() const { return visible_; }
   void setVisible(bool on) { visible_ = on; }
@@ -23,7 +23,7 @@ class PacsPanel {
   void drawSeries();
   void drawOpen();
 
-  PacsBrowser& browser_;
+  viewer::PacsBrowser& browser_;
   float scale_ = 1.0f;
   bool visible_ = false;
 };

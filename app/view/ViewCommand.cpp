@@ -27,12 +27,12 @@ void runView(const ViewOptions& o) {
   // is said in the PACS window and the viewer opens all the same.
   if (!o.servers.empty()) {
     v.serversFile = o.servers;
-    v.servers = loadServers(v.serversFile);
+    v.servers = viewer::loadServers(v.serversFile);
   } else {
-    v.serversFile = defaultServersFile();
+    v.serversFile = viewer::defaultServersFile();
     std::error_code ec;
     if (std::filesystem::exists(v.serversFile, ec)) try {
-        v.servers = loadServers(v.serversFile);
+        v.servers = viewer::loadServers(v.serversFile);
       } catch (const InputError& e) {
         v.serversProblem = e.what();
       }
@@ -90,7 +90,7 @@ void addViewCommand(CLI::App& app) {
                   "Anatomical volume (DICOM folder or file, NIfTI, MetaImage)");
   cmd->add_option("--functional", o->functional, "Functional volume");
   cmd->add_option("--script", o->script,
-                  "Scripted events, one per line (tests; see app/view/ViewerScript.h)");
+                  "Scripted events, one per line (tests; see mvw/viewer/ViewerScript.h)");
   cmd->add_option("--servers", o->servers,
                   "PACS servers for the PACS window, JSON (default "
                   "$XDG_CONFIG_HOME/mvw/servers.json; docs/user-guide/pacs.md)");

@@ -16,11 +16,8 @@
 #include <glm/common.hpp>
 
 #include "GlfwContext.h"
-#include "PacsBrowser.h"
 #include "PacsPanel.h"
 #include "ViewerPanel.h"
-#include "ViewerScript.h"
-#include "ViewerState.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/io/Png.h"
@@ -30,8 +27,14 @@
 #include "mvw/render/WindowFramebuffer.h"
 #include "mvw/study/SegmentOverlay.h"
 #include "mvw/study/Session.h"
+#include "mvw/viewer/PacsBrowser.h"
+#include "mvw/viewer/ViewerScript.h"
+#include "mvw/viewer/ViewerState.h"
 
 namespace mvw::app {
+
+// The window draws the window-free viewer (mvw::viewer) and acts through it throughout.
+using namespace mvw::viewer;
 
 namespace {
 

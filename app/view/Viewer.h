@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "PacsBrowser.h"
 #include "mvw/study/Session.h"
+#include "mvw/viewer/PacsBrowser.h"
 
 namespace mvw::app {
 
@@ -17,10 +17,10 @@ struct ViewerOptions {
   std::unique_ptr<study::Session> session;
   // The PACS servers the PACS window offers (servers.json), the file they came from, and why
   // the default file could not be used (shown in the PACS window).
-  std::vector<PacsServerEntry> servers;
+  std::vector<viewer::PacsServerEntry> servers;
   std::filesystem::path serversFile;
   std::string serversProblem;
-  std::filesystem::path script;  // scripted events, for tests (see ViewerScript.h)
+  std::filesystem::path script;  // scripted events, for tests (see mvw/viewer/ViewerScript.h)
   // One CSV line per drawn frame (frame, ms since the previous frame's swap, the 3D pane's
   // render ms and size where it rendered, interactive, drag divisor); empty: none.
   std::filesystem::path frameLog;

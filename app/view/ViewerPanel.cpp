@@ -18,6 +18,9 @@
 
 namespace mvw::app {
 
+// The window draws the window-free viewer (mvw::viewer) and acts through it throughout.
+using namespace mvw::viewer;
+
 namespace {
 const char* kModeLabels[] = {"composite", "isosurface", "mip (depth cue: D)", "minip", "average"};
 
@@ -429,7 +432,9 @@ void ViewerPanel::drawControls() {
                        registration == "none" ? "none (world coordinates)" : registration.c_str());
     if (state_.registration().running())
       ImGui::Text("registering (mutual information)... %.1f s", state_.registration().seconds());
-    else if (ImGui::Button("re-run registration (rigid MI)"))
+    else if (ImGui::Button(
+                 ("re-run registration (" + std::string(state_.registration().method()) + " MI)")
+                     .c_str()))
       state_.registration().start();
   }
   ImGui::Separator();

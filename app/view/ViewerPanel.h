@@ -1,7 +1,7 @@
 #pragma once
 // The viewer's Dear ImGui user interface: the control panel on the left, the four panes (or
 // the maximised one) with the linked crosshair, and the mouse and keys over them. Everything
-// it changes goes through ViewerState; it draws the panes' textures as the window loop
+// it changes goes through viewer::ViewerState; it draws the panes' textures as the window loop
 // uploaded them.
 #include <array>
 #include <functional>
@@ -9,8 +9,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "ViewerState.h"
 #include "mvw/render/DisplayTexture.h"
+#include "mvw/viewer/ViewerState.h"
 
 struct ImVec2;
 
@@ -18,9 +18,9 @@ namespace mvw::app {
 
 class ViewerPanel {
  public:
-  using PaneTextures = std::array<render::DisplayTexture, kPaneCount>;
+  using PaneTextures = std::array<render::DisplayTexture, viewer::kPaneCount>;
   // scale: the UI scale (mvw view --ui-scale); the panel's width grows with it.
-  ViewerPanel(ViewerState& state, const PaneTextures& textures, float scale = 1.0f)
+  ViewerPanel(viewer::ViewerState& state, const PaneTextures& textures, float scale = 1.0f)
       : state_(state), textures_(textures), scale_(scale) {}
 
   // Between ImGui::NewFrame and ImGui::Render; returns whether a pane is being dragged
@@ -34,7 +34,7 @@ class ViewerPanel {
   void drawControls();
   void drawMeasurements(int pane, ImVec2 pos, ImVec2 size);  // spheres and rulers on an MPR pane
 
-  ViewerState& state_;
+  viewer::ViewerState& state_;
   const PaneTextures& textures_;
   float scale_ = 1.0f;
   bool dragging_ = false;

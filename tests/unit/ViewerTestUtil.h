@@ -1,16 +1,16 @@
 #pragma once
-// Shared by the viewer's unit tests (one file per class of app/view): small volumes whose
+// Shared by the viewer's unit tests (one file per class of modules/viewer): small volumes whose
 // anisotropic grid shows a wrong axis or spacing, the scene the renderer would report for them,
 // and every pane rendered once, so clicks and the wheel have cameras to move along.
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "ViewerState.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Volume.h"
+#include "mvw/viewer/ViewerState.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 // Intentional odd, anisotropic grid: a wrong axis or spacing shows in the wheel and click maths.
 inline Volume makeVolume(const std::string& modality, double lo, double hi) {
@@ -51,4 +51,4 @@ class ViewerFixture : public ::testing::Test {
   Volume pet = makeVolume("PT", 0.0, 10.0);
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -2,7 +2,7 @@
 // choices make (PACS sources, saved and read back), the series choices, a server that cannot be
 // reached failing on the background thread with the server named, and the script's pacs-*
 // commands.
-#include "PacsBrowser.h"
+#include "mvw/viewer/PacsBrowser.h"
 
 #include <fstream>
 #include <iterator>
@@ -10,10 +10,10 @@
 #include <gtest/gtest.h>
 
 #include "TestUtil.h"
-#include "ViewerScript.h"
 #include "mvw/core/Error.h"
+#include "mvw/viewer/ViewerScript.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 using Role = PacsBrowser::Role;
@@ -279,4 +279,4 @@ TEST(PacsBrowser, ScriptNamesAServerNotInTheList) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer

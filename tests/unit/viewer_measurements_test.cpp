@@ -1,6 +1,6 @@
 // Sphere ROIs and rulers on the MPR panes: drawn by a gesture, their statistics those of
 // `mvw stats`, where they show on each pane, and saved and restored with the state.
-#include "ViewerMeasurements.h"
+#include "mvw/viewer/ViewerMeasurements.h"
 
 #include <fstream>
 
@@ -8,11 +8,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestUtil.h"
-#include "ViewerState.h"
 #include "ViewerTestUtil.h"
 #include "mvw/config/StudyConfig.h"
+#include "mvw/viewer/ViewerState.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 using ViewerMeasurementsTest = ViewerFixture;
@@ -153,4 +153,4 @@ TEST_F(ViewerMeasurementsTest, MeasurementsAndOutlinesAreSavedAndRestored) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -1,15 +1,15 @@
 // The rotating 3D view: the orbit's angles alone, and the keys and drags that start and stop it
 // on the state's 3D camera.
-#include "ViewerOrbit.h"
+#include "mvw/viewer/ViewerOrbit.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "ViewerState.h"
 #include "ViewerTestUtil.h"
+#include "mvw/viewer/ViewerState.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 using ViewerOrbitTest = ViewerFixture;
@@ -76,4 +76,4 @@ TEST_F(ViewerOrbitTest, SpinAndRockToggleAndTurnAboutTheLongAxis) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -1,23 +1,26 @@
 // The registration re-run in the background: its line for the panel, a finished run moving the
 // functional volume, a failed one saying why, and a running one that is waited for however the
 // viewer ends (a joinable thread destroyed would terminate the process).
-#include "ViewerRegistration.h"
+#include "mvw/viewer/ViewerRegistration.h"
 
 #include <atomic>
 #include <chrono>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "RegistrationTestUtil.h"
 #include "TestUtil.h"
-#include "ViewerScript.h"
-#include "ViewerState.h"
 #include "ViewerTestUtil.h"
+#include "mvw/viewer/ViewerScript.h"
+#include "mvw/viewer/ViewerState.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 using ViewerRegistrationTest = ViewerFixture;
@@ -94,6 +97,31 @@ TEST_F(ViewerRegistrationTest, FinishedRegistrationMovesTheFunctionalVolume) {
   EXPECT_TRUE(state.needsRender(k3d) && state.needsRender(kAxial));
 }
 
+// The re-run registers as the study asks (issue 48: it always ran rigid with the default
+// options): an affine study with a rotation search, re-run by the script's `register`, reports
+// an affine result that searched rotations.
+TEST(ViewerRegistration, ScriptReRunsAnAffineStudyAffine) {
+  config::StudyConfig study;
+  study.registration.method = config::RegistrationMethod::Affine;
+  study.registration.rotationSearchDeg = 30.0;
+  const Volume ct = resampling::blobs({0.0, 0.0, 0.0});
+  const Volume pet = resampling::blobs({4.0, -3.0, 2.0});
+  ViewerState state(study, ct, &pet, sceneOf(ct));
+  EXPECT_STREQ(state.registration().method(), "affine");
+  ViewerScript script =
+      ViewerScript::parse("register\nwait-registration\n", test::scratchDir() / "script");
+  // As the window loop does: a line a frame, and a run that ended applied before the next.
+  std::optional<glm::dmat4> placed;
+  while (script.step(state)) {
+    if (auto p = state.finishRegistration()) placed = p;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(placed) << state.requests().status();
+  const std::string& description = state.registration().description();
+  EXPECT_EQ(description.rfind("affine (re-run, ", 0), 0u) << description;
+  EXPECT_NE(description.find(" rotations searched), MI "), std::string::npos) << description;
+}
+
 TEST_F(ViewerRegistrationTest, FailedRegistrationSaysWhy) {
   ViewerState state(study, ct, &pet, sceneOf(ct));
   state.registration().setJob([](std::stop_token) -> resampling::RegistrationResult {
@@ -109,4 +137,4 @@ TEST_F(ViewerRegistrationTest, FailedRegistrationSaysWhy) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer

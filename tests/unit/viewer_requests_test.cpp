@@ -1,12 +1,12 @@
 // What the state and the script ask of the window loop: each request is taken once, and the
 // status line and the scripted drag's flag hold until they are set again.
-#include "ViewerRequests.h"
+#include "mvw/viewer/ViewerRequests.h"
 
 #include <gtest/gtest.h>
 
-#include "ViewerState.h"
+#include "mvw/viewer/ViewerState.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 TEST(ViewerRequests, ScreenshotRequestsAreTakenOnce) {
@@ -42,4 +42,4 @@ TEST(ViewerRequests, QuitStatusAndScriptedInteractionHold) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer

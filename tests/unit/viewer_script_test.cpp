@@ -1,6 +1,6 @@
 // The viewer's --script: every command the Xvfb test uses parses and acts on the state, and a
 // malformed script is bad input named by file and line before any window opens.
-#include "ViewerScript.h"
+#include "mvw/viewer/ViewerScript.h"
 
 #include <atomic>
 #include <chrono>
@@ -14,7 +14,7 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 using Kind = ViewerScript::Command::Kind;
@@ -260,9 +260,9 @@ TEST_F(ViewerScriptRun, WaitRegistrationHoldsUntilTheWorkerEnds) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 TEST(ViewerScript, ColormapAndOrbitCommands) {
@@ -368,4 +368,4 @@ TEST(ViewerScriptGlyphLabel, BadLabelsAndKindsNameTheLine) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer

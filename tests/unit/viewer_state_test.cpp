@@ -2,7 +2,7 @@
 // the MPR window and colour maps, the readout, and the saved state. Its parts have their own
 // tests: viewer_measurements_test, viewer_orbit_test, viewer_registration_test and
 // viewer_requests_test.
-#include "ViewerState.h"
+#include "mvw/viewer/ViewerState.h"
 
 #include <cmath>
 #include <fstream>
@@ -11,11 +11,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestUtil.h"
-#include "ViewerScript.h"
 #include "ViewerTestUtil.h"
 #include "mvw/config/StudyConfig.h"
+#include "mvw/viewer/ViewerScript.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 namespace {
 
 using render::RenderMode;
@@ -650,4 +650,4 @@ TEST_F(ViewerStateTest, ChosenGlyphLabelsReachTheRendererAndAreSaved) {
 }
 
 }  // namespace
-}  // namespace mvw::app
+}  // namespace mvw::viewer

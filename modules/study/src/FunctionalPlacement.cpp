@@ -10,6 +10,14 @@
 
 namespace mvw::study {
 
+resampling::RegistrationOptions registrationOptionsOf(
+    const config::RegistrationConfig& registration) {
+  resampling::RegistrationOptions options;
+  options.affine = registration.method == config::RegistrationMethod::Affine;
+  options.rotationSearchRangeDeg = registration.rotationSearchDeg;
+  return options;
+}
+
 FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volume& anatomical,
                                     const Volume& functional) {
   FunctionalPlacement out;
@@ -21,11 +29,8 @@ FunctionalPlacement placeFunctional(const config::StudyConfig& study, const Volu
     out.report["transform_file"] = r.transform.string();
   } else if (r.method == config::RegistrationMethod::Rigid ||
              r.method == config::RegistrationMethod::Affine) {
-    resampling::RegistrationOptions options;
-    options.affine = r.method == config::RegistrationMethod::Affine;
-    options.rotationSearchRangeDeg = r.rotationSearchDeg;
     const resampling::RegistrationResult result =
-        resampling::registerRigid(anatomical, functional, options);
+        resampling::registerRigid(anatomical, functional, registrationOptionsOf(r));
     out.anatomicalFromFunctional = result.transform.fixedFromMoving();
     out.report["converged"] = result.converged;
     out.report["iterations"] = result.iterations;

@@ -13,12 +13,12 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "PaneGeometry.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Volume.h"
 #include "mvw/study/RoiStatistics.h"
+#include "mvw/viewer/PaneGeometry.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 // What the mouse does on an MPR pane: move the crosshair (the default), draw a sphere ROI
 // (press: the centre on the plane; the drag's length: the radius in mm) or a ruler (press: one
@@ -105,4 +105,4 @@ class ViewerMeasurements {
   std::vector<SphereStatistics> sphereStats_;  // one per measurements_.spheres
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -1,8 +1,8 @@
-#include "ViewerOrbit.h"
+#include "mvw/viewer/ViewerOrbit.h"
 
 #include "mvw/config/StudyConfig.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 void ViewerOrbit::start(Orbit orbit, double azimuthDeg) {
   mode_ = orbit;
@@ -24,4 +24,4 @@ std::optional<double> ViewerOrbit::advance() {
   return azimuths_[step_];
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -22,7 +22,7 @@
 #include "mvw/pacs/Pacs.h"
 #include "mvw/study/Session.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 // One server of servers.json: its name in the panel, SERVER as `mvw pacs` takes it, and the AE
 // title mvw calls a DIMSE server with. Never credentials (MVW_PACS_USER / MVW_PACS_PASSWORD or
@@ -170,4 +170,4 @@ class PacsBrowser {
   std::jthread thread_;
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -1,19 +1,21 @@
-#include "ViewerRegistration.h"
+#include "mvw/viewer/ViewerRegistration.h"
 
+#include <string>
 #include <utility>
 
 #include <nlohmann/json.hpp>
 
 #include "mvw/resampling/RigidRegistration.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 ViewerRegistration::ViewerRegistration(const Volume& anatomical, const Volume* functional,
-                                       std::string description)
-    : functional_(functional), description_(std::move(description)) {
-  job_ = [&anatomical, functional](std::stop_token) {
+                                       std::string description,
+                                       resampling::RegistrationOptions options)
+    : functional_(functional), description_(std::move(description)), affine_(options.affine) {
+  job_ = [&anatomical, functional, options = std::move(options)](std::stop_token) {
     // registerRigid cannot be interrupted: a stop request waits for it to end.
-    return resampling::registerRigid(anatomical, *functional);
+    return resampling::registerRigid(anatomical, *functional, options);
   };
 }
 
@@ -34,11 +36,14 @@ std::optional<RegistrationWorker::Outcome> ViewerRegistration::finish() {
   std::optional<RegistrationWorker::Outcome> outcome = worker_.finish();
   if (!outcome || !outcome->result) return outcome;
   const resampling::RegistrationResult& r = *outcome->result;
-  description_ = "rigid (re-run), MI " +
+  const std::string search =
+      r.searchedRotations > 0 ? ", " + std::to_string(r.searchedRotations) + " rotations searched"
+                              : "";
+  description_ = std::string(r.affine ? "affine" : "rigid") + " (re-run" + search + "), MI " +
                  std::to_string(r.levels.empty() ? 0.0 : r.levels.back().metricEnd) +
                  (r.converged ? ", converged" : ", NOT converged") + ", " +
                  std::to_string(r.seconds).substr(0, 4) + " s";
   return outcome;
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -65,10 +65,10 @@
 #include <string>
 #include <vector>
 
-#include "PacsBrowser.h"
-#include "ViewerState.h"
+#include "mvw/viewer/PacsBrowser.h"
+#include "mvw/viewer/ViewerState.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 class ViewerScript {
  public:
@@ -124,7 +124,7 @@ class ViewerScript {
     std::filesystem::path file;
     ColorTarget target = ColorTarget::View3d;
     ColorMap colormap = ColorMap::Grey;
-    app::Orbit orbit = app::Orbit::Off;
+    viewer::Orbit orbit = viewer::Orbit::Off;
     config::ViewerLayout layout = config::ViewerLayout::Standard;
     int label = 0;  // glyph-label
     config::LabelGlyphKind labelKind = config::LabelGlyphKind::Bumps;
@@ -166,4 +166,4 @@ class ViewerScript {
   int dragFramesLeft_ = 0;
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 class ViewerRequests {
  public:
@@ -37,4 +37,4 @@ class ViewerRequests {
   std::string status_;
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -14,7 +14,7 @@
 
 #include "mvw/resampling/RigidRegistration.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 class RegistrationWorker {
  public:
@@ -48,4 +48,4 @@ class RegistrationWorker {
   std::jthread thread_;
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -19,11 +19,6 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "PaneGeometry.h"
-#include "ViewerMeasurements.h"
-#include "ViewerOrbit.h"
-#include "ViewerRegistration.h"
-#include "ViewerRequests.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/ColorMap.h"
 #include "mvw/core/Image.h"
@@ -31,8 +26,13 @@
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/VolumeRenderer.h"
+#include "mvw/viewer/PaneGeometry.h"
+#include "mvw/viewer/ViewerMeasurements.h"
+#include "mvw/viewer/ViewerOrbit.h"
+#include "mvw/viewer/ViewerRegistration.h"
+#include "mvw/viewer/ViewerRequests.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 enum class MouseButton { Left = 0, Right = 1, Middle = 2 };
 // Which image a colour map chooser sets: the 3D pane's projection, the MPR panes' anatomy, or
@@ -239,7 +239,8 @@ class ViewerState : public PaneGeometry {
   // with the state as the study's "measurements", restored on opening).
   ViewerMeasurements& measurements() { return measurements_; }
   const ViewerMeasurements& measurements() const { return measurements_; }
-  // The registration re-run in the background (rigid MI, as `mvw register`).
+  // The registration re-run in the background (MI with the study's registration options, as
+  // placing the study and `mvw register STUDY.json` run it).
   ViewerRegistration& registration() { return registration_; }
   const ViewerRegistration& registration() const { return registration_; }
   // The window calls this once per frame: once a re-run has ended, the new
@@ -294,4 +295,4 @@ class ViewerState : public PaneGeometry {
   ViewerRegistration registration_;
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -1,4 +1,4 @@
-#include "ViewerState.h"
+#include "mvw/viewer/ViewerState.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,11 +12,12 @@
 #include "mvw/io/Png.h"
 #include "mvw/render/TransferFunction.h"
 #include "mvw/study/Caption.h"
+#include "mvw/study/FunctionalPlacement.h"
 #include "mvw/study/ModalityDefaults.h"
 #include "mvw/study/Session.h"
 #include "mvw/study/ViewPlan.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 namespace {
 
@@ -85,7 +86,8 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
       // The measurements see the panes through this state's PaneGeometry (asked nothing of it
       // until the state is built).
       measurements_(*this, anatomical, functional, scene_.anatomicalFromFunctional),
-      registration_(anatomical, functional, scene_.registration) {
+      registration_(anatomical, functional, scene_.registration,
+                    mvw::study::registrationOptionsOf(study.registration)) {
   const mvw::study::ModalityDefaults defaults =
       mvw::study::modalityDefaults(anatomical_, scene_.valueRange);
   presetName_ = defaults.preset;
@@ -721,4 +723,4 @@ std::string ViewerState::readout(const glm::dvec3& world) const {
   return text;
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

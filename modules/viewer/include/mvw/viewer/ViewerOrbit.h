@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 enum class Orbit { Off, Spin, Rock };
 
@@ -31,4 +31,4 @@ class ViewerOrbit {
   std::size_t step_ = 0;
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

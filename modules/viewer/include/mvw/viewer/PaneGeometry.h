@@ -7,7 +7,7 @@
 
 #include "mvw/render/Camera.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 enum Pane { k3d = 0, kAxial, kCoronal, kSagittal, kPaneCount };
 
@@ -25,4 +25,4 @@ class PaneGeometry {
   virtual glm::dvec3 onPlane(int pane, double x, double y) const = 0;
 };
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

@@ -1,4 +1,4 @@
-#include "ViewerMeasurements.h"
+#include "mvw/viewer/ViewerMeasurements.h"
 
 #include <cmath>
 #include <utility>
@@ -8,7 +8,7 @@
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 namespace {
 
@@ -180,4 +180,4 @@ void ViewerMeasurements::writeSphereStatistics(const std::filesystem::path& file
   io::writeTextAtomically(file, out.dump(2) + "\n");
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

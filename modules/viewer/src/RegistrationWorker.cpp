@@ -1,9 +1,9 @@
-#include "RegistrationWorker.h"
+#include "mvw/viewer/RegistrationWorker.h"
 
 #include <exception>
 #include <utility>
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 bool RegistrationWorker::start(Job job) {
   if (running_) return false;
@@ -36,4 +36,4 @@ std::optional<RegistrationWorker::Outcome> RegistrationWorker::finish() {
   return std::exchange(outcome_, {});
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

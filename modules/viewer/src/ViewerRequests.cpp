@@ -1,6 +1,6 @@
-#include "ViewerRequests.h"
+#include "mvw/viewer/ViewerRequests.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 void ViewerRequests::requestScreenshot(std::filesystem::path file) {
   screenshot_ = std::move(file);
@@ -19,4 +19,4 @@ std::optional<std::pair<int, std::filesystem::path>> ViewerRequests::takePaneScr
   return std::exchange(paneScreenshot_, std::nullopt);
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

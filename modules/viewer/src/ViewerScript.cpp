@@ -1,4 +1,4 @@
-#include "ViewerScript.h"
+#include "mvw/viewer/ViewerScript.h"
 
 #include <cctype>
 #include <charconv>
@@ -11,7 +11,7 @@
 #include "mvw/core/Error.h"
 #include "mvw/core/GlyphDefaults.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 namespace {
 
@@ -552,4 +552,4 @@ void ViewerScript::runPacs(const Command& c, PacsBrowser* pacs) {
   }
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer

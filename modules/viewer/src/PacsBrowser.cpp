@@ -1,4 +1,4 @@
-#include "PacsBrowser.h"
+#include "mvw/viewer/PacsBrowser.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -12,7 +12,7 @@
 
 #include "mvw/core/Error.h"
 
-namespace mvw::app {
+namespace mvw::viewer {
 
 namespace {
 
@@ -472,4 +472,4 @@ std::unique_ptr<study::Session> PacsBrowser::wait() {
   return poll();
 }
 
-}  // namespace mvw::app
+}  // namespace mvw::viewer
