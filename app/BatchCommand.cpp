@@ -2,8 +2,6 @@
 
 #include "CommandBody.h"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,14 +9,14 @@
 
 #include <CLI/CLI.hpp>
 
-#include "mvw/core/Error.h"
+#include "mvw/batch/BatchManifest.h"
+#include "mvw/batch/BatchProcess.h"
+#include "mvw/batch/BatchReport.h"
+#include "mvw/batch/BatchRun.h"
+#include "mvw/batch/BatchShard.h"
+#include "mvw/batch/BatchSlurm.h"
 #include "mvw/core/ExitCode.h"
 #include "mvw/core/Version.h"
-#include "mvw/io/AtomicFile.h"
-#include "mvw/validate/BatchManifest.h"
-#include "mvw/validate/BatchReport.h"
-#include "mvw/validate/BatchRun.h"
-#include "mvw/validate/BatchSlurm.h"
 
 namespace mvw::app {
 
@@ -33,25 +31,17 @@ struct BatchOptions {
   bool submit = false;
 };
 
-// The children run this very binary.
-fs::path selfExecutable() {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) throw Error("cannot find mvw's own executable (/proc/self/exe): " + ec.message());
-  return self;
-}
-
 }  // namespace
 
 void addBatchCommand(CLI::App& app) {
   auto opt = std::make_shared<BatchOptions>();
-  CLI::App* batch = app.add_subcommand(
+  CLI::App* cohort = app.add_subcommand(
       "batch",
       "Cohorts: a manifest of studies run one by one (resumable), sharded for Slurm "
       "or Kubernetes, and its report");
-  batch->require_subcommand(1);
+  cohort->require_subcommand(1);
 
-  CLI::App* run = batch->add_subcommand(
+  CLI::App* run = cohort->add_subcommand(
       "run",
       "Run the studies of a manifest (or of one shard of it) into OUT/<id>/, skipping "
       "those already done");
@@ -67,34 +57,34 @@ void addBatchCommand(CLI::App& app) {
   run->add_option("--timeout", opt->timeoutS, "Seconds a study may take before it is killed")
       ->check(CLI::Range(1.0, 7 * 24 * 3600.0));
   setCommandBody(*run, [opt] {
-    const validate::BatchShard shard = validate::resolveBatchShard(opt->shard, opt->shards);
-    const validate::BatchManifest manifest = validate::loadBatchManifest(opt->manifest);
-    validate::BatchRunOptions o;
+    const batch::BatchShard shard = batch::resolveBatchShard(opt->shard, opt->shards);
+    const batch::BatchManifest manifest = batch::loadBatchManifest(opt->manifest);
+    batch::BatchRunOptions o;
     o.out = opt->out;
     o.shard = shard;
     o.jobs = opt->jobs;
     o.timeoutS = opt->timeoutS;
-    o.mvwExecutable = selfExecutable();
+    o.mvwExecutable = batch::selfExecutable();
     o.version = kVersion;
-    const validate::BatchRunCounts counts = validate::runBatch(manifest, o, std::cout);
+    const batch::BatchRunCounts counts = batch::runBatch(manifest, o, std::cout);
     // A failed study is neither bad input to this command nor an internal fault: exit 1, the
     // studies said why (mvw batch report lists them).
     return counts.failed ? kExitFailure : kExitSuccess;
   });
 
-  CLI::App* report = batch->add_subcommand(
+  CLI::App* report = cohort->add_subcommand(
       "report",
       "Merge OUT's results into OUT/summary.csv, OUT/stats.csv and OUT/index.html; "
       "exit 0 only when every study is done");
   report->add_option("output", opt->out, "Output folder of mvw batch run")->required();
   setCommandBody(*report, [opt] {
-    const validate::BatchReportCounts c = validate::writeBatchReport(opt->out);
+    const batch::BatchReportCounts c = batch::writeBatchReport(opt->out);
     std::cout << "batch report: " << c.done << " done, " << c.failed << " failed, " << c.notRun
               << " not run; " << (fs::path(opt->out) / "index.html").string() << "\n";
     return c.failed || c.notRun ? kExitFailure : kExitSuccess;
   });
 
-  CLI::App* slurm = batch->add_subcommand(
+  CLI::App* slurm = cohort->add_subcommand(
       "slurm",
       "Write OUT/batch.sbatch, a Slurm array job of N tasks each running one shard; "
       "--submit submits it");
@@ -113,28 +103,23 @@ void addBatchCommand(CLI::App& app) {
   slurm->add_flag("--submit", opt->submit, "Submit with sbatch and print the job id");
   slurm->callback([opt] {
     // The manifest is checked now, not by N failing tasks later.
-    validate::loadBatchManifest(opt->manifest);
-    validate::SlurmJobOptions o;
+    batch::loadBatchManifest(opt->manifest);
+    batch::SlurmJobOptions o;
     o.manifest = opt->manifest;
     o.out = opt->out;
-    o.mvwExecutable = selfExecutable();
+    o.mvwExecutable = batch::selfExecutable();
     o.tasks = opt->tasks;
     o.jobs = opt->jobs;
     o.throttle = opt->throttle;
     o.partition = opt->partition;
     o.time = opt->time;
     o.mem = opt->mem;
-    std::error_code ec;
-    fs::create_directories(fs::path(opt->out) / "logs", ec);
-    if (ec) throw InputError(opt->out, "cannot be made as the output folder: " + ec.message());
-    const fs::path script = fs::path(opt->out) / "batch.sbatch";
-    io::writeTextAtomically(script, validate::slurmScript(o));
-    fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+    const fs::path script = batch::writeSlurmScript(o);
     if (!opt->submit) {
       std::cout << script.string() << "\n";
       return;
     }
-    const std::string id = validate::submitSlurmScript(script);
+    const std::string id = batch::submitSlurmScript(script);
     std::cout << "Submitted array job " << id << " (" << opt->tasks
               << " tasks): " << script.string() << "\n";
   });

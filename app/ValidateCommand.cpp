@@ -12,7 +12,7 @@
 
 #include "mvw/core/ExitCode.h"
 #include "mvw/output/HeadlessGl.h"
-#include "mvw/validate/ProcessPool.h"
+#include "mvw/process/ProcessPool.h"
 #include "mvw/validate/Validator.h"
 
 namespace mvw::app {
@@ -49,7 +49,7 @@ void addValidateCommand(CLI::App& app) {
     // probe context is made in a child process: the renders are forked from this one, which
     // makes no GL context (a driver's threads and state do not survive a fork).
     if (!o->gl.empty() || output::resolveGl("").request != render::GlRequest::Auto) {
-      const int status = validate::runInChild([gl = o->gl] { output::makeHeadlessContext(gl); });
+      const int status = process::runInChild([gl = o->gl] { output::makeHeadlessContext(gl); });
       if (status != 0) return status;  // the child said why on stderr
     }
     o->options.gl = o->gl;

@@ -24,7 +24,6 @@
 #include "mvw/core/ExitCode.h"
 #include "mvw/core/Version.h"
 #include "mvw/pacs/Pacs.h"
-#include "mvw/validate/BatchSlurm.h"
 #include "view/ViewCommand.h"
 
 int main(int argc, char** argv) {

@@ -1,7 +1,8 @@
-// The process pool (validate ProcessPool) that runs `mvw validate`'s renderings in parallel, each
-// a call of its function in a forked child: exit codes and signals reported, exceptions ended as
-// mvw's main ends them, a job past the time limit killed, the launcher a copy of the caller as it
-// was when the pool was made, and running jobs killed when the caller's callback throws.
+// The process pool (process ProcessPool) that runs `mvw validate`'s renderings and `mvw batch`'s
+// studies in parallel, each a call of its function in a forked child: exit codes and signals
+// reported, exceptions ended as mvw's main ends them, a job past the time limit killed, the
+// launcher a copy of the caller as it was when the pool was made, and running jobs killed when
+// the caller's callback throws.
 #include <unistd.h>
 
 #include <chrono>
@@ -20,9 +21,9 @@
 
 #include "TestUtil.h"
 #include "mvw/core/Error.h"
-#include "mvw/validate/ProcessPool.h"
+#include "mvw/process/ProcessPool.h"
 
-namespace mvw::validate {
+namespace mvw::process {
 namespace {
 
 namespace fs = std::filesystem;
@@ -150,4 +151,4 @@ TEST(ProcessPool, RunInChildGivesTheExitCodeAndTheMessage) {
 }
 
 }  // namespace
-}  // namespace mvw::validate
+}  // namespace mvw::process

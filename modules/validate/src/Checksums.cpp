@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "Sha256.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
+#include "mvw/process/Sha256.h"
 
 namespace mvw::validate {
 
@@ -14,13 +14,13 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string pixelSha256(const cv::Mat& image) {
-  detail::Sha256 ctx = detail::newSha256();
+  process::Sha256 sha;
   const std::size_t rowBytes = image.cols * image.elemSize();
-  for (int y = 0; y < image.rows; ++y) EVP_DigestUpdate(ctx.get(), image.ptr(y), rowBytes);
+  for (int y = 0; y < image.rows; ++y) sha.add(image.ptr(y), rowBytes);
   const std::string shape = std::to_string(image.cols) + "x" + std::to_string(image.rows) + "x" +
                             std::to_string(image.channels());
-  EVP_DigestUpdate(ctx.get(), shape.data(), shape.size());
-  return detail::hexDigest(ctx);
+  sha.add(shape.data(), shape.size());
+  return sha.hex();
 }
 
 std::string ChecksumManifest::keyOf(const fs::path& reference) const {

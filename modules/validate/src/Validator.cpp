@@ -23,11 +23,11 @@
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/Png.h"
 #include "mvw/output/StudyRender.h"
+#include "mvw/process/ProcessPool.h"
 #include "mvw/study/StudyLoader.h"
 #include "mvw/validate/Checksums.h"
 #include "mvw/validate/ImageMetrics.h"
 #include "mvw/validate/MipCheck.h"
-#include "mvw/validate/ProcessPool.h"
 #include "mvw/validate/Report.h"
 #include "mvw/validate/Suite.h"
 
@@ -108,6 +108,10 @@ cv::Mat readImage(const fs::path& file, std::string* why = nullptr) {
 
 using detail::fmt;
 using nlohmann::json;
+using process::kTimedOut;
+using process::ProcessJob;
+using process::ProcessPool;
+using process::ProcessResult;
 
 // One image a render job makes: a case's render (check < 0) or one of its analytic checks.
 struct Render {

@@ -16,8 +16,8 @@ struct ValidateOptions {
   double timeoutS = 600.0;  // per render process
   // --gl for every render (empty: MVW_GL, else auto). Each render process runs `mvw render
   // STUDY -o OUT --gl GL`'s code (output::renderStudy) in a child forked for it (see
-  // ProcessPool.h): its output goes to the process's render.log, an exception fails the cases
-  // it was to render (exit 2 for InputError, 1 otherwise, its message in the report), and a
+  // mvw/process/ProcessPool.h): its output goes to the process's render.log, an exception fails the
+  // cases it was to render (exit 2 for InputError, 1 otherwise, its message in the report), and a
   // crash or a hang past timeoutS fails them too, not the run.
   std::string gl;
 };

@@ -7,7 +7,7 @@
 
 #include "mvw/core/Error.h"
 
-namespace mvw::validate {
+namespace mvw::batch {
 
 struct SlurmJobOptions {
   std::filesystem::path manifest, out, mvwExecutable;
@@ -22,6 +22,10 @@ struct SlurmJobOptions {
 // The sbatch script's text.
 std::string slurmScript(const SlurmJobOptions& options);
 
+// Makes OUT/logs, writes OUT/batch.sbatch (slurmScript) atomically and makes it executable;
+// returns its path. Throws InputError naming OUT when it cannot be made.
+std::filesystem::path writeSlurmScript(const SlurmJobOptions& options);
+
 // The scheduler could not be reached or refused the job: exit 3, naming the server.
 class SchedulerError : public ServiceError {
  public:
@@ -32,4 +36,4 @@ class SchedulerError : public ServiceError {
 // installed, SchedulerError (naming the controller from slurm.conf) when it fails.
 std::string submitSlurmScript(const std::filesystem::path& script);
 
-}  // namespace mvw::validate
+}  // namespace mvw::batch

@@ -1,4 +1,4 @@
-#include "mvw/validate/BatchReport.h"
+#include "mvw/batch/BatchReport.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -9,9 +9,10 @@
 
 #include "JsonFile.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/io/AtomicFile.h"
 
-namespace mvw::validate {
+namespace mvw::batch {
 
 namespace fs = std::filesystem;
 
@@ -50,9 +51,7 @@ std::string html(const std::string& s) {
 
 std::string num(const nlohmann::json& v) {
   if (!v.is_number()) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v.get<double>());
-  return buf;
+  return shortNumber(v.get<double>());
 }
 
 std::string oneDecimal(const nlohmann::json& v) {
@@ -74,7 +73,7 @@ void writeBatchIndex(const fs::path& out, const fs::path& manifest,
   io::writeTextAtomically(out / "batch.json", j.dump(1) + "\n");
 }
 
-BatchReportCounts writeBatchReport(const fs::path& out) {
+BatchReportFiles buildBatchReport(const fs::path& out) {
   const nlohmann::json index = detail::readJsonOrNull(out / "batch.json");
   if (!index.is_object() || !index.contains("ids") || !index["ids"].is_array())
     throw InputError(out, "holds no batch.json: it is not the output folder of `mvw batch run`");
@@ -197,10 +196,15 @@ BatchReportCounts writeBatchReport(const fs::path& out) {
     << "<a href=\"stats.csv\">stats.csv</a></p>\n";
   if (counts.failed) h << "<h2>Failures</h2><ul>\n" << failures.str() << "</ul>\n";
   h << body.str() << "</body></html>\n";
-  io::writeTextAtomically(out / "summary.csv", summary.str());
-  io::writeTextAtomically(out / "stats.csv", stats.str());
-  io::writeTextAtomically(out / "index.html", h.str());
-  return counts;
+  return {counts, summary.str(), stats.str(), h.str()};
 }
 
-}  // namespace mvw::validate
+BatchReportCounts writeBatchReport(const fs::path& out) {
+  const BatchReportFiles files = buildBatchReport(out);
+  io::writeTextAtomically(out / "summary.csv", files.summaryCsv);
+  io::writeTextAtomically(out / "stats.csv", files.statsCsv);
+  io::writeTextAtomically(out / "index.html", files.indexHtml);
+  return files.counts;
+}
+
+}  // namespace mvw::batch

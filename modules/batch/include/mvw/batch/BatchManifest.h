@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace mvw::validate {
+namespace mvw::batch {
 
 struct BatchStudy {
   std::string id;                                            // also its output folder's name
@@ -35,17 +35,4 @@ BatchManifest loadBatchManifest(const std::filesystem::path& file);
 // The tasks a manifest may name.
 const std::vector<std::string>& batchTasks();
 
-// Which part of the manifest one process runs: the studies whose index modulo count is index
-// (dealt in manifest order, so each shard gets every count-th study).
-struct BatchShard {
-  int index = 0;
-  int count = 1;
-};
-
-// The shard from `--shard I/N` when given, else from `--shards N` with Kubernetes'
-// JOB_COMPLETION_INDEX, else from SLURM_ARRAY_TASK_ID (minus SLURM_ARRAY_TASK_MIN when set) and
-// SLURM_ARRAY_TASK_COUNT, else the whole manifest. Throws InputError naming the option or the
-// variable when a value is not a whole number, or I is not in 0..N-1.
-BatchShard resolveBatchShard(const std::string& shardOption, int shardsOption);
-
-}  // namespace mvw::validate
+}  // namespace mvw::batch

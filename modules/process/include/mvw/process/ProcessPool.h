@@ -1,9 +1,10 @@
 #pragma once
 // Jobs run in child processes, N at a time, each with its stdout and stderr in a log file,
 // stdin from /dev/null and a wall-clock limit: a crash or hang in one job is that job's
-// failure, not the caller's. The validator renders every case so.
+// failure, not the caller's. The validator renders every case so, and `mvw batch` runs every
+// study so (its function execs mvw).
 //
-// A job is a call of the pool's function in a forked child, not a program: the library never
+// A job is a call of the pool's function in a forked child, not a program: the pool never
 // starts an executable of its own. The children are forked by a launcher process that the
 // pool forks when it is made, so each starts as a copy of the caller as it was then, with one
 // thread: a thread pool or lock that the caller starts afterwards (OpenCV's and VTK's TBB
@@ -17,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace mvw::validate {
+namespace mvw::process {
 
 // What a job runs, in its child: its arguments in, its exit code out. An exception that
 // leaves it ends the child as mvw's main does (mvw::exitCodeOf, mvw/core/ExitCode.h): its
@@ -65,4 +66,4 @@ class ProcessPool {
 // this process (`mvw validate` makes its probe GL context so, as the renders are forked from it).
 int runInChild(const std::function<void()>& body);
 
-}  // namespace mvw::validate
+}  // namespace mvw::process

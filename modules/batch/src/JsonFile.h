@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace mvw::validate::detail {
+namespace mvw::batch::detail {
 
 inline nlohmann::json readJsonOrNull(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -20,4 +20,4 @@ inline nlohmann::json readJsonOrNull(const std::filesystem::path& file) {
   }
 }
 
-}  // namespace mvw::validate::detail
+}  // namespace mvw::batch::detail

@@ -1,4 +1,4 @@
-#include "mvw/validate/BatchSlurm.h"
+#include "mvw/batch/BatchSlurm.h"
 
 #include <sys/wait.h>
 
@@ -8,7 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-namespace mvw::validate {
+#include "mvw/io/AtomicFile.h"
+
+namespace mvw::batch {
 
 namespace fs = std::filesystem;
 
@@ -65,6 +67,16 @@ std::string slurmScript(const SlurmJobOptions& o) {
   return s.str();
 }
 
+fs::path writeSlurmScript(const SlurmJobOptions& o) {
+  std::error_code ec;
+  fs::create_directories(o.out / "logs", ec);
+  if (ec) throw InputError(o.out, "cannot be made as the output folder: " + ec.message());
+  const fs::path script = o.out / "batch.sbatch";
+  io::writeTextAtomically(script, slurmScript(o));
+  fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+  return script;
+}
+
 std::string submitSlurmScript(const fs::path& script) {
   const std::string command = "sbatch --parsable " + quote(script.string()) + " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
@@ -93,4 +105,4 @@ std::string submitSlurmScript(const fs::path& script) {
   return id;
 }
 
-}  // namespace mvw::validate
+}  // namespace mvw::batch

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace mvw::validate {
+namespace mvw::batch {
 
 // What `mvw batch run` leaves in OUT/batch.json: the manifest and its ids, in order.
 void writeBatchIndex(const std::filesystem::path& out, const std::filesystem::path& manifest,
@@ -17,7 +17,16 @@ struct BatchReportCounts {
   int done = 0, failed = 0, notRun = 0;
 };
 
-// Throws InputError naming OUT when it holds no batch.json (no `mvw batch run` wrote there).
+// The report's three files as text, from OUT's batch.json and each study's done.json or
+// failed.json (and its render.json, stats.json): nothing is written. Throws InputError naming
+// OUT when it holds no batch.json (no `mvw batch run` wrote there).
+struct BatchReportFiles {
+  BatchReportCounts counts;
+  std::string summaryCsv, statsCsv, indexHtml;
+};
+BatchReportFiles buildBatchReport(const std::filesystem::path& out);
+
+// buildBatchReport, then OUT/summary.csv, OUT/stats.csv and OUT/index.html written atomically.
 BatchReportCounts writeBatchReport(const std::filesystem::path& out);
 
-}  // namespace mvw::validate
+}  // namespace mvw::batch

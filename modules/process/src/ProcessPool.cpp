@@ -1,4 +1,4 @@
-#include "mvw/validate/ProcessPool.h"
+#include "mvw/process/ProcessPool.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -20,7 +20,7 @@
 #include "mvw/core/Error.h"
 #include "mvw/core/ExitCode.h"
 
-namespace mvw::validate {
+namespace mvw::process {
 
 namespace {
 
@@ -358,4 +358,4 @@ int runInChild(const std::function<void()>& body) {
   return statusOf(status);
 }
 
-}  // namespace mvw::validate
+}  // namespace mvw::process

@@ -1,0 +1,24 @@
+#pragma once
+// A batch study's folders in OUT: it works in OUT/.work-<id>-<pid>/ and is published as
+// OUT/<id>/ when its command has ended, the last result stepping aside as OUT/.old-<id>-<pid>/
+// for the moment of the rename. A killed run leaves only such dot folders, which the next run of
+// that study deletes before it starts.
+#include <filesystem>
+#include <string>
+
+namespace mvw::batch {
+
+// OUT/.work-<id>-<pid> for this process.
+std::filesystem::path workFolder(const std::filesystem::path& out, const std::string& id);
+
+// Deletes what a killed run of this study left: OUT/.work-<id>-* and OUT/.old-<id>-* (the part
+// after the id holding no '-', so study "a" never takes study "a-b"'s folders). Shards are
+// disjoint, so no other live task works on this id.
+void removeLeftovers(const std::filesystem::path& out, const std::string& id);
+
+// Moves the finished work folder into OUT/<id>. The old result steps aside first, so no moment
+// has a done.json in OUT/<id> that is not this run's or the last complete run's.
+void publish(const std::filesystem::path& work, const std::filesystem::path& out,
+             const std::string& id);
+
+}  // namespace mvw::batch

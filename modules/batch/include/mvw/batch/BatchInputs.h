@@ -1,0 +1,17 @@
+#pragma once
+// What a batch study's run depends on, as checksums: done.json records them, and a later run
+// skips the study only while they are unchanged (BatchResume).
+#include <map>
+#include <string>
+
+#include "mvw/batch/BatchManifest.h"
+
+namespace mvw::batch {
+
+// SHA-256 of the study config and of every local file it and the options name (a folder: every
+// file in it, in name order: process::pathSha256), keyed by absolute path. Throws InputError
+// naming a file that cannot be read ("an input of a batch study") or a study config that is
+// not valid.
+std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study);
+
+}  // namespace mvw::batch

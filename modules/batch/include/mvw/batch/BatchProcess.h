@@ -1,0 +1,37 @@
+#pragma once
+// The run of one batch study as a child mvw process (`mvw render|stats|register`): its command
+// line, the job function the process pool runs (exec of the mvw executable, stdout to a file
+// for stats), and the message a failed run leaves for the report. A crash or hang is that
+// study's failure, not the run's.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mvw/batch/BatchManifest.h"
+#include "mvw/process/ProcessPool.h"
+
+namespace mvw::batch {
+
+// The command line (after the executable) that runs `study` with its outputs in `folder`.
+// Throws InputError when a register study's config has no functional volume.
+std::vector<std::string> batchCommand(const BatchStudy& study, const std::filesystem::path& folder);
+
+// The pool job of a study: args[0] is where its stdout goes ("" = the job's log, for render and
+// register; stats.json in its work folder for stats), the rest is `command`.
+process::ProcessJob batchJob(const BatchStudy& study, const std::filesystem::path& work,
+                             const std::vector<std::string>& command);
+
+// What the pool's children run for batchJob's arguments: `exe` exec'd with them (exit 127 and a
+// message when it cannot be started).
+process::JobFunction mvwJobFunction(const std::filesystem::path& exe);
+
+// The message of a failed run for failed.json and the report: the last line the command said
+// ("mvw: error: ..." when there is one), after why it was killed when it was.
+std::string batchFailureMessage(const process::ProcessResult& result,
+                                const std::filesystem::path& log, double timeoutS);
+
+// This very binary (/proc/self/exe), which the children and the Slurm tasks run. Throws
+// mvw::Error when it cannot be found.
+std::filesystem::path selfExecutable();
+
+}  // namespace mvw::batch

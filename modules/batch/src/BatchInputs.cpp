@@ -1,0 +1,44 @@
+#include "mvw/batch/BatchInputs.h"
+
+#include <filesystem>
+#include <vector>
+
+#include "mvw/config/StudyConfig.h"
+#include "mvw/process/Sha256.h"
+
+namespace mvw::batch {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* const kRole = "an input of a batch study";
+
+}  // namespace
+
+std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study) {
+  std::map<std::string, std::string> sums;
+  sums[study.study.string()] = process::fileSha256(study.study, kRole);
+  std::vector<fs::path> paths;
+  if (study.study.extension() == ".json") {
+    const config::StudyConfig config = config::loadStudyConfig(study.study);
+    paths.push_back(config.anatomical.path);
+    if (config.functional) paths.push_back(config.functional->path);
+    if (config.segmentation) paths.push_back(config.segmentation->path);
+    if (!config.registration.transform.empty()) paths.push_back(config.registration.transform);
+  }
+  // An option naming a file (a label table, a transform) is an input too.
+  for (const auto& [name, value] : study.options) {
+    if (value.empty() || value.find(' ') != std::string::npos) continue;
+    fs::path p = value;
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec) || fs::is_directory(p, ec)) paths.push_back(fs::absolute(p));
+  }
+  for (const auto& p : paths) {
+    const fs::path abs = fs::absolute(p).lexically_normal();
+    if (!sums.count(abs.string())) sums[abs.string()] = process::pathSha256(abs, kRole);
+  }
+  return sums;
+}
+
+}  // namespace mvw::batch

@@ -1,0 +1,112 @@
+#include "mvw/batch/BatchRun.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+#include <vector>
+
+#include "mvw/batch/BatchFolders.h"
+#include "mvw/batch/BatchInputs.h"
+#include "mvw/batch/BatchProcess.h"
+#include "mvw/batch/BatchRecord.h"
+#include "mvw/batch/BatchReport.h"
+#include "mvw/batch/BatchResume.h"
+#include "mvw/core/Error.h"
+#include "mvw/core/ExitCode.h"
+#include "mvw/process/ProcessPool.h"
+
+namespace mvw::batch {
+
+namespace fs = std::filesystem;
+
+BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& options,
+                        std::ostream& progress) {
+  const fs::path out = fs::absolute(options.out).lexically_normal();
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out))
+    throw InputError(options.out, "cannot be made as the output folder: " + ec.message());
+  if (::access(out.c_str(), W_OK) != 0) throw InputError(options.out, "is not writable");
+  std::vector<std::string> ids;
+  for (const auto& s : manifest.studies) ids.push_back(s.id);
+  writeBatchIndex(out, manifest.file, ids);
+
+  // The pool forks its launcher now, before anything starts threads.
+  process::ProcessPool pool(mvwJobFunction(options.mvwExecutable));
+
+  BatchRunCounts counts;
+  const RecordContext context{manifest.file, options.version};
+  std::vector<StudyRun> pending;
+  std::vector<process::ProcessJob> jobs;
+  const std::vector<const BatchStudy*> mine = shardStudies(manifest, options.shard);
+  counts.total = static_cast<int>(mine.size());
+
+  auto line = [&](const std::string& id, const std::string& what) {
+    const int left = counts.total - counts.done - counts.skipped - counts.failed;
+    progress << "[" << (counts.done + counts.skipped) << " done, " << counts.failed << " failed, "
+             << left << " left] " << id << ": " << what << std::endl;
+  };
+  auto recordFailure = [&](const StudyRun& run, int status, const std::string& message,
+                           double seconds) {
+    writeRecord(run.work / "failed.json", failedRecord(run, context, status, message, seconds));
+    publish(run.work, out, run.study->id);
+    ++counts.failed;
+    line(run.study->id, "failed (exit " + std::to_string(status) + "): " + message);
+  };
+
+  for (const BatchStudy* study : mine) {
+    removeLeftovers(out, study->id);
+    StudyRun run{study, workFolder(out, study->id), {}, {}};
+    fs::create_directories(run.work);
+    // A study whose inputs cannot be read fails as its process would: the same code and message.
+    std::ostringstream problem;
+    const int status = runReportingErrors(
+        [&] {
+          run.inputs = batchInputChecksums(*study);
+          run.command = batchCommand(*study, run.work);
+          return kExitSuccess;
+        },
+        problem);
+    if (status != kExitSuccess) {
+      std::string message = problem.str();
+      if (!message.empty() && message.back() == '\n') message.pop_back();
+      recordFailure(run, status, message, 0.0);
+      continue;
+    }
+    if (decideStudy(out / study->id, *study, run.inputs) == StudyAction::kSkip) {
+      fs::remove_all(run.work);
+      ++counts.skipped;
+      line(study->id, "done before, skipped");
+      continue;
+    }
+    jobs.push_back(batchJob(*study, run.work, run.command));
+    pending.push_back(std::move(run));
+  }
+
+  pool.run(jobs, std::max(1, options.jobs), options.timeoutS,
+           [&](std::size_t k, const process::ProcessResult& result) {
+             const StudyRun& run = pending[k];
+             if (result.status != 0) {
+               recordFailure(run, result.status,
+                             batchFailureMessage(result, run.work / "log.txt", options.timeoutS),
+                             result.seconds);
+               return;
+             }
+             // done.json is the last file written: it exists only beside complete outputs.
+             writeRecord(run.work / "done.json", doneRecord(run, context, result.seconds));
+             publish(run.work, out, run.study->id);
+             ++counts.done;
+             char secs[32];
+             std::snprintf(secs, sizeof secs, "%.1f", result.seconds);
+             line(run.study->id, std::string("done (") + secs + " s)");
+           });
+  progress << "batch: " << counts.done << " done now, " << counts.skipped << " done before, "
+           << counts.failed << " failed, of " << counts.total << " in shard " << options.shard.index
+           << "/" << options.shard.count << std::endl;
+  return counts;
+}
+
+}  // namespace mvw::batch
