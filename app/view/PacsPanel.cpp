@@ -86,9 +86,7 @@ void PacsPanel::drawSearch() {
   keyField("patient name", "##patient-name", q.patientName, "Doe* (wildcards * ?)", true);
   // The study date as a range, from and to (either may stay empty: from onwards, up to), kept
   // as the query's DICOM range "FROM-TO" (a script's study-date= shows here the same way).
-  const auto dash = q.studyDate.find('-');
-  std::string from = q.studyDate.substr(0, dash);
-  std::string to = dash == std::string::npos ? std::string() : q.studyDate.substr(dash + 1);
+  auto [from, to] = browser_.studyDateRange();
   ImGui::AlignTextToFramePadding();
   ImGui::TextUnformatted("study date");
   ImGui::SameLine(label + ImGui::GetStyle().WindowPadding.x);
@@ -99,7 +97,7 @@ void PacsPanel::drawSearch() {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(input * 0.5f - 12.0f * scale_);
   dateChanged |= inputString("##date-to", to, "YYYYMMDD");
-  if (dateChanged) q.studyDate = to.empty() && from.empty() ? "" : from + "-" + to;
+  if (dateChanged) browser_.setStudyDateRange(from, to);
   keyField("modality", "##modality", q.modality, "CT, PT, MR", true);
   ImGui::SameLine(0.0f, 24.0f * scale_);
   ImGui::BeginDisabled(browser_.busy());
@@ -121,23 +119,18 @@ void PacsPanel::drawStudies() {
     ImGui::TableSetupColumn(c);
   ImGui::TableHeadersRow();
   for (int i = 0; i < static_cast<int>(studies.size()); ++i) {
-    const pacs::Match& s = studies[std::size_t(i)];
+    const std::vector<std::string> row = PacsBrowser::studyRow(studies[std::size_t(i)]);
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    std::string name = pacs::matchValue(s, "PatientName");
-    std::replace(name.begin(), name.end(), '^', ' ');
-    const std::string label = (name.empty() ? "(no name)" : name) + "##study" + std::to_string(i);
+    const std::string label = row[0] + "##study" + std::to_string(i);
     ImGui::BeginDisabled(browser_.busy());
     if (ImGui::Selectable(label.c_str(), i == browser_.study(),
                           ImGuiSelectableFlags_SpanAllColumns))
       browser_.chooseStudy(i);
     ImGui::EndDisabled();
-    for (const char* key : {"PatientID", "StudyDate", "ModalitiesInStudy", "StudyDescription",
-                            "NumberOfStudyRelatedSeries"}) {
+    for (std::size_t column = 1; column < row.size(); ++column) {
       ImGui::TableNextColumn();
-      const std::string value = pacs::matchValue(s, key);
-      ImGui::TextUnformatted(
-          (std::strcmp(key, "StudyDate") == 0 ? PacsBrowser::dicomDate(value) : value).c_str());
+      ImGui::TextUnformatted(row[column].c_str());
     }
   }
   ImGui::EndTable();
@@ -174,16 +167,13 @@ void PacsPanel::drawSeries() {
       if (ImGui::Checkbox("##role", &on)) browser_.setSeries(role, on ? uid : std::string());
       ImGui::PopID();
     }
-    const bool used = browser_.chosen(Role::Anatomical) == uid ||
-                      browser_.chosen(Role::Functional) == uid ||
-                      browser_.chosen(Role::Segmentation) == uid;
-    for (const char* key :
-         {"SeriesNumber", "Modality", "SeriesDescription", "NumberOfSeriesRelatedInstances"}) {
+    const bool used = browser_.isChosen(uid);
+    for (const std::string& value : PacsBrowser::seriesRow(s)) {
       ImGui::TableNextColumn();
       if (used)
-        ImGui::TextColored(kChosen, "%s", pacs::matchValue(s, key).c_str());
+        ImGui::TextColored(kChosen, "%s", value.c_str());
       else
-        ImGui::TextUnformatted(pacs::matchValue(s, key).c_str());
+        ImGui::TextUnformatted(value.c_str());
     }
     ImGui::PopID();
   }

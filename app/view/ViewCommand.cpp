@@ -1,6 +1,7 @@
 #include "ViewCommand.h"
 
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <system_error>
@@ -10,6 +11,7 @@
 #include "Viewer.h"
 #include "mvw/core/Error.h"
 #include "mvw/study/Session.h"
+#include "mvw/viewer/ViewerScript.h"
 
 namespace mvw::app {
 
@@ -19,9 +21,14 @@ struct ViewOptions {
   std::string study, anatomical, functional, script, frameLog, servers;
   int width = 1400, height = 900;
   double uiScale = 1.0;
+  bool scriptReference = false;
 };
 
 void runView(const ViewOptions& o) {
+  if (o.scriptReference) {
+    std::cout << viewer::ViewerScript::reference() << std::flush;
+    return;
+  }
   ViewerOptions v;
   // The PACS servers: --servers FILE must be right (bad input otherwise); a bad default file
   // is said in the PACS window and the viewer opens all the same.
@@ -90,7 +97,10 @@ void addViewCommand(CLI::App& app) {
                   "Anatomical volume (DICOM folder or file, NIfTI, MetaImage)");
   cmd->add_option("--functional", o->functional, "Functional volume");
   cmd->add_option("--script", o->script,
-                  "Scripted events, one per line (tests; see mvw/viewer/ViewerScript.h)");
+                  "Scripted events, one per line (tests; --script-reference lists the commands)");
+  cmd->add_flag("--script-reference", o->scriptReference,
+                "Print the --script commands as Markdown, as docs/user-guide/view.md has them, "
+                "and exit");
   cmd->add_option("--servers", o->servers,
                   "PACS servers for the PACS window, JSON (default "
                   "$XDG_CONFIG_HOME/mvw/servers.json; docs/user-guide/pacs.md)");

@@ -264,9 +264,6 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
 }
 
 void ViewerPanel::drawControls() {
-  render::RenderSettings& v = state_.view3d();
-  const Volume& anatomical = state_.anatomical();
-  const Volume* functional = state_.functional();
   // The study's name wraps (a long one was cut at the panel's edge), and every control leaves
   // room on its right for the longest label, at any font scale (issue 36 item 8: "overlay
   // colou", "step mm (0 au" at the default width).
@@ -279,6 +276,18 @@ void ViewerPanel::drawControls() {
         "overlay opacity", "smallest bump", "glyph method", "MPR colours"})
     label = std::max(label, ImGui::CalcTextSize(text).x);
   ImGui::PushItemWidth(-(label + ImGui::GetStyle().ItemInnerSpacing.x + 2.0f));
+  drawViewControls();
+  drawDepthCue();
+  if (state_.functional()) drawFunctionalControls();
+  drawCrosshair();
+  drawMeasurementControls();
+  drawHelp();
+  ImGui::PopItemWidth();
+}
+
+// The layout, the 3D pane's mode, preset and sampling, the MPR window and colours, the orbit.
+void ViewerPanel::drawViewControls() {
+  render::RenderSettings& v = state_.view3d();
   // The layout (key L): standard, or PET/CT (anatomical, functional, fused MPR of one plane
   // and the functional volume's rotating MIP).
   const char* layouts[] = {"standard", "PET/CT axial", "PET/CT coronal", "PET/CT sagittal"};
@@ -292,7 +301,7 @@ void ViewerPanel::drawControls() {
     if (modes[static_cast<std::size_t>(i)] == v.mode) mode = i;
   if (ImGui::Combo("3D mode", &mode, kModeLabels, static_cast<int>(modes.size())))
     state_.setMode(modes[static_cast<std::size_t>(mode)]);
-  const auto names = mvw::study::presetsFor(anatomical);  // no CT preset on a PET in SUV
+  const auto names = mvw::study::presetsFor(state_.anatomical());  // no CT preset on a PET in SUV
   if (ImGui::BeginCombo("preset", state_.presetName().c_str())) {
     for (const auto& n : names)
       if (ImGui::Selectable(n.c_str(), n == state_.presetName())) state_.setPreset(n);
@@ -338,6 +347,10 @@ void ViewerPanel::drawControls() {
   ImGui::SameLine();
   if (ImGui::Button(orbit == Orbit::Rock ? "stop rock (K)" : "rock +-30 (K)"))
     state_.toggleOrbit(Orbit::Rock);
+}
+
+void ViewerPanel::drawDepthCue() {
+  render::RenderSettings& v = state_.view3d();
   ImGui::Separator();
   ImGui::Text("depth-cued MIP (Heidrich 1995)");
   bool cue = v.depthCue;
@@ -348,95 +361,117 @@ void ViewerPanel::drawControls() {
     v.cueBrightness = b0, v.cueAmount = a, v.cueContrast = b;
     state_.markDirty(k3d);
   }
-  if (functional) {
-    ImGui::Separator();
-    ImGui::Text("functional volume");
-    colormapCombo(state_, "overlay colours", ColorTarget::Overlay);
-    if (ImGui::SliderFloat("overlay opacity", &v.overlayOpacity, 0, 1) |
-        ImGui::SliderFloat("threshold", &v.overlayThreshold, 0, 1))
-      state_.markAllDirty();
-    // The attribute's mapping to 0..1 (colour map, glyph beta): a window, or label classes.
-    const auto [flo, fhi] = state_.scene().functionalRange;
-    const bool userWindow = v.functionalHigh > v.functionalLow;
-    float fw[2] = {float(userWindow ? v.functionalLow : flo),
-                   float(userWindow ? v.functionalHigh : fhi)};
-    if (ImGui::DragFloatRange2("attribute", &fw[0], &fw[1], float(fhi - flo) / 200.0f, float(flo),
-                               float(fhi))) {
-      v.functionalLow = fw[0];
-      v.functionalHigh = std::max(double(fw[1]), double(fw[0]) + 1e-6 * (fhi - flo));
-      state_.markAllDirty();
-    }
-    // The PET/CT layout's functional pane and MIP: the functional volume's own window.
-    if (state_.petCtLayout()) {
-      const auto [dlo, dhi] = state_.functionalDisplayWindow();
-      float dw[2] = {float(dlo), float(dhi)};
-      if (ImGui::DragFloatRange2("pane window", &dw[0], &dw[1], float(fhi - flo) / 200.0f,
-                                 float(std::min(flo, dlo)), float(std::max(fhi, dhi))))
-        state_.setFunctionalDisplayWindow(dw[0], dw[1]);
-    }
-    int classes = v.functionalClasses;
-    if (ImGui::InputInt("classes", &classes)) {
-      v.functionalClasses = std::clamp(classes, 0, 64);
-      state_.markAllDirty();
-    }
-    bool glyphs = v.glyphs, fusion = v.fusion;
-    if (ImGui::Checkbox("glyphs (G)", &glyphs)) v.glyphs = glyphs, state_.markDirty(k3d);
+}
+
+// The functional volume: its overlay, its window, the glyphs and the registration.
+void ViewerPanel::drawFunctionalControls() {
+  render::RenderSettings& v = state_.view3d();
+  ImGui::Separator();
+  ImGui::Text("functional volume");
+  colormapCombo(state_, "overlay colours", ColorTarget::Overlay);
+  if (ImGui::SliderFloat("overlay opacity", &v.overlayOpacity, 0, 1) |
+      ImGui::SliderFloat("threshold", &v.overlayThreshold, 0, 1))
+    state_.markAllDirty();
+  drawFunctionalWindow();
+  drawGlyphControls();
+  drawRegistration();
+}
+
+// The attribute's mapping to 0..1 (colour map, glyph beta): a window, or label classes.
+void ViewerPanel::drawFunctionalWindow() {
+  render::RenderSettings& v = state_.view3d();
+  const auto [flo, fhi] = state_.scene().functionalRange;
+  const bool userWindow = v.functionalHigh > v.functionalLow;
+  float fw[2] = {float(userWindow ? v.functionalLow : flo),
+                 float(userWindow ? v.functionalHigh : fhi)};
+  if (ImGui::DragFloatRange2("attribute", &fw[0], &fw[1], float(fhi - flo) / 200.0f, float(flo),
+                             float(fhi))) {
+    v.functionalLow = fw[0];
+    v.functionalHigh = std::max(double(fw[1]), double(fw[0]) + 1e-6 * (fhi - flo));
+    state_.markAllDirty();
+  }
+  // The PET/CT layout's functional pane and MIP: the functional volume's own window.
+  if (state_.petCtLayout()) {
+    const auto [dlo, dhi] = state_.functionalDisplayWindow();
+    float dw[2] = {float(dlo), float(dhi)};
+    if (ImGui::DragFloatRange2("pane window", &dw[0], &dw[1], float(fhi - flo) / 200.0f,
+                               float(std::min(flo, dlo)), float(std::max(fhi, dhi))))
+      state_.setFunctionalDisplayWindow(dw[0], dw[1]);
+  }
+  int classes = v.functionalClasses;
+  if (ImGui::InputInt("classes", &classes)) {
+    v.functionalClasses = std::clamp(classes, 0, 64);
+    state_.markAllDirty();
+  }
+}
+
+// Glyphs and colour fusion: their switches, spacing and size, the legend, method and kinds.
+void ViewerPanel::drawGlyphControls() {
+  render::RenderSettings& v = state_.view3d();
+  bool glyphs = v.glyphs, fusion = v.fusion;
+  if (ImGui::Checkbox("glyphs (G)", &glyphs)) v.glyphs = glyphs, state_.markDirty(k3d);
+  ImGui::SameLine();
+  if (ImGui::Checkbox("colour fusion (F)", &fusion)) v.fusion = fusion, state_.markDirty(k3d);
+  // A fused minip or average: the functional maximum along the ray, or its mean.
+  if (v.fusion && takesFusionMean(v.mode)) {
     ImGui::SameLine();
-    if (ImGui::Checkbox("colour fusion (F)", &fusion)) v.fusion = fusion, state_.markDirty(k3d);
-    // A fused minip or average: the functional maximum along the ray, or its mean.
-    if (v.fusion && takesFusionMean(v.mode)) {
-      ImGui::SameLine();
-      bool mean = v.fusionProjection == render::FusionProjection::Mean;
-      if (ImGui::Checkbox("functional mean", &mean)) {
-        v.fusionProjection = mean ? render::FusionProjection::Mean : render::FusionProjection::Max;
-        state_.markDirty(k3d);
-      }
-    }
-    if (v.glyphMap.placement == render::GlyphPlacement::BlueNoise) {
-      // The blue-noise spacing (the diameter follows at its default fraction) and the size range.
-      float spacing = float(render::blueNoiseSpacing(v.glyphMap.size) * v.glyphDiameterMm /
-                            v.glyphMap.diameter);
-      if (ImGui::SliderFloat("glyph spacing mm", &spacing, 2, 30)) {
-        v.glyphDiameterMm = kBlueNoiseDiameterFraction * spacing;
-        v.glyphMap = render::blueNoiseGlyphMap(spacing, v.glyphDiameterMm, v.glyphMap.seed);
-        state_.markDirty(k3d);
-      }
-      float minSize = float(v.glyphMinSize);
-      if (ImGui::SliderFloat("smallest bump", &minSize, 0, 1))
-        v.glyphMinSize = minSize, state_.markDirty(k3d);
-    } else {
-      float gd = float(v.glyphDiameterMm);
-      if (ImGui::SliderFloat("glyph size mm", &gd, 1, 40))
-        v.glyphDiameterMm = gd, state_.markDirty(k3d);
-    }
-    // The legend, as the 3D pane shows it: what each bump size or kind means.
-    for (const render::GlyphLegendEntry& e : state_.glyphLegend(k3d, v).entries)
-      ImGui::BulletText("%s  %s", e.label.c_str(),
-                        e.size <= 0 ? "no glyph"
-                                    : (std::to_string(int(std::lround(100 * e.size))) + " % " +
-                                       glyphKindName(e.kind))
-                                          .c_str());
-    int method = v.glyphSizeControl ? 0 : 1;
-    const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};
-    if (ImGui::Combo("glyph method", &method, methods, 2))
-      v.glyphSizeControl = method == 0, state_.markDirty(k3d);
-    const char* convexity[] = {"convex", "concave", "both"};
-    int convex = static_cast<int>(v.glyphConvexity);  // the enum's order is the list's
-    if (ImGui::Combo("bumps", &convex, convexity, 3)) {
-      v.glyphConvexity = static_cast<GlyphConvexity>(convex);
+    bool mean = v.fusionProjection == render::FusionProjection::Mean;
+    if (ImGui::Checkbox("functional mean", &mean)) {
+      v.fusionProjection = mean ? render::FusionProjection::Mean : render::FusionProjection::Max;
       state_.markDirty(k3d);
     }
-    if (state_.study().functionalKind == config::FunctionalKind::Labels) glyphLabelPicker(state_);
-    const std::string& registration = state_.registration().description();
-    ImGui::TextWrapped("registration: %s",
-                       registration == "none" ? "none (world coordinates)" : registration.c_str());
-    if (state_.registration().running())
-      ImGui::Text("registering (mutual information)... %.1f s", state_.registration().seconds());
-    else if (ImGui::Button(
-                 ("re-run registration (" + std::string(state_.registration().method()) + " MI)")
-                     .c_str()))
-      state_.registration().start();
   }
+  if (v.glyphMap.placement == render::GlyphPlacement::BlueNoise) {
+    // The blue-noise spacing (the diameter follows at its default fraction) and the size range.
+    float spacing =
+        float(render::blueNoiseSpacing(v.glyphMap.size) * v.glyphDiameterMm / v.glyphMap.diameter);
+    if (ImGui::SliderFloat("glyph spacing mm", &spacing, 2, 30)) {
+      v.glyphDiameterMm = kBlueNoiseDiameterFraction * spacing;
+      v.glyphMap = render::blueNoiseGlyphMap(spacing, v.glyphDiameterMm, v.glyphMap.seed);
+      state_.markDirty(k3d);
+    }
+    float minSize = float(v.glyphMinSize);
+    if (ImGui::SliderFloat("smallest bump", &minSize, 0, 1))
+      v.glyphMinSize = minSize, state_.markDirty(k3d);
+  } else {
+    float gd = float(v.glyphDiameterMm);
+    if (ImGui::SliderFloat("glyph size mm", &gd, 1, 40))
+      v.glyphDiameterMm = gd, state_.markDirty(k3d);
+  }
+  // The legend, as the 3D pane shows it: what each bump size or kind means.
+  for (const render::GlyphLegendEntry& e : state_.glyphLegend(k3d, v).entries)
+    ImGui::BulletText("%s  %s", e.label.c_str(),
+                      e.size <= 0 ? "no glyph"
+                                  : (std::to_string(int(std::lround(100 * e.size))) + " % " +
+                                     glyphKindName(e.kind))
+                                        .c_str());
+  int method = v.glyphSizeControl ? 0 : 1;
+  const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};
+  if (ImGui::Combo("glyph method", &method, methods, 2))
+    v.glyphSizeControl = method == 0, state_.markDirty(k3d);
+  const char* convexity[] = {"convex", "concave", "both"};
+  int convex = static_cast<int>(v.glyphConvexity);  // the enum's order is the list's
+  if (ImGui::Combo("bumps", &convex, convexity, 3)) {
+    v.glyphConvexity = static_cast<GlyphConvexity>(convex);
+    state_.markDirty(k3d);
+  }
+  if (state_.study().functionalKind == config::FunctionalKind::Labels) glyphLabelPicker(state_);
+}
+
+// How the functional volume is placed, and the button that registers it again.
+void ViewerPanel::drawRegistration() {
+  const std::string& registration = state_.registration().description();
+  ImGui::TextWrapped("registration: %s",
+                     registration == "none" ? "none (world coordinates)" : registration.c_str());
+  if (state_.registration().running())
+    ImGui::Text("registering (mutual information)... %.1f s", state_.registration().seconds());
+  else if (ImGui::Button(
+               ("re-run registration (" + std::string(state_.registration().method()) + " MI)")
+                   .c_str()))
+    state_.registration().start();
+}
+
+void ViewerPanel::drawCrosshair() {
   ImGui::Separator();
   const glm::dvec3 c = state_.crosshair();
   ImGui::Text("crosshair %.1f, %.1f, %.1f mm (LPS)", c.x, c.y, c.z);
@@ -445,7 +480,12 @@ void ViewerPanel::drawControls() {
     ImGui::Text("cursor %.1f, %.1f, %.1f mm (LPS)", at.x, at.y, at.z);
     ImGui::TextWrapped("%s", state_.readout(at).c_str());
   }
-  // Measurements on the MPR panes: the mouse tool, the spheres' statistics, the rulers.
+}
+
+// Measurements on the MPR panes: the mouse tool, the spheres' statistics, the rulers.
+void ViewerPanel::drawMeasurementControls() {
+  const Volume& anatomical = state_.anatomical();
+  const Volume* functional = state_.functional();
   ImGui::Separator();
   ViewerMeasurements& measurements = state_.measurements();
   int tool = static_cast<int>(measurements.tool());
@@ -473,6 +513,10 @@ void ViewerPanel::drawControls() {
                        ViewerMeasurements::rulerLengthMm(rulers[i]));
   if ((!spheres.empty() || !rulers.empty()) && ImGui::Button("clear measurements"))
     measurements.clear();
+}
+
+// The mouse and the keys, and what the last request said (a screenshot written, a state saved).
+void ViewerPanel::drawHelp() {
   ImGui::Separator();
   ImGui::TextWrapped(
       "Mouse: 3D left-drag rotate, right-drag zoom, middle-drag pan, wheel zoom. MPR: left "
@@ -486,7 +530,6 @@ void ViewerPanel::drawControls() {
       "voxel, R reset, S screenshot, Ctrl+S save state as a study config.");
   if (const std::string& status = state_.requests().status(); !status.empty())
     ImGui::TextWrapped("%s", status.c_str());
-  ImGui::PopItemWidth();
 }
 
 bool ViewerPanel::draw() {

@@ -31,7 +31,17 @@ class ViewerPanel {
 
  private:
   void drawPane(int pane, ImVec2 pos, ImVec2 size);
+  // The control panel, one function per section.
   void drawControls();
+  void drawViewControls();
+  void drawDepthCue();
+  void drawFunctionalControls();  // with a functional volume only
+  void drawFunctionalWindow();
+  void drawGlyphControls();
+  void drawRegistration();
+  void drawCrosshair();
+  void drawMeasurementControls();
+  void drawHelp();
   void drawMeasurements(int pane, ImVec2 pos, ImVec2 size);  // spheres and rulers on an MPR pane
 
   viewer::ViewerState& state_;

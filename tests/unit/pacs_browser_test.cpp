@@ -6,6 +6,9 @@
 
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -120,6 +123,52 @@ std::vector<pacs::Match> series() {
            {"Modality", "SEG"},
            {"SeriesDescription", "lesions"},
            {"NumberOfSeriesRelatedInstances", "1"}}};
+}
+
+// The window's tables are the browser's text: the window only lays them out.
+TEST(PacsBrowser, TablesRowsAreText) {
+  EXPECT_EQ(PacsBrowser::studyRow(study()),
+            (std::vector<std::string>{"Doe Jane", "P-7", "2026-11-30", "CT\\PT", "PET-CT", ""}));
+  pacs::Match nameless = study();
+  nameless.erase("PatientName");
+  nameless["StudyDate"] = "2026";  // not YYYYMMDD: as the server gave it
+  nameless["NumberOfStudyRelatedSeries"] = "3";
+  const std::vector<std::string> row = PacsBrowser::studyRow(nameless);
+  EXPECT_EQ(row[0], "(no name)");
+  EXPECT_EQ(row[2], "2026");
+  EXPECT_EQ(row[5], "3");
+  EXPECT_EQ(PacsBrowser::seriesRow(series()[1]),
+            (std::vector<std::string>{"2", "PT", "PET AC", "44"}));
+  EXPECT_EQ(PacsBrowser::seriesRow({}), (std::vector<std::string>{"", "", "", ""}));
+}
+
+TEST(PacsBrowser, ChosenSeriesAreMarked) {
+  PacsBrowser b;
+  b.takeSeries(series());  // CT as the anatomy, PT as the functional volume
+  EXPECT_TRUE(b.isChosen("1.2.3.4.1"));
+  EXPECT_TRUE(b.isChosen("1.2.3.4.2"));
+  EXPECT_FALSE(b.isChosen("1.2.3.4.3"));
+  b.setSeries(Role::Segmentation, "1.2.3.4.3");
+  EXPECT_TRUE(b.isChosen("1.2.3.4.3"));
+}
+
+// The study date's two fields and the query's DICOM range, both ways.
+TEST(PacsBrowser, StudyDateRangeIsTheQuerysRange) {
+  PacsBrowser b;
+  using Range = std::pair<std::string, std::string>;
+  EXPECT_EQ(b.studyDateRange(), Range("", ""));
+  b.setStudyDateRange("20260101", "20261231");
+  EXPECT_EQ(b.query().studyDate, "20260101-20261231");
+  EXPECT_EQ(b.studyDateRange(), Range("20260101", "20261231"));
+  b.setStudyDateRange("20260101", "");
+  EXPECT_EQ(b.query().studyDate, "20260101-");  // from onwards
+  b.setStudyDateRange("", "20261231");
+  EXPECT_EQ(b.query().studyDate, "-20261231");  // up to
+  EXPECT_EQ(b.studyDateRange(), Range("", "20261231"));
+  b.setStudyDateRange("", "");
+  EXPECT_EQ(b.query().studyDate, "");
+  b.query().studyDate = "20261130";  // a script's study-date= with one date
+  EXPECT_EQ(b.studyDateRange(), Range("20261130", ""));
 }
 
 TEST(PacsBrowser, ChoicesMakeAStudyConfigNamingPacsSeries) {

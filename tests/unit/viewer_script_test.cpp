@@ -5,6 +5,9 @@
 #include <atomic>
 #include <chrono>
 #include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -12,7 +15,9 @@
 
 #include "TestUtil.h"
 #include "mvw/config/StudyConfig.h"
+#include "mvw/core/ColorMap.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/GlyphDefaults.h"
 
 namespace mvw::viewer {
 namespace {
@@ -144,6 +149,144 @@ TEST(ViewerScript, BadLinesNameTheLineAndTheProblem) {
             "line 1: drag-frames: the frame count must be a whole number from 1 to 100000");
   EXPECT_EQ(problemOf("drag-frames 3d 0.5 0 4 up"),
             "line 1: drag-frames: unknown button 'up' (left, right, middle)");
+}
+
+// The rest of the commands' complaints, pinned word for word (scripts and their tests quote them).
+TEST(ViewerScript, EveryCommandsComplaintsStayAsTheyWere) {
+  EXPECT_EQ(problemOf("hover 3d 0.5 0.5"),
+            "line 1: hover: reads values on an MPR pane (axial, coronal, sagittal)");
+  EXPECT_EQ(problemOf("roi 3d 0 0 1 1"),
+            "line 1: roi: draws on an MPR pane (axial, coronal, sagittal)");
+  EXPECT_EQ(problemOf("ruler mip 0 0 1 1"),
+            "line 1: ruler: draws on an MPR pane (axial, coronal, sagittal)");
+  EXPECT_EQ(problemOf("ruler axial 0 0 1"), "line 1: ruler: missing y1");
+  EXPECT_EQ(problemOf("sphere 1 2"), "line 1: sphere: missing centre (L P S mm)");
+  EXPECT_EQ(problemOf("sphere 1 2 3 0"), "line 1: sphere: the radius must be above 0 mm");
+  EXPECT_EQ(problemOf("iso"), "line 1: iso: missing value");
+  EXPECT_EQ(problemOf("pan axial 1e6 0"), "line 1: pan: dx and dy within +-1e5 mm");
+  EXPECT_EQ(problemOf("colormap 2d grey"),
+            "line 1: colormap: unknown target '2d' (3d, mpr, overlay, functional)");
+  EXPECT_EQ(problemOf("colormap mpr"), "line 1: colormap: missing colour map");
+  EXPECT_EQ(problemOf("orbit wobble"), "line 1: orbit: unknown mode 'wobble' (spin, rock, off)");
+  EXPECT_EQ(problemOf("glyph-label 0 bumps"),
+            "line 1: glyph-label: the label must be a whole number from 1 to " +
+                std::to_string(kMaxGlyphLabel));
+  EXPECT_EQ(problemOf("glyph-label 3 spikes"),
+            "line 1: glyph-label: unknown kind 'spikes' (bumps, dimples, rings, ridges, cones, "
+            "crosses, none)");
+  EXPECT_EQ(problemOf("register now"), "line 1: register: unexpected 'now'");
+  EXPECT_EQ(problemOf("roi-stats"), "line 1: roi-stats: missing file");
+  EXPECT_EQ(problemOf("pacs-server"), "line 1: pacs-server: missing server name");
+  EXPECT_EQ(problemOf("pacs-search =x"), "line 1: pacs-search: '=x' is not KEY=VALUE");
+  EXPECT_EQ(problemOf("pacs-search sex=F"),
+            "line 1: pacs-search: unknown key 'sex' (patient-id, patient-name, study-date, "
+            "modality, accession)");
+  EXPECT_EQ(problemOf("pacs-study"), "line 1: pacs-study: missing study (N or UID)");
+  EXPECT_EQ(problemOf("pacs-series dose 3"),
+            "line 1: pacs-series: unknown role 'dose' (anatomical, functional, segmentation)");
+  EXPECT_EQ(problemOf("pacs-series functional"),
+            "line 1: pacs-series: missing series (UID, number, modality, description or none)");
+  EXPECT_EQ(problemOf("pacs-registration bspline"),
+            "line 1: pacs-registration: unknown method 'bspline' (none, rigid, affine)");
+  EXPECT_EQ(problemOf("pacs-open later"), "line 1: pacs-open: unknown option 'later' (nowait)");
+  EXPECT_EQ(problemOf("pacs-wait all"), "line 1: pacs-wait: unknown option 'all' (progress)");
+  EXPECT_EQ(problemOf("pacs-open nowait now"), "line 1: pacs-open: unexpected 'now'");
+}
+
+// The command table: every command's documented example parses to that command, the names are
+// unique, every kind has a command, and the reference's lists are the parser's.
+TEST(ViewerScriptTable, EveryCommandParsesItsExample) {
+  std::set<std::string> names;
+  std::set<Kind> kinds;
+  for (const ViewerScript::CommandInfo& info : ViewerScript::commandInfo()) {
+    SCOPED_TRACE(info.name);
+    EXPECT_TRUE(names.insert(info.name).second) << "named twice";
+    const std::string example = info.example;
+    EXPECT_EQ(example.substr(0, example.find(' ')), info.name);
+    EXPECT_EQ(problemOf(example), "");
+    const ViewerScript s = ViewerScript::parse(example, "t");
+    ASSERT_EQ(s.commands().size(), 1u);
+    EXPECT_NE(s.commands()[0].kind, Kind::Nothing);
+    kinds.insert(s.commands()[0].kind);
+    // A command whose arguments are not all optional complains without them.
+    if (*info.arguments && *info.arguments != '[')
+      EXPECT_NE(problemOf(info.name).find("missing"), std::string::npos);
+  }
+  EXPECT_EQ(kinds.size(), static_cast<std::size_t>(Kind::Quit))  // every kind but Nothing
+      << "a command kind without an entry in the table";
+}
+
+TEST(ViewerScriptTable, ExamplesParseToWhatTheyName) {
+  const auto line = [](const std::string& name) {
+    for (const ViewerScript::CommandInfo& info : ViewerScript::commandInfo())
+      if (info.name == name) return ViewerScript::parse(info.example, "t").commands().at(0);
+    ADD_FAILURE() << name;
+    return ViewerScript::Command{};
+  };
+  EXPECT_EQ(line("drag-frames").frames, 6);
+  EXPECT_EQ(line("colormap").target, ColorTarget::Functional);
+  EXPECT_EQ(line("colormap").colormap, ColorMap::HotIron);
+  EXPECT_EQ(line("pacs-server").text, "Clinic PACS");
+  EXPECT_EQ(line("pacs-search").query.modality, "PT");
+  EXPECT_EQ(line("pacs-series").role, PacsBrowser::Role::Functional);
+  EXPECT_EQ(line("pacs-open").frames, -1);
+  EXPECT_DOUBLE_EQ(line("sphere").sphere.radiusMm, 15.0);
+}
+
+TEST(ViewerScriptTable, UnknownCommandsAreNamed) {
+  EXPECT_EQ(problemOf("teleport axial"), "line 1: unknown command 'teleport'");
+  EXPECT_EQ(problemOf("quit\n\nQuit"), "line 3: unknown command 'Quit'");  // names are exact
+  EXPECT_EQ(problemOf("#comment\nkey"), "line 2: key: missing key");
+}
+
+TEST(ViewerScriptTable, TheHelpListsWhatTheParserAccepts) {
+  std::string colormap, layout;
+  for (const ViewerScript::CommandInfo& info : ViewerScript::commandInfo()) {
+    if (std::string(info.name) == "colormap") colormap = info.help;
+    if (std::string(info.name) == "layout") layout = info.help;
+  }
+  const std::size_t from = colormap.find("(NAME: ") + 7;
+  std::vector<std::string> maps;
+  std::istringstream listed(colormap.substr(from, colormap.find(')', from) - from));
+  for (std::string name; std::getline(listed, name, ',');)
+    maps.push_back(name.substr(name[0] == ' '));
+  EXPECT_EQ(maps, colorMapNames());
+  std::string list = config::viewerLayoutList();  // "standard, pet-ct, ... or pet-ct-sagittal"
+  for (std::size_t at; (at = list.find(" or ")) != std::string::npos;) list.replace(at, 4, ", ");
+  std::istringstream names(list);
+  for (std::string name; std::getline(names, name, ',');) {
+    name.erase(0, name.find_first_not_of(' '));
+    EXPECT_NE(layout.find(name), std::string::npos) << name;
+    EXPECT_TRUE(config::parseViewerLayout(name)) << name;
+  }
+}
+
+TEST(ViewerScriptTable, TheReferenceHasARowPerCommand) {
+  const std::string md = ViewerScript::reference();
+  EXPECT_EQ(md.rfind("<!-- Generated by `mvw view --script-reference`", 0), 0u);
+  for (const ViewerScript::CommandInfo& info : ViewerScript::commandInfo())
+    EXPECT_NE(md.find("\n| `" + std::string(info.name)), std::string::npos) << info.name;
+  EXPECT_NE(md.find("| `drag PANE dx dy [left\\|right\\|middle]` |"), std::string::npos);
+}
+
+// docs/user-guide/view.md holds the reference as the table generates it now.
+TEST(ViewerScriptTable, TheUserGuideIsCurrent) {
+  const std::filesystem::path file =
+      std::filesystem::path(MVW_SOURCE_DIR) / "docs" / "user-guide" / "view.md";
+  std::ifstream in(file, std::ios::binary);
+  ASSERT_TRUE(in) << file;
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str(), now = ViewerScript::reference();
+  const std::string first = now.substr(0, now.find('\n') + 1);
+  const std::string last = "<!-- End of the generated script reference. -->\n";
+  const std::size_t begin = doc.find(first), end = doc.find(last);
+  ASSERT_NE(begin, std::string::npos) << file << " has no generated script reference";
+  ASSERT_NE(end, std::string::npos) << file << " has no end to its script reference";
+  EXPECT_EQ(doc.substr(begin, end + last.size() - begin), now)
+      << file << " is not what the command table says now: regenerate it with\n"
+      << "  scripts/script-reference build/release/app/mvw\n"
+      << "and commit it with the change to the table.";
 }
 
 // Zoom and pan for tests of the MPR panes (issue 36 item 1), run on the state.

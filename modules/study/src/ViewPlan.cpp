@@ -182,8 +182,15 @@ void applyColorMaps(render::RenderSettings& s, ColorMap image, ColorMap overlay)
   if (overlay != ColorMap::HotMetal) s.overlayColors = colorTable(overlay);
 }
 
-std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& o) {
-  std::vector<PlannedView> out;
+namespace {
+
+// The command line's colour maps and orbit mode, parsed once for every view.
+struct ParsedOverrides {
+  std::optional<ColorMap> colormap, overlayColormap;
+  std::optional<config::OrbitMode> orbitMode;
+};
+
+ParsedOverrides parseOverrides(const config::StudyConfig& study, const ViewOverrides& o) {
   auto colorMapOption = [&](const std::optional<std::string>& name, const char* option) {
     std::optional<ColorMap> map;
     if (name) {
@@ -194,201 +201,243 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     }
     return map;
   };
-  const std::optional<ColorMap> colormap = colorMapOption(o.colormap, "--colormap");
-  const std::optional<ColorMap> overlayColormap =
-      colorMapOption(o.overlayColormap, "--overlay-colormap");
-  std::optional<config::OrbitMode> orbitMode;
+  ParsedOverrides p;
+  p.colormap = colorMapOption(o.colormap, "--colormap");
+  p.overlayColormap = colorMapOption(o.overlayColormap, "--overlay-colormap");
   if (o.orbitMode) {
-    orbitMode = config::parseOrbitMode(*o.orbitMode);
-    if (!orbitMode) throw InputError(study.file, "--orbit-mode must be spin or rock");
+    p.orbitMode = config::parseOrbitMode(*o.orbitMode);
+    if (!p.orbitMode) throw InputError(study.file, "--orbit-mode must be spin or rock");
   }
   if (o.orbit && (*o.orbit < 2 || *o.orbit > config::kMaxOrbitFrames))
     throw InputError(study.file, "--orbit must be 2.." + std::to_string(config::kMaxOrbitFrames) +
                                      " frames, not " + std::to_string(*o.orbit));
-  for (config::ViewConfig v : study.render.views) {
-    if (o.mode) {
-      const auto mode = parseRenderMode(*o.mode);
-      if (!mode)
-        throw InputError(study.file, "--mode '" + *o.mode + "' is not a mode (" +
-                                         joined(renderModeNames()) + ")");
-      v.mode = *mode;
-    }
-    if (o.view) {
-      const auto view = config::parseViewName(*o.view);
-      if (!view)
-        throw InputError(study.file,
-                         "--view '" + *o.view + "' is not a view (" + config::viewNameList() + ")");
-      v.view = *view;
-    }
-    if (o.preset) v.preset = *o.preset;
-    if (o.sampling) {
-      const auto sampling = config::parseSampling(*o.sampling);
-      if (!sampling) throw InputError(study.file, "--sampling must be linear or nearest");
-      v.sampling = *sampling;
-    }
-    // The command line's numbers within the config's own ranges (NaN is in none).
-    auto ranged = [&](const std::optional<double>& x, const char* flag, const char* key) {
-      const auto [lo, hi] = config::viewNumberRange(key);
-      if (!x || (*x >= lo && *x <= hi)) return;
-      char text[160];
-      std::snprintf(text, sizeof text, "%s %g is outside %g .. %g", flag, *x, lo, hi);
-      throw InputError(study.file, text);
-    };
-    ranged(o.azimuth, "--azimuth", "azimuth");
-    ranged(o.elevation, "--elevation", "elevation");
-    ranged(o.roll, "--roll", "roll");
-    ranged(o.zoom, "--zoom", "zoom");
-    ranged(o.window, "--window", "window");
-    ranged(o.level, "--level", "level");
-    ranged(o.iso, "--iso", "iso");
-    ranged(o.cueBrightness, "--cue-brightness", "depth_cue.brightness");
-    ranged(o.cueAmount, "--cue-amount", "depth_cue.amount");
-    ranged(o.cueContrast, "--cue-contrast", "depth_cue.contrast");
-    // The config's zoom keeps its field in the square image (issue 36 item 4).
-    if (o.size && v.fitAspect <= 0.0) v.fitAspect = double(v.width) / v.height;
-    if (o.size) v.width = v.height = *o.size;
-    if (o.azimuth) v.azimuth = *o.azimuth;
-    if (o.elevation) v.elevation = *o.elevation;
-    if (o.roll) v.roll = *o.roll;
-    if (o.zoom) v.zoom = *o.zoom;
-    if (o.window) v.window = *o.window;
-    if (o.level) v.level = *o.level;
-    if (o.iso) v.iso = *o.iso;
-    if (o.noAnnotate) v.annotate = false;
-    if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue = true;
-    if (o.cueBrightness) v.cueBrightness = *o.cueBrightness;
-    if (o.cueAmount) v.cueAmount = *o.cueAmount;
-    if (o.cueContrast) v.cueContrast = *o.cueContrast;
-    if (o.perspective) v.perspective = true;
-    // A mode overridden to one without an image colour map drops the view's.
-    if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
-    if (colormap && takesImageColors(v.mode)) v.colormap = *colormap;
-    // And one whose fused projection is always the maximum drops the view's functional mean.
-    if (o.mode && !takesFusionMean(v.mode)) v.fusionProjection = FusionProjection::Max;
-    if (overlayColormap) v.overlayColormap = *overlayColormap;
-    // --orbit turns the views that can turn about the long axis (not those looking along it).
-    const render::StandardView sight = standardView(v.view);
-    const bool alongS =
-        sight == render::StandardView::Superior || sight == render::StandardView::Inferior;
-    if (o.orbit && !alongS) v.orbit = *o.orbit;
-    if (orbitMode) v.orbitMode = *orbitMode;
-    PlannedView p;
-    auto& s = p.settings;
-    if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
-      throw InputError(study.file, "view '" + v.name + "': size must be 1..8192");
-    if (v.window && !(*v.window > 0))
-      throw InputError(study.file, "view '" + v.name + "': window must be positive");
-    if (!v.preset.empty()) {
-      try {
-        s.transfer = render::transferPreset(v.preset);
-      } catch (const Error& e) {
-        throw InputError(study.file, "view '" + v.name + "': " + e.what());
-      }
-    }
-    s.mode = v.mode;
-    s.size = {v.width, v.height};
-    s.camera.view = standardView(v.view);
-    s.camera.azimuthDeg = v.azimuth;
-    s.camera.elevationDeg = v.elevation;
-    s.camera.rollDeg = v.roll;
-    s.camera.zoom = v.zoom;
-    s.camera.fitAspect = v.fitAspect > 0.0 ? v.fitAspect : double(v.width) / v.height;
-    s.camera.panMm = {v.pan[0], v.pan[1]};
-    s.camera.perspective = v.perspective;
-    s.window = v.window.value_or(0.0);
-    s.level = v.level.value_or(0.0);
-    s.isoValue = v.iso;
-    s.stepMm = v.stepMm;
-    s.shading = v.shading;
-    s.linear = v.sampling == config::Sampling::Linear;
-    s.jitter = v.jitter;
-    s.seed = v.seed;
-    s.background = {v.background[0], v.background[1], v.background[2]};
-    s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
-    s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
-    if (v.cropMinMm && v.cropMaxMm) {
-      s.cropMinMm = glm::dvec3((*v.cropMinMm)[0], (*v.cropMinMm)[1], (*v.cropMinMm)[2]);
-      s.cropMaxMm = glm::dvec3((*v.cropMaxMm)[0], (*v.cropMaxMm)[1], (*v.cropMaxMm)[2]);
-    }
-    s.cutFace = v.cutFace;
-    s.glyphs = v.glyphs;
-    s.glyphSizeControl = v.glyphMethod == config::GlyphMethod::Sized;
-    s.glyphConvexity = v.glyphConvexity;
-    s.glyphMinSize = v.glyphMinSize;
-    s.glyphDvrOpacity = v.glyphDvrOpacity;
-    s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
-    {
-      // The map follows the config's placement even while glyphs are off, so a viewer that
-      // switches them on shows the same glyphs `mvw render` would. A map that cannot hold the
-      // request is bad input, said before any GL work.
-      const bool paper = v.glyphPlacement == config::GlyphPlacement::Paper;
-      const std::string keys = paper ? "glyphs.count / glyphs.map_diameter / glyphs.map_size"
-                                     : "glyphs.diameter_mm / glyphs.spacing_mm";
-      try {
-        if (paper)
-          s.glyphDiameterMm = v.glyphDiameterMm.value_or(kPaperGlyphDiameterMm);
-        else  // an automatic spacing is provisional until applyGlyphScale knows the volumes
-          setBlueNoiseMap(s, v, kGlyphSpacingMm);
-        if (v.glyphs) render::makeGlyphMap(s.glyphMap, /*texels=*/false);
-      } catch (const InputError&) {
-        throw;
-      } catch (const Error& e) {
-        throw InputError(study.file, "view '" + v.name + "': " + keys + ": " + e.what());
-      }
-    }
-    if (v.glyphs && !study.functional)
-      throw InputError(study.file,
-                       "view '" + v.name + "': glyphs need a functional volume in the study");
-    if (v.glyphs &&
-        (s.mode != render::RenderMode::Composite && s.mode != render::RenderMode::Isosurface))
-      throw InputError(study.file,
-                       "view '" + v.name + "': glyphs work in composite and isosurface modes");
-    if (v.functionalWindow) {
-      s.functionalLow = (*v.functionalWindow)[0];
-      s.functionalHigh = (*v.functionalWindow)[1];
-    }
-    s.lightOffset = {v.light[0], v.light[1]};
-    s.shellCount = v.shells;
-    if (!v.shellsDisabled.empty()) {
-      s.shellEnabled.assign(static_cast<std::size_t>(v.shells), true);
-      for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
-    }
-    s.depthCue = v.depthCue;
-    s.cueBrightness = v.cueBrightness;
-    s.cueAmount = v.cueAmount;
-    s.cueContrast = v.cueContrast;
-    s.gradientOpacityLow = v.gradientOpacity[0];
-    s.gradientOpacityHigh = v.gradientOpacity[1];
-    s.planeOffsetMm = v.planeOffsetMm;
-    s.slabMm = v.slabMm;
-    s.overlay = v.overlay;
-    s.segmentOutlines = v.segmentationOutlines;
-    s.fusion = v.fusion;
-    s.functionalClasses = v.functionalClasses;
-    s.glyphClassKinds = v.glyphClassKinds;
-    if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
-    if (v.fusion && !study.functional)
-      throw InputError(study.file,
-                       "view '" + v.name + "': fusion needs a functional volume in the study");
-    s.fusionProjection = v.fusionProjection;
-    if (v.fusionProjection == FusionProjection::Mean && !takesFusionMean(s.mode))
-      throw InputError(study.file, "view '" + v.name +
-                                       "': fusion_projection mean is for minip and average views "
-                                       "(a fused mip shows the functional maximum)");
-    s.overlayOpacity = static_cast<float>(v.overlayOpacity);
-    s.overlayThreshold = static_cast<float>(v.overlayThreshold);
-    const render::StandardView along = standardView(v.view);
-    if (v.orbit > 0 &&
-        (along == render::StandardView::Superior || along == render::StandardView::Inferior))
-      throw InputError(study.file, "view '" + v.name +
-                                       "': an orbit turns about the patient's long axis, which " +
-                                       config::toString(v.view) + " looks along");
-    applyColorMaps(s, v.colormap, v.overlayColormap);
-    p.presetName = v.preset;
-    p.config = v;
-    out.push_back(std::move(p));
+  return p;
+}
+
+// The command line's numbers within the config's own ranges (NaN is in none).
+void checkOverrideNumbers(const ViewOverrides& o, const fs::path& file) {
+  auto ranged = [&](const std::optional<double>& x, const char* flag, const char* key) {
+    const auto [lo, hi] = config::viewNumberRange(key);
+    if (!x || (*x >= lo && *x <= hi)) return;
+    char text[160];
+    std::snprintf(text, sizeof text, "%s %g is outside %g .. %g", flag, *x, lo, hi);
+    throw InputError(file, text);
+  };
+  ranged(o.azimuth, "--azimuth", "azimuth");
+  ranged(o.elevation, "--elevation", "elevation");
+  ranged(o.roll, "--roll", "roll");
+  ranged(o.zoom, "--zoom", "zoom");
+  ranged(o.window, "--window", "window");
+  ranged(o.level, "--level", "level");
+  ranged(o.iso, "--iso", "iso");
+  ranged(o.cueBrightness, "--cue-brightness", "depth_cue.brightness");
+  ranged(o.cueAmount, "--cue-amount", "depth_cue.amount");
+  ranged(o.cueContrast, "--cue-contrast", "depth_cue.contrast");
+}
+
+// A view's config with the command line's overrides applied, each checked as the config
+// checks its key.
+void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedOverrides& parsed,
+                    const fs::path& file) {
+  if (o.mode) {
+    const auto mode = parseRenderMode(*o.mode);
+    if (!mode)
+      throw InputError(
+          file, "--mode '" + *o.mode + "' is not a mode (" + joined(renderModeNames()) + ")");
+    v.mode = *mode;
   }
-  if (colormap && std::none_of(out.begin(), out.end(), [](const PlannedView& p) {
+  if (o.view) {
+    const auto view = config::parseViewName(*o.view);
+    if (!view)
+      throw InputError(file,
+                       "--view '" + *o.view + "' is not a view (" + config::viewNameList() + ")");
+    v.view = *view;
+  }
+  if (o.preset) v.preset = *o.preset;
+  if (o.sampling) {
+    const auto sampling = config::parseSampling(*o.sampling);
+    if (!sampling) throw InputError(file, "--sampling must be linear or nearest");
+    v.sampling = *sampling;
+  }
+  checkOverrideNumbers(o, file);
+  // The config's zoom keeps its field in the square image (issue 36 item 4).
+  if (o.size && v.fitAspect <= 0.0) v.fitAspect = double(v.width) / v.height;
+  if (o.size) v.width = v.height = *o.size;
+  if (o.azimuth) v.azimuth = *o.azimuth;
+  if (o.elevation) v.elevation = *o.elevation;
+  if (o.roll) v.roll = *o.roll;
+  if (o.zoom) v.zoom = *o.zoom;
+  if (o.window) v.window = *o.window;
+  if (o.level) v.level = *o.level;
+  if (o.iso) v.iso = *o.iso;
+  if (o.noAnnotate) v.annotate = false;
+  if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue = true;
+  if (o.cueBrightness) v.cueBrightness = *o.cueBrightness;
+  if (o.cueAmount) v.cueAmount = *o.cueAmount;
+  if (o.cueContrast) v.cueContrast = *o.cueContrast;
+  if (o.perspective) v.perspective = true;
+  // A mode overridden to one without an image colour map drops the view's.
+  if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
+  if (parsed.colormap && takesImageColors(v.mode)) v.colormap = *parsed.colormap;
+  // And one whose fused projection is always the maximum drops the view's functional mean.
+  if (o.mode && !takesFusionMean(v.mode)) v.fusionProjection = FusionProjection::Max;
+  if (parsed.overlayColormap) v.overlayColormap = *parsed.overlayColormap;
+  // --orbit turns the views that can turn about the long axis (not those looking along it).
+  const render::StandardView sight = standardView(v.view);
+  const bool alongS =
+      sight == render::StandardView::Superior || sight == render::StandardView::Inferior;
+  if (o.orbit && !alongS) v.orbit = *o.orbit;
+  if (parsed.orbitMode) v.orbitMode = *parsed.orbitMode;
+}
+
+// The view's size, transfer function, camera, sampling and crop.
+void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, const fs::path& file) {
+  if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
+    throw InputError(file, "view '" + v.name + "': size must be 1..8192");
+  if (v.window && !(*v.window > 0))
+    throw InputError(file, "view '" + v.name + "': window must be positive");
+  if (!v.preset.empty()) {
+    try {
+      s.transfer = render::transferPreset(v.preset);
+    } catch (const Error& e) {
+      throw InputError(file, "view '" + v.name + "': " + e.what());
+    }
+  }
+  s.mode = v.mode;
+  s.size = {v.width, v.height};
+  s.camera.view = standardView(v.view);
+  s.camera.azimuthDeg = v.azimuth;
+  s.camera.elevationDeg = v.elevation;
+  s.camera.rollDeg = v.roll;
+  s.camera.zoom = v.zoom;
+  s.camera.fitAspect = v.fitAspect > 0.0 ? v.fitAspect : double(v.width) / v.height;
+  s.camera.panMm = {v.pan[0], v.pan[1]};
+  s.camera.perspective = v.perspective;
+  s.window = v.window.value_or(0.0);
+  s.level = v.level.value_or(0.0);
+  s.isoValue = v.iso;
+  s.stepMm = v.stepMm;
+  s.shading = v.shading;
+  s.linear = v.sampling == config::Sampling::Linear;
+  s.jitter = v.jitter;
+  s.seed = v.seed;
+  s.background = {v.background[0], v.background[1], v.background[2]};
+  s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
+  s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
+  if (v.cropMinMm && v.cropMaxMm) {
+    s.cropMinMm = glm::dvec3((*v.cropMinMm)[0], (*v.cropMinMm)[1], (*v.cropMinMm)[2]);
+    s.cropMaxMm = glm::dvec3((*v.cropMaxMm)[0], (*v.cropMaxMm)[1], (*v.cropMaxMm)[2]);
+  }
+  s.cutFace = v.cutFace;
+}
+
+// The glyphs: their switches and their map, checked against the study and the mode.
+void setGlyphs(render::RenderSettings& s, const config::ViewConfig& v,
+               const config::StudyConfig& study) {
+  s.glyphs = v.glyphs;
+  s.glyphSizeControl = v.glyphMethod == config::GlyphMethod::Sized;
+  s.glyphConvexity = v.glyphConvexity;
+  s.glyphMinSize = v.glyphMinSize;
+  s.glyphDvrOpacity = v.glyphDvrOpacity;
+  s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
+  {
+    // The map follows the config's placement even while glyphs are off, so a viewer that
+    // switches them on shows the same glyphs `mvw render` would. A map that cannot hold the
+    // request is bad input, said before any GL work.
+    const bool paper = v.glyphPlacement == config::GlyphPlacement::Paper;
+    const std::string keys = paper ? "glyphs.count / glyphs.map_diameter / glyphs.map_size"
+                                   : "glyphs.diameter_mm / glyphs.spacing_mm";
+    try {
+      if (paper)
+        s.glyphDiameterMm = v.glyphDiameterMm.value_or(kPaperGlyphDiameterMm);
+      else  // an automatic spacing is provisional until applyGlyphScale knows the volumes
+        setBlueNoiseMap(s, v, kGlyphSpacingMm);
+      if (v.glyphs) render::makeGlyphMap(s.glyphMap, /*texels=*/false);
+    } catch (const InputError&) {
+      throw;
+    } catch (const Error& e) {
+      throw InputError(study.file, "view '" + v.name + "': " + keys + ": " + e.what());
+    }
+  }
+  if (v.glyphs && !study.functional)
+    throw InputError(study.file,
+                     "view '" + v.name + "': glyphs need a functional volume in the study");
+  if (v.glyphs &&
+      (s.mode != render::RenderMode::Composite && s.mode != render::RenderMode::Isosurface))
+    throw InputError(study.file,
+                     "view '" + v.name + "': glyphs work in composite and isosurface modes");
+}
+
+// The functional volume's window, the shells and the depth cue, the planes, overlay, fusion and
+// glyph labels.
+void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
+                   const config::StudyConfig& study) {
+  if (v.functionalWindow) {
+    s.functionalLow = (*v.functionalWindow)[0];
+    s.functionalHigh = (*v.functionalWindow)[1];
+  }
+  s.lightOffset = {v.light[0], v.light[1]};
+  s.shellCount = v.shells;
+  if (!v.shellsDisabled.empty()) {
+    s.shellEnabled.assign(static_cast<std::size_t>(v.shells), true);
+    for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
+  }
+  s.depthCue = v.depthCue;
+  s.cueBrightness = v.cueBrightness;
+  s.cueAmount = v.cueAmount;
+  s.cueContrast = v.cueContrast;
+  s.gradientOpacityLow = v.gradientOpacity[0];
+  s.gradientOpacityHigh = v.gradientOpacity[1];
+  s.planeOffsetMm = v.planeOffsetMm;
+  s.slabMm = v.slabMm;
+  s.overlay = v.overlay;
+  s.segmentOutlines = v.segmentationOutlines;
+  s.fusion = v.fusion;
+  s.functionalClasses = v.functionalClasses;
+  s.glyphClassKinds = v.glyphClassKinds;
+  if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
+  if (v.fusion && !study.functional)
+    throw InputError(study.file,
+                     "view '" + v.name + "': fusion needs a functional volume in the study");
+  s.fusionProjection = v.fusionProjection;
+  if (v.fusionProjection == FusionProjection::Mean && !takesFusionMean(s.mode))
+    throw InputError(study.file, "view '" + v.name +
+                                     "': fusion_projection mean is for minip and average views "
+                                     "(a fused mip shows the functional maximum)");
+  s.overlayOpacity = static_cast<float>(v.overlayOpacity);
+  s.overlayThreshold = static_cast<float>(v.overlayThreshold);
+}
+
+// One view of the study, its overrides applied: its render settings, checked.
+PlannedView planView(const config::StudyConfig& study, const config::ViewConfig& v) {
+  PlannedView p;
+  auto& s = p.settings;
+  setViewGeometry(s, v, study.file);
+  setGlyphs(s, v, study);
+  setFunctional(s, v, study);
+  const render::StandardView along = standardView(v.view);
+  if (v.orbit > 0 &&
+      (along == render::StandardView::Superior || along == render::StandardView::Inferior))
+    throw InputError(study.file, "view '" + v.name +
+                                     "': an orbit turns about the patient's long axis, which " +
+                                     config::toString(v.view) + " looks along");
+  applyColorMaps(s, v.colormap, v.overlayColormap);
+  p.presetName = v.preset;
+  p.config = v;
+  return p;
+}
+
+}  // namespace
+
+std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewOverrides& o) {
+  const ParsedOverrides parsed = parseOverrides(study, o);
+  std::vector<PlannedView> out;
+  for (config::ViewConfig v : study.render.views) {
+    applyOverrides(v, o, parsed, study.file);
+    out.push_back(planView(study, v));
+  }
+  // Overrides that reach no view are mistakes, said as such.
+  if (parsed.colormap && std::none_of(out.begin(), out.end(), [](const PlannedView& p) {
         return takesImageColors(p.config.mode);
       }))
     throw InputError(study.file,

@@ -98,6 +98,41 @@ std::string PacsBrowser::dicomDate(const std::string& d) {
   return d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2);
 }
 
+std::vector<std::string> PacsBrowser::studyRow(const pacs::Match& s) {
+  std::string name = pacs::matchValue(s, "PatientName");
+  std::replace(name.begin(), name.end(), '^', ' ');
+  return {name.empty() ? "(no name)" : name,
+          pacs::matchValue(s, "PatientID"),
+          dicomDate(pacs::matchValue(s, "StudyDate")),
+          pacs::matchValue(s, "ModalitiesInStudy"),
+          pacs::matchValue(s, "StudyDescription"),
+          pacs::matchValue(s, "NumberOfStudyRelatedSeries")};
+}
+
+std::vector<std::string> PacsBrowser::seriesRow(const pacs::Match& s) {
+  std::vector<std::string> row;
+  for (const char* key :
+       {"SeriesNumber", "Modality", "SeriesDescription", "NumberOfSeriesRelatedInstances"})
+    row.push_back(pacs::matchValue(s, key));
+  return row;
+}
+
+bool PacsBrowser::isChosen(const std::string& uid) const {
+  return chosen(Role::Anatomical) == uid || chosen(Role::Functional) == uid ||
+         chosen(Role::Segmentation) == uid;
+}
+
+std::pair<std::string, std::string> PacsBrowser::studyDateRange() const {
+  const std::string& range = query_.studyDate;
+  const auto dash = range.find('-');
+  return {range.substr(0, dash),
+          dash == std::string::npos ? std::string() : range.substr(dash + 1)};
+}
+
+void PacsBrowser::setStudyDateRange(const std::string& from, const std::string& to) {
+  query_.studyDate = to.empty() && from.empty() ? "" : from + "-" + to;
+}
+
 const char* PacsBrowser::roleName(Role role) {
   switch (role) {
     case Role::Anatomical:

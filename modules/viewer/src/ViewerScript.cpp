@@ -1,11 +1,14 @@
 #include "mvw/viewer/ViewerScript.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 
 #include "mvw/core/Error.h"
@@ -69,6 +72,396 @@ class LineReader {
   std::size_t next_ = 0;
 };
 
+// The parsers of the commands' arguments, one per command (or per family of commands that share
+// their arguments): each reads what follows the command's name into `c`, whose kind is set.
+
+// An optional trailing "ctrl" (key, wheel).
+void parseCtrl(LineReader& in, Command& c) {
+  if (!in.more()) return;
+  const std::string mod = in.word("modifier");
+  if (mod != "ctrl") in.fail(in.command() + ": unknown modifier '" + mod + "' (ctrl)");
+  c.ctrl = true;
+}
+
+// A whole number within [lo, hi]; `problem` says the range when it is not.
+int wholeNumber(LineReader& in, const char* what, double lo, double hi,
+                const std::string& problem) {
+  const double v = in.number(what);
+  if (v < lo || v != std::floor(v) || v > hi) in.fail(problem);
+  return static_cast<int>(v);
+}
+
+// An MPR pane (axial, coronal, sagittal or their PET/CT names); `problem` completes
+// "COMMAND: " when the line names the 3D pane.
+void mprPane(LineReader& in, Command& c, const char* problem) {
+  c.pane = in.pane();
+  if (c.pane == k3d) in.fail(in.command() + ": " + problem);
+}
+
+void parseKey(LineReader& in, Command& c) {
+  const std::string k = in.word("key");
+  if (k.size() != 1)
+    in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c, j, l)");
+  c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
+  parseCtrl(in, c);
+}
+
+void parseDrag(LineReader& in, Command& c) {
+  c.pane = in.pane();
+  c.x = in.number("dx");
+  c.y = in.number("dy");
+  if (c.kind == Kind::DragFrames)
+    c.frames = wholeNumber(in, "frame count", 1, 1e5,
+                           "drag-frames: the frame count must be a whole number from 1 to 100000");
+  if (!in.more()) return;
+  const std::string b = in.word("button");
+  if (b == "left")
+    c.button = MouseButton::Left;
+  else if (b == "right")
+    c.button = MouseButton::Right;
+  else if (b == "middle")
+    c.button = MouseButton::Middle;
+  else
+    in.fail(in.command() + ": unknown button '" + b + "' (left, right, middle)");
+}
+
+void parsePanePoint(LineReader& in, Command& c) {  // click
+  c.pane = in.pane();
+  c.x = in.number("x");
+  c.y = in.number("y");
+}
+
+void parseWheel(LineReader& in, Command& c) {
+  c.pane = in.pane();
+  c.x = in.number("notches");
+  parseCtrl(in, c);
+}
+
+void parseIso(LineReader& in, Command& c) { c.x = in.number("value"); }
+
+void parseZoom(LineReader& in, Command& c) {
+  c.pane = in.pane();
+  c.x = in.number("factor");
+  if (!(c.x >= 0.01 && c.x <= 100)) in.fail("zoom: the factor must lie in 0.01 .. 100");
+}
+
+void parsePan(LineReader& in, Command& c) {
+  c.pane = in.pane();
+  c.x = in.number("dx");
+  c.y = in.number("dy");
+  if (!(std::abs(c.x) <= 1e5 && std::abs(c.y) <= 1e5)) in.fail("pan: dx and dy within +-1e5 mm");
+}
+
+void parseHover(LineReader& in, Command& c) {
+  mprPane(in, c, "reads values on an MPR pane (axial, coronal, sagittal)");
+  c.x = in.number("x");
+  c.y = in.number("y");
+}
+
+void parseWait(LineReader& in, Command& c) {
+  c.frames = wholeNumber(in, "frame count", 0, 1e6,
+                         "wait: the frame count must be a whole number from 0 to 1000000");
+}
+
+void parseFile(LineReader& in, Command& c) { c.file = in.word("file"); }
+
+void parsePaneFile(LineReader& in, Command& c) {  // screenshot-pane, dump
+  c.pane = in.pane();
+  c.file = in.word("file");
+}
+
+void parseColormap(LineReader& in, Command& c) {
+  const std::string target = in.word("target");
+  if (target == "3d")
+    c.target = ColorTarget::View3d;
+  else if (target == "mpr")
+    c.target = ColorTarget::Mpr;
+  else if (target == "overlay")
+    c.target = ColorTarget::Overlay;
+  else if (target == "functional")
+    c.target = ColorTarget::Functional;
+  else
+    in.fail("colormap: unknown target '" + target + "' (3d, mpr, overlay, functional)");
+  const std::string name = in.word("colour map");
+  const std::optional<ColorMap> map = parseColorMap(name);
+  if (!map) {
+    std::string names;
+    for (const auto& n : colorMapNames()) names += (names.empty() ? "" : ", ") + n;
+    in.fail("colormap: unknown colour map '" + name + "' (" + names + ")");
+  }
+  c.colormap = *map;
+}
+
+void parseLayout(LineReader& in, Command& c) {
+  const std::string name = in.word("layout");
+  const std::optional<config::ViewerLayout> layout = config::parseViewerLayout(name);
+  if (!layout)
+    in.fail("layout: unknown layout '" + name + "' (" + config::viewerLayoutList() + ")");
+  c.layout = *layout;
+}
+
+void parseOrbit(LineReader& in, Command& c) {
+  const std::string mode = in.word("mode");
+  if (mode == "spin")
+    c.orbit = Orbit::Spin;
+  else if (mode == "rock")
+    c.orbit = Orbit::Rock;
+  else if (mode == "off")
+    c.orbit = Orbit::Off;
+  else
+    in.fail("orbit: unknown mode '" + mode + "' (spin, rock, off)");
+}
+
+void parseGlyphLabel(LineReader& in, Command& c) {
+  c.label = wholeNumber(
+      in, "label", 1, kMaxGlyphLabel,
+      "glyph-label: the label must be a whole number from 1 to " + std::to_string(kMaxGlyphLabel));
+  const std::string kind = in.word("kind");
+  const std::optional<config::LabelGlyphKind> k = config::parseLabelGlyphKind(kind);
+  if (!k)
+    in.fail("glyph-label: unknown kind '" + kind +
+            "' (bumps, dimples, rings, ridges, cones, crosses, none)");
+  c.labelKind = *k;
+}
+
+void parseDragOnMpr(LineReader& in, Command& c) {  // roi, ruler
+  mprPane(in, c, "draws on an MPR pane (axial, coronal, sagittal)");
+  c.x = in.number("x0");
+  c.y = in.number("y0");
+  c.x1 = in.number("x1");
+  c.y1 = in.number("y1");
+}
+
+void parseSphere(LineReader& in, Command& c) {
+  for (double& v : c.sphere.centre) v = in.number("centre (L P S mm)");
+  c.sphere.radiusMm = in.number("radius");
+  if (!(c.sphere.radiusMm > 0)) in.fail("sphere: the radius must be above 0 mm");
+}
+
+void parsePacsServer(LineReader& in, Command& c) { c.text = in.rest("server name"); }
+
+void parsePacsSearch(LineReader& in, Command& c) {
+  while (in.more()) {
+    const std::string kv = in.word("KEY=VALUE");
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) in.fail("pacs-search: '" + kv + "' is not KEY=VALUE");
+    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    if (key == "patient-id")
+      c.query.patientId = value;
+    else if (key == "patient-name")
+      c.query.patientName = value;
+    else if (key == "study-date")
+      c.query.studyDate = value;
+    else if (key == "modality")
+      c.query.modality = value;
+    else if (key == "accession")
+      c.query.accession = value;
+    else
+      in.fail("pacs-search: unknown key '" + key +
+              "' (patient-id, patient-name, study-date, modality, accession)");
+  }
+}
+
+void parsePacsStudy(LineReader& in, Command& c) { c.text = in.word("study (N or UID)"); }
+
+void parsePacsSeries(LineReader& in, Command& c) {
+  const std::string role = in.word("role");
+  if (role == "anatomical")
+    c.role = PacsBrowser::Role::Anatomical;
+  else if (role == "functional")
+    c.role = PacsBrowser::Role::Functional;
+  else if (role == "segmentation")
+    c.role = PacsBrowser::Role::Segmentation;
+  else
+    in.fail("pacs-series: unknown role '" + role + "' (anatomical, functional, segmentation)");
+  c.text = in.rest("series (UID, number, modality, description or none)");
+}
+
+void parsePacsRegistration(LineReader& in, Command& c) {
+  const std::string method = in.word("method");
+  if (method == "none")
+    c.registration = config::RegistrationMethod::None;
+  else if (method == "rigid")
+    c.registration = config::RegistrationMethod::Rigid;
+  else if (method == "affine")
+    c.registration = config::RegistrationMethod::Affine;
+  else
+    in.fail("pacs-registration: unknown method '" + method + "' (none, rigid, affine)");
+}
+
+// An optional single option word (pacs-open nowait, pacs-wait progress): frames = -1 when given.
+void parseOption(LineReader& in, Command& c, const char* option) {
+  if (!in.more()) return;
+  const std::string word = in.word(option);
+  if (word != option) in.fail(in.command() + ": unknown option '" + word + "' (" + option + ")");
+  c.frames = -1;
+}
+
+void parsePacsOpen(LineReader& in, Command& c) { parseOption(in, c, "nowait"); }
+void parsePacsWait(LineReader& in, Command& c) { parseOption(in, c, "progress"); }
+
+// One script command: how the reference names it and says what it does, a line that uses it,
+// its kind and the parser of its arguments (none: the command takes none).
+struct Entry {
+  ViewerScript::CommandInfo info;
+  Kind kind;
+  void (*parse)(LineReader& in, Command& c);
+};
+
+// Every command, in the order of the reference (docs/user-guide/view.md's table is generated
+// from it: ViewerScript::reference()).
+const Entry kCommands[] = {
+    {{"key", "K [ctrl]", "a key, as typed (1-5, d, g, f, p, r, s, o, k, z, x, c, j, l)",
+      "key s ctrl"},
+     Kind::Key,
+     parseKey},
+    {{"drag", "PANE dx dy [left|right|middle]", "a drag by fractions of the pane (default left)",
+      "drag 3d 0.15 0.05"},
+     Kind::Drag,
+     parseDrag},
+    {{"drag-frames", "PANE dx dy N [left|right|middle]",
+      "the same drag spread over N frames (1 .. 100000), each one a frame of an interactive drag "
+      "(the 3D pane renders coarse, as under the mouse), then the frame that refines",
+      "drag-frames 3d 0.2 0 6"},
+     Kind::DragFrames,
+     parseDrag},
+    {{"click", "PANE x y", "a click at fractions of the pane (y down)", "click axial 0.55 0.45"},
+     Kind::Click,
+     parsePanePoint},
+    {{"wheel", "PANE n [ctrl]", "n wheel notches (with Ctrl an MPR pane zooms)", "wheel coronal 4"},
+     Kind::Wheel,
+     parseWheel},
+    {{"jump", "", "the next place to read (key J): hottest voxel, segments, ROIs", "jump"},
+     Kind::Jump,
+     nullptr},
+    {{"iso", "VALUE", "the 3D pane's isovalue (the panel's slider)", "iso 300"},
+     Kind::Iso,
+     parseIso},
+    {{"zoom", "PANE FACTOR", "the pane's zoom times FACTOR, 0.01 .. 100 (the MPR panes together)",
+      "zoom axial 2.5"},
+     Kind::Zoom,
+     parseZoom},
+    {{"pan", "PANE dx dy",
+      "the pane's picture moved dx mm right, dy mm up, each within +-1e5 mm (the MPR panes "
+      "together, by the same world displacement)",
+      "pan sagittal 3 -4"},
+     Kind::Pan,
+     parsePan},
+    {{"hover", "PANE x y", "the cursor over an MPR pane (the value readout)",
+      "hover axial 0.5 0.5"},
+     Kind::Hover,
+     parseHover},
+    {{"wait", "FRAMES", "let FRAMES frames pass (0 .. 1000000)", "wait 2"}, Kind::Wait, parseWait},
+    {{"screenshot", "FILE", "the whole window as drawn, PNG", "screenshot out/window.png"},
+     Kind::Screenshot,
+     parseFile},
+    {{"screenshot-pane", "PANE FILE", "the pane's rectangle of the window as drawn, PNG",
+      "screenshot-pane sagittal out/sagittal.png"},
+     Kind::PaneScreenshot,
+     parsePaneFile},
+    {{"dump", "PANE FILE", "the pane's render at full resolution, without annotations",
+      "dump 3d out/3d.png"},
+     Kind::Dump,
+     parsePaneFile},
+    {{"save-config", "FILE", "the state as a study config (Ctrl+S)", "save-config out/saved.json"},
+     Kind::SaveConfig,
+     parseFile},
+    {{"colormap", "3d|mpr|overlay|functional NAME",
+      "a colour map chooser (NAME: grey, grey-inverted, hot-iron, pet, hot-metal-blue, "
+      "pet-20-step, hot-metal); functional: the PET/CT layout's functional pane and MIP",
+      "colormap functional hot-iron"},
+     Kind::Colormap,
+     parseColormap},
+    {{"layout", "NAME",
+      "standard, pet-ct (axial), pet-ct-coronal, pet-ct-sagittal (key L cycles them)",
+      "layout pet-ct-coronal"},
+     Kind::Layout,
+     parseLayout},
+    {{"orbit", "spin|rock|off", "the rotating 3D view (keys O and K toggle it)", "orbit rock"},
+     Kind::Orbit,
+     parseOrbit},
+    {{"glyph-label", "N KIND|none",
+      "what label N of a label map gets (the panel's picker; KIND: bumps, dimples, rings, "
+      "ridges, cones, crosses)",
+      "glyph-label 2 rings"},
+     Kind::GlyphLabel,
+     parseGlyphLabel},
+    {{"register", "", "re-run the registration in the background, as the study asks", "register"},
+     Kind::Register,
+     nullptr},
+    {{"wait-registration", "", "wait until the registration's re-run has ended",
+      "wait-registration"},
+     Kind::WaitRegistration,
+     nullptr},
+    {{"roi", "PANE x0 y0 x1 y1",
+      "a sphere ROI drawn by a drag on an MPR pane: centre at (x0, y0) on the pane's plane, "
+      "radius the distance to (x1, y1)",
+      "roi axial 0.5 0.5 0.6 0.5"},
+     Kind::Roi,
+     parseDragOnMpr},
+    {{"ruler", "PANE x0 y0 x1 y1", "a distance ruler on an MPR pane from (x0, y0) to (x1, y1)",
+      "ruler coronal 0.2 0.5 0.8 0.5"},
+     Kind::Ruler,
+     parseDragOnMpr},
+    {{"sphere", "L P S R",
+      "a sphere ROI by its centre (LPS mm) and radius (mm); the crosshair goes to its centre",
+      "sphere 10 -20 30 15"},
+     Kind::Sphere,
+     parseSphere},
+    {{"roi-stats", "FILE", "every sphere's statistics, JSON (`mvw stats`'s fields)",
+      "roi-stats out/roi.json"},
+     Kind::RoiStats,
+     parseFile},
+    {{"clear-measurements", "", "no sphere, no ruler", "clear-measurements"},
+     Kind::ClearMeasurements,
+     nullptr},
+    {{"pacs-server", "NAME",
+      "the PACS window on the server of that name in servers.json (the rest of the line)",
+      "pacs-server Clinic PACS"},
+     Kind::PacsServer,
+     parsePacsServer},
+    {{"pacs-search", "[KEY=VALUE ...]",
+      "a study search, waited for; KEY: patient-id, patient-name, study-date, modality, "
+      "accession",
+      "pacs-search patient-id=P1 modality=PT"},
+     Kind::PacsSearch,
+     parsePacsSearch},
+    {{"pacs-study", "N|UID",
+      "the N-th study found (1: the first) or the one of that Study Instance UID; its series "
+      "asked for, waited for",
+      "pacs-study 1"},
+     Kind::PacsStudy,
+     parsePacsStudy},
+    {{"pacs-series", "ROLE SERIES|none",
+      "the series ROLE (anatomical, functional, segmentation) takes: its UID, number, modality "
+      "or description (the rest of the line)",
+      "pacs-series functional PT"},
+     Kind::PacsSeries,
+     parsePacsSeries},
+    {{"pacs-registration", "none|rigid|affine", "the registration rule of the study opened",
+      "pacs-registration rigid"},
+     Kind::PacsRegistration,
+     parsePacsRegistration},
+    {{"pacs-open", "[nowait]",
+      "retrieve and open the chosen series as the study shown; waits until it is open or has "
+      "failed (the panel says why, and the current study stays); nowait: goes on while it runs",
+      "pacs-open nowait"},
+     Kind::PacsOpen,
+     parsePacsOpen},
+    {{"pacs-wait", "[progress]",
+      "wait for the PACS window's running step (search, series, open) to end; progress: only "
+      "until its retrieve has received an instance",
+      "pacs-wait progress"},
+     Kind::PacsWait,
+     parsePacsWait},
+    {{"pacs-report", "FILE",
+      "the PACS window's state, JSON: server, studies, series, chosen series, status, error",
+      "pacs-report out/pacs.json"},
+     Kind::PacsReport,
+     parseFile},
+    {{"quit", "", "close the window", "quit"}, Kind::Quit, nullptr},
+};
+
 Command parseLine(const std::string& text, const std::filesystem::path& source, int number) {
   LineReader in(text, source, number);
   Command c;
@@ -76,243 +469,49 @@ Command parseLine(const std::string& text, const std::filesystem::path& source, 
   if (in.empty()) return c;
   const std::string cmd = in.word("command");
   if (cmd[0] == '#') return c;
-  if (cmd == "key") {
-    c.kind = Kind::Key;
-    const std::string k = in.word("key");
-    if (k.size() != 1)
-      in.fail("key: '" + k + "' is not one key (1-5, d, g, f, p, r, s, o, k, z, x, c, j, l)");
-    c.key = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
-    if (in.more()) {
-      const std::string mod = in.word("modifier");
-      if (mod != "ctrl") in.fail("key: unknown modifier '" + mod + "' (ctrl)");
-      c.ctrl = true;
-    }
-  } else if (cmd == "drag" || cmd == "drag-frames") {
-    c.kind = cmd == "drag" ? Kind::Drag : Kind::DragFrames;
-    c.pane = in.pane();
-    c.x = in.number("dx");
-    c.y = in.number("dy");
-    if (c.kind == Kind::DragFrames) {
-      const double frames = in.number("frame count");
-      if (frames < 1 || frames != std::floor(frames) || frames > 1e5)
-        in.fail("drag-frames: the frame count must be a whole number from 1 to 100000");
-      c.frames = static_cast<int>(frames);
-    }
-    if (in.more()) {
-      const std::string b = in.word("button");
-      if (b == "left")
-        c.button = MouseButton::Left;
-      else if (b == "right")
-        c.button = MouseButton::Right;
-      else if (b == "middle")
-        c.button = MouseButton::Middle;
-      else
-        in.fail(cmd + ": unknown button '" + b + "' (left, right, middle)");
-    }
-  } else if (cmd == "click") {
-    c.kind = Kind::Click;
-    c.pane = in.pane();
-    c.x = in.number("x");
-    c.y = in.number("y");
-  } else if (cmd == "wheel") {
-    c.kind = Kind::Wheel;
-    c.pane = in.pane();
-    c.x = in.number("notches");
-    if (in.more()) {
-      const std::string mod = in.word("modifier");
-      if (mod != "ctrl") in.fail("wheel: unknown modifier '" + mod + "' (ctrl)");
-      c.ctrl = true;
-    }
-  } else if (cmd == "jump") {
-    c.kind = Kind::Jump;
-  } else if (cmd == "iso") {
-    c.kind = Kind::Iso;
-    c.x = in.number("value");
-  } else if (cmd == "zoom") {
-    c.kind = Kind::Zoom;
-    c.pane = in.pane();
-    c.x = in.number("factor");
-    if (!(c.x >= 0.01 && c.x <= 100)) in.fail("zoom: the factor must lie in 0.01 .. 100");
-  } else if (cmd == "pan") {
-    c.kind = Kind::Pan;
-    c.pane = in.pane();
-    c.x = in.number("dx");
-    c.y = in.number("dy");
-    if (!(std::abs(c.x) <= 1e5 && std::abs(c.y) <= 1e5)) in.fail("pan: dx and dy within +-1e5 mm");
-  } else if (cmd == "wait") {
-    c.kind = Kind::Wait;
-    const double frames = in.number("frame count");
-    if (frames < 0 || frames != std::floor(frames) || frames > 1e6)
-      in.fail("wait: the frame count must be a whole number from 0 to 1000000");
-    c.frames = static_cast<int>(frames);
-  } else if (cmd == "screenshot" || cmd == "save-config") {
-    c.kind = cmd == "screenshot" ? Kind::Screenshot : Kind::SaveConfig;
-    c.file = in.word("file");
-  } else if (cmd == "screenshot-pane") {
-    c.kind = Kind::PaneScreenshot;
-    c.pane = in.pane();
-    c.file = in.word("file");
-  } else if (cmd == "dump") {
-    c.kind = Kind::Dump;
-    c.pane = in.pane();
-    c.file = in.word("file");
-  } else if (cmd == "colormap") {
-    c.kind = Kind::Colormap;
-    const std::string target = in.word("target");
-    if (target == "3d")
-      c.target = ColorTarget::View3d;
-    else if (target == "mpr")
-      c.target = ColorTarget::Mpr;
-    else if (target == "overlay")
-      c.target = ColorTarget::Overlay;
-    else if (target == "functional")
-      c.target = ColorTarget::Functional;
-    else
-      in.fail("colormap: unknown target '" + target + "' (3d, mpr, overlay, functional)");
-    const std::string name = in.word("colour map");
-    const std::optional<ColorMap> map = parseColorMap(name);
-    if (!map) {
-      std::string names;
-      for (const auto& n : colorMapNames()) names += (names.empty() ? "" : ", ") + n;
-      in.fail("colormap: unknown colour map '" + name + "' (" + names + ")");
-    }
-    c.colormap = *map;
-  } else if (cmd == "layout") {
-    c.kind = Kind::Layout;
-    const std::string name = in.word("layout");
-    const std::optional<config::ViewerLayout> layout = config::parseViewerLayout(name);
-    if (!layout)
-      in.fail("layout: unknown layout '" + name + "' (" + config::viewerLayoutList() + ")");
-    c.layout = *layout;
-  } else if (cmd == "orbit") {
-    c.kind = Kind::Orbit;
-    const std::string mode = in.word("mode");
-    if (mode == "spin")
-      c.orbit = Orbit::Spin;
-    else if (mode == "rock")
-      c.orbit = Orbit::Rock;
-    else if (mode == "off")
-      c.orbit = Orbit::Off;
-    else
-      in.fail("orbit: unknown mode '" + mode + "' (spin, rock, off)");
-  } else if (cmd == "glyph-label") {
-    c.kind = Kind::GlyphLabel;
-    const double label = in.number("label");
-    if (label < 1 || label != std::floor(label) || label > kMaxGlyphLabel)
-      in.fail("glyph-label: the label must be a whole number from 1 to " +
-              std::to_string(kMaxGlyphLabel));
-    c.label = static_cast<int>(label);
-    const std::string kind = in.word("kind");
-    const std::optional<config::LabelGlyphKind> k = config::parseLabelGlyphKind(kind);
-    if (!k)
-      in.fail("glyph-label: unknown kind '" + kind +
-              "' (bumps, dimples, rings, ridges, cones, crosses, none)");
-    c.labelKind = *k;
-  } else if (cmd == "register") {
-    c.kind = Kind::Register;
-  } else if (cmd == "wait-registration") {
-    c.kind = Kind::WaitRegistration;
-  } else if (cmd == "roi" || cmd == "ruler") {
-    c.kind = cmd == "roi" ? Kind::Roi : Kind::Ruler;
-    c.pane = in.pane();
-    if (c.pane == k3d) in.fail(cmd + ": draws on an MPR pane (axial, coronal, sagittal)");
-    c.x = in.number("x0");
-    c.y = in.number("y0");
-    c.x1 = in.number("x1");
-    c.y1 = in.number("y1");
-  } else if (cmd == "hover") {
-    c.kind = Kind::Hover;
-    c.pane = in.pane();
-    if (c.pane == k3d) in.fail("hover: reads values on an MPR pane (axial, coronal, sagittal)");
-    c.x = in.number("x");
-    c.y = in.number("y");
-  } else if (cmd == "sphere") {
-    c.kind = Kind::Sphere;
-    for (double& v : c.sphere.centre) v = in.number("centre (L P S mm)");
-    c.sphere.radiusMm = in.number("radius");
-    if (!(c.sphere.radiusMm > 0)) in.fail("sphere: the radius must be above 0 mm");
-  } else if (cmd == "roi-stats") {
-    c.kind = Kind::RoiStats;
-    c.file = in.word("file");
-  } else if (cmd == "clear-measurements") {
-    c.kind = Kind::ClearMeasurements;
-  } else if (cmd == "pacs-server") {
-    c.kind = Kind::PacsServer;
-    c.text = in.rest("server name");
-  } else if (cmd == "pacs-search") {
-    c.kind = Kind::PacsSearch;
-    while (in.more()) {
-      const std::string kv = in.word("KEY=VALUE");
-      const auto eq = kv.find('=');
-      if (eq == std::string::npos || eq == 0) in.fail("pacs-search: '" + kv + "' is not KEY=VALUE");
-      const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
-      if (key == "patient-id")
-        c.query.patientId = value;
-      else if (key == "patient-name")
-        c.query.patientName = value;
-      else if (key == "study-date")
-        c.query.studyDate = value;
-      else if (key == "modality")
-        c.query.modality = value;
-      else if (key == "accession")
-        c.query.accession = value;
-      else
-        in.fail("pacs-search: unknown key '" + key +
-                "' (patient-id, patient-name, study-date, modality, accession)");
-    }
-  } else if (cmd == "pacs-study") {
-    c.kind = Kind::PacsStudy;
-    c.text = in.word("study (N or UID)");
-  } else if (cmd == "pacs-series") {
-    c.kind = Kind::PacsSeries;
-    const std::string role = in.word("role");
-    if (role == "anatomical")
-      c.role = PacsBrowser::Role::Anatomical;
-    else if (role == "functional")
-      c.role = PacsBrowser::Role::Functional;
-    else if (role == "segmentation")
-      c.role = PacsBrowser::Role::Segmentation;
-    else
-      in.fail("pacs-series: unknown role '" + role + "' (anatomical, functional, segmentation)");
-    c.text = in.rest("series (UID, number, modality, description or none)");
-  } else if (cmd == "pacs-registration") {
-    c.kind = Kind::PacsRegistration;
-    const std::string method = in.word("method");
-    if (method == "none")
-      c.registration = config::RegistrationMethod::None;
-    else if (method == "rigid")
-      c.registration = config::RegistrationMethod::Rigid;
-    else if (method == "affine")
-      c.registration = config::RegistrationMethod::Affine;
-    else
-      in.fail("pacs-registration: unknown method '" + method + "' (none, rigid, affine)");
-  } else if (cmd == "pacs-open") {
-    c.kind = Kind::PacsOpen;
-    if (in.more()) {
-      const std::string how = in.word("nowait");
-      if (how != "nowait") in.fail("pacs-open: unknown option '" + how + "' (nowait)");
-      c.frames = -1;  // not waited for
-    }
-  } else if (cmd == "pacs-wait") {
-    c.kind = Kind::PacsWait;
-    if (in.more()) {
-      const std::string what = in.word("progress");
-      if (what != "progress") in.fail("pacs-wait: unknown option '" + what + "' (progress)");
-      c.frames = -1;
-    }
-  } else if (cmd == "pacs-report") {
-    c.kind = Kind::PacsReport;
-    c.file = in.word("file");
-  } else if (cmd == "quit") {
-    c.kind = Kind::Quit;
-  } else {
-    in.fail("unknown command '" + cmd + "'");
-  }
+  const auto entry = std::find_if(std::begin(kCommands), std::end(kCommands),
+                                  [&](const Entry& e) { return cmd == e.info.name; });
+  if (entry == std::end(kCommands)) in.fail("unknown command '" + cmd + "'");
+  c.kind = entry->kind;
+  if (entry->parse) entry->parse(in, c);
   in.end();
   return c;
 }
 
+// A Markdown table cell: '|' would end it.
+std::string cell(std::string_view text) {
+  std::string out;
+  for (const char ch : text) {
+    if (ch == '|') out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
 }  // namespace
+
+std::vector<ViewerScript::CommandInfo> ViewerScript::commandInfo() {
+  std::vector<CommandInfo> out;
+  for (const Entry& e : kCommands) out.push_back(e.info);
+  return out;
+}
+
+std::string ViewerScript::reference() {
+  std::string md =
+      "<!-- Generated by `mvw view --script-reference` from the command table in "
+      "modules/viewer/src/ViewerScript.cpp: edit the table there and regenerate "
+      "(scripts/script-reference), rather than editing this table. -->\n"
+      "| command | what it does | example |\n"
+      "|---|---|---|\n";
+  for (const Entry& e : kCommands) {
+    const std::string usage =
+        std::string(e.info.name) + (*e.info.arguments ? " " : "") + e.info.arguments;
+    md +=
+        "| `" + cell(usage) + "` | " + cell(e.info.help) + " | `" + cell(e.info.example) + "` |\n";
+  }
+  md += "<!-- End of the generated script reference. -->\n";
+  return md;
+}
 
 ViewerScript ViewerScript::parse(const std::string& text, const std::filesystem::path& source) {
   ViewerScript script;

@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "mvw/config/StudyConfig.h"
@@ -96,6 +97,18 @@ class PacsBrowser {
   std::string describeSeries(const std::string& seriesUid) const;
   static std::string describeStudy(const pacs::Match& study);
   static std::string dicomDate(const std::string& yyyymmdd);  // "2026-11-30"
+  // The PACS window's tables as text (the window only draws them). A study's row: patient
+  // (the name's ^ as spaces; "(no name)"), patient ID, date (dicomDate), modalities,
+  // description, number of series. A series's row: number, modality, description, images.
+  static std::vector<std::string> studyRow(const pacs::Match& study);
+  static std::vector<std::string> seriesRow(const pacs::Match& series);
+  // Whether a series (its UID) takes a role.
+  bool isChosen(const std::string& seriesUid) const;
+  // The search's study date, the query's DICOM range "FROM-TO", as its two ends (either may
+  // be empty: from onwards, up to; a single date is its FROM), and set from them (both empty:
+  // any date).
+  std::pair<std::string, std::string> studyDateRange() const;
+  void setStudyDateRange(const std::string& from, const std::string& to);
 
   config::RegistrationMethod registration = config::RegistrationMethod::None;
   config::FunctionalKind functionalKind = config::FunctionalKind::Pet;
