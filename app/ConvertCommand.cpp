@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "CliChecks.h"
-#include "VolumeReport.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Frame.h"
@@ -19,6 +18,7 @@
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/study/StudyLoader.h"
+#include "mvw/study/VolumeReport.h"
 
 namespace mvw::app {
 
@@ -80,7 +80,7 @@ void checkOutput(const fs::path& output, const fs::path& sidecar, const fs::path
 // What dcm2niix's BIDS sidecar says, in mvw's words: what the values are and where they came
 // from; the geometry is the image's own (and repeated here for a reader without NIfTI).
 nlohmann::json sidecarJson(const Volume& volume, const ConvertOptions& o) {
-  nlohmann::json j = volumeJson(volume);
+  nlohmann::json j = study::volumeJson(volume);
   j.erase("path");
   j["source_path"] = fs::absolute(o.input).lexically_normal().string();
   const auto& md = volume.metadata();

@@ -1,7 +1,6 @@
 #include "GlyphMapCommand.h"
 
 #include <algorithm>
-#include <cstring>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -10,7 +9,6 @@
 
 #include "CliChecks.h"
 #include "mvw/core/Error.h"
-#include "mvw/core/Volume.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/render/GlyphMap.h"
 
@@ -24,16 +22,11 @@ struct GlyphMapOptions {
   double voxelMm = 1.0;
 };
 
-// `mvw glyphmap -o FILE`: the normal map as a 4-component float volume (RGB normal, A distance
-// to the glyph centre / radius, -1 outside) for inspection in any NIfTI/MetaImage viewer.
+// `mvw glyphmap -o FILE`: the normal map as a volume (render::glyphMapVolume).
 void runGlyphMap(const GlyphMapOptions& o) {
   io::checkVolumeOutput(o.output);
   const render::GlyphMap map = render::makeGlyphMap(o.settings);
-  Volume v({map.size, map.size, map.size}, 4, ScalarType::Float32,
-           makeWorldFromIndex(glm::dvec3(0.0), glm::dvec3(o.voxelMm), glm::dmat3(1.0)));
-  std::memcpy(v.data(), map.texels.data(), v.byteSize());
-  v.metadata().seriesDescription = "mvw glyph normal map";
-  io::writeVolume(v, o.output);
+  io::writeVolume(render::glyphMapVolume(map, o.voxelMm), o.output);
   std::cout << "wrote " << map.centres.size() << " glyphs of " << 2 * map.radius << " voxels in a "
             << map.size << "^3 map to " << o.output << "\n";
 }

@@ -12,10 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "CliChecks.h"
-#include "VolumeReport.h"
-#include "mvw/config/StudyConfig.h"
 #include "mvw/io/VolumeReader.h"
-#include "mvw/study/StudyLoader.h"
+#include "mvw/study/VolumeReport.h"
 
 namespace mvw::app {
 
@@ -29,45 +27,16 @@ struct InfoOptions {
   std::size_t maxMemory = 0;  // bytes; 0: the reader's default (a quarter of physical RAM)
 };
 
-bool isStudyConfig(const std::filesystem::path& p) { return p.extension() == ".json"; }
-
 void runInfo(const InfoOptions& opt) {
-  // Read everything first: a bad input anywhere means no partial report.
-  struct Item {
-    std::string role;
-    Volume volume;
-  };
-  std::vector<Item> items;
   io::ReadOptions read;
   read.series = opt.series;
   read.suv = !opt.noSuv;
   read.maxBytes = opt.maxMemory;
-  for (const auto& p : opt.paths) {
-    if (isStudyConfig(p)) {
-      const auto study = config::loadStudyConfig(p);
-      items.push_back({"anatomical", mvw::study::readSource(study.anatomical, read)});
-      if (study.functional)
-        items.push_back({"functional (" + config::toString(study.functionalKind) + ")",
-                         mvw::study::readSource(*study.functional, read)});
-    } else {
-      for (auto& v : io::readAllVolumes(p, read)) items.push_back({"", std::move(v)});
-    }
-  }
-  if (opt.json) {
-    nlohmann::json out = nlohmann::json::array();
-    for (const auto& item : items) {
-      auto j = volumeJson(item.volume);
-      if (!item.role.empty()) j["role"] = item.role;
-      out.push_back(j);
-    }
-    std::cout << out.dump(2) << "\n";
-    return;
-  }
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    if (i) std::cout << "\n";
-    if (!items[i].role.empty()) std::cout << "[" << items[i].role << "] ";
-    printVolume(std::cout, items[i].volume);
-  }
+  const auto volumes = study::readReportedVolumes({opt.paths.begin(), opt.paths.end()}, read);
+  if (opt.json)
+    std::cout << study::volumesJson(volumes).dump(2) << "\n";
+  else
+    study::printVolumes(std::cout, volumes);
 }
 
 }  // namespace

@@ -6,14 +6,12 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <glm/trigonometric.hpp>
 
 #include "CliChecks.h"
 #include "mvw/core/VesselPhantom.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/resampling/PetPhantom.h"
-#include "mvw/resampling/Transform.h"
 
 namespace mvw::app {
 
@@ -42,14 +40,9 @@ struct PetPhantomOptions {
 // `mvw phantom pet`: the PET-like test volume of the registration tests, as a file.
 void runPetPhantom(const PetPhantomOptions& o) {
   io::checkVolumeOutput(o.output, {o.ct});
-  const Volume ct = io::readVolume(o.ct);
-  const resampling::PetPhantom phantom(ct);
-  resampling::RigidParameters p;
-  p.angles = glm::radians(glm::dvec3(o.rotateDeg[0], o.rotateDeg[1], o.rotateDeg[2]));
-  p.translation = glm::dvec3(o.shiftMm[0], o.shiftMm[1], o.shiftMm[2]);
-  const glm::dmat4 petFromCt = resampling::rigidMatrix(p, phantom.centre());
-  Volume pet = phantom.pet(petFromCt, o.seed);
-  pet.metadata().seriesDescription = "mvw PET-like phantom";
+  const Volume pet = resampling::petPhantomVolume(
+      io::readVolume(o.ct), {o.rotateDeg[0], o.rotateDeg[1], o.rotateDeg[2]},
+      {o.shiftMm[0], o.shiftMm[1], o.shiftMm[2]}, o.seed);
   io::writeVolume(pet, o.output);
   std::cout << "wrote a PET-like volume (" << pet.dimensions().x << " x " << pet.dimensions().y
             << " x " << pet.dimensions().z << ") to " << o.output << "\n";

@@ -7,6 +7,7 @@
 
 #include <glm/common.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "mvw/core/Check.h"
 #include "mvw/resampling/Resample.h"
@@ -133,6 +134,17 @@ double PetPhantom::meanTre(const glm::dmat4& estimatedPetFromCt,
     sum += glm::length(glm::dvec3(estimatedPetFromCt * glm::dvec4(x, 1.0)) -
                        glm::dvec3(truePetFromCt * glm::dvec4(x, 1.0)));
   return sum / static_cast<double>(lattice_.size());
+}
+
+Volume petPhantomVolume(const Volume& ct, const glm::dvec3& rotateDeg, const glm::dvec3& shiftMm,
+                        unsigned seed) {
+  const PetPhantom phantom(ct);
+  RigidParameters p;
+  p.angles = glm::radians(rotateDeg);
+  p.translation = shiftMm;
+  Volume pet = phantom.pet(rigidMatrix(p, phantom.centre()), seed);
+  pet.metadata().seriesDescription = "mvw PET-like phantom";
+  return pet;
 }
 
 }  // namespace mvw::resampling

@@ -242,5 +242,23 @@ TEST(GlyphMap, PaperPlacementIsTheDefault) {
   ASSERT_EQ(map.centres.size(), 16u);
 }
 
+// `mvw glyphmap`'s volume: the texels as 4 float components, voxel for voxel, on cubic voxels.
+TEST(GlyphMap, AsAVolume) {
+  const GlyphMap map = makeGlyphMap({16, 2, 4.0, 3});
+  const Volume v = glyphMapVolume(map, 0.5);
+  EXPECT_EQ(v.dimensions(), glm::ivec3(16));
+  EXPECT_EQ(v.components(), 4);
+  EXPECT_EQ(v.scalarType(), ScalarType::Float32);
+  EXPECT_EQ(v.spacing(), glm::dvec3(0.5));
+  EXPECT_EQ(v.origin(), glm::dvec3(0.0));
+  EXPECT_EQ(v.direction(), glm::dmat3(1.0));
+  EXPECT_EQ(v.metadata().seriesDescription, "mvw glyph normal map");
+  for (int k = 0; k < 16; k += 3)
+    for (int j = 0; j < 16; j += 2)
+      for (int i = 0; i < 16; ++i)
+        for (int c = 0; c < 4; ++c)
+          ASSERT_EQ(v.value(i, j, k, c), map.at(i, j, k)[c]) << i << "," << j << "," << k;
+}
+
 }  // namespace
 }  // namespace mvw::render

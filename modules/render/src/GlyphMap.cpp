@@ -4,11 +4,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <iomanip>
 #include <random>
 #include <sstream>
 #include <string>
 
+#include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 
 namespace mvw::render {
@@ -195,6 +197,15 @@ GlyphMap makeGlyphMap(const GlyphMapSettings& s, bool texels) {
       map.texels[i] = glm::vec4(glm::vec3(normal), static_cast<float>(r / map.radius));
     });
   return map;
+}
+
+Volume glyphMapVolume(const GlyphMap& map, double voxelMm) {
+  MVW_CHECK(map.texels.size() == static_cast<std::size_t>(map.size) * map.size * map.size);
+  Volume v({map.size, map.size, map.size}, 4, ScalarType::Float32,
+           makeWorldFromIndex(glm::dvec3(0.0), glm::dvec3(voxelMm), glm::dmat3(1.0)));
+  std::memcpy(v.data(), map.texels.data(), v.byteSize());
+  v.metadata().seriesDescription = "mvw glyph normal map";
+  return v;
 }
 
 }  // namespace mvw::render

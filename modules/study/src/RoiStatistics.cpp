@@ -18,13 +18,9 @@ namespace mvw::study {
 
 namespace {
 
-std::string fmt(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  return buf;
+std::string fmt3(const glm::dvec3& p) {
+  return fixedNumber(p.x, 3) + ", " + fixedNumber(p.y, 3) + ", " + fixedNumber(p.z, 3);
 }
-
-std::string fmt3(const glm::dvec3& p) { return fmt(p.x) + ", " + fmt(p.y) + ", " + fmt(p.z); }
 
 // Component 0 of every voxel as double (NaN stays NaN).
 std::vector<double> valuesOf(const Volume& volume) {
@@ -129,11 +125,11 @@ bool isSuvUnit(const std::string& unit) { return unit.rfind("SUV", 0) == 0; }
 
 VoxelList sphereVoxels(const Volume& volume, const SphereRoi& s) {
   const std::string what =
-      "the sphere at (" + fmt3(s.centre) + ") mm, radius " + fmt(s.radiusMm) + " mm,";
+      "the sphere at (" + fmt3(s.centre) + ") mm, radius " + fixedNumber(s.radiusMm, 3) + " mm,";
   if (!(s.radiusMm > 0) || !std::isfinite(s.radiusMm) || !std::isfinite(glm::length(s.centre)))
-    throw InputError(
-        volume.metadata().sourcePath,
-        "the sphere's radius must be a positive number of mm (got " + fmt(s.radiusMm) + ")");
+    throw InputError(volume.metadata().sourcePath,
+                     "the sphere's radius must be a positive number of mm (got " +
+                         fixedNumber(s.radiusMm, 3) + ")");
   const double r2 = s.radiusMm * s.radiusMm;
   const glm::dvec3 half(s.radiusMm);
   return collect(
@@ -152,7 +148,8 @@ VoxelList boxVoxels(const Volume& volume, const BoxRoi& b) {
     if (b.min[a] > b.max[a])
       throw InputError(volume.metadata().sourcePath,
                        std::string("the box's first corner must not exceed the second: ") +
-                           "LPS"[a] + " " + fmt(b.min[a]) + " > " + fmt(b.max[a]) + " mm");
+                           "LPS"[a] + " " + fixedNumber(b.min[a], 3) + " > " +
+                           fixedNumber(b.max[a], 3) + " mm");
   return collect(
       volume, b.min, b.max,
       [&](const glm::dvec3& w) {

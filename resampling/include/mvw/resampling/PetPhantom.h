@@ -55,4 +55,10 @@ class PetPhantom {
   std::vector<glm::dvec3> lattice_;
 };
 
+// `mvw phantom pet`: the PET-like volume of `ct` (seeded noise, the default grid) under the
+// rigid transform of `rotateDeg` (degrees about x, y, z, ITK Euler order, about the CT's centre)
+// and `shiftMm`, described as "mvw PET-like phantom".
+Volume petPhantomVolume(const Volume& ct, const glm::dvec3& rotateDeg, const glm::dvec3& shiftMm,
+                        unsigned seed);
+
 }  // namespace mvw::resampling

@@ -13,4 +13,12 @@ inline std::string shortNumber(double x, int significant = 6) {
   return text;
 }
 
+// %f with `decimals` digits after the point: coordinates and sizes in mm, shown to a fixed
+// precision whatever their magnitude (12.5 at 1 decimal is 12.5, 100 is 100.0).
+inline std::string fixedNumber(double x, int decimals) {
+  char text[352];  // %f of DBL_MAX: 309 digits before the point
+  std::snprintf(text, sizeof text, "%.*f", decimals, x);
+  return text;
+}
+
 }  // namespace mvw

@@ -20,6 +20,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "mvw/core/Volume.h"
+
 namespace mvw::render {
 
 // Where the glyphs go.
@@ -83,5 +85,10 @@ struct GlyphMap {
 // the message says what would fit.
 // texels = false leaves `texels` empty: the renderer needs only the centres and cells.
 GlyphMap makeGlyphMap(const GlyphMapSettings& settings, bool texels = true);
+
+// The map's texels as a volume for any NIfTI/MetaImage viewer (`mvw glyphmap`): 4 float
+// components (RGB normal, A distance to the glyph centre / radius, -1 outside), cubic voxels of
+// `voxelMm` from the origin, axes along LPS, described as "mvw glyph normal map".
+Volume glyphMapVolume(const GlyphMap& map, double voxelMm);
 
 }  // namespace mvw::render

@@ -1,29 +1,22 @@
-#include "VolumeReport.h"
+#include "mvw/study/VolumeReport.h"
 
 #include <cmath>
-#include <cstdio>
-#include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/Orientation.h"
+#include "mvw/study/StudyLoader.h"
 
-namespace mvw::app {
+namespace mvw::study {
 
 namespace {
 
-std::string fmt(double v, int decimals = 3) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
-std::string fmtValue(double v) {
-  // Integer-valued ranges print without decimals (HU, labels); others with 4 significant digits.
-  if (std::abs(v) < 1e9 && v == std::floor(v)) return fmt(v, 0);
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
+// Integer-valued ranges print without decimals (HU, labels); others with 4 significant digits.
+std::string valueText(double v) {
+  if (std::abs(v) < 1e9 && v == std::floor(v)) return fixedNumber(v, 0);
+  return shortNumber(v, 4);
 }
 
 }  // namespace
@@ -82,26 +75,63 @@ void printVolume(std::ostream& out, const Volume& volume) {
   out << "  dimensions   " << d.x << " x " << d.y << " x " << d.z;
   if (volume.components() > 1) out << " x " << volume.components() << " components";
   out << "  (" << scalarName(volume.scalarType()) << ")\n";
-  out << "  spacing      " << fmt(s.x, 4) << " x " << fmt(s.y, 4) << " x " << fmt(s.z, 4)
-      << " mm\n";
-  out << "  origin       " << fmt(o.x) << ", " << fmt(o.y) << ", " << fmt(o.z) << " mm (LPS)\n";
+  out << "  spacing      " << fixedNumber(s.x, 4) << " x " << fixedNumber(s.y, 4) << " x "
+      << fixedNumber(s.z, 4) << " mm\n";
+  out << "  origin       " << fixedNumber(o.x, 3) << ", " << fixedNumber(o.y, 3) << ", "
+      << fixedNumber(o.z, 3) << " mm (LPS)\n";
   out << "  orientation  " << orientationCode(dir) << (isOblique(dir) ? " (oblique)" : "") << "\n";
   out << "  direction    ";
   for (int r = 0; r < 3; ++r) {
     out << (r ? "               " : "") << "[";
-    for (int c = 0; c < 3; ++c) out << (c ? " " : "") << fmt(dir[c][r], 4);
+    for (int c = 0; c < 3; ++c) out << (c ? " " : "") << fixedNumber(dir[c][r], 4);
     out << "]\n";
   }
-  out << "  value range  " << fmtValue(lo) << " .. " << fmtValue(hi)
+  out << "  value range  " << valueText(lo) << " .. " << valueText(hi)
       << (md.unit.empty() ? "" : " " + md.unit) << "\n";
   if (md.sliceSpacing) {
     const auto& ss = *md.sliceSpacing;
-    out << "  slices       " << ss.slices << ", spacing " << fmt(ss.nominal) << " mm, "
+    out << "  slices       " << ss.slices << ", spacing " << fixedNumber(ss.nominal, 3) << " mm, "
         << (ss.regular ? "regular"
-                       : "IRREGULAR (" + fmt(ss.minimum) + " .. " + fmt(ss.maximum) + " mm)")
+                       : "IRREGULAR (" + fixedNumber(ss.minimum, 3) + " .. " +
+                             fixedNumber(ss.maximum, 3) + " mm)")
         << (ss.resampled ? ", resampled onto a regular grid" : "") << "\n";
   }
   for (const auto& note : md.notes) out << "  note         " << note << "\n";
 }
 
-}  // namespace mvw::app
+std::vector<ReportedVolume> readReportedVolumes(const std::vector<std::filesystem::path>& paths,
+                                                const io::ReadOptions& options) {
+  std::vector<ReportedVolume> volumes;
+  for (const auto& p : paths) {
+    if (p.extension() == ".json") {
+      const auto study = config::loadStudyConfig(p);
+      volumes.push_back({"anatomical", readSource(study.anatomical, options)});
+      if (study.functional)
+        volumes.push_back({"functional (" + config::toString(study.functionalKind) + ")",
+                           readSource(*study.functional, options)});
+    } else {
+      for (auto& v : io::readAllVolumes(p, options)) volumes.push_back({"", std::move(v)});
+    }
+  }
+  return volumes;
+}
+
+nlohmann::json volumesJson(const std::vector<ReportedVolume>& volumes) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& v : volumes) {
+    auto j = volumeJson(v.volume);
+    if (!v.role.empty()) j["role"] = v.role;
+    out.push_back(j);
+  }
+  return out;
+}
+
+void printVolumes(std::ostream& out, const std::vector<ReportedVolume>& volumes) {
+  for (std::size_t i = 0; i < volumes.size(); ++i) {
+    if (i) out << "\n";
+    if (!volumes[i].role.empty()) out << "[" << volumes[i].role << "] ";
+    printVolume(out, volumes[i].volume);
+  }
+}
+
+}  // namespace mvw::study

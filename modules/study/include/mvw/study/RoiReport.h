@@ -1,0 +1,91 @@
+#pragma once
+// ROI statistics as `mvw stats` reports them: the ROIs a request names (a sphere, a box, every
+// label of a label volume or segment of a DICOM SEG, or one of them), each one's statistics
+// (RoiStatistics.h), the total over a SEG's segments (their union, the total metabolic tumour
+// volume and its TLG), as JSON for a script and as text for a person, and the segments of the
+// DICOM SEG that writes the ROIs back (written by dicomout, which study does not reach).
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "mvw/core/Volume.h"
+#include "mvw/io/VolumeReader.h"
+#include "mvw/study/RoiStatistics.h"
+
+namespace mvw::study {
+
+// The volume `mvw stats` measures: a volume file, or a study config's (.json) functional volume
+// (readSource), or with `anatomical` its anatomical one (readAnatomical). A study without a
+// functional volume throws InputError naming the config.
+Volume readMeasuredVolume(const std::filesystem::path& source, bool anatomical,
+                          const io::ReadOptions& options);
+
+// Exactly one of sphere, box and labels.
+struct RoiRequest {
+  std::optional<SphereRoi> sphere;
+  std::optional<BoxRoi> box;
+  std::filesystem::path labels;  // a DICOM SEG (one ROI per segment) or a label volume
+  int label = 0;                 // only this label or segment; 0: every one
+  Threshold threshold;           // the metabolic volume's, if any
+};
+
+struct ReportedRoi {
+  std::string what;  // "sphere at ...", "box ...", or "label N \"name\""
+  std::optional<LabelRoi> label;
+  VoxelList voxels;
+  bool gridsCoincide = false;  // labels: the label grid is the volume's, voxel for voxel
+};
+
+// The total over a SEG's segments: their union's voxels and, with a threshold, the total
+// metabolic tumour volume (metabolicTotal).
+struct RoiTotal {
+  std::string what;  // "total over the N segments"
+  std::size_t segments = 0;
+  RoiStats union_;
+  std::optional<MetabolicTotal> metabolic;
+};
+
+struct RoiReport {
+  std::string placementNote;  // how the labels were placed on the volume's grid ("" for none)
+  Threshold threshold;
+  std::vector<ReportedRoi> rois;
+  std::vector<RoiStats> stats;    // one per ROI
+  std::optional<RoiTotal> total;  // every segment of a SEG with more than one
+};
+
+// The statistics of `volume` over the ROIs `request` names, SUVpeak where the volume's unit is
+// an SUV. `source` names the volume in messages (the file or study config the user gave).
+// Bad input throws InputError: a label that is not in the map, or covers no voxel centre; the
+// one ROI asked for (a sphere, a box, one label) holding only NaN (no data). `note` hears, as
+// they arise, what the user should know but does not stop the report: a label table beside the
+// labels that cannot be read, a PET left in Bq/ml and why.
+RoiReport roiReport(const Volume& volume, const RoiRequest& request,
+                    const std::filesystem::path& source,
+                    const std::function<void(const std::string&)>& note);
+
+// The report as a JSON array: one object per ROI, then the total.
+nlohmann::json roiReportJson(const RoiReport& report);
+// The report as text: a line naming the volume (its file, description, modality and unit), the
+// placement note, then a block of lines per ROI and the total.
+void printRoiReport(std::ostream& out, const Volume& volume, const RoiReport& report);
+
+// One segment of the SEG `mvw stats --seg` writes: an ROI, or with a threshold its metabolic
+// volume (dicomout::SegmentMask's fields).
+struct RoiSegment {
+  std::string label, description;
+  VoxelList voxels;
+  bool metabolic = false;
+};
+struct RoiSegmentation {
+  std::vector<RoiSegment> segments;  // one per ROI
+  std::string algorithm;             // the SegmentAlgorithmName
+  std::string seriesDescription;
+};
+RoiSegmentation roiSegmentation(const Volume& volume, const RoiReport& report);
+
+}  // namespace mvw::study

@@ -1,0 +1,28 @@
+// Numbers as mvw's messages and reports show them (mvw/core/Format.h).
+#include <gtest/gtest.h>
+
+#include "mvw/core/Format.h"
+
+namespace mvw {
+namespace {
+
+TEST(Format, ShortNumber) {
+  EXPECT_EQ(shortNumber(0.5), "0.5");
+  EXPECT_EQ(shortNumber(2.0), "2");
+  EXPECT_EQ(shortNumber(1e-300), "1e-300");
+  EXPECT_EQ(shortNumber(2.0615528, 4), "2.062");
+  EXPECT_EQ(shortNumber(41.0, 4), "41");
+}
+
+TEST(Format, FixedNumber) {
+  EXPECT_EQ(fixedNumber(12.5, 1), "12.5");
+  EXPECT_EQ(fixedNumber(100.0, 1), "100.0");
+  EXPECT_EQ(fixedNumber(-10.25, 3), "-10.250");
+  EXPECT_EQ(fixedNumber(0.75, 4), "0.7500");
+  EXPECT_EQ(fixedNumber(-0.0, 1), "-0.0");  // as printf shows it
+  EXPECT_EQ(fixedNumber(17.0, 0), "17");
+  EXPECT_EQ(fixedNumber(1e300, 0).size(), 301u);  // every digit, none cut off
+}
+
+}  // namespace
+}  // namespace mvw
