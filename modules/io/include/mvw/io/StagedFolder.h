@@ -2,8 +2,9 @@
 // A command's outputs appear together or not at all: they are written into a temporary folder
 // on the destination's file system and moved into place by commit() once every one is whole;
 // until then the destination holds what it held before. The one home of that rule for groups
-// of files and for folders (AtomicFile.h keeps it for a single file); docs/design.md#errors
-// names the commands that stage through it.
+// of files and for folders (AtomicFile.h keeps it for a single file), used by mvw render's views
+// (output), register's outputs, convert's image and sidecar, DICOM series output (dicomout) and
+// the PACS retrieve (pacs).
 #include <filesystem>
 #include <string>
 #include <vector>
