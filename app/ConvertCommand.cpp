@@ -1,7 +1,5 @@
 #include "ConvertCommand.h"
 
-#include <unistd.h>
-
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -15,6 +13,7 @@
 #include "mvw/core/Error.h"
 #include "mvw/core/Frame.h"
 #include "mvw/io/AtomicFile.h"
+#include "mvw/io/StagedFolder.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/study/StudyLoader.h"
@@ -144,29 +143,20 @@ void runConvert(const ConvertOptions& o) {
   if (frame) volume = selectFrame(volume, *frame);
   const std::string text = sidecarJson(volume, o).dump(2) + "\n";
 
-  // Both files appear or neither: each is written whole under a temporary name in the output
-  // folder, then both are renamed into place; a failure on the way removes what was written.
-  const std::string stage = ".mvw-convert-" + std::to_string(::getpid()) + "-";
-  const fs::path imageTmp = output.parent_path() / (stage + output.filename().string());
-  const fs::path sidecarTmp = sidecar.parent_path() / (stage + sidecar.filename().string());
-  std::error_code ec;
+  // Both files appear or neither: they are written into a staging folder in the output's
+  // folder and moved into place together; a failure on the way leaves what was there before.
   try {
-    io::writeVolume(volume, imageTmp);
-    io::writeTextAtomically(sidecarTmp, text);
-    fs::rename(imageTmp, output);
-    fs::rename(sidecarTmp, sidecar);
-  } catch (...) {
-    fs::remove(imageTmp, ec);
-    fs::remove(sidecarTmp, ec);
-    if (!fs::exists(sidecar, ec)) fs::remove(output, ec);
+    const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+    io::StagedFolder staging(folder,
+                             {.purpose = "convert", .place = io::StagedFolder::Place::Inside});
+    io::writeVolume(volume, staging.path() / output.filename());
+    io::writeTextAtomically(staging.path() / sidecar.filename(), text);
+    staging.commit({output.filename().string(), sidecar.filename().string()});
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
     // The output is a name the user typed: a place that cannot be written is bad input.
-    try {
-      throw;
-    } catch (const InputError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw InputError(output, std::string("cannot be written: ") + e.what());
-    }
+    throw InputError(output, std::string("cannot be written: ") + e.what());
   }
   const glm::ivec3 d = volume.dimensions();
   std::cout << "wrote " << output.string() << " (" << d.x << " x " << d.y << " x " << d.z;

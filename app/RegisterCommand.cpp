@@ -22,6 +22,7 @@
 #include "mvw/dicomout/SpatialRegistration.h"
 #include "mvw/dicomout/VolumeSeries.h"
 #include "mvw/io/Png.h"
+#include "mvw/io/StagedFolder.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/resampling/RegistrationQa.h"
@@ -81,45 +82,16 @@ nlohmann::json rows(const glm::dmat4& m) {
 nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 nlohmann::json vec(const glm::ivec3& v) { return {v.x, v.y, v.z}; }
 
-// Everything is written into a staging folder first and moved into place at the end, so a
-// failure at any step leaves no partial result in the output folder.
-class Staging {
- public:
-  explicit Staging(const fs::path& output) : output_(output) {
-    std::error_code ec;
-    if (fs::exists(output_, ec) && !fs::is_directory(output_, ec))
-      throw InputError(output_, "exists and is not a folder");
-    fs::path absolute = fs::absolute(output_);
-    if (!absolute.has_filename()) absolute = absolute.parent_path();  // "out/" names "out"
-    output_ = absolute;
-    const fs::path parent = absolute.parent_path();
-    if (!fs::is_directory(parent, ec))
-      throw InputError(output_, "its parent folder does not exist");
-    dir_ = parent / (".mvw-register-" + std::to_string(::getpid()));
-    fs::remove_all(dir_, ec);
-    if (!fs::create_directory(dir_, ec))
-      throw InputError(output_, "cannot write in its folder " + parent.string() + ": " +
-                                    (ec ? ec.message() : std::string("cannot create a folder")));
-  }
-  ~Staging() {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  fs::path file(const std::string& name) const { return dir_ / name; }
-  void commit(const std::vector<std::string>& names) {
-    std::error_code ec;
-    fs::create_directories(output_, ec);
-    if (ec) throw InputError(output_, "cannot create the output folder: " + ec.message());
-    for (const auto& n : names) {
-      if (fs::is_directory(dir_ / n, ec)) fs::remove_all(output_ / n, ec);  // an earlier run's
-      fs::rename(dir_ / n, output_ / n, ec);
-      if (ec) throw InputError(output_ / n, "cannot write: " + ec.message());
-    }
-  }
-
- private:
-  fs::path output_, dir_;
-};
+// Refused before any heavy work: the output folder is made if missing, its parent is not.
+void checkOutputFolder(const fs::path& output) {
+  std::error_code ec;
+  if (fs::exists(output, ec) && !fs::is_directory(output, ec))
+    throw InputError(output, "exists and is not a folder");
+  fs::path absolute = fs::absolute(output);
+  if (!absolute.has_filename()) absolute = absolute.parent_path();  // "out/" names "out"
+  if (!fs::is_directory(absolute.parent_path(), ec))
+    throw InputError(absolute, "its parent folder does not exist");
+}
 
 // The two volumes: the files given, or a study config's anatomical and functional volumes read
 // as every command reads the study (their series, "frame", PACS series from the cache).
@@ -181,7 +153,10 @@ void runRegister(RegisterOptions opt, const CLI::App& cmd) {
   const auto interpolation = kInterpolations.at(opt.interpolation);
   // Checked before any heavy work: a wrong -o should not cost a registration.
   checkDicomOutput(opt.dicom, opt.dicom.dicom, opt.output);
-  Staging staging(opt.output);
+  checkOutputFolder(opt.output);
+  // Everything is written into a staging folder first and moved into place at the end, so a
+  // failure at any step leaves no partial result in the output folder.
+  io::StagedFolder staging(opt.output, {.purpose = "register"});
 
   Inputs inputs = readInputs(opt, studyConfig);
   Volume fixed = std::move(inputs.fixed);
@@ -214,20 +189,20 @@ void runRegister(RegisterOptions opt, const CLI::App& cmd) {
   const Interpolation used = chosenInterpolation(moving, resampleOptions);
   // Before: the volumes as their headers place them in the world.
   io::writePng(registrationQaImage(fixed, moving, Transform(), r.transform),
-               staging.file("registration_qa.png"));
+               staging.path() / "registration_qa.png");
   const Grid grid = gridOf(fixed);
   fixed = Volume();  // only its grid is needed from here: the peak memory is the output's
   const Volume onGrid = resample(moving, grid, r.transform, resampleOptions);
 
-  r.transform.writeItk(staging.file("transform.tfm"));
-  io::writeVolume(onGrid, staging.file("functional_on_anatomical.nii.gz"));
+  r.transform.writeItk(staging.path() / "transform.tfm");
+  io::writeVolume(onGrid, staging.path() / "functional_on_anatomical.nii.gz");
   std::vector<std::string> dicomOutputs;
   std::string seriesNote;
   if (fixedId) {
     dicomout::SeriesInfo regSeries;
     regSeries.seriesNumber = 2001;
     regSeries.description = "mvw registration (" + std::string(r.affine ? "affine" : "rigid") + ")";
-    dicomout::writeSpatialRegistration(staging.file("registration.dcm"), *fixedId, *movingId,
+    dicomout::writeSpatialRegistration(staging.path() / "registration.dcm", *fixedId, *movingId,
                                        r.transform.fixedFromMoving(), r.affine, regSeries,
                                        std::string(r.affine ? "rigid then affine" : "rigid") +
                                            ", Mattes mutual information (mvw register)");
@@ -240,7 +215,7 @@ void runRegister(RegisterOptions opt, const CLI::App& cmd) {
         " on the anatomical grid";
     try {
       const int files = dicomout::writeVolumeSeries(
-          staging.file("functional_on_anatomical"), onGrid, *movingId, *fixedId, resampled,
+          staging.path() / "functional_on_anatomical", onGrid, *movingId, *fixedId, resampled,
           "resampled onto the grid of " + inputs.fixedName + " by mvw register (" + name(used) +
               ")");
       dicomOutputs.push_back("functional_on_anatomical");
@@ -325,9 +300,9 @@ void runRegister(RegisterOptions opt, const CLI::App& cmd) {
   outputs.insert(outputs.end(), dicomOutputs.begin(), dicomOutputs.end());
   j["outputs"] = outputs;
   {
-    std::ofstream out(staging.file("registration.json"));
+    std::ofstream out(staging.path() / "registration.json");
     out << j.dump(2) << "\n";
-    if (!out) throw Error(staging.file("registration.json").string() + ": cannot write");
+    if (!out) throw Error((staging.path() / "registration.json").string() + ": cannot write");
   }
   staging.commit(outputs);
 

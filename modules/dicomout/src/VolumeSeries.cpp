@@ -1,12 +1,11 @@
 #include "mvw/dicomout/VolumeSeries.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "DcmCommon.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/StagedFolder.h"
 
 namespace mvw::dicomout {
 
@@ -143,22 +142,8 @@ int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomI
   SeriesInfo s = series;
   s.seriesInstanceUid = seriesUid;
 
-  // Staged beside the folder and moved in whole.
-  fs::path target = fs::absolute(folder).lexically_normal();
-  if (target.filename().empty()) target = target.parent_path();
-  const fs::path staging = target.parent_path() / (".mvw-series-" + std::to_string(::getpid()) +
-                                                   "-" + target.filename().string());
-  std::error_code ec;
-  fs::remove_all(staging, ec);
-  if (!fs::create_directories(staging, ec))
-    throw InputError(folder, "cannot create a folder beside it: " + ec.message());
-  struct Cleanup {
-    fs::path dir;
-    ~Cleanup() {
-      std::error_code e;
-      fs::remove_all(dir, e);
-    }
-  } cleanup{staging};
+  // Staged beside the folder and moved in whole, replacing an earlier series.
+  io::StagedFolder staging(folder, {.purpose = "series", .mode = io::StagedFolder::Mode::Replace});
 
   // DERIVED\SECONDARY (PET: DERIVED\PRIMARY, the only value 2 its IOD allows), then the
   // source's own values 3 and on (PET: the image's kind).
@@ -246,12 +231,9 @@ int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomI
     char name[32];
     std::snprintf(name, sizeof name, "IM%05d.dcm", k + 1);
     (void)sopInstanceUid;
-    save(ff, staging / name);
+    save(ff, staging.path() / name);
   }
-  if (fs::exists(target, ec)) fs::remove_all(target, ec);
-  fs::rename(staging, target, ec);
-  if (ec) throw InputError(folder, "cannot move the series into place: " + ec.message());
-  cleanup.dir.clear();
+  staging.commit();
   return dims.z;
 }
 

@@ -16,8 +16,9 @@
 #include "mvw/io/AtomicFile.h"
 #include "mvw/io/MovieWriter.h"
 #include "mvw/io/Png.h"
+#include "mvw/io/StagedFolder.h"
 #include "mvw/output/HeadlessGl.h"
-#include "mvw/output/Staging.h"
+#include "mvw/output/OutputFolder.h"
 #include "mvw/output/ViewAnnotations.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/study/Caption.h"
@@ -64,12 +65,12 @@ struct ViewPainter {
 // The rest of an orbit's frames (frame 0 is the still itself, at the view's own azimuth),
 // written with the movie into the staging folder; returns render.json's "orbit" record.
 nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame& still,
-                           Staging& staging, std::vector<Image>* keep) {
+                           io::StagedFolder& staging, std::vector<Image>* keep) {
   const config::ViewConfig& c = paint.view.config;
-  const fs::path folder = staging.dir() / c.name;
+  const fs::path folder = staging.path() / c.name;
   fs::create_directories(folder);
   const std::string movieName = c.name + ".mp4";
-  io::MovieWriter movie(staging.dir() / movieName, still.image.width, still.image.height,
+  io::MovieWriter movie(staging.path() / movieName, still.image.width, still.image.height,
                         c.orbitFps);
   const std::vector<double> azimuths = config::orbitAzimuths(c);
   nlohmann::json files = nlohmann::json::array();
@@ -113,31 +114,35 @@ struct Output {
 };
 
 // Everything is written into the staging folder before anything moves into place: a failure
-// (a full disk) leaves no partial output. The moves are renames within one file system.
-void writeOutputs(const fs::path& outDir, std::vector<Output>& outputs,
-                  const std::vector<std::string>& orbits, nlohmann::json report, Staging& staging) {
+// (a full disk) leaves no partial output. The moves are renames within one file system, in the
+// order a reader meets them: each view's PNG and DICOM objects, the orbits' frame folders (an
+// earlier run's frames replaced whole) and movies, render.json last, so a reader that waits for
+// render.json finds the rest in place. Everything else in the output folder stays.
+void writeOutputs(const fs::path& outDir, const std::vector<Output>& outputs,
+                  const std::vector<std::string>& orbits, nlohmann::json report,
+                  io::StagedFolder& staging) {
+  const fs::path& staged = staging.path();
   try {
     for (const auto& out : outputs) {
-      io::writePng(out.image, staging.dir() / out.file);
+      io::writePng(out.image, staged / out.file);
       report["views"].push_back(out.record);
     }
-    io::writeTextAtomically(staging.dir() / "render.json", report.dump(2) + "\n");
+    io::writeTextAtomically(staged / "render.json", report.dump(2) + "\n");
   } catch (const Error& e) {
     throw InputError(outDir,
                      std::string("cannot write the renders (is the disk full?): ") + e.what());
   }
-  fs::create_directories(outDir);
+  std::vector<std::string> names;
   for (const auto& out : outputs) {
-    fs::rename(staging.dir() / out.file, outDir / out.file);
-    for (const std::string& name : out.dicomFiles) fs::rename(staging.dir() / name, outDir / name);
+    names.push_back(out.file);
+    names.insert(names.end(), out.dicomFiles.begin(), out.dicomFiles.end());
   }
   for (const std::string& name : orbits) {
-    const fs::path folder = outDir / name;
-    fs::remove_all(folder);  // an earlier run's frames
-    fs::rename(staging.dir() / name, folder);
-    fs::rename(staging.dir() / (name + ".mp4"), outDir / (name + ".mp4"));
+    names.push_back(name);
+    names.push_back(name + ".mp4");
   }
-  fs::rename(staging.dir() / "render.json", outDir / "render.json");
+  names.push_back("render.json");
+  staging.commit(names);
 }
 
 // With --dicom: a view's still as a Secondary Capture and its orbit as one multi-frame SC, in
@@ -145,7 +150,7 @@ void writeOutputs(const fs::path& outDir, std::vector<Output>& outputs,
 std::vector<std::string> writeViewDicom(const study::PlannedView& v, const Image& still,
                                         const std::vector<Image>& orbit, double fps,
                                         const dicomout::DicomIdentity& id, int seriesNumber,
-                                        Staging& staging) {
+                                        io::StagedFolder& staging) {
   const config::ViewConfig& c = v.config;
   dicomout::SeriesInfo series;
   series.seriesInstanceUid = dicomout::newUid();
@@ -157,13 +162,13 @@ std::vector<std::string> writeViewDicom(const study::PlannedView& v, const Image
   info.derivation = "mvw render: " + std::string(toString(c.mode)) + " of the " +
                     config::toString(c.view) + " view";
   std::vector<std::string> names{c.name + ".dcm"};
-  dicomout::writeSecondaryCapture(staging.dir() / names.back(), {still}, id, series, info);
+  dicomout::writeSecondaryCapture(staging.path() / names.back(), {still}, id, series, info);
   if (!orbit.empty()) {
     info.instanceNumber = 2;
     info.frameTimeMs = 1000.0 / fps;
     info.derivation += ", orbit of " + std::to_string(orbit.size()) + " frames";
     names.push_back(c.name + "-orbit.dcm");
-    dicomout::writeSecondaryCapture(staging.dir() / names.back(), orbit, id, series, info);
+    dicomout::writeSecondaryCapture(staging.path() / names.back(), orbit, id, series, info);
   }
   return names;
 }
@@ -185,7 +190,9 @@ RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::
   session.attach(renderer);
   const auto [lo, hi] = renderer.valueRange();
   std::vector<Output> outputs;
-  Staging staging(request.outDir);
+  // Made at the first file, beside the output folder: a run that fails before it writes touches
+  // nothing (checkOutputFolder has made sure the nearest folder that exists is writable).
+  io::StagedFolder staging(request.outDir, {.purpose = "render", .createNow = false});
   std::vector<std::string> orbits;  // views whose frames and movie wait in staging
   int dicomObjects = 0;
   for (const study::PlannedView& v : session.views(renderer)) {

@@ -12,10 +12,9 @@
 #include <set>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "Internal.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/StagedFolder.h"
 
 namespace fs = std::filesystem;
 
@@ -258,16 +257,6 @@ void retrieve(const Server& server, const std::string& studyUid, const std::stri
     detail::dimseRetrieve(server, studyUid, seriesUid, instances, receiver, options);
 }
 
-// Removes a staging folder when a retrieve fails.
-struct StagingGuard {
-  fs::path dir;
-  bool keep = false;
-  ~StagingGuard() {
-    std::error_code ec;
-    if (!keep && !dir.empty()) fs::remove_all(dir, ec);
-  }
-};
-
 std::set<std::string> instanceUids(const std::vector<Match>& instances) {
   std::set<std::string> uids;
   for (const Match& m : instances) uids.insert(m.at("SOPInstanceUID"));
@@ -314,11 +303,10 @@ Transfer get(const Server& server, const std::string& studyUid,
   const std::vector<Match> chosen = resolveSeries(server, studyUid, series, options);
   std::set<std::string> seriesUids;
   for (const Match& m : chosen) seriesUids.insert(m.at("SeriesInstanceUID"));
-  fs::create_directories(outDir);
-  StagingGuard guard{outDir / (".mvw-staging-" + std::to_string(::getpid()))};
-  fs::remove_all(guard.dir);
-  fs::create_directories(guard.dir);
-  detail::Receiver receiver(server, guard.dir, {studyUid, seriesUids}, options.progress);
+  // Received into a folder inside the output folder and moved out once every series is
+  // complete: a failed retrieve leaves no instance of it.
+  io::StagedFolder staging(outDir, {.place = io::StagedFolder::Place::Inside});
+  detail::Receiver receiver(server, staging.path(), {studyUid, seriesUids}, options.progress);
   receiver.setOnProgress(options.onProgress);
   for (const Match& m : chosen) {
     const std::string& uid = m.at("SeriesInstanceUID");
@@ -330,7 +318,7 @@ Transfer get(const Server& server, const std::string& studyUid,
     retrieve(server, studyUid, uid, {}, receiver, options);
     const long expected = stated >= 0 ? stated : static_cast<long>(listed.size());
     for (const std::string& sop : listed)
-      if (!fs::exists(guard.dir / (sop + ".dcm")))
+      if (!fs::exists(staging.path() / (sop + ".dcm")))
         throw ServiceError(server.text + ": the retrieve of series " + uid +
                            " ended without its instance " + sop);
     if (receiver.countOf(uid) != expected)
@@ -339,8 +327,7 @@ Transfer get(const Server& server, const std::string& studyUid,
                          std::to_string(expected) + " instances it holds");
   }
   receiver.report(true);
-  for (const auto& entry : fs::directory_iterator(guard.dir))
-    fs::rename(entry.path(), outDir / entry.path().filename());
+  staging.commit();
   return receiver.transfer();
 }
 

@@ -1,7 +1,8 @@
 #pragma once
-// Every file mvw writes appears whole or not at all: it is written under a temporary name in
-// the same folder and renamed onto its own (the one home of that rule: volumes, PNGs, study
-// configs, transforms, reports).
+// Every file mvw writes appears whole or not at all. This is the rule's home for one file
+// (volumes, PNGs, study configs, transforms, reports): it is written under a temporary name in
+// the same folder and renamed onto its own. Its home for a group of files or a folder (a
+// command's outputs that appear together) is StagedFolder.h.
 #include <filesystem>
 #include <functional>
 #include <string_view>

@@ -1,4 +1,4 @@
-#include "mvw/output/Staging.h"
+#include "mvw/output/OutputFolder.h"
 
 #include <string>
 #include <vector>
@@ -15,11 +15,11 @@ namespace {
 
 // The nearest of `path` and its parents that exists (an absolute, normalised path); the names
 // of the folders still to be made on the way down to `path`, outermost last, into `missing`.
-fs::path nearestExisting(const fs::path& path, std::vector<std::string>* missing = nullptr) {
+fs::path nearestExisting(const fs::path& path, std::vector<std::string>& missing) {
   std::error_code ec;
   fs::path existing = path;
   while (!existing.empty() && existing != existing.root_path() && !fs::exists(existing, ec)) {
-    if (missing && !existing.filename().empty()) missing->push_back(existing.filename().string());
+    if (!existing.filename().empty()) missing.push_back(existing.filename().string());
     existing = existing.parent_path();
   }
   return existing;
@@ -30,7 +30,7 @@ fs::path nearestExisting(const fs::path& path, std::vector<std::string>* missing
 void checkOutputFolder(const fs::path& outDir) {
   const fs::path out = fs::absolute(outDir).lexically_normal();
   std::vector<std::string> toMake;
-  const fs::path existing = nearestExisting(out, &toMake);
+  const fs::path existing = nearestExisting(out, toMake);
   std::error_code ec;
   if (!fs::is_directory(existing, ec))
     throw InputError(outDir, existing.string() + " is not a folder");
@@ -43,29 +43,6 @@ void checkOutputFolder(const fs::path& outDir) {
                                    std::to_string(name.size()) +
                                    " characters, more than the file system's " +
                                    std::to_string(nameMax));
-}
-
-Staging::Staging(const fs::path& outDir) {
-  fs::path out = fs::absolute(outDir).lexically_normal();
-  if (out.filename().empty()) out = out.parent_path();
-  // In the nearest folder that exists (the same file system, so the moves are renames), so
-  // a failure creates no folder on the way to the output either.
-  // checkOutputFolder has made sure that this is a writable folder.
-  dir_ = nearestExisting(out.parent_path()) /
-         (".mvw-render-" + std::to_string(::getpid()) + "-" + out.filename().string());
-}
-
-Staging::~Staging() {
-  std::error_code ec;
-  if (made_) fs::remove_all(dir_, ec);
-}
-
-const fs::path& Staging::dir() {
-  if (!made_) {
-    fs::create_directory(dir_);
-    made_ = true;
-  }
-  return dir_;
 }
 
 }  // namespace mvw::output
