@@ -55,9 +55,9 @@ TEST(PacsBrowser, ReadsTheServerList) {
 TEST(PacsBrowser, RefusesABadServerList) {
   EXPECT_NE(problemOf("{").find("not valid JSON"), std::string::npos);
   EXPECT_NE(problemOf(R"({"server": []})").find("unknown key 'server'"), std::string::npos);
-  EXPECT_NE(problemOf(R"({})").find("no \"servers\" array"), std::string::npos);
+  EXPECT_NE(problemOf(R"({})").find("missing key 'servers'"), std::string::npos);
   EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": "http://h:1/x", "aet": "X"}]})")
-                .find("servers[0]: unknown key 'aet' (name, url, calling_aet)"),
+                .find("unknown key 'servers[0].aet' (known here: calling_aet, name, url)"),
             std::string::npos);
   EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": "ftp://h/x"}]})").find("servers[0].url"),
             std::string::npos);
@@ -69,10 +69,11 @@ TEST(PacsBrowser, RefusesABadServerList) {
             std::string::npos);
   EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": "http://h:1/x"},
                                       {"name": "A", "url": "http://h:2/x"}]})")
-                .find("servers[1]: the name 'A' is given twice"),
+                .find("'servers[1]' repeats the name 'A'"),
             std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"url": "http://h:1/x"}]})").find("servers[0]: no \"name\""),
-            std::string::npos);
+  EXPECT_NE(
+      problemOf(R"({"servers": [{"url": "http://h:1/x"}]})").find("'servers[0]' has no \"name\""),
+      std::string::npos);
   EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": "http://h:1/x", "name": "B"}]})")
                 .find("appears twice"),
             std::string::npos);
@@ -80,7 +81,8 @@ TEST(PacsBrowser, RefusesABadServerList) {
       problemOf(R"({"servers": [{"name": "A", "url": "dicom://P@h:104", "calling_aet": ""}]})")
           .find("1 to 16 characters"),
       std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": 5}]})").find("servers[0].url is not"),
+  EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": 5}]})")
+                .find("'servers[0].url' must be a string"),
             std::string::npos);
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <type_traits>
 
+#include "mvw/config/ServerList.h"
 #include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
@@ -15,7 +16,7 @@ namespace mvw::study {
 
 std::filesystem::path localPath(const config::VolumeSource& source) {
   if (source.pacs.empty()) return source.path;
-  return pacs::cachedSeries(pacs::parseServer(source.pacs), source.study, source.series,
+  return pacs::cachedSeries(config::resolveServer(source.pacs), source.study, source.series,
                             pacs::studyOptions());
 }
 

@@ -18,28 +18,19 @@
 #include <thread>
 #include <vector>
 
+#include "mvw/config/ServerList.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/pacs/Pacs.h"
 #include "mvw/study/Session.h"
 
 namespace mvw::viewer {
 
-// One server of servers.json: its name in the panel, SERVER as `mvw pacs` takes it, and the AE
-// title mvw calls a DIMSE server with. Never credentials (MVW_PACS_USER / MVW_PACS_PASSWORD or
-// MVW_PACS_CREDENTIALS, as for `mvw pacs`).
-struct PacsServerEntry {
-  std::string name;
-  std::string url;
-  std::string callingAet = "MVW";
-};
-
-// $XDG_CONFIG_HOME/mvw/servers.json, or ~/.config/mvw/servers.json.
-std::filesystem::path defaultServersFile();
-
-// {"servers": [{"name": ..., "url": ..., "calling_aet": ...}, ...]}, strictly: an unknown key,
-// a URL that is not a SERVER (pacs::parseServer), an empty or repeated name, a calling AE
-// title that is not 1-16 characters: InputError naming the file and the problem.
-std::vector<PacsServerEntry> loadServers(const std::filesystem::path& file);
+// One server of servers.json, read and written by modules/config (ServerList.h).
+using PacsServerEntry = config::SavedServer;
+using config::defaultServersFile;
+inline std::vector<PacsServerEntry> loadServers(const std::filesystem::path& file) {
+  return config::readServerList(file);
+}
 
 class PacsBrowser {
  public:
