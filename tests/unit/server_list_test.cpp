@@ -15,15 +15,18 @@
 namespace mvw::config {
 namespace {
 
-std::filesystem::path write(const std::string& name, const std::string& text) {
-  const std::filesystem::path file = test::scratchDir() / name;
+// `text` as the file `name` in `dir` (test::scratchDir() empties the folder it names: a test
+// takes it once).
+std::filesystem::path write(const std::filesystem::path& dir, const std::string& name,
+                            const std::string& text) {
+  const std::filesystem::path file = dir / name;
   std::ofstream(file) << text;
   return file;
 }
 
 // readServerList's problem for `text`, with the file named; "" when it reads.
 std::string problemOf(const std::string& text) {
-  const std::filesystem::path file = write("servers.json", text);
+  const std::filesystem::path file = write(test::scratchDir(), "servers.json", text);
   try {
     readServerList(file);
   } catch (const InputError& e) {
@@ -39,7 +42,7 @@ const char* kServers =
                     {"name": "Research PACS", "url": "http://127.0.0.1:1/dicom-web"}]})";
 
 TEST(ServerList, ReadsEachKeyAndTheDefaultCallingAet) {
-  const auto servers = readServerList(write("servers.json", kServers));
+  const auto servers = readServerList(write(test::scratchDir(), "servers.json", kServers));
   ASSERT_EQ(servers.size(), 2u);
   EXPECT_EQ(servers[0].name, "clinic");
   EXPECT_EQ(servers[0].url, "dicom://ORTHANC@127.0.0.1:4242");
@@ -93,7 +96,7 @@ TEST(ServerList, TheReferenceListsItsKeys) {
 }
 
 TEST(ServerList, ResolvesAUrlAsItIsAndANameThroughTheList) {
-  const std::filesystem::path file = write("servers.json", kServers);
+  const std::filesystem::path file = write(test::scratchDir(), "servers.json", kServers);
   EXPECT_EQ(resolveServer("http://pacs:8042/dicom-web", file).baseUrl,
             "http://pacs:8042/dicom-web");
   const pacs::Server clinic = resolveServer("clinic", file);
@@ -108,7 +111,8 @@ TEST(ServerList, ResolvesAUrlAsItIsAndANameThroughTheList) {
 }
 
 TEST(ServerList, AnUnknownNameListsTheSavedNames) {
-  const std::filesystem::path file = write("servers.json", kServers);
+  const std::filesystem::path dir = test::scratchDir();
+  const std::filesystem::path file = write(dir, "servers.json", kServers);
   try {
     resolveServer("clinc", file);
     FAIL() << "an unknown name resolved";
@@ -117,7 +121,7 @@ TEST(ServerList, AnUnknownNameListsTheSavedNames) {
     EXPECT_NE(e.problem().find("saves 'clinic', 'Research PACS'"), std::string::npos)
         << e.problem();
   }
-  const std::filesystem::path none = test::scratchDir() / "absent" / "servers.json";
+  const std::filesystem::path none = dir / "absent" / "servers.json";
   try {
     resolveServer("clinic", none);
     FAIL() << "a name resolved without a list";
@@ -131,14 +135,25 @@ TEST(ServerList, AnUnknownNameListsTheSavedNames) {
 // A study config's "pacs" takes a name too; a misspelt one is said with the config's file and
 // key, listing the names saved in the default file ($XDG_CONFIG_HOME/mvw/servers.json).
 TEST(ServerList, AStudyConfigNamesASavedServer) {
-  const char* old = std::getenv("XDG_CONFIG_HOME");
-  const std::string saved = old ? old : "";
-  setenv("XDG_CONFIG_HOME", test::scratchDir().c_str(), 1);
-  std::filesystem::create_directories(test::scratchDir() / "mvw");
-  std::ofstream(test::scratchDir() / "mvw" / "servers.json") << kServers;
-  const auto configOf = [](const std::string& server) {
-    return write("study.json", R"({"anatomical": {"pacs": ")" + server +
-                                   R"(", "study": "1.2", "series": "CT"}})");
+  // XDG_CONFIG_HOME as it was once the test ends, however it ends.
+  struct RestoreXdg {
+    const char* old = std::getenv("XDG_CONFIG_HOME");
+    std::string saved = old ? old : "";
+    ~RestoreXdg() {
+      if (old)
+        setenv("XDG_CONFIG_HOME", saved.c_str(), 1);
+      else
+        unsetenv("XDG_CONFIG_HOME");
+    }
+  } restore;
+  const std::filesystem::path dir = test::scratchDir();
+  setenv("XDG_CONFIG_HOME", dir.c_str(), 1);
+  std::filesystem::create_directories(dir / "mvw");
+  write(dir / "mvw", "servers.json", kServers);
+  const auto configOf = [&dir](const std::string& server) {
+    return write(
+        dir, "study.json",
+        R"({"anatomical": {"pacs": ")" + server + R"(", "study": "1.2", "series": "CT"}})");
   };
   EXPECT_EQ(loadStudyConfig(configOf("clinic")).anatomical.pacs, "clinic");
   const std::filesystem::path bad = configOf("clinc");
@@ -150,10 +165,6 @@ TEST(ServerList, AStudyConfigNamesASavedServer) {
     EXPECT_NE(e.problem().find("'anatomical.pacs' is neither"), std::string::npos) << e.problem();
     EXPECT_NE(e.problem().find("'clinic', 'Research PACS'"), std::string::npos) << e.problem();
   }
-  if (old)
-    setenv("XDG_CONFIG_HOME", saved.c_str(), 1);
-  else
-    unsetenv("XDG_CONFIG_HOME");
 }
 
 }  // namespace
