@@ -67,13 +67,13 @@ void checkDicomOutput(const DicomOutputOptions& o, bool writing, const fs::path&
                      "(give --force to write into it)");
 }
 
-void storeDicom(const DicomOutputOptions& o, const std::vector<fs::path>& files,
-                const fs::path& where, std::ostream& out) {
+void storeDicom(const DicomOutputOptions& o, const pacs::Options& timeouts,
+                const std::vector<fs::path>& files, const fs::path& where, std::ostream& out) {
   if (o.store.empty()) return;
   const pacs::Server server = config::resolveServer(o.store);
-  // The time-outs of the global --connect-timeout and --read-timeout (the study's PACS series
-  // are read with the same), the AE title and HTTPS check of this command's options.
-  pacs::Options options = pacs::studyOptions();
+  // The time-outs of the command line's --connect-timeout and --read-timeout (the study's PACS
+  // series are read with the same), the AE title and HTTPS check of this command's options.
+  pacs::Options options = timeouts;
   options.callingAet = o.storeOptions.callingAet;
   options.insecure = o.storeOptions.insecure;
   options.progress = false;

@@ -27,6 +27,7 @@ struct InfoOptions {
   bool json = false;
   bool noSuv = false;
   std::size_t maxMemory = 0;  // bytes; 0: the reader's default (a quarter of physical RAM)
+  pacs::Options pacs;         // the command line's --cache and time-outs (main.cpp)
 };
 
 bool isStudyConfig(const std::filesystem::path& p) { return p.extension() == ".json"; }
@@ -45,10 +46,10 @@ void runInfo(const InfoOptions& opt) {
   for (const auto& p : opt.paths) {
     if (isStudyConfig(p)) {
       const auto study = config::loadStudyConfig(p);
-      items.push_back({"anatomical", mvw::study::readSource(study.anatomical, read)});
+      items.push_back({"anatomical", mvw::study::readSource(study.anatomical, read, opt.pacs)});
       if (study.functional)
         items.push_back({"functional (" + config::toString(study.functionalKind) + ")",
-                         mvw::study::readSource(*study.functional, read)});
+                         mvw::study::readSource(*study.functional, read, opt.pacs)});
     } else {
       for (auto& v : io::readAllVolumes(p, read)) items.push_back({"", std::move(v)});
     }
@@ -72,7 +73,7 @@ void runInfo(const InfoOptions& opt) {
 
 }  // namespace
 
-void addInfoCommand(CLI::App& app) {
+void addInfoCommand(CLI::App& app, const pacs::Options& pacs) {
   auto opt = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
       "info",
@@ -101,7 +102,10 @@ void addInfoCommand(CLI::App& app) {
             return std::string();
           },
           "SIZE"));
-  cmd->callback([opt] { runInfo(*opt); });
+  cmd->callback([opt, &pacs] {
+    opt->pacs = pacs;
+    runInfo(*opt);
+  });
 }
 
 }  // namespace mvw::app

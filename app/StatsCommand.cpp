@@ -43,6 +43,7 @@ struct StatsOptions {
   bool noSuv = false;
   std::string seg;  // --seg OUT.dcm
   DicomOutputOptions dicom;
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 std::string num(double v, int significant = 4) {
@@ -250,13 +251,13 @@ void runStats(StatsOptions opt) {
   if (source.extension() == ".json") {
     const auto study = config::loadStudyConfig(source);
     if (opt.of == "anatomical") {
-      volume = study::readAnatomical(study.anatomical, read);
+      volume = study::readAnatomical(study.anatomical, read, opt.pacs);
     } else {
       if (!study.functional)
         throw InputError(source,
                          "the study names no functional volume (for its anatomical volume: "
                          "--of anatomical)");
-      volume = study::readSource(*study.functional, read);
+      volume = study::readSource(*study.functional, read, opt.pacs);
     }
   } else {
     if (!opt.of.empty())
@@ -385,12 +386,12 @@ void runStats(StatsOptions opt) {
     printStats(volume, placementNote, list, stats, total, opt);
   }
   // The SEG, written and the statistics said: to the server (said on stderr, as the SEG is).
-  if (!opt.seg.empty()) storeDicom(opt.dicom, {opt.seg}, opt.seg, std::cerr);
+  if (!opt.seg.empty()) storeDicom(opt.dicom, opt.pacs, {opt.seg}, opt.seg, std::cerr);
 }
 
 }  // namespace
 
-void addStatsCommand(CLI::App& app) {
+void addStatsCommand(CLI::App& app, const pacs::Options& pacs) {
   auto opt = std::make_shared<StatsOptions>();
   // Coordinates, radii and thresholds: finite numbers only (NaN would pass every comparison).
   const CLI::Validator finite(
@@ -446,7 +447,10 @@ void addStatsCommand(CLI::App& app) {
          "binary DICOM SEG file on the volume's grid")
       ->check(nonEmpty());
   addDicomOptions(*cmd, opt->dicom, false);
-  cmd->callback([opt] { runStats(*opt); });
+  cmd->callback([opt, &pacs] {
+    opt->pacs = pacs;
+    runStats(*opt);
+  });
 }
 
 }  // namespace mvw::app

@@ -19,6 +19,7 @@ struct ViewOptions {
   std::string study, anatomical, functional, script, frameLog, servers;
   int width = 1400, height = 900;
   double uiScale = 1.0;
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 void runView(const ViewOptions& o) {
@@ -57,8 +58,9 @@ void runView(const ViewOptions& o) {
   // reported with nothing drawn.
   if (!o.study.empty() || !o.anatomical.empty()) {
     v.session = std::make_unique<study::Session>(std::move(study));
-    v.session->load();
+    v.session->load(o.pacs);
   }
+  v.pacs = o.pacs;
   v.script = o.script;
   v.frameLog = o.frameLog;
   v.width = o.width;
@@ -69,7 +71,7 @@ void runView(const ViewOptions& o) {
 
 }  // namespace
 
-void addViewCommand(CLI::App& app) {
+void addViewCommand(CLI::App& app, const pacs::Options& pacs) {
   auto o = std::make_shared<ViewOptions>();
   CLI::App* cmd = app.add_subcommand(
       "view",
@@ -102,7 +104,10 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--ui-scale", o->uiScale,
                   "Panel text and controls scaled (1.5 for a high-density screen)")
       ->check(CLI::Range(0.5, 4.0));
-  cmd->callback([o] { runView(*o); });
+  cmd->callback([o, &pacs] {
+    o->pacs = pacs;
+    runView(*o);
+  });
 }
 
 }  // namespace mvw::app

@@ -46,6 +46,8 @@ const char* PacsBrowser::roleName(Role role) {
   return "segmentation";
 }
 
+PacsBrowser::PacsBrowser(pacs::Options options) : options_(std::move(options)) {}
+
 PacsBrowser::~PacsBrowser() = default;  // thread_ (declared last) joins first
 
 void PacsBrowser::setServers(std::vector<PacsServerEntry> servers, std::filesystem::path file,
@@ -92,7 +94,7 @@ bool PacsBrowser::selectServer(const std::string& name) {
 }
 
 pacs::Options PacsBrowser::options() const {
-  pacs::Options o = pacs::studyOptions();
+  pacs::Options o = options_;
   o.progress = false;
   if (server_ >= 0) o.callingAet = servers_[static_cast<std::size_t>(server_)].callingAet;
   return o;
@@ -238,7 +240,8 @@ void PacsBrowser::open() {
     }
   start(Step::Open, "opening", [this, server, o, wanted, study](Outcome& out) mutable {
     // Into the verified cache with this server's calling AE title first; the study loader
-    // then reads each series from there, offline, as for `mvw view STUDY.json`.
+    // then reads each series from there, offline, as for `mvw view STUDY.json` (with the same
+    // options, should a series have to be retrieved again).
     for (std::size_t i = 0; i < wanted.size(); ++i) {
       const std::string step = "retrieving the " + std::string(roleName(wanted[i].role)) +
                                " series (" + std::to_string(i + 1) + " of " +
@@ -268,7 +271,7 @@ void PacsBrowser::open() {
                     ? "reading the series"
                     : "reading the series and registering them");
     auto session = std::make_unique<study::Session>(std::move(study));
-    session->load();
+    session->load(o);
     out.session = std::move(session);
   });
 }

@@ -37,7 +37,9 @@ class PacsBrowser {
   enum class Role { Anatomical, Functional, Segmentation };
   static const char* roleName(Role role);  // anatomical, functional, segmentation
 
-  PacsBrowser() = default;
+  // `options`: the command line's --cache, --connect-timeout and --read-timeout, which every
+  // step (and the study an open loads) uses.
+  explicit PacsBrowser(pacs::Options options = {});
   ~PacsBrowser();  // a running step is waited for (its thread joined)
   PacsBrowser(const PacsBrowser&) = delete;
   PacsBrowser& operator=(const PacsBrowser&) = delete;
@@ -58,8 +60,8 @@ class PacsBrowser {
   void requestWindow() { windowRequested_ = true; }
   bool takeWindowRequest();
 
-  // The options every step uses: the study loader's (`--cache`, the time-outs), with the
-  // server's calling AE title and no progress on stderr.
+  // The options every step uses: those the browser was made with (`--cache`, the time-outs),
+  // with the server's calling AE title and no progress on stderr.
   pacs::Options options() const;
 
   // The search (findStudies) with the query as set; the studies replace the last ones.
@@ -137,6 +139,7 @@ class PacsBrowser {
   pacs::Server chosenServer() const;
   void setActivity(std::string what);
 
+  pacs::Options options_;
   std::vector<PacsServerEntry> servers_;
   std::filesystem::path serversFile_;
   std::string serversProblem_;
