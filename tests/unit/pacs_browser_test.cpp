@@ -202,6 +202,24 @@ TEST(PacsBrowser, ChoicesMakeAStudyConfigNamingPacsSeries) {
   EXPECT_STREQ(b.failedStep(), "Open");
 }
 
+// The options the browser is made with (the command line's --cache and time-outs) are those
+// every step uses, with the chosen server's calling AE title and no progress on stderr.
+TEST(PacsBrowser, StepsUseTheOptionsItIsMadeWith) {
+  pacs::Options given;
+  given.cacheDir = "/cache/given";
+  given.connectTimeoutS = 2.5;
+  given.readTimeoutS = 7.0;
+  PacsBrowser b(given);
+  b.setServers({{"clinic", "dicom://PACS@127.0.0.1:1", "WS1"}}, "servers.json");
+  const pacs::Options o = b.options();
+  EXPECT_EQ(o.cacheDir, "/cache/given");
+  EXPECT_EQ(o.connectTimeoutS, 2.5);
+  EXPECT_EQ(o.readTimeoutS, 7.0);
+  EXPECT_EQ(o.callingAet, "WS1");
+  EXPECT_FALSE(o.progress);
+  EXPECT_EQ(PacsBrowser().options().cacheDir, "");  // made without: the defaults
+}
+
 TEST(PacsBrowser, AServerThatCannotBeReachedFailsInTheBackground) {
   PacsBrowser b;
   b.setServers({{"Research", "http://127.0.0.1:1/dicom-web", "MVW"}}, "servers.json");
