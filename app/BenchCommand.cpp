@@ -38,6 +38,7 @@ struct BenchOptions {
   bool noShading = false;
   std::string gl;
   std::string gradient = "auto";
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 void runBench(const BenchOptions& o) {
@@ -50,7 +51,7 @@ void runBench(const BenchOptions& o) {
   }
   const auto study = config::loadStudyConfig(o.study);
   auto context = output::makeHeadlessContext(o.gl);
-  const Volume volume = mvw::study::readSource(study.anatomical);
+  const Volume volume = mvw::study::readSource(study.anatomical, {}, o.pacs);
   const auto t0 = std::chrono::steady_clock::now();
   render::VolumeRenderer renderer(*context, volume, render::parseGradientSource(o.gradient));
   const double uploadMs =
@@ -95,7 +96,7 @@ void runBench(const BenchOptions& o) {
 
 }  // namespace
 
-void addBenchCommand(CLI::App& app) {
+void addBenchCommand(CLI::App& app, const pacs::Options& pacs) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks (not tests): print timings");
   CLI::App* cmd =
@@ -112,9 +113,12 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_flag("--no-shading", o->noShading, "Composite without Phong shading");
   addGlOption(*cmd, o->gl);
   addGradientOption(*cmd, o->gradient);
-  cmd->callback([o] { runBench(*o); });
+  cmd->callback([o, &pacs] {
+    o->pacs = pacs;
+    runBench(*o);
+  });
   addBenchRegisterCommand(*bench);
-  addBenchFeaturesCommand(*bench);
+  addBenchFeaturesCommand(*bench, pacs);
 }
 
 }  // namespace mvw::app

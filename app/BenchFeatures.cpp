@@ -24,6 +24,7 @@ struct FeatureBenchOptions {
   std::optional<int> size;
   int frames = 12;
   std::string gl;
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 // The cut face's anatomy (issue 36) counts as a feature: without it, the plain face.
@@ -51,7 +52,7 @@ void runFeatureBench(const FeatureBenchOptions& o) {
   overrides.size = o.size;
   mvw::study::Session session(config::loadStudyConfig(o.study), overrides);
   auto context = output::makeHeadlessContext(o.gl);
-  session.load();
+  session.load(o.pacs);
   const config::StudyConfig& study = session.config();
   render::VolumeRenderer renderer(*context, session.anatomical());
   session.attach(renderer);
@@ -92,7 +93,7 @@ void runFeatureBench(const FeatureBenchOptions& o) {
 
 }  // namespace
 
-void addBenchFeaturesCommand(CLI::App& bench) {
+void addBenchFeaturesCommand(CLI::App& bench, const pacs::Options& pacs) {
   auto o = std::make_shared<FeatureBenchOptions>();
   CLI::App* cmd = bench.add_subcommand(
       "features",
@@ -103,7 +104,10 @@ void addBenchFeaturesCommand(CLI::App& bench) {
       ->check(CLI::Range(16, 4096));
   cmd->add_option("--frames", o->frames, "Azimuth steps per view")->check(CLI::Range(1, 3600));
   addGlOption(*cmd, o->gl);
-  cmd->callback([o] { runFeatureBench(*o); });
+  cmd->callback([o, &pacs] {
+    o->pacs = pacs;
+    runFeatureBench(*o);
+  });
 }
 
 }  // namespace mvw::app

@@ -33,6 +33,7 @@ struct ConvertOptions {
   bool noSuv = false;
   // Of a study config (.json): which of its volumes; "" is the anatomical one.
   std::string volume;
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 bool isStudyConfig(const fs::path& p) { return p.extension() == ".json"; }
@@ -102,18 +103,18 @@ nlohmann::json sidecarJson(const Volume& volume, const ConvertOptions& o) {
 Volume readStudyVolume(const ConvertOptions& o, const io::ReadOptions& read) {
   const config::StudyConfig study = config::loadStudyConfig(o.input);
   const std::string which = o.volume.empty() ? "anatomical" : o.volume;
-  if (which == "anatomical") return study::readAnatomical(study.anatomical, read);
+  if (which == "anatomical") return study::readAnatomical(study.anatomical, read, o.pacs);
   if (which == "functional") {
     if (!study.functional)
       throw InputError(o.input, "the study names no functional volume (--volume functional)");
-    return study::readFunctional(study, read);
+    return study::readFunctional(study, read, o.pacs);
   }
   if (!study.segmentation)
     throw InputError(o.input, "the study names no segmentation (--volume segmentation)");
   if (study.segmentation->frame && study.segmentation->frame->mean)
     throw InputError(o.input,
                      "'segmentation.frame' cannot be \"mean\": label numbers are not averaged");
-  return study::readSource(*study.segmentation, read);  // a DICOM SEG: its label volume
+  return study::readSource(*study.segmentation, read, o.pacs);  // a DICOM SEG: its label volume
 }
 
 void runConvert(const ConvertOptions& o) {
@@ -173,7 +174,7 @@ void runConvert(const ConvertOptions& o) {
 
 }  // namespace
 
-void addConvertCommand(CLI::App& app) {
+void addConvertCommand(CLI::App& app, const pacs::Options& pacs) {
   auto opt = std::make_shared<ConvertOptions>();
   CLI::App* cmd = app.add_subcommand(
       "convert",
@@ -195,7 +196,10 @@ void addConvertCommand(CLI::App& app) {
                   "Of a study config: anatomical (default), functional or segmentation")
       ->check(CLI::IsMember({"anatomical", "functional", "segmentation"}));
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
-  cmd->callback([opt] { runConvert(*opt); });
+  cmd->callback([opt, &pacs] {
+    opt->pacs = pacs;
+    runConvert(*opt);
+  });
 }
 
 }  // namespace mvw::app

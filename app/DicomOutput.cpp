@@ -4,6 +4,7 @@
 
 #include "CliChecks.h"
 #include "PacsCommand.h"
+#include "mvw/config/ServerList.h"
 #include "mvw/core/Error.h"
 
 namespace mvw::app {
@@ -30,7 +31,8 @@ void addDicomOptions(CLI::App& cmd, DicomOutputOptions& o, bool withFolder) {
   cmd.add_option("--store", o.store,
                  "Once every DICOM object is written, send them to this PACS: "
                  "http(s)://host:port/PATH (STOW-RS) or dicom://AET@host:port (C-STORE), as "
-                 "`mvw pacs store`; exit 3 when the server fails (the files stay written)")
+                 "`mvw pacs store`, or a server's name saved in servers.json; exit 3 when the "
+                 "server fails (the files stay written)")
       ->check(nonEmpty());
   addServerOptions(cmd, o.storeOptions);
 }
@@ -54,7 +56,7 @@ void checkDicomOutput(const DicomOutputOptions& o, bool writing, const fs::path&
                           o.storeOptions.insecure != defaults.insecure))
     throw CLI::ValidationError(o.storeOptions.insecure ? "--insecure" : "--calling-aet",
                                "goes with --store SERVER");
-  if (!o.store.empty()) pacs::parseServer(o.store);
+  if (!o.store.empty()) config::resolveServer(o.store);
   dicomout::checkUidRoot(o.uidRoot, "--uid-root");
   dicomout::setUidRoot(o.uidRoot);
   if (!o.dicom || o.force || outDir.empty()) return;
@@ -65,13 +67,13 @@ void checkDicomOutput(const DicomOutputOptions& o, bool writing, const fs::path&
                      "(give --force to write into it)");
 }
 
-void storeDicom(const DicomOutputOptions& o, const std::vector<fs::path>& files,
-                const fs::path& where, std::ostream& out) {
+void storeDicom(const DicomOutputOptions& o, const pacs::Options& timeouts,
+                const std::vector<fs::path>& files, const fs::path& where, std::ostream& out) {
   if (o.store.empty()) return;
-  const pacs::Server server = pacs::parseServer(o.store);
-  // The time-outs of the global --connect-timeout and --read-timeout (the study's PACS series
-  // are read with the same), the AE title and HTTPS check of this command's options.
-  pacs::Options options = pacs::studyOptions();
+  const pacs::Server server = config::resolveServer(o.store);
+  // The time-outs of the command line's --connect-timeout and --read-timeout (the study's PACS
+  // series are read with the same), the AE title and HTTPS check of this command's options.
+  pacs::Options options = timeouts;
   options.callingAet = o.storeOptions.callingAet;
   options.insecure = o.storeOptions.insecure;
   options.progress = false;

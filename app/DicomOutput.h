@@ -20,7 +20,7 @@ struct DicomOutputOptions {
   bool force = false;  // write into an output folder that is not empty
   std::string patientId, patientName, uidRoot;
   std::string store;           // --store SERVER: empty, nothing is sent
-  pacs::Options storeOptions;  // its --calling-aet and --insecure (time-outs: the global ones)
+  pacs::Options storeOptions;  // its --calling-aet and --insecure (time-outs: storeDicom's)
   dicomout::GivenIdentity given() const { return {patientId, patientName}; }
 };
 
@@ -36,9 +36,12 @@ void checkDicomOutput(const DicomOutputOptions& o, bool writing,
                       const std::filesystem::path& outDir);
 
 // With --store: `files` (every DICOM object the command wrote, all of them written) sent to the
-// server by pacs::store, and one line said on `out`. A server that refuses or cannot be reached
-// is a ServiceError naming it, which adds that the objects stay written in `where`.
-void storeDicom(const DicomOutputOptions& o, const std::vector<std::filesystem::path>& files,
-                const std::filesystem::path& where, std::ostream& out);
+// server by pacs::store, and one line said on `out`, with the time-outs of `timeouts` (the
+// command line's --connect-timeout and --read-timeout, those the study's PACS series are read
+// with). A server that refuses or cannot be reached is a ServiceError naming it, which adds
+// that the objects stay written in `where`.
+void storeDicom(const DicomOutputOptions& o, const pacs::Options& timeouts,
+                const std::vector<std::filesystem::path>& files, const std::filesystem::path& where,
+                std::ostream& out);
 
 }  // namespace mvw::app

@@ -25,6 +25,7 @@ struct InfoOptions {
   bool json = false;
   bool noSuv = false;
   std::size_t maxMemory = 0;  // bytes; 0: the reader's default (a quarter of physical RAM)
+  pacs::Options pacs;         // the command line's --cache and time-outs (main.cpp)
 };
 
 void runInfo(const InfoOptions& opt) {
@@ -32,7 +33,7 @@ void runInfo(const InfoOptions& opt) {
   read.series = opt.series;
   read.suv = !opt.noSuv;
   read.maxBytes = opt.maxMemory;
-  const auto volumes = study::readReportedVolumes({opt.paths.begin(), opt.paths.end()}, read);
+  const auto volumes = study::readReportedVolumes({opt.paths.begin(), opt.paths.end()}, read, opt.pacs);
   if (opt.json)
     std::cout << study::volumesJson(volumes).dump(2) << "\n";
   else
@@ -41,7 +42,7 @@ void runInfo(const InfoOptions& opt) {
 
 }  // namespace
 
-void addInfoCommand(CLI::App& app) {
+void addInfoCommand(CLI::App& app, const pacs::Options& pacs) {
   auto opt = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
       "info",
@@ -70,7 +71,10 @@ void addInfoCommand(CLI::App& app) {
             return std::string();
           },
           "SIZE"));
-  cmd->callback([opt] { runInfo(*opt); });
+  cmd->callback([opt, &pacs] {
+    opt->pacs = pacs;
+    runInfo(*opt);
+  });
 }
 
 }  // namespace mvw::app

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "mvw/config/ServerList.h"
 #include "mvw/core/Error.h"
 #include "mvw/pacs/Pacs.h"
 
@@ -31,7 +32,8 @@ struct PacsCli {
 
 void addConnection(CLI::App* cmd, PacsCli& o) {
   cmd->add_option("SERVER", o.server,
-                  "http(s)://host:port/PATH (DICOMweb) or dicom://AET@host:port (DIMSE)")
+                  "http(s)://host:port/PATH (DICOMweb), dicom://AET@host:port (DIMSE), or the name "
+                  "of a server saved in servers.json (as the viewer saves it)")
       ->required();
   addServerOptions(*cmd, o.options);
   cmd->add_option("--connect-timeout", o.options.connectTimeoutS,
@@ -106,7 +108,7 @@ void addPacsCommand(CLI::App& app) {
   CLI::App* echo = cmd->add_subcommand("echo", "C-ECHO, or a QIDO-RS request: the round trip");
   addConnection(echo, *o);
   echo->callback([o] {
-    const pacs::Server server = pacs::parseServer(o->server);
+    const pacs::Server server = config::resolveServer(o->server);
     const double s = pacs::echo(server, o->options);
     std::printf("%s answered in %.1f ms\n", server.text.c_str(), s * 1000.0);
   });
@@ -122,7 +124,7 @@ void addPacsCommand(CLI::App& app) {
   find->add_option("--study", o->query.studyUid, "a Study Instance UID: its series");
   find->add_flag("--json", o->json, "one JSON object per match, keyed by DICOM keyword");
   find->callback([o] {
-    const pacs::Server server = pacs::parseServer(o->server);
+    const pacs::Server server = config::resolveServer(o->server);
     if (!o->query.studyUid.empty()) {
       auto series = pacs::findSeries(server, o->query.studyUid, o->options);
       if (series.empty()) {
@@ -152,7 +154,7 @@ void addPacsCommand(CLI::App& app) {
   get->add_option("--port", o->options.movePort, "the storage SCP's port for --move-to")
       ->check(CLI::Range(1, 65535));
   get->callback([o] {
-    const pacs::Server server = pacs::parseServer(o->server);
+    const pacs::Server server = config::resolveServer(o->server);
     if (!o->options.moveToAet.empty() &&
         (o->options.movePort == 0 || server.protocol != pacs::Protocol::Dimse))
       throw InputError("--move-to", "needs --port P and a dicom:// server");
@@ -167,7 +169,7 @@ void addPacsCommand(CLI::App& app) {
   addConnection(store, *o);
   store->add_option("FILE", o->files, "DICOM files or folders")->required();
   store->callback([o] {
-    const pacs::Server server = pacs::parseServer(o->server);
+    const pacs::Server server = config::resolveServer(o->server);
     std::cout << transferSummary("stored", pacs::store(server, o->files, o->options)) << "\n";
   });
 }

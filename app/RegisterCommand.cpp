@@ -55,6 +55,7 @@ struct RegisterOptions {
   bool affine = false;
   double rotationSearchDeg = 0.0;
   DicomOutputOptions dicom;
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 const std::map<std::string, Interpolation> kInterpolations = {{"auto", Interpolation::Automatic},
@@ -106,8 +107,8 @@ Inputs readInputs(const RegisterOptions& opt,
   io::ReadOptions fixedRead, movingRead;
   fixedRead.suv = movingRead.suv = !opt.noSuv;
   if (studyConfig) {
-    in.fixed = study::readAnatomical(studyConfig->anatomical, fixedRead);
-    in.moving = study::readFunctional(*studyConfig, movingRead);
+    in.fixed = study::readAnatomical(studyConfig->anatomical, fixedRead, opt.pacs);
+    in.moving = study::readFunctional(*studyConfig, movingRead, opt.pacs);
     in.fixedName = opt.study + " (anatomical)";
     in.movingName = opt.study + " (functional)";
     return in;
@@ -325,13 +326,13 @@ void runRegister(RegisterOptions opt, const CLI::App& cmd) {
   if (fixedId) {
     std::vector<fs::path> written;
     for (const std::string& name : dicomOutputs) written.push_back(fs::path(opt.output) / name);
-    storeDicom(opt.dicom, written, opt.output, std::cout);
+    storeDicom(opt.dicom, opt.pacs, written, opt.output, std::cout);
   }
 }
 
 }  // namespace
 
-void addRegisterCommand(CLI::App& app) {
+void addRegisterCommand(CLI::App& app, const pacs::Options& pacs) {
   auto opt = std::make_shared<RegisterOptions>();
   CLI::App* cmd = app.add_subcommand(
       "register",
@@ -370,7 +371,10 @@ void addRegisterCommand(CLI::App& app) {
       ->check(CLI::Range(0.0, 180.0));
   cmd->add_flag("--no-suv", opt->noSuv, "Keep PET values in Bq/ml instead of converting to SUVbw");
   addDicomOptions(*cmd, opt->dicom, true);
-  cmd->callback([opt, cmd] { runRegister(*opt, *cmd); });
+  cmd->callback([opt, cmd, &pacs] {
+    opt->pacs = pacs;
+    runRegister(*opt, *cmd);
+  });
 }
 
 }  // namespace mvw::app

@@ -24,6 +24,7 @@ struct RenderOptions {
   std::string gl;  // --gl (empty: MVW_GL, else auto)
   std::string gradient = "auto";
   DicomOutputOptions dicom;
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 void runRender(const RenderOptions& o) {
@@ -36,13 +37,14 @@ void runRender(const RenderOptions& o) {
   request.gradient = o.gradient;
   request.dicom = o.dicom.dicom;
   request.given = o.dicom.given();
+  request.pacs = o.pacs;
   const output::RenderedStudy rendered = output::renderStudy(request, std::cout, std::cerr);
-  if (o.dicom.dicom) storeDicom(o.dicom, rendered.dicomFiles, o.outDir, std::cout);
+  if (o.dicom.dicom) storeDicom(o.dicom, o.pacs, rendered.dicomFiles, o.outDir, std::cout);
 }
 
 }  // namespace
 
-void addRenderCommand(CLI::App& app) {
+void addRenderCommand(CLI::App& app, const pacs::Options& pacs) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand(
       "render", "Render the views of a study config headless (EGL or OSMesa) to PNG + render.json");
@@ -90,9 +92,10 @@ void addRenderCommand(CLI::App& app) {
   addGlOption(*cmd, o->gl);
   addGradientOption(*cmd, o->gradient);
   addDicomOptions(*cmd, o->dicom, true);
-  cmd->callback([o] {
+  cmd->callback([o, &pacs] {
     if (o->overrides.window.has_value() != o->overrides.level.has_value())
       throw InputError(o->study, "--window and --level go together");
+    o->pacs = pacs;
     runRender(*o);
   });
 }

@@ -36,6 +36,7 @@ struct StatsOptions {
   bool noSuv = false;
   std::string seg;  // --seg OUT.dcm
   DicomOutputOptions dicom;
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 // --seg: the ROIs (or their metabolic volumes) as a binary DICOM SEG on the volume's grid, in
@@ -82,7 +83,7 @@ void runStats(StatsOptions opt) {
   io::ReadOptions read;
   read.series = opt.series;
   read.suv = !opt.noSuv;
-  const Volume volume = study::readMeasuredVolume(source, opt.of == "anatomical", read);
+  const Volume volume = study::readMeasuredVolume(source, opt.of == "anatomical", read, opt.pacs);
   // A folder of one image series and its DICOM SEG: without an ROI, the SEG's segments are the
   // ROIs (as `mvw info` lists the SEG beside the series).
   if (rois == 0) {
@@ -116,12 +117,12 @@ void runStats(StatsOptions opt) {
   else
     study::printRoiReport(std::cout, volume, report);
   // The SEG, written and the statistics said: to the server (said on stderr, as the SEG is).
-  if (!opt.seg.empty()) storeDicom(opt.dicom, {opt.seg}, opt.seg, std::cerr);
+  if (!opt.seg.empty()) storeDicom(opt.dicom, opt.pacs, {opt.seg}, opt.seg, std::cerr);
 }
 
 }  // namespace
 
-void addStatsCommand(CLI::App& app) {
+void addStatsCommand(CLI::App& app, const pacs::Options& pacs) {
   auto opt = std::make_shared<StatsOptions>();
   // Coordinates, radii and thresholds: finite numbers only (NaN would pass every comparison).
   const CLI::Validator finite(
@@ -177,7 +178,10 @@ void addStatsCommand(CLI::App& app) {
          "binary DICOM SEG file on the volume's grid")
       ->check(nonEmpty());
   addDicomOptions(*cmd, opt->dicom, false);
-  cmd->callback([opt] { runStats(*opt); });
+  cmd->callback([opt, &pacs] {
+    opt->pacs = pacs;
+    runStats(*opt);
+  });
 }
 
 }  // namespace mvw::app

@@ -26,7 +26,7 @@ struct ValidateCli {
 
 }  // namespace
 
-void addValidateCommand(CLI::App& app) {
+void addValidateCommand(CLI::App& app, const pacs::Options& pacs) {
   auto o = std::make_shared<ValidateCli>();
   CLI::App* cmd = app.add_subcommand(
       "validate",
@@ -44,7 +44,7 @@ void addValidateCommand(CLI::App& app) {
                   "Seconds one render process (its share of a study's cases) may take")
       ->check(positive());
   addGlOption(*cmd, o->gl);
-  setCommandBody(*cmd, [o] {
+  setCommandBody(*cmd, [o, &pacs] {
     // A backend the user named must exist here (exit 2 now, not one failure per case). The
     // probe context is made in a child process: the renders are forked from this one, which
     // makes no GL context (a driver's threads and state do not survive a fork).
@@ -53,6 +53,7 @@ void addValidateCommand(CLI::App& app) {
       if (status != 0) return status;  // the child said why on stderr
     }
     o->options.gl = o->gl;
+    o->options.pacs = pacs;
     // A failing case is neither bad input nor an internal fault, and the report said why: exit
     // 1 without a message.
     return validate::runValidate(o->options) ? kExitSuccess : kExitFailure;

@@ -1,6 +1,8 @@
 #pragma once
 #include <CLI/App.hpp>
 
+#include "mvw/pacs/Pacs.h"
+
 namespace mvw::app {
 
 // `mvw validate SUITE.json -o REPORT_DIR [--update] [--jobs N]`: renders every case of a
@@ -24,6 +26,6 @@ namespace mvw::app {
 //         "checks": [ { "type": "mip_equals_max_projection", "axis": "z" } ] } ] }
 //
 // Paths may hold ${NAME} (an environment variable) and are relative to the suite's folder.
-void addValidateCommand(CLI::App& app);
+void addValidateCommand(CLI::App& app, const pacs::Options& pacs);
 
 }  // namespace mvw::app

@@ -33,8 +33,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("mvw ") + mvw::kVersion);
   // Study configs naming PACS series: the verified cache and the time-outs, on every command
-  // (fallthrough: given after the command's name too).
-  mvw::pacs::Options& pacsOptions = mvw::pacs::studyOptions();
+  // (fallthrough: given after the command's name too). Owned here and handed to each command
+  // that reads a study, which passes them with its reads (study::localPath): nothing
+  // process-wide configures a read that becomes a retrieve.
+  mvw::pacs::Options pacsOptions;
   app.add_option("--cache", pacsOptions.cacheDir,
                  "the cache of PACS series (default $XDG_CACHE_HOME/mvw/dicom)");
   app.add_option("--connect-timeout", pacsOptions.connectTimeoutS,
@@ -44,16 +46,16 @@ int main(int argc, char** argv) {
                  "PACS: seconds to wait for the next bytes of an answer (default 60)")
       ->check(CLI::Range(0.1, 86400.0));
   app.fallthrough();
-  mvw::app::addInfoCommand(app);
-  mvw::app::addConvertCommand(app);
-  mvw::app::addRegisterCommand(app);
-  mvw::app::addRenderCommand(app);
-  mvw::app::addStatsCommand(app);
+  mvw::app::addInfoCommand(app, pacsOptions);
+  mvw::app::addConvertCommand(app, pacsOptions);
+  mvw::app::addRegisterCommand(app, pacsOptions);
+  mvw::app::addRenderCommand(app, pacsOptions);
+  mvw::app::addStatsCommand(app, pacsOptions);
   mvw::app::addPhantomCommand(app);
   mvw::app::addGlyphMapCommand(app);
-  mvw::app::addBenchCommand(app);
-  mvw::app::addViewCommand(app);
-  mvw::app::addValidateCommand(app);
+  mvw::app::addBenchCommand(app, pacsOptions);
+  mvw::app::addViewCommand(app, pacsOptions);
+  mvw::app::addValidateCommand(app, pacsOptions);
   mvw::app::addConfigCommand(app);
   mvw::app::addBatchCommand(app);
   mvw::app::addPacsCommand(app);

@@ -22,6 +22,7 @@ struct ViewOptions {
   int width = 1400, height = 900;
   double uiScale = 1.0;
   bool scriptReference = false;
+  pacs::Options pacs;  // the command line's --cache and time-outs (main.cpp)
 };
 
 void runView(const ViewOptions& o) {
@@ -64,8 +65,9 @@ void runView(const ViewOptions& o) {
   // reported with nothing drawn.
   if (!o.study.empty() || !o.anatomical.empty()) {
     v.session = std::make_unique<study::Session>(std::move(study));
-    v.session->load();
+    v.session->load(o.pacs);
   }
+  v.pacs = o.pacs;
   v.script = o.script;
   v.frameLog = o.frameLog;
   v.width = o.width;
@@ -76,7 +78,7 @@ void runView(const ViewOptions& o) {
 
 }  // namespace
 
-void addViewCommand(CLI::App& app) {
+void addViewCommand(CLI::App& app, const pacs::Options& pacs) {
   auto o = std::make_shared<ViewOptions>();
   CLI::App* cmd = app.add_subcommand(
       "view",
@@ -112,7 +114,10 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--ui-scale", o->uiScale,
                   "Panel text and controls scaled (1.5 for a high-density screen)")
       ->check(CLI::Range(0.5, 4.0));
-  cmd->callback([o] { runView(*o); });
+  cmd->callback([o, &pacs] {
+    o->pacs = pacs;
+    runView(*o);
+  });
 }
 
 }  // namespace mvw::app

@@ -227,7 +227,7 @@ int runViewer(ViewerOptions options) {
   GlfwContext context(glm::ivec2(options.width, options.height), "mvw view");
   ImGuiSession imgui(context.window(), scale);
   render::WindowFramebuffer framebuffer(context);
-  PacsBrowser browser;
+  PacsBrowser browser(options.pacs);
   browser.setServers(std::move(options.servers), options.serversFile, options.serversProblem);
   PacsPanel pacsPanel(browser, scale);
   std::unique_ptr<OpenStudy> open;

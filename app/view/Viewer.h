@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mvw/pacs/Pacs.h"
 #include "mvw/study/Session.h"
 #include "mvw/viewer/PacsBrowser.h"
 
@@ -20,6 +21,8 @@ struct ViewerOptions {
   std::vector<viewer::PacsServerEntry> servers;
   std::filesystem::path serversFile;
   std::string serversProblem;
+  // The command line's --cache and time-outs: the PACS window's searches and retrieves use them.
+  pacs::Options pacs;
   std::filesystem::path script;  // scripted events, for tests (see mvw/viewer/ViewerScript.h)
   // One CSV line per drawn frame (frame, ms since the previous frame's swap, the 3D pane's
   // render ms and size where it rendered, interactive, drag divisor); empty: none.

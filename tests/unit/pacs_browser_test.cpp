@@ -58,9 +58,9 @@ TEST(PacsBrowser, ReadsTheServerList) {
 TEST(PacsBrowser, RefusesABadServerList) {
   EXPECT_NE(problemOf("{").find("not valid JSON"), std::string::npos);
   EXPECT_NE(problemOf(R"({"server": []})").find("unknown key 'server'"), std::string::npos);
-  EXPECT_NE(problemOf(R"({})").find("no \"servers\" array"), std::string::npos);
+  EXPECT_NE(problemOf(R"({})").find("missing key 'servers'"), std::string::npos);
   EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": "http://h:1/x", "aet": "X"}]})")
-                .find("servers[0]: unknown key 'aet' (name, url, calling_aet)"),
+                .find("unknown key 'servers[0].aet' (known here: calling_aet, name, url)"),
             std::string::npos);
   EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": "ftp://h/x"}]})").find("servers[0].url"),
             std::string::npos);
@@ -72,10 +72,11 @@ TEST(PacsBrowser, RefusesABadServerList) {
             std::string::npos);
   EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": "http://h:1/x"},
                                       {"name": "A", "url": "http://h:2/x"}]})")
-                .find("servers[1]: the name 'A' is given twice"),
+                .find("'servers[1]' repeats the name 'A'"),
             std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"url": "http://h:1/x"}]})").find("servers[0]: no \"name\""),
-            std::string::npos);
+  EXPECT_NE(
+      problemOf(R"({"servers": [{"url": "http://h:1/x"}]})").find("'servers[0]' has no \"name\""),
+      std::string::npos);
   EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": "http://h:1/x", "name": "B"}]})")
                 .find("appears twice"),
             std::string::npos);
@@ -83,7 +84,8 @@ TEST(PacsBrowser, RefusesABadServerList) {
       problemOf(R"({"servers": [{"name": "A", "url": "dicom://P@h:104", "calling_aet": ""}]})")
           .find("1 to 16 characters"),
       std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": 5}]})").find("servers[0].url is not"),
+  EXPECT_NE(problemOf(R"({"servers": [{"name": "A", "url": 5}]})")
+                .find("'servers[0].url' must be a string"),
             std::string::npos);
 }
 
@@ -247,6 +249,24 @@ TEST(PacsBrowser, ChoicesMakeAStudyConfigNamingPacsSeries) {
   EXPECT_FALSE(b.busy());
   EXPECT_EQ(b.error(), "no anatomical series chosen");
   EXPECT_STREQ(b.failedStep(), "Open");
+}
+
+// The options the browser is made with (the command line's --cache and time-outs) are those
+// every step uses, with the chosen server's calling AE title and no progress on stderr.
+TEST(PacsBrowser, StepsUseTheOptionsItIsMadeWith) {
+  pacs::Options given;
+  given.cacheDir = "/cache/given";
+  given.connectTimeoutS = 2.5;
+  given.readTimeoutS = 7.0;
+  PacsBrowser b(given);
+  b.setServers({{"clinic", "dicom://PACS@127.0.0.1:1", "WS1"}}, "servers.json");
+  const pacs::Options o = b.options();
+  EXPECT_EQ(o.cacheDir, "/cache/given");
+  EXPECT_EQ(o.connectTimeoutS, 2.5);
+  EXPECT_EQ(o.readTimeoutS, 7.0);
+  EXPECT_EQ(o.callingAet, "WS1");
+  EXPECT_FALSE(o.progress);
+  EXPECT_EQ(PacsBrowser().options().cacheDir, "");  // made without: the defaults
 }
 
 TEST(PacsBrowser, AServerThatCannotBeReachedFailsInTheBackground) {

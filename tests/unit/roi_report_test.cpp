@@ -255,10 +255,10 @@ TEST(RoiReport, AStudyWithoutAFunctionalVolume) {
   const fs::path dir = test::scratchDir();
   io::writeVolume(indexVolume(), dir / "ct.nii");
   std::ofstream(dir / "study.json") << R"({"anatomical": {"path": "ct.nii"}})";
-  EXPECT_EQ(readMeasuredVolume(dir / "study.json", true, {}).dimensions(), glm::ivec3(4));
-  EXPECT_EQ(readMeasuredVolume(dir / "ct.nii", false, {}).dimensions(), glm::ivec3(4));
+  EXPECT_EQ(readMeasuredVolume(dir / "study.json", true, {}, {}).dimensions(), glm::ivec3(4));
+  EXPECT_EQ(readMeasuredVolume(dir / "ct.nii", false, {}, {}).dimensions(), glm::ivec3(4));
   try {
-    readMeasuredVolume(dir / "study.json", false, {});
+    readMeasuredVolume(dir / "study.json", false, {}, {});
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("the study names no functional volume"), std::string::npos)

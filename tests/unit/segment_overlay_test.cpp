@@ -44,7 +44,7 @@ TEST(SegmentOverlay, LabelVolumeBecomesOneMaskPerLabel) {
   labels.setValue(1, 0, 0, 0, 5);
   labels.setValue(3, 2, 1, 0, 9);
   io::writeVolume(labels, dir / "labels.nii.gz");
-  const SegmentOverlay o = readSegmentOverlay({dir / "labels.nii.gz", ""});
+  const SegmentOverlay o = readSegmentOverlay({dir / "labels.nii.gz", ""}, {}, {});
   EXPECT_EQ(o.numbers, (std::vector<int>{5, 9}));
   EXPECT_EQ(o.names, (std::vector<std::string>{"label 5", "label 9"}));
   ASSERT_EQ(o.colours.size(), 2u);
@@ -69,7 +69,7 @@ TEST(SegmentOverlay, LabelVolumeBecomesOneMaskPerLabel) {
   // Not a label map: refused naming the file.
   Volume values = labels.converted(ScalarType::Float32, 0.5);
   io::writeVolume(values, dir / "values.nii.gz");
-  EXPECT_THROW(readSegmentOverlay({dir / "values.nii.gz", ""}), InputError);
+  EXPECT_THROW(readSegmentOverlay({dir / "values.nii.gz", ""}, {}, {}), InputError);
 }
 
 TEST(SegmentOverlay, FollowsTheFunctionalOnlyOnItsFrameOfReference) {

@@ -18,7 +18,7 @@ TEST(StudyLoader, A4DFunctionalVolumeContributesTheMeanOrTheChosenFrame) {
   const Volume all = io::readVolume(path);
   ASSERT_EQ(all.components(), 20);
   config::VolumeSource source{path, "", "", "", config::defaultFrame(config::FunctionalKind::Fmri)};
-  const Volume mean = readSource(source);
+  const Volume mean = readSource(source, {}, {});
   EXPECT_EQ(mean.components(), 1);
   EXPECT_EQ(mean.dimensions(), all.dimensions());
   EXPECT_EQ(mean.worldFromIndex(), all.worldFromIndex());
@@ -27,12 +27,12 @@ TEST(StudyLoader, A4DFunctionalVolumeContributesTheMeanOrTheChosenFrame) {
   EXPECT_NEAR(mean.value(8, 10, 1), sum / 20, 1e-3);
   EXPECT_NE(mean.metadata().notes.back().find("mean over all frames"), std::string::npos);
   source.frame = FrameChoice{false, 7};
-  const Volume f7 = readSource(source);
+  const Volume f7 = readSource(source, {}, {});
   EXPECT_EQ(f7.value(8, 10, 1), all.value(8, 10, 1, 7));
   EXPECT_EQ(f7.metadata().notes.back(), "4D volume of 20 frames: frame 7 is used");
   source.frame = FrameChoice{false, 20};
   try {
-    readSource(source);
+    readSource(source, {}, {});
     FAIL() << "frame 20 of 20 accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), path);
@@ -40,7 +40,8 @@ TEST(StudyLoader, A4DFunctionalVolumeContributesTheMeanOrTheChosenFrame) {
   }
   // No frame given (the anatomy's default): frame 0, said in a note.
   source.frame.reset();
-  EXPECT_EQ(readSource(source).metadata().notes.back(), "4D volume of 20 frames: frame 0 is used");
+  EXPECT_EQ(readSource(source, {}, {}).metadata().notes.back(),
+            "4D volume of 20 frames: frame 0 is used");
 }
 
 }  // namespace

@@ -112,7 +112,7 @@ TEST(VolumeReport, AStudyConfigsVolumesWithTheirRoles) {
   io::writeVolume(ctLike(), dir / "pet.nii");
   std::ofstream(dir / "study.json")
       << R"({"anatomical": {"path": "ct.nii"}, "functional": {"path": "pet.nii"}})";
-  const auto volumes = readReportedVolumes({dir / "study.json", dir / "ct.nii"}, {});
+  const auto volumes = readReportedVolumes({dir / "study.json", dir / "ct.nii"}, {}, {});
   ASSERT_EQ(volumes.size(), 3u);
   EXPECT_EQ(volumes[0].role, "anatomical");
   EXPECT_EQ(volumes[1].role.rfind("functional (", 0), 0u) << volumes[1].role;
@@ -132,7 +132,7 @@ TEST(VolumeReport, AStudyConfigsVolumesWithTheirRoles) {
 TEST(VolumeReport, ABadInputAnywhereMeansNoReport) {
   const fs::path dir = test::scratchDir();
   io::writeVolume(ctLike(), dir / "ct.nii");
-  EXPECT_THROW(readReportedVolumes({dir / "ct.nii", dir / "missing.nii"}, {}), InputError);
+  EXPECT_THROW(readReportedVolumes({dir / "ct.nii", dir / "missing.nii"}, {}, {}), InputError);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "FieldTable.h"
 #include "mvw/config/ConfigReference.h"
+#include "mvw/config/ServerList.h"
 #include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 #include "mvw/io/AtomicFile.h"
@@ -555,11 +556,23 @@ FieldTable<SourceEntry> sourceTable(bool withKind) {
        })
       .add(
           "pacs",
-          "Instead of a path, a PACS: http(s)://host:port/PATH (DICOMweb) or "
-          "dicom://AET@host:port (DIMSE); the series is read from the verified cache.",
-          {"string", "a server URL, no credentials", "", {}},
+          "Instead of a path, a PACS: http(s)://host:port/PATH (DICOMweb), "
+          "dicom://AET@host:port (DIMSE) or the name of a server saved in servers.json; the "
+          "series is read from the verified cache.",
+          {"string", "a server URL (no credentials) or a saved server's name", "", {}},
           [](const json& v, SourceEntry& out, const Where& w) {
             const std::string p = detail::readString(v, w);
+            if (!p.empty() && isServerName(p)) {
+              // Known now, so a misspelt name is said with the config's file and key.
+              try {
+                resolveServer(p);
+              } catch (const InputError& e) {
+                if (e.file() != p) throw;  // the server list itself is bad: it names itself
+                w.bad(e.problem());
+              }
+              out.source.pacs = p;
+              return;
+            }
             if (p.rfind("http://", 0) != 0 && p.rfind("https://", 0) != 0 &&
                 p.rfind("dicom://", 0) != 0)
               w.bad("must be http(s)://host:port/PATH or dicom://AET@host:port");

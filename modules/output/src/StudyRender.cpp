@@ -181,7 +181,7 @@ RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::
   study::Session session(std::move(studyConfig), request.overrides);
   // The context before the volumes: a --gl this machine cannot give fails in milliseconds.
   auto context = makeHeadlessContext(request.gl);
-  session.load();
+  session.load(request.pacs);
   // Before any render: a source without a DICOM identity needs one from the command line.
   std::optional<dicomout::DicomIdentity> identity;
   if (request.dicom) identity = dicomout::identityOf(session.anatomical(), request.given);

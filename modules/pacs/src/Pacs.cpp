@@ -105,11 +105,6 @@ std::string matchValue(const Match& match, const char* keyword) {
   return it == match.end() ? std::string() : it->second;
 }
 
-Options& studyOptions() {
-  static Options options;
-  return options;
-}
-
 fs::path cacheRoot(const Options& options) {
   if (!options.cacheDir.empty()) return options.cacheDir;
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg && fs::path(xdg).is_absolute())

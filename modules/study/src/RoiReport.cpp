@@ -195,15 +195,16 @@ void printTotal(std::ostream& out, const RoiTotal& t) {
 
 }  // namespace
 
-Volume readMeasuredVolume(const fs::path& source, bool anatomical, const io::ReadOptions& options) {
+Volume readMeasuredVolume(const fs::path& source, bool anatomical, const io::ReadOptions& options,
+                          const pacs::Options& pacs) {
   if (source.extension() != ".json") return io::readVolume(source, options);
   const auto study = config::loadStudyConfig(source);
-  if (anatomical) return readAnatomical(study.anatomical, options);
+  if (anatomical) return readAnatomical(study.anatomical, options, pacs);
   if (!study.functional)
     throw InputError(source,
                      "the study names no functional volume (for its anatomical volume: --of "
                      "anatomical)");
-  return readSource(*study.functional, options);
+  return readSource(*study.functional, options, pacs);
 }
 
 RoiReport roiReport(const Volume& volume, const RoiRequest& request, const fs::path& source,

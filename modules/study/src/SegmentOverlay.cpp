@@ -25,14 +25,14 @@ const glm::vec3 kPalette[] = {{0.50f, 0.68f, 0.50f}, {0.95f, 0.84f, 0.57f}, {0.6
 static SegmentOverlay readLocalSegmentOverlay(const config::VolumeSource& source,
                                               const io::ReadOptions& options);
 
-SegmentOverlay readSegmentOverlay(const config::VolumeSource& source,
-                                  const io::ReadOptions& given) {
+SegmentOverlay readSegmentOverlay(const config::VolumeSource& source, const io::ReadOptions& given,
+                                  const pacs::Options& pacs) {
   io::ReadOptions options = given;
   options.series = source.series;
   config::VolumeSource local = source;
   if (!source.pacs.empty()) {
     // A PACS series from its verified cache folder: a SEG is its one file; "series" chose it.
-    local.path = localPath(source);
+    local.path = localPath(source, pacs);
     local.series.clear();
     options.series.clear();
     std::vector<std::filesystem::path> files;

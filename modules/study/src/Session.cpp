@@ -33,13 +33,13 @@ std::optional<WindowLevel> studyMprWindow(const std::vector<PlannedView>& views,
 Session::Session(config::StudyConfig study, const ViewOverrides& overrides)
     : study_(std::move(study)), planned_(planViews(study_, overrides)) {}
 
-void Session::load(const io::ReadOptions& options) {
-  volumes_ = loadStudy(study_, options);
+void Session::load(const pacs::Options& pacs, const io::ReadOptions& options) {
+  volumes_ = loadStudy(study_, options, pacs);
   // Before the placement: a registration can take minutes, a bad crop box is known now.
   checkViewsAgainstAnatomy(planned_, volumes_->anatomical, study_.file);
   if (volumes_->functional)
     placement_ = placeFunctional(study_, volumes_->anatomical, *volumes_->functional);
-  if (study_.segmentation) segments_ = readSegmentOverlay(*study_.segmentation, options);
+  if (study_.segmentation) segments_ = readSegmentOverlay(*study_.segmentation, options, pacs);
 }
 
 const Volume& Session::anatomical() const {

@@ -5,6 +5,7 @@
 #include <string>
 #include <type_traits>
 
+#include "mvw/config/ServerList.h"
 #include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
@@ -13,17 +14,17 @@
 
 namespace mvw::study {
 
-std::filesystem::path localPath(const config::VolumeSource& source) {
+std::filesystem::path localPath(const config::VolumeSource& source, const pacs::Options& pacs) {
   if (source.pacs.empty()) return source.path;
-  return pacs::cachedSeries(pacs::parseServer(source.pacs), source.study, source.series,
-                            pacs::studyOptions());
+  return pacs::cachedSeries(config::resolveServer(source.pacs), source.study, source.series, pacs);
 }
 
-Volume readSource(const config::VolumeSource& source, io::ReadOptions options) {
+Volume readSource(const config::VolumeSource& source, io::ReadOptions options,
+                  const pacs::Options& pacs) {
   // A PACS series is read from its verified cache folder, which holds that series alone.
   options.series = source.pacs.empty() ? source.series : std::string();
   options.sliceSpacing = source.sliceSpacingMm;
-  Volume volume = io::readVolume(localPath(source), options);
+  Volume volume = io::readVolume(localPath(source, pacs), options);
   // A 4D volume becomes the one 3D volume every view and the registration use, with a note;
   // a frame the volume does not have is bad input, said before any heavy work.
   if (volume.components() > 1 || (source.frame && !source.frame->mean && source.frame->index > 0)) {
@@ -65,8 +66,9 @@ bool tenthAtAir(const Volume& v) {
 
 }  // namespace
 
-Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions options) {
-  Volume anatomy = readSource(source, options);
+Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions options,
+                      const pacs::Options& pacs) {
+  Volume anatomy = readSource(source, options, pacs);
   VolumeMetadata& m = anatomy.metadata();
   if (m.modality.empty() && m.unit.empty()) {
     const auto [lo, hi] = anatomy.valueRange();
@@ -82,9 +84,10 @@ Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions option
   return anatomy;
 }
 
-Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options) {
+Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options,
+                      const pacs::Options& pacs) {
   MVW_CHECK(config.functional.has_value());
-  Volume functional = readSource(*config.functional, options);
+  Volume functional = readSource(*config.functional, options, pacs);
   // Labels are whole numbers: a PET or a probability map given as "labels" would be read as
   // thousands of one-voxel labels, its glyph classes meaningless.
   if (config.functionalKind == config::FunctionalKind::Labels)
@@ -106,11 +109,12 @@ Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options
   return functional;
 }
 
-Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options) {
+Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options,
+                const pacs::Options& pacs) {
   Study s;
   s.name = config.name;
-  s.anatomical = readAnatomical(config.anatomical, options);
-  if (config.functional) s.functional = readFunctional(config, options);
+  s.anatomical = readAnatomical(config.anatomical, options, pacs);
+  if (config.functional) s.functional = readFunctional(config, options, pacs);
   return s;
 }
 

@@ -100,15 +100,16 @@ void printVolume(std::ostream& out, const Volume& volume) {
 }
 
 std::vector<ReportedVolume> readReportedVolumes(const std::vector<std::filesystem::path>& paths,
-                                                const io::ReadOptions& options) {
+                                                const io::ReadOptions& options,
+                                                const pacs::Options& pacs) {
   std::vector<ReportedVolume> volumes;
   for (const auto& p : paths) {
     if (p.extension() == ".json") {
       const auto study = config::loadStudyConfig(p);
-      volumes.push_back({"anatomical", readSource(study.anatomical, options)});
+      volumes.push_back({"anatomical", readSource(study.anatomical, options, pacs)});
       if (study.functional)
         volumes.push_back({"functional (" + config::toString(study.functionalKind) + ")",
-                           readSource(*study.functional, options)});
+                           readSource(*study.functional, options, pacs)});
     } else {
       for (auto& v : io::readAllVolumes(p, options)) volumes.push_back({"", std::move(v)});
     }

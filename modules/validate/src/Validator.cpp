@@ -198,7 +198,8 @@ void progressBar(std::size_t done, std::size_t total, bool tty) {
 // Everything the suite asks for, checked and turned into render jobs before anything renders.
 class Plan {
  public:
-  Plan(const Suite& suite, const fs::path& work, int jobsPerStudy) : suite_(suite), work_(work) {
+  Plan(const Suite& suite, const fs::path& work, int jobsPerStudy, const pacs::Options& pacs)
+      : suite_(suite), work_(work), pacs_(pacs) {
     plans_.resize(suite.cases.size());
     for (std::size_t ci = 0; ci < suite.cases.size(); ++ci) addCase(ci);
     makeJobs(std::max(1, jobsPerStudy));
@@ -303,7 +304,7 @@ class Plan {
     for (std::size_t k = 0; k < c.checks.size(); ++k) {
       const fs::path& anatomical = study.anatomical.path;
       if (!volumes_.count(anatomical))
-        volumes_.emplace(anatomical, study::readAnatomical(study.anatomical));
+        volumes_.emplace(anatomical, study::readAnatomical(study.anatomical, {}, pacs_));
       plans_[ci].push_back(planMip(volumes_.at(anatomical), c.checks[k], suite_.file,
                                    where + " check " + std::to_string(k + 1)));
       want(ci, static_cast<int>(k), c.study, plans_[ci].back().view, where);
@@ -312,6 +313,7 @@ class Plan {
 
   const Suite& suite_;
   fs::path work_;
+  const pacs::Options& pacs_;
   std::map<fs::path, config::StudyConfig> studies_;
   std::vector<fs::path> studyOrder_;  // as the suite first names them
   std::map<fs::path, std::vector<Wanted>> wanted_;
@@ -544,16 +546,17 @@ bool runValidate(const ValidateOptions& o) {
   // The render processes are forked from a launcher forked now, before this process reads a
   // volume (VTK) or judges an image (OpenCV): both start TBB worker threads, whose state a
   // child forked from this process later would hold half-copied.
-  ProcessPool pool([gl = o.gl](const std::vector<std::string>& args) {
+  ProcessPool pool([gl = o.gl, pacs = o.pacs](const std::vector<std::string>& args) {
     output::RenderRequest request;
     request.study = args.at(0);
     request.outDir = args.at(1);
     request.gl = gl;
+    request.pacs = pacs;
     output::renderStudy(request, std::cout, std::cerr);
     return 0;
   });
   const WorkDir work;
-  Plan plan(suite, work.dir, o.jobs);
+  Plan plan(suite, work.dir, o.jobs, o.pacs);
 
   const fs::path report = o.outDir;
   {

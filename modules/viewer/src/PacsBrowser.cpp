@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <fstream>
-#include <set>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -30,68 +28,6 @@ std::string personName(std::string name) {
 }
 
 }  // namespace
-
-std::filesystem::path defaultServersFile() {
-  if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg)
-    return std::filesystem::path(xdg) / "mvw" / "servers.json";
-  const char* home = std::getenv("HOME");
-  return std::filesystem::path(home && *home ? home : ".") / ".config" / "mvw" / "servers.json";
-}
-
-std::vector<PacsServerEntry> loadServers(const std::filesystem::path& file) {
-  requireReadable(file);
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "cannot read the server list");
-  json j;
-  try {
-    j = config::parseJson(in, file);
-  } catch (const json::exception& e) {
-    throw InputError(file, std::string("not valid JSON: ") + e.what());
-  }
-  const char* shape =
-      "a server list is {\"servers\": [{\"name\": ..., \"url\": ..., \"calling_aet\": ...}]}";
-  if (!j.is_object()) throw InputError(file, shape);
-  for (const auto& [key, value] : j.items())
-    if (key != "servers") throw InputError(file, "unknown key '" + key + "' (" + shape + ")");
-  if (!j.contains("servers") || !j["servers"].is_array())
-    throw InputError(file, std::string("no \"servers\" array (") + shape + ")");
-  std::vector<PacsServerEntry> servers;
-  std::set<std::string> names;
-  int index = 0;
-  for (const json& s : j["servers"]) {
-    const std::string where = "servers[" + std::to_string(index++) + "]";
-    if (!s.is_object()) throw InputError(file, where + " is not an object (" + shape + ")");
-    PacsServerEntry entry;
-    for (const auto& [key, value] : s.items()) {
-      if (key == "user" || key == "password" || key == "credentials" || key == "token")
-        throw InputError(file, where + ": '" + key +
-                                   "': credentials do not belong in the server list; set "
-                                   "MVW_PACS_USER and MVW_PACS_PASSWORD, or "
-                                   "MVW_PACS_CREDENTIALS (a file only its owner can read)");
-      if (key != "name" && key != "url" && key != "calling_aet")
-        throw InputError(file, where + ": unknown key '" + key + "' (name, url, calling_aet)");
-      if (!value.is_string()) throw InputError(file, where + "." + key + " is not a string");
-    }
-    if (!s.contains("name") || s["name"].get<std::string>().empty())
-      throw InputError(file, where + ": no \"name\"");
-    if (!s.contains("url")) throw InputError(file, where + ": no \"url\"");
-    entry.name = s["name"].get<std::string>();
-    entry.url = s["url"].get<std::string>();
-    if (s.contains("calling_aet")) entry.callingAet = s["calling_aet"].get<std::string>();
-    if (!pacs::isAeTitle(entry.callingAet))
-      throw InputError(file, where + ".calling_aet '" + entry.callingAet +
-                                 "': an AE title has 1 to 16 characters");
-    try {
-      pacs::parseServer(entry.url);
-    } catch (const InputError& e) {
-      throw InputError(file, where + ".url: " + e.problem());
-    }
-    if (!names.insert(entry.name).second)
-      throw InputError(file, where + ": the name '" + entry.name + "' is given twice");
-    servers.push_back(std::move(entry));
-  }
-  return servers;
-}
 
 std::string PacsBrowser::dicomDate(const std::string& d) {
   if (d.size() != 8 || d.find_first_not_of("0123456789") != std::string::npos) return d;
@@ -145,6 +81,8 @@ const char* PacsBrowser::roleName(Role role) {
   return "segmentation";
 }
 
+PacsBrowser::PacsBrowser(pacs::Options options) : options_(std::move(options)) {}
+
 PacsBrowser::~PacsBrowser() = default;  // thread_ (declared last) joins first
 
 void PacsBrowser::setServers(std::vector<PacsServerEntry> servers, std::filesystem::path file,
@@ -191,7 +129,7 @@ bool PacsBrowser::selectServer(const std::string& name) {
 }
 
 pacs::Options PacsBrowser::options() const {
-  pacs::Options o = pacs::studyOptions();
+  pacs::Options o = options_;
   o.progress = false;
   if (server_ >= 0) o.callingAet = servers_[static_cast<std::size_t>(server_)].callingAet;
   return o;
@@ -337,7 +275,8 @@ void PacsBrowser::open() {
     }
   start(Step::Open, "opening", [this, server, o, wanted, study](Outcome& out) mutable {
     // Into the verified cache with this server's calling AE title first; the study loader
-    // then reads each series from there, offline, as for `mvw view STUDY.json`.
+    // then reads each series from there, offline, as for `mvw view STUDY.json` (with the same
+    // options, should a series have to be retrieved again).
     for (std::size_t i = 0; i < wanted.size(); ++i) {
       const std::string step = "retrieving the " + std::string(roleName(wanted[i].role)) +
                                " series (" + std::to_string(i + 1) + " of " +
@@ -367,7 +306,7 @@ void PacsBrowser::open() {
                     ? "reading the series"
                     : "reading the series and registering them");
     auto session = std::make_unique<study::Session>(std::move(study));
-    session->load();
+    session->load(o);
     out.session = std::move(session);
   });
 }

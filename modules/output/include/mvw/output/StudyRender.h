@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mvw/dicomout/DicomIdentity.h"
+#include "mvw/pacs/Pacs.h"
 #include "mvw/study/ViewPlan.h"
 
 namespace mvw::output {
@@ -22,6 +23,9 @@ struct RenderRequest {
   // identity (dicomout::identityOf).
   bool dicom = false;
   dicomout::GivenIdentity given;
+  // How the study's PACS series are retrieved into the verified cache (the command line's
+  // --cache, --connect-timeout and --read-timeout): study::Session::load.
+  pacs::Options pacs;
 };
 
 struct RenderedStudy {

@@ -37,6 +37,9 @@ struct Transfer {
   double seconds = 0.0;
 };
 
+// How one call reaches the server and where the cache is. Each call is given its own: a study
+// read takes them from its caller (study::localPath, study::Session::load), never from
+// process-wide state.
 struct Options {
   std::string callingAet = "MVW";
   double connectTimeoutS = 10.0;
@@ -56,10 +59,6 @@ struct Options {
 
 // The cache folder Options::cacheDir names, or the default.
 std::filesystem::path cacheRoot(const Options& options);
-
-// The options the study loader reads PACS series with: process-wide, set from the command line
-// (`--cache DIR`, `--connect-timeout S`, `--read-timeout S` on every command).
-Options& studyOptions();
 
 // A DICOM UID: 1..64 characters, digits and dots, no empty component. Only such a string ever
 // names a file.

@@ -15,6 +15,7 @@
 
 #include "mvw/core/Volume.h"
 #include "mvw/io/VolumeReader.h"
+#include "mvw/pacs/Pacs.h"
 #include "mvw/study/RoiStatistics.h"
 
 namespace mvw::study {
@@ -23,7 +24,7 @@ namespace mvw::study {
 // (readSource), or with `anatomical` its anatomical one (readAnatomical). A study without a
 // functional volume throws InputError naming the config.
 Volume readMeasuredVolume(const std::filesystem::path& source, bool anatomical,
-                          const io::ReadOptions& options);
+                          const io::ReadOptions& options, const pacs::Options& pacs);
 
 // Exactly one of sphere, box and labels.
 struct RoiRequest {

@@ -11,6 +11,7 @@
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Volume.h"
 #include "mvw/io/VolumeReader.h"
+#include "mvw/pacs/Pacs.h"
 
 namespace mvw::study {
 
@@ -22,8 +23,9 @@ struct SegmentOverlay {
 };
 
 // Bad input (not a SEG or label volume, more than 16 labels) throws InputError naming the file.
+// A PACS series is read from the verified cache with `pacs` (study::localPath).
 SegmentOverlay readSegmentOverlay(const config::VolumeSource& source,
-                                  const io::ReadOptions& options = {});
+                                  const io::ReadOptions& options, const pacs::Options& pacs);
 
 // Where the segmentation lies on the anatomy: with the functional volume's placement when
 // both state the same frame of reference (a SEG drawn on the PET), by world coordinates

@@ -22,6 +22,7 @@
 #include "mvw/core/Study.h"
 #include "mvw/core/Volume.h"
 #include "mvw/io/VolumeReader.h"
+#include "mvw/pacs/Pacs.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/study/FunctionalPlacement.h"
 #include "mvw/study/SegmentOverlay.h"
@@ -35,7 +36,9 @@ class Session {
   explicit Session(config::StudyConfig study, const ViewOverrides& overrides = {});
 
   // Steps 2-5. Bad volumes, segmentations and transform files throw InputError naming them.
-  void load(const io::ReadOptions& options = {});
+  // A source on a PACS is read from the verified cache, retrieved first with `pacs` (the
+  // caller's cache folder, time-outs and calling AE title: study::localPath).
+  void load(const pacs::Options& pacs, const io::ReadOptions& options = {});
 
   const config::StudyConfig& config() const { return study_; }
   // After load():

@@ -5,15 +5,20 @@
 #include "mvw/core/Study.h"
 #include "mvw/core/Volume.h"
 #include "mvw/io/VolumeReader.h"
+#include "mvw/pacs/Pacs.h"
 
 namespace mvw::study {
 
 // Where a source's files are: its path, or for a PACS series ("pacs", "study", "series") the
-// verified cache folder, retrieved first when it is not complete there (mvw::pacs).
-std::filesystem::path localPath(const config::VolumeSource& source);
+// verified cache folder, retrieved first when it is not complete there (mvw::pacs), with `pacs`:
+// the cache folder, the time-outs and the calling AE title travel with the read (the command
+// line's --cache, --connect-timeout and --read-timeout; the viewer's saved server), so a read
+// that becomes a retrieve is configured by its caller alone. Every read below takes them.
+std::filesystem::path localPath(const config::VolumeSource& source, const pacs::Options& pacs);
 
 // The volume a study names, read with `options` and the source's own series selection.
-Volume readSource(const config::VolumeSource& source, io::ReadOptions options = {});
+Volume readSource(const config::VolumeSource& source, io::ReadOptions options,
+                  const pacs::Options& pacs);
 
 // The study's anatomical volume. One with neither modality nor unit (NIfTI and MetaImage carry
 // neither) whose lowest value lies between -3100 and -900 and which has a tenth or more of its
@@ -22,14 +27,17 @@ Volume readSource(const config::VolumeSource& source, io::ReadOptions options = 
 // window then apply instead of the MR ones. (A field map, a phase or a difference image
 // reaches below -900 too, but does not pile its voxels at air.) Every command that reads a
 // study's anatomy reads it here.
-Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions options = {});
+Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions options,
+                      const pacs::Options& pacs);
 
 // The study's functional volume, read, and refused when its kind is "labels" but it holds a
 // value that is not a whole number (a PET given as labels). Every command that reads a
 // study's functional volume reads it here.
-Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options = {});
+Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options,
+                      const pacs::Options& pacs);
 
 // Both volumes of the study (the functional one when the config names it: readFunctional).
-Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options = {});
+Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options,
+                const pacs::Options& pacs);
 
 }  // namespace mvw::study

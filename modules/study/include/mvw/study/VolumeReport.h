@@ -12,6 +12,7 @@
 
 #include "mvw/core/Volume.h"
 #include "mvw/io/VolumeReader.h"
+#include "mvw/pacs/Pacs.h"
 
 namespace mvw::study {
 
@@ -29,9 +30,10 @@ struct ReportedVolume {
 // Every volume `paths` name, all read before any is reported (a bad input anywhere means no
 // partial report): a study config's (.json) anatomical and functional volumes, with their
 // roles, and every volume of each other path (io::readAllVolumes: every series of a folder
-// when `options` chooses none).
+// when `options` chooses none). A config's PACS sources are read with `pacs`.
 std::vector<ReportedVolume> readReportedVolumes(const std::vector<std::filesystem::path>& paths,
-                                                const io::ReadOptions& options);
+                                                const io::ReadOptions& options,
+                                                const pacs::Options& pacs);
 
 // The volumes as a JSON array of volumeJson objects, each with its "role" where it has one.
 nlohmann::json volumesJson(const std::vector<ReportedVolume>& volumes);

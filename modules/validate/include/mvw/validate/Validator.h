@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include "mvw/pacs/Pacs.h"
+
 namespace mvw::validate {
 
 struct ValidateOptions {
@@ -20,6 +22,9 @@ struct ValidateOptions {
   // cases it was to render (exit 2 for InputError, 1 otherwise, its message in the report), and a
   // crash or a hang past timeoutS fails them too, not the run.
   std::string gl;
+  // How the studies' PACS series are retrieved (--cache and the time-outs), by this process
+  // (the anatomy of an analytic check) and by every render process.
+  pacs::Options pacs;
 };
 
 // True when every case passes. Throws InputError (naming the suite or a study) for a bad

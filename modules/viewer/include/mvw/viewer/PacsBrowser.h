@@ -19,35 +19,28 @@
 #include <utility>
 #include <vector>
 
+#include "mvw/config/ServerList.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/pacs/Pacs.h"
 #include "mvw/study/Session.h"
 
 namespace mvw::viewer {
 
-// One server of servers.json: its name in the panel, SERVER as `mvw pacs` takes it, and the AE
-// title mvw calls a DIMSE server with. Never credentials (MVW_PACS_USER / MVW_PACS_PASSWORD or
-// MVW_PACS_CREDENTIALS, as for `mvw pacs`).
-struct PacsServerEntry {
-  std::string name;
-  std::string url;
-  std::string callingAet = "MVW";
-};
-
-// $XDG_CONFIG_HOME/mvw/servers.json, or ~/.config/mvw/servers.json.
-std::filesystem::path defaultServersFile();
-
-// {"servers": [{"name": ..., "url": ..., "calling_aet": ...}, ...]}, strictly: an unknown key,
-// a URL that is not a SERVER (pacs::parseServer), an empty or repeated name, a calling AE
-// title that is not 1-16 characters: InputError naming the file and the problem.
-std::vector<PacsServerEntry> loadServers(const std::filesystem::path& file);
+// One server of servers.json, read and written by modules/config (ServerList.h).
+using PacsServerEntry = config::SavedServer;
+using config::defaultServersFile;
+inline std::vector<PacsServerEntry> loadServers(const std::filesystem::path& file) {
+  return config::readServerList(file);
+}
 
 class PacsBrowser {
  public:
   enum class Role { Anatomical, Functional, Segmentation };
   static const char* roleName(Role role);  // anatomical, functional, segmentation
 
-  PacsBrowser() = default;
+  // `options`: the command line's --cache, --connect-timeout and --read-timeout, which every
+  // step (and the study an open loads) uses.
+  explicit PacsBrowser(pacs::Options options = {});
   ~PacsBrowser();  // a running step is waited for (its thread joined)
   PacsBrowser(const PacsBrowser&) = delete;
   PacsBrowser& operator=(const PacsBrowser&) = delete;
@@ -68,8 +61,8 @@ class PacsBrowser {
   void requestWindow() { windowRequested_ = true; }
   bool takeWindowRequest();
 
-  // The options every step uses: the study loader's (`--cache`, the time-outs), with the
-  // server's calling AE title and no progress on stderr.
+  // The options every step uses: those the browser was made with (`--cache`, the time-outs),
+  // with the server's calling AE title and no progress on stderr.
   pacs::Options options() const;
 
   // The search (findStudies) with the query as set; the studies replace the last ones.
@@ -159,6 +152,7 @@ class PacsBrowser {
   pacs::Server chosenServer() const;
   void setActivity(std::string what);
 
+  pacs::Options options_;
   std::vector<PacsServerEntry> servers_;
   std::filesystem::path serversFile_;
   std::string serversProblem_;
