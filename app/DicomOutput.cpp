@@ -4,8 +4,6 @@
 
 #include "CliChecks.h"
 #include "PacsCommand.h"
-#include "mvw/config/ServerList.h"
-#include "mvw/core/Error.h"
 
 namespace mvw::app {
 
@@ -56,34 +54,13 @@ void checkDicomOutput(const DicomOutputOptions& o, bool writing, const fs::path&
                           o.storeOptions.insecure != defaults.insecure))
     throw CLI::ValidationError(o.storeOptions.insecure ? "--insecure" : "--calling-aet",
                                "goes with --store SERVER");
-  if (!o.store.empty()) config::resolveServer(o.store);
-  dicomout::checkUidRoot(o.uidRoot, "--uid-root");
-  dicomout::setUidRoot(o.uidRoot);
-  if (!o.dicom || o.force || outDir.empty()) return;
-  std::error_code ec;
-  if (fs::is_directory(outDir, ec) && !fs::is_empty(outDir, ec))
-    throw InputError(outDir,
-                     "exists and is not empty: DICOM objects go into a new or empty folder "
-                     "(give --force to write into it)");
+  output::checkDicomDestination(o, outDir);
 }
 
 void storeDicom(const DicomOutputOptions& o, const pacs::Options& timeouts,
                 const std::vector<fs::path>& files, const fs::path& where, std::ostream& out) {
-  if (o.store.empty()) return;
-  const pacs::Server server = config::resolveServer(o.store);
-  // The time-outs of the command line's --connect-timeout and --read-timeout (the study's PACS
-  // series are read with the same), the AE title and HTTPS check of this command's options.
-  pacs::Options options = timeouts;
-  options.callingAet = o.storeOptions.callingAet;
-  options.insecure = o.storeOptions.insecure;
-  options.progress = false;
-  try {
-    out << transferSummary("stored", pacs::store(server, files, options)) << " to " << server.text
-        << "\n";
-  } catch (const ServiceError& e) {
-    throw ServiceError(std::string(e.what()) + " (the DICOM objects stay written in " +
-                       where.string() + "; send them with mvw pacs store)");
-  }
+  if (const auto stored = output::storeDicom(o, files, where, timeouts))
+    out << transferSummary("stored", stored->transfer) << " to " << stored->server << "\n";
 }
 
 }  // namespace mvw::app
