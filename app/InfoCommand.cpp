@@ -33,7 +33,8 @@ void runInfo(const InfoOptions& opt) {
   read.series = opt.series;
   read.suv = !opt.noSuv;
   read.maxBytes = opt.maxMemory;
-  const auto volumes = study::readReportedVolumes({opt.paths.begin(), opt.paths.end()}, read, opt.pacs);
+  const auto volumes =
+      study::readReportedVolumes({opt.paths.begin(), opt.paths.end()}, read, opt.pacs);
   if (opt.json)
     std::cout << study::volumesJson(volumes).dump(2) << "\n";
   else
