@@ -7,11 +7,26 @@
 
 #include <gtest/gtest.h>
 
+#include "Internal.h"
 #include "mvw/core/Error.h"
 #include "mvw/pacs/Pacs.h"
 
 namespace mvw::pacs {
 namespace {
+
+// QIDO-RS values go out with their wildcards and PN separators as typed: Debian's Orthanc 1.10
+// does not decode %2A, %3F or %5E, and answers an escaped search with no match (pacs_cli
+// searches it for real). What would change the query is escaped.
+TEST(Pacs, QueryValuesKeepWildcardsAndEscapeWhatWouldChangeTheQuery) {
+  EXPECT_EQ(detail::queryValue("Doe*"), "Doe*");
+  EXPECT_EQ(detail::queryValue("D?e^J*"), "D?e^J*");
+  EXPECT_EQ(detail::queryValue("20240101-20241231"), "20240101-20241231");
+  EXPECT_EQ(detail::queryValue("1.2.840.10008"), "1.2.840.10008");
+  EXPECT_EQ(detail::queryValue("a&b=c+d#e%f"), "a%26b%3Dc%2Bd%23e%25f");
+  EXPECT_EQ(detail::queryValue("van der Berg"), "van%20der%20Berg");
+  EXPECT_EQ(detail::queryValue("M\xc3\xbcller"), "M%C3%BCller");
+  EXPECT_EQ(detail::queryValue(std::string("a\nb\0c", 5)), "a%0Ab%00c");
+}
 
 TEST(Pacs, OnlyUidsNameFiles) {
   EXPECT_TRUE(isUid("1.2.840.10008.5.1.4.1.1.2"));
