@@ -26,10 +26,11 @@ void quietDcmtk() {
 std::optional<FileUids> readUids(const fs::path& file) {
   quietDcmtk();
   DcmFileFormat ff;
-  // Up to the pixel data: the UIDs come before it, and a large instance is not read twice.
-  if (ff.loadFileUntilTag(file.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength,
-                          ERM_autoDetect, DCM_PixelData)
-          .bad())
+  // The whole file is parsed, so an instance whose Pixel Data (or anything) ends early is
+  // refused here and never enters the verified cache: values longer than DCM_MaxReadLength
+  // (the pixels) are not loaded, but their lengths are checked against the bytes the file
+  // holds. Stopping at the Pixel Data tag, as this once did, let a truncated instance through.
+  if (ff.loadFile(file.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength, ERM_autoDetect).bad())
     return std::nullopt;
   DcmDataset* ds = ff.getDataset();
   OFString sop, series, study;

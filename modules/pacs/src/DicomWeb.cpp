@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -78,8 +79,6 @@ struct CurlLibrary {
   decltype(&curl_easy_perform) easyPerform = nullptr;
   decltype(&curl_easy_getinfo) easyGetinfo = nullptr;
   decltype(&curl_easy_strerror) easyStrerror = nullptr;
-  decltype(&curl_easy_escape) easyEscape = nullptr;
-  decltype(&curl_free) free = nullptr;
   decltype(&curl_slist_append) slistAppend = nullptr;
   decltype(&curl_slist_free_all) slistFreeAll = nullptr;
 };
@@ -106,8 +105,6 @@ const CurlLibrary& curl() {
     bind(h, l.easyPerform, "curl_easy_perform");
     bind(h, l.easyGetinfo, "curl_easy_getinfo");
     bind(h, l.easyStrerror, "curl_easy_strerror");
-    bind(h, l.easyEscape, "curl_easy_escape");
-    bind(h, l.free, "curl_free");
     bind(h, l.slistAppend, "curl_slist_append");
     bind(h, l.slistFreeAll, "curl_slist_free_all");
     l.globalInit(CURL_GLOBAL_DEFAULT);
@@ -275,14 +272,6 @@ Response request(const Server& server, const std::string& url, const std::string
   return r;
 }
 
-std::string escape(const std::string& text) {
-  Easy easy;
-  char* e = curl().easyEscape(easy.c, text.c_str(), static_cast<int>(text.size()));
-  std::string out = e ? e : "";
-  curl().free(e);
-  return out;
-}
-
 void warnInsecure(const Server& server, const Options& options) {
   static bool said = false;
   if (options.insecure && !said && server.baseUrl.rfind("https", 0) == 0) {
@@ -346,7 +335,7 @@ std::vector<Match> webFind(const Server& server, const std::string& level, const
   for (const auto& [k, v] : keys) {
     if (inPath.count(k)) continue;
     query += query.empty() ? "?" : "&";
-    query += v.empty() ? "includefield=" + k : k + "=" + escape(v);
+    query += v.empty() ? "includefield=" + k : k + "=" + queryValue(v);
   }
   Response r = request(server, url + query, "application/dicom+json", kMaxQueryBytes, options);
   std::vector<Match> matches;
@@ -490,6 +479,26 @@ void webStore(const Server& server, const std::vector<fs::path>& files, const Op
                          std::to_string(answer["00081198"]["Value"].size()) +
                          " of the instances stored (STOW-RS FailedSOPSequence)");
   }
+}
+
+std::string queryValue(const std::string& text) {
+  // RFC 3986 lets a query hold unreserved characters, sub-delimiters, ':', '@', '/' and '?'
+  // as they are. '&', '=', '+' and '#' would end or change the value, and '%' starts an escape.
+  // '^' (the PN component separator) is not in RFC 3986's sets, but every HTTP stack mvw
+  // meets passes it through, and Orthanc 1.10 matches only the raw character.
+  static const std::string keep = "-._~!$'()*,;:@/?^";
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (const unsigned char c : text) {
+    if ((c < 0x80 && std::isalnum(c)) || keep.find(static_cast<char>(c)) != std::string::npos) {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
 }
 
 }  // namespace mvw::pacs::detail

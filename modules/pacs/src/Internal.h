@@ -92,6 +92,12 @@ void dimseStore(const Server& server, const std::vector<std::filesystem::path>& 
 // DCMTK work.
 void quietDcmtk();
 
+// A QIDO-RS query value as sent: the wildcards '*' and '?' and the name separator '^' as they
+// are (servers such as Orthanc 1.10 match only the raw characters; RFC 3986 allows '*' and
+// '?' in a query), percent-encoded where the character would change the query ('&', '=', '+',
+// '#', '%', space, controls, bytes above 0x7F).
+std::string queryValue(const std::string& text);
+
 // The DICOM keyword of tag (group, element) from DCMTK's dictionary, "" when unknown.
 std::string keywordOf(unsigned group, unsigned element);
 
