@@ -89,25 +89,23 @@ void removePrivate(DcmItem& item) {
   }
 }
 
-}  // namespace
-
-int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomIdentity& source,
-                      const DicomIdentity& frame, const SeriesInfo& series,
-                      const std::string& derivation) {
+struct SeriesKind {
   std::string sopClass;
-  const std::vector<DcmTagKey>* modalityTags = nullptr;
-  const std::string modality = source.modality;
-  if (modality == "PT") {
-    sopClass = UID_PositronEmissionTomographyImageStorage;
-    modalityTags = &kPetTags;
-  } else if (modality == "MR") {
-    sopClass = UID_MRImageStorage;
-    modalityTags = &kMrTags;
-  } else if (modality == "CT") {
-    sopClass = UID_CTImageStorage;
-    modalityTags = &kCtTags;
-  }
-  if (!source.fromDicom || !modalityTags)
+  const std::vector<DcmTagKey>* modalityTags;
+};
+
+// The storage class and acquisition tags of the source's modality; InputError for a source
+// that is not a DICOM PT, MR or CT series, or a volume of several values a voxel.
+SeriesKind kindOf(const Volume& values, const DicomIdentity& source) {
+  const std::string& modality = source.modality;
+  SeriesKind kind{"", nullptr};
+  if (modality == "PT")
+    kind = {UID_PositronEmissionTomographyImageStorage, &kPetTags};
+  else if (modality == "MR")
+    kind = {UID_MRImageStorage, &kMrTags};
+  else if (modality == "CT")
+    kind = {UID_CTImageStorage, &kCtTags};
+  if (!source.fromDicom || !kind.modalityTags)
     throw InputError(values.metadata().sourcePath,
                      source.fromDicom
                          ? "is a DICOM " + modality +
@@ -119,6 +117,79 @@ int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomI
         values.metadata().sourcePath,
         "has " + std::to_string(values.components()) +
             " values a voxel: only single-valued volumes are written as a DICOM series");
+  return kind;
+}
+
+// DERIVED\SECONDARY (PET: DERIVED\PRIMARY, the only value 2 its IOD allows), then the
+// source's own values 3 and on (PET: the image's kind).
+std::string imageTypeOf(DcmItem& tmpl, const std::string& modality) {
+  std::string imageType = modality == "PT" ? "DERIVED\\PRIMARY" : "DERIVED\\SECONDARY";
+  const std::string src = text(tmpl, DCM_ImageType);
+  const std::size_t first = src.find('\\');
+  const std::size_t second = first == std::string::npos ? first : src.find('\\', first + 1);
+  if (second != std::string::npos) imageType += src.substr(second);
+  return imageType;
+}
+
+// Image Plane: slice k's position, the grid's orientation and spacing.
+void putPlane(DcmDataset& ds, const Volume& values, int k) {
+  const glm::dvec3 spacing = values.spacing();
+  const glm::dmat3 dir = values.direction();
+  const glm::dvec3 p = values.worldFromIndexPoint({0.0, 0.0, double(k)});
+  putString(ds, DCM_ImagePositionPatient,
+            decimalString(p.x) + "\\" + decimalString(p.y) + "\\" + decimalString(p.z));
+  std::string iop;
+  for (int c = 0; c < 2; ++c)
+    for (int a = 0; a < 3; ++a) {
+      if (!iop.empty()) iop += '\\';
+      iop += decimalString(dir[c][a]);
+    }
+  putString(ds, DCM_ImageOrientationPatient, iop);
+  putString(ds, DCM_PixelSpacing, decimalString(spacing.y) + "\\" + decimalString(spacing.x));
+  putString(ds, DCM_SliceThickness, decimalString(spacing.z));
+}
+
+// Slice k's values (times toStored): signed 16 bits, a slope per slice (intercept 0, as PET
+// requires); NaN as 0. `pixels` is the slice's buffer, reused from slice to slice.
+void putPixels(DcmDataset& ds, const Volume& values, int k, double toStored,
+               const std::string& modality, std::vector<Sint16>& pixels) {
+  const glm::ivec3 dims = values.dimensions();
+  double maxAbs = 0.0;
+  for (int j = 0; j < dims.y; ++j)
+    for (int i = 0; i < dims.x; ++i) {
+      const double v = values.value(i, j, k) * toStored;
+      if (std::isfinite(v)) maxAbs = std::max(maxAbs, std::abs(v));
+    }
+  const double slope = maxAbs > 0 ? maxAbs / 32767.0 : 1.0;
+  std::size_t o = 0;
+  for (int j = 0; j < dims.y; ++j)
+    for (int i = 0; i < dims.x; ++i) {
+      const double v = values.value(i, j, k) * toStored;
+      pixels[o++] = std::isfinite(v) ? static_cast<Sint16>(std::lround(v / slope)) : Sint16{0};
+    }
+  putString(ds, DCM_RescaleIntercept, "0");
+  putString(ds, DCM_RescaleSlope, decimalString(slope));
+  if (modality != "PT") putString(ds, DCM_RescaleType, modality == "CT" ? "HU" : "US");
+  check(ds.putAndInsertUint16(DCM_SamplesPerPixel, 1), "SamplesPerPixel");
+  putString(ds, DCM_PhotometricInterpretation, "MONOCHROME2");
+  check(ds.putAndInsertUint16(DCM_Rows, static_cast<Uint16>(dims.y)), "Rows");
+  check(ds.putAndInsertUint16(DCM_Columns, static_cast<Uint16>(dims.x)), "Columns");
+  check(ds.putAndInsertUint16(DCM_BitsAllocated, 16), "BitsAllocated");
+  check(ds.putAndInsertUint16(DCM_BitsStored, 16), "BitsStored");
+  check(ds.putAndInsertUint16(DCM_HighBit, 15), "HighBit");
+  check(ds.putAndInsertUint16(DCM_PixelRepresentation, 1), "PixelRepresentation");
+  check(ds.putAndInsertUint16Array(DCM_PixelData, reinterpret_cast<const Uint16*>(pixels.data()),
+                                   static_cast<unsigned long>(pixels.size())),
+        "PixelData");
+}
+
+}  // namespace
+
+int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomIdentity& source,
+                      const DicomIdentity& frame, const SeriesInfo& series,
+                      const std::string& derivation) {
+  const std::string modality = source.modality;
+  const auto [sopClass, modalityTags] = kindOf(values, source);
   DcmFileFormat templateFile;
   if (templateFile
           .loadFileUntilTag(source.firstFile.c_str(), EXS_Unknown, EGL_noChange, 4096,
@@ -135,8 +206,6 @@ int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomI
     toStored = 1.0 / *md.suvFactor;
 
   const glm::ivec3 dims = values.dimensions();
-  const glm::dvec3 spacing = values.spacing();
-  const glm::dmat3 dir = values.direction();
   const std::string seriesUid =
       series.seriesInstanceUid.empty() ? newUid() : series.seriesInstanceUid;
   SeriesInfo s = series;
@@ -145,15 +214,7 @@ int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomI
   // Staged beside the folder and moved in whole, replacing an earlier series.
   io::StagedFolder staging(folder, {.purpose = "series", .mode = io::StagedFolder::Mode::Replace});
 
-  // DERIVED\SECONDARY (PET: DERIVED\PRIMARY, the only value 2 its IOD allows), then the
-  // source's own values 3 and on (PET: the image's kind).
-  std::string imageType = modality == "PT" ? "DERIVED\\PRIMARY" : "DERIVED\\SECONDARY";
-  {
-    const std::string src = text(tmpl, DCM_ImageType);
-    const std::size_t first = src.find('\\');
-    const std::size_t second = first == std::string::npos ? first : src.find('\\', first + 1);
-    if (second != std::string::npos) imageType += src.substr(second);
-  }
+  const std::string imageType = imageTypeOf(tmpl, modality);
   std::vector<Sint16> pixels(static_cast<std::size_t>(dims.x) * dims.y);
   for (int k = 0; k < dims.z; ++k) {
     DcmFileFormat ff;
@@ -182,52 +243,14 @@ int writeVolumeSeries(const fs::path& folder, const Volume& values, const DicomI
     putString(ds, DCM_ContentTime, nowTime());
     putString(ds, DCM_ImageType, imageType);
     putString(ds, DCM_DerivationDescription, derivation.substr(0, 1024));
-    const glm::dvec3 p = values.worldFromIndexPoint({0.0, 0.0, double(k)});
-    putString(ds, DCM_ImagePositionPatient,
-              decimalString(p.x) + "\\" + decimalString(p.y) + "\\" + decimalString(p.z));
-    std::string iop;
-    for (int c = 0; c < 2; ++c)
-      for (int a = 0; a < 3; ++a) {
-        if (!iop.empty()) iop += '\\';
-        iop += decimalString(dir[c][a]);
-      }
-    putString(ds, DCM_ImageOrientationPatient, iop);
-    putString(ds, DCM_PixelSpacing, decimalString(spacing.y) + "\\" + decimalString(spacing.x));
-    putString(ds, DCM_SliceThickness, decimalString(spacing.z));
+    putPlane(ds, values, k);
     if (modality == "PT") {
       check(ds.putAndInsertUint16(DCM_ImageIndex, static_cast<Uint16>(k + 1)), "ImageIndex");
       check(ds.putAndInsertUint16(DCM_NumberOfSlices, static_cast<Uint16>(dims.z)),
             "NumberOfSlices");
       putString(ds, DCM_Units, text(tmpl, DCM_Units).empty() ? "BQML" : text(tmpl, DCM_Units));
     }
-    // Values: signed 16 bits, a slope per slice (intercept 0, as PET requires); NaN as 0.
-    double maxAbs = 0.0;
-    for (int j = 0; j < dims.y; ++j)
-      for (int i = 0; i < dims.x; ++i) {
-        const double v = values.value(i, j, k) * toStored;
-        if (std::isfinite(v)) maxAbs = std::max(maxAbs, std::abs(v));
-      }
-    const double slope = maxAbs > 0 ? maxAbs / 32767.0 : 1.0;
-    std::size_t o = 0;
-    for (int j = 0; j < dims.y; ++j)
-      for (int i = 0; i < dims.x; ++i) {
-        const double v = values.value(i, j, k) * toStored;
-        pixels[o++] = std::isfinite(v) ? static_cast<Sint16>(std::lround(v / slope)) : Sint16{0};
-      }
-    putString(ds, DCM_RescaleIntercept, "0");
-    putString(ds, DCM_RescaleSlope, decimalString(slope));
-    if (modality != "PT") putString(ds, DCM_RescaleType, modality == "CT" ? "HU" : "US");
-    check(ds.putAndInsertUint16(DCM_SamplesPerPixel, 1), "SamplesPerPixel");
-    putString(ds, DCM_PhotometricInterpretation, "MONOCHROME2");
-    check(ds.putAndInsertUint16(DCM_Rows, static_cast<Uint16>(dims.y)), "Rows");
-    check(ds.putAndInsertUint16(DCM_Columns, static_cast<Uint16>(dims.x)), "Columns");
-    check(ds.putAndInsertUint16(DCM_BitsAllocated, 16), "BitsAllocated");
-    check(ds.putAndInsertUint16(DCM_BitsStored, 16), "BitsStored");
-    check(ds.putAndInsertUint16(DCM_HighBit, 15), "HighBit");
-    check(ds.putAndInsertUint16(DCM_PixelRepresentation, 1), "PixelRepresentation");
-    check(ds.putAndInsertUint16Array(DCM_PixelData, reinterpret_cast<const Uint16*>(pixels.data()),
-                                     static_cast<unsigned long>(pixels.size())),
-          "PixelData");
+    putPixels(ds, values, k, toStored, modality, pixels);
     char name[32];
     std::snprintf(name, sizeof name, "IM%05d.dcm", k + 1);
     (void)sopInstanceUid;
