@@ -1,8 +1,5 @@
 #include "InfoCommand.h"
 
-#include <cerrno>
-#include <cstdlib>
-
 #include <iostream>
 #include <memory>
 #include <string>
@@ -59,19 +56,7 @@ void addInfoCommand(CLI::App& app, const pacs::Options& pacs) {
          "Refuse a volume larger than this in memory, checked on the header before anything is "
          "allocated (e.g. 512M, 4G; default: a quarter of physical RAM)")
       ->transform(CLI::AsSizeValue(false))
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            // After the transform: a byte count. 1 MiB .. 1 PiB; beyond 2^64 the text is no
-            // longer a number CLI11 could convert.
-            errno = 0;
-            char* end = nullptr;
-            const unsigned long long bytes = std::strtoull(text.c_str(), &end, 10);
-            if (errno != 0 || end == text.c_str() || *end != '\0' || bytes < (1ull << 20) ||
-                bytes > (1ull << 50))
-              return std::string("must be a size from 1M to 1P (e.g. 512M, 4G)");
-            return std::string();
-          },
-          "SIZE"));
+      ->check(CLI::Validator(io::maxBytesProblem, "SIZE"));  // after the transform: bytes
   cmd->callback([opt, &pacs] {
     opt->pacs = pacs;
     runInfo(*opt);

@@ -2,17 +2,16 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "mvw/config/ServerList.h"
 #include "mvw/core/Error.h"
+#include "mvw/pacs/MatchTable.h"
 #include "mvw/pacs/Pacs.h"
 
 namespace mvw::app {
@@ -45,37 +44,6 @@ void addConnection(CLI::App* cmd, PacsCli& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "no progress on stderr");
 }
 
-void printMatches(const std::vector<pacs::Match>& matches, bool json, bool series) {
-  if (json) {
-    for (const pacs::Match& m : matches) std::cout << nlohmann::json(m).dump() << "\n";
-    return;
-  }
-  if (series) {
-    std::cout << std::left << std::setw(7) << "number" << std::setw(9) << "modality"
-              << std::setw(10) << "instances" << std::setw(34) << "description"
-              << "SeriesInstanceUID\n";
-    for (const pacs::Match& m : matches)
-      std::cout << std::setw(7) << pacs::matchValue(m, "SeriesNumber") << std::setw(9)
-                << pacs::matchValue(m, "Modality") << std::setw(10)
-                << pacs::matchValue(m, "NumberOfSeriesRelatedInstances") << std::setw(34)
-                << pacs::matchValue(m, "SeriesDescription").substr(0, 32)
-                << pacs::matchValue(m, "SeriesInstanceUID") << "\n";
-    return;
-  }
-  std::cout << std::left << std::setw(24) << "patient" << std::setw(14) << "patient id"
-            << std::setw(10) << "date" << std::setw(11) << "modalities" << std::setw(8) << "series"
-            << std::setw(30) << "description"
-            << "StudyInstanceUID\n";
-  for (const pacs::Match& m : matches)
-    std::cout << std::setw(24) << pacs::matchValue(m, "PatientName").substr(0, 22) << std::setw(14)
-              << pacs::matchValue(m, "PatientID").substr(0, 12) << std::setw(10)
-              << pacs::matchValue(m, "StudyDate") << std::setw(11)
-              << pacs::matchValue(m, "ModalitiesInStudy").substr(0, 10) << std::setw(8)
-              << pacs::matchValue(m, "NumberOfStudyRelatedSeries") << std::setw(30)
-              << pacs::matchValue(m, "StudyDescription").substr(0, 28)
-              << pacs::matchValue(m, "StudyInstanceUID") << "\n";
-}
-
 }  // namespace
 
 void addServerOptions(CLI::App& cmd, pacs::Options& options) {
@@ -86,14 +54,6 @@ void addServerOptions(CLI::App& cmd, pacs::Options& options) {
       });
   cmd.add_flag("--insecure", options.insecure,
                "HTTPS: do not verify the server's certificate (said on stderr)");
-}
-
-std::string transferSummary(const char* verb, const pacs::Transfer& t) {
-  char text[160];
-  std::snprintf(text, sizeof text, "%s %d instances, %.1f MB in %.2f s (%.1f MB/s)", verb,
-                t.instances, static_cast<double>(t.bytes) / 1e6, t.seconds,
-                t.seconds > 0 ? static_cast<double>(t.bytes) / 1e6 / t.seconds : 0.0);
-  return text;
 }
 
 void addPacsCommand(CLI::App& app) {
@@ -134,9 +94,10 @@ void addPacsCommand(CLI::App& app) {
         if (pacs::findStudies(server, q, o->options).empty())
           throw InputError(server.text, "has no study " + o->query.studyUid);
       }
-      printMatches(series, o->json, true);
+      pacs::printMatches(std::cout, series, o->json, true);
     } else {
-      printMatches(pacs::findStudies(server, o->query, o->options), o->json, false);
+      pacs::printMatches(std::cout, pacs::findStudies(server, o->query, o->options), o->json,
+                         false);
     }
   });
 
@@ -159,8 +120,8 @@ void addPacsCommand(CLI::App& app) {
         (o->options.movePort == 0 || server.protocol != pacs::Protocol::Dimse))
       throw InputError("--move-to", "needs --port P and a dicom:// server");
     o->options.progress = !o->quiet;
-    std::cout << transferSummary("retrieved", pacs::get(server, o->query.studyUid, o->series,
-                                                        o->out, o->options))
+    std::cout << pacs::transferSummary("retrieved", pacs::get(server, o->query.studyUid, o->series,
+                                                              o->out, o->options))
               << "\n";
   });
 
@@ -170,7 +131,7 @@ void addPacsCommand(CLI::App& app) {
   store->add_option("FILE", o->files, "DICOM files or folders")->required();
   store->callback([o] {
     const pacs::Server server = config::resolveServer(o->server);
-    std::cout << transferSummary("stored", pacs::store(server, o->files, o->options)) << "\n";
+    std::cout << pacs::transferSummary("stored", pacs::store(server, o->files, o->options)) << "\n";
   });
 }
 

@@ -3,6 +3,7 @@
 
 #include <CLI/App.hpp>
 
+#include "mvw/pacs/MatchTable.h"
 #include "mvw/pacs/Pacs.h"
 
 namespace mvw::app {
@@ -15,7 +16,7 @@ void addPacsCommand(CLI::App& app);
 // --read-timeout; credentials come from the environment, as for `mvw pacs`).
 void addServerOptions(CLI::App& cmd, pacs::Options& options);
 
-// "stored 3 instances, 1.2 MB in 0.05 s (24.0 MB/s)": what `mvw pacs get|store` prints.
-std::string transferSummary(const char* verb, const pacs::Transfer& t);
+// What `mvw pacs get|store` and --store print (DicomOutput.cpp).
+using pacs::transferSummary;
 
 }  // namespace mvw::app

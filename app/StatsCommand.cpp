@@ -28,10 +28,7 @@ struct StatsOptions {
   std::string source;
   std::string series;
   std::string of;  // "" = functional, for a study config; refused for a volume file
-  std::vector<double> sphere, box;
-  std::string labels;
-  int label = 0;
-  double threshold = NAN, thresholdFraction = NAN;
+  study::RoiOptions roi;
   bool json = false;
   bool noSuv = false;
   std::string seg;  // --seg OUT.dcm
@@ -56,16 +53,16 @@ void writeSeg(const StatsOptions& opt, const Volume& volume, const study::RoiRep
 }
 
 void runStats(StatsOptions opt) {
-  const int rois = (!opt.sphere.empty()) + (!opt.box.empty()) + (!opt.labels.empty());
+  const int rois = (!opt.roi.sphere.empty()) + (!opt.roi.box.empty()) + (!opt.roi.labels.empty());
   const char* kRoiChoice =
       "give exactly one of --sphere X Y Z R, --box X0 Y0 Z0 X1 Y1 Z1 or --labels FILE";
   if (rois > 1) throw CLI::ValidationError("ROI", kRoiChoice);
-  if (!std::isnan(opt.threshold) && !std::isnan(opt.thresholdFraction))
+  if (!std::isnan(opt.roi.threshold) && !std::isnan(opt.roi.thresholdFraction))
     throw CLI::ValidationError("--threshold", "give --threshold or --threshold-fraction, not both");
-  if (!std::isnan(opt.thresholdFraction) &&
-      !(opt.thresholdFraction > 0 && opt.thresholdFraction <= 1))
+  if (!std::isnan(opt.roi.thresholdFraction) &&
+      !(opt.roi.thresholdFraction > 0 && opt.roi.thresholdFraction <= 1))
     throw CLI::ValidationError("--threshold-fraction", "must lie in (0, 1], e.g. 0.41");
-  if (opt.label != 0 && opt.labels.empty() && rois != 0)
+  if (opt.roi.label != 0 && opt.roi.labels.empty() && rois != 0)
     throw CLI::ValidationError("--label", "needs --labels FILE");
   checkDicomOutput(opt.dicom, !opt.seg.empty(), {});
   if (!opt.seg.empty()) {
@@ -89,27 +86,15 @@ void runStats(StatsOptions opt) {
   if (rois == 0) {
     const auto& segs = volume.metadata().segmentationFiles;
     if (segs.size() != 1) throw CLI::ValidationError("ROI", kRoiChoice);
-    opt.labels = segs.front();
-    std::cerr << "mvw stats: note: the ROIs are the segments of " << opt.labels
+    opt.roi.labels = segs.front();
+    std::cerr << "mvw stats: note: the ROIs are the segments of " << opt.roi.labels
               << " (the DICOM SEG beside the series)\n";
   }
-  if (opt.label != 0 && opt.labels.empty())
+  if (opt.roi.label != 0 && opt.roi.labels.empty())
     throw CLI::ValidationError("--label", "needs --labels FILE");
 
-  study::RoiRequest request;
-  if (!opt.sphere.empty())
-    request.sphere = study::SphereRoi{{opt.sphere[0], opt.sphere[1], opt.sphere[2]}, opt.sphere[3]};
-  else if (!opt.box.empty())
-    request.box =
-        study::BoxRoi{{opt.box[0], opt.box[1], opt.box[2]}, {opt.box[3], opt.box[4], opt.box[5]}};
-  request.labels = opt.labels;
-  request.label = opt.label;
-  if (!std::isnan(opt.threshold))
-    request.threshold = {study::Threshold::Kind::Absolute, opt.threshold};
-  else if (!std::isnan(opt.thresholdFraction))
-    request.threshold = {study::Threshold::Kind::FractionOfMax, opt.thresholdFraction};
   const study::RoiReport report = study::roiReport(
-      volume, request, source,
+      volume, study::roiRequestOf(opt.roi), source,
       [](const std::string& note) { std::cerr << "mvw stats: note: " << note << "\n"; });
   if (!opt.seg.empty()) writeSeg(opt, volume, report);
   if (opt.json)
@@ -146,17 +131,17 @@ void addStatsCommand(CLI::App& app, const pacs::Options& pacs) {
       ->check(nonEmpty());
   cmd->add_option("--of", opt->of, "With a study config: which volume (default functional)")
       ->check(CLI::IsMember({"anatomical", "functional"}));
-  cmd->add_option("--sphere", opt->sphere, "Sphere X Y Z R: centre in LPS mm, radius in mm")
+  cmd->add_option("--sphere", opt->roi.sphere, "Sphere X Y Z R: centre in LPS mm, radius in mm")
       ->expected(4)
       ->check(finite);
-  cmd->add_option("--box", opt->box, "Box X0 Y0 Z0 X1 Y1 Z1: opposite corners in LPS mm")
+  cmd->add_option("--box", opt->roi.box, "Box X0 Y0 Z0 X1 Y1 Z1: opposite corners in LPS mm")
       ->expected(6)
       ->check(finite);
-  cmd->add_option("--labels", opt->labels,
+  cmd->add_option("--labels", opt->roi.labels,
                   "Label map: a DICOM SEG (one ROI per segment) or a label volume (one per value); "
                   "default: the SEG beside a folder's one image series")
       ->check(nonEmpty());
-  cmd->add_option("--label", opt->label, "Only this label (segment number; 0 is no label)")
+  cmd->add_option("--label", opt->roi.label, "Only this label (segment number; 0 is no label)")
       ->check(CLI::Validator(
           [](std::string& text) {
             return std::strtol(text.c_str(), nullptr, 10) != 0
@@ -164,10 +149,10 @@ void addStatsCommand(CLI::App& app, const pacs::Options& pacs) {
                        : "0 is no label (the background), not '" + text + "'";
           },
           "LABEL"));
-  cmd->add_option("--threshold", opt->threshold,
+  cmd->add_option("--threshold", opt->roi.threshold,
                   "Metabolic volume: voxels at or above this value (e.g. 2.5 for SUV 2.5)")
       ->check(finite);
-  cmd->add_option("--threshold-fraction", opt->thresholdFraction,
+  cmd->add_option("--threshold-fraction", opt->roi.thresholdFraction,
                   "Metabolic volume: voxels at or above this fraction of the ROI's max (e.g. 0.41)")
       ->check(finite);
   cmd->add_flag("--json", opt->json, "Print a JSON array, one object per ROI or label");

@@ -13,7 +13,6 @@
 #include "ConfigCommand.h"
 #include "ConvertCommand.h"
 #include "GlyphMapCommand.h"
-#include "HugePages.h"
 #include "InfoCommand.h"
 #include "PacsCommand.h"
 #include "PhantomCommand.h"
@@ -22,12 +21,13 @@
 #include "StatsCommand.h"
 #include "ValidateCommand.h"
 #include "mvw/core/ExitCode.h"
+#include "mvw/core/HugePages.h"
 #include "mvw/core/Version.h"
 #include "mvw/pacs/Pacs.h"
 #include "view/ViewCommand.h"
 
 int main(int argc, char** argv) {
-  mvw::app::restartWithHugePages(argv);
+  mvw::restartWithHugePages(argv, mvw::commandReadsVolumes(argv));
   CLI::App app{
       "mvw - multimodal volume workstation: anatomy + functional volumes, registered and rendered"};
   app.require_subcommand(1);

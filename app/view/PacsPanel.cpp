@@ -6,6 +6,8 @@
 
 #include <imgui.h>
 
+#include "mvw/viewer/PanelText.h"
+
 namespace mvw::app {
 
 // The window draws the window-free viewer (mvw::viewer) and acts through it throughout.
@@ -44,10 +46,7 @@ void PacsPanel::drawSearch() {
   ImGui::TextColored(kQuiet, "servers: %s", browser_.serversFile().string().c_str());
   if (!browser_.serversProblem().empty()) wrapped(kError, browser_.serversProblem());
   if (servers.empty()) {
-    ImGui::TextWrapped(
-        "No server: list them in %s as {\"servers\": [{\"name\": \"Clinic PACS\", \"url\": "
-        "\"dicom://PACS@host:104\", \"calling_aet\": \"MVW\"}]} (or mvw view --servers FILE).",
-        browser_.serversFile().string().c_str());
+    ImGui::TextWrapped("%s", noServersHelp(browser_.serversFile()).c_str());
     return;
   }
   const int chosen = browser_.server();
@@ -65,10 +64,7 @@ void PacsPanel::drawSearch() {
   if (chosen < 0) return;
   const PacsServerEntry& server = servers[std::size_t(chosen)];
   ImGui::SameLine();
-  ImGui::TextColored(kQuiet, "%s%s", server.url.c_str(),
-                     server.url.rfind("dicom://", 0) == 0
-                         ? ("  (calling AE " + server.callingAet + ")").c_str()
-                         : "");
+  ImGui::TextColored(kQuiet, "%s", serverNote(server).c_str());
   // The search keys, each label before its field (read left to right).
   pacs::StudyQuery& q = browser_.query();
   const float label = ImGui::CalcTextSize("patient name ").x;

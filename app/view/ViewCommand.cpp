@@ -1,16 +1,14 @@
 #include "ViewCommand.h"
 
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
-#include <system_error>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "Viewer.h"
-#include "mvw/core/Error.h"
-#include "mvw/study/Session.h"
+#include "mvw/viewer/ViewerLaunch.h"
 #include "mvw/viewer/ViewerScript.h"
 
 namespace mvw::app {
@@ -31,42 +29,7 @@ void runView(const ViewOptions& o) {
     return;
   }
   ViewerOptions v;
-  // The PACS servers: --servers FILE must be right (bad input otherwise); a bad default file
-  // is said in the PACS window and the viewer opens all the same.
-  if (!o.servers.empty()) {
-    v.serversFile = o.servers;
-    v.servers = viewer::loadServers(v.serversFile);
-  } else {
-    v.serversFile = viewer::defaultServersFile();
-    std::error_code ec;
-    if (std::filesystem::exists(v.serversFile, ec)) try {
-        v.servers = viewer::loadServers(v.serversFile);
-      } catch (const InputError& e) {
-        v.serversProblem = e.what();
-      }
-  }
-  config::StudyConfig study;
-  if (!o.study.empty()) {
-    study = config::loadStudyConfig(o.study);
-  } else if (o.anatomical.empty() && !v.servers.empty()) {
-    // Nothing to open yet: the window opens on the PACS window.
-  } else {
-    if (o.anatomical.empty())
-      throw InputError("mvw view", "give a study config or --anatomical, or list PACS servers in " +
-                                       v.serversFile.string() + " (or --servers FILE)");
-    study.anatomical.path = o.anatomical;
-    if (!o.functional.empty()) {
-      study.functional = config::VolumeSource{};
-      study.functional->path = o.functional;
-      study.functional->frame = config::defaultFrame(study.functionalKind);
-    }
-  }
-  // Everything the study names is read and placed before the window opens: bad input is
-  // reported with nothing drawn.
-  if (!o.study.empty() || !o.anatomical.empty()) {
-    v.session = std::make_unique<study::Session>(std::move(study));
-    v.session->load(o.pacs);
-  }
+  v.launch = viewer::launchViewer({o.study, o.anatomical, o.functional, o.servers}, o.pacs);
   v.pacs = o.pacs;
   v.script = o.script;
   v.frameLog = o.frameLog;

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
-#include <fstream>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -19,15 +17,15 @@
 #include "PacsPanel.h"
 #include "ViewerPanel.h"
 #include "mvw/core/Error.h"
-#include "mvw/core/WindowLevel.h"
 #include "mvw/io/Png.h"
-#include "mvw/output/ViewAnnotations.h"
 #include "mvw/render/DisplayTexture.h"
 #include "mvw/render/VolumeRenderer.h"
 #include "mvw/render/WindowFramebuffer.h"
-#include "mvw/study/SegmentOverlay.h"
 #include "mvw/study/Session.h"
+#include "mvw/viewer/OpenedStudy.h"
 #include "mvw/viewer/PacsBrowser.h"
+#include "mvw/viewer/PanelText.h"
+#include "mvw/viewer/ViewerFrames.h"
 #include "mvw/viewer/ViewerScript.h"
 #include "mvw/viewer/ViewerState.h"
 
@@ -80,41 +78,16 @@ Render3d renderDirtyPanes(ViewerState& state, render::VolumeRenderer& renderer,
   for (int p = 0; p < kPaneCount; ++p) {
     if (!state.needsRender(p)) continue;
     const render::RenderSettings s = state.renderSettings(p, interacting);
-    const bool functionalImage = state.paneShowsFunctional(p);
-    render::RenderedFrame f = (functionalImage ? functionalRenderer() : renderer).render(s);
+    render::RenderedFrame f =
+        (state.paneShowsFunctional(p) ? functionalRenderer() : renderer).render(s);
     if (p == k3d) rendered3d = {f.milliseconds, s.size};
     Image shown = f.image;
-    output::ViewAnnotations a;
-    a.caption = state.caption(p, s);
-    a.glyphLegend = state.glyphLegend(p, s);
-    if (functionalImage) {  // the PET/CT layout's MIP: the functional volume's own window
-      const Volume& functional = *state.functional();
-      a.colourBar = output::ColourBar{s.level - 0.5 * s.window, s.level + 0.5 * s.window,
-                                      functional.metadata().unit, s.imageColors,
-                                      ViewerState::volumeName(functional, "functional")};
-    } else {
-      const auto [lo, hi] = state.scene().valueRange;
-      a.colourBar =
-          output::colourBarOf(s, state.anatomical(), state.functional(), renderer.functionalRange(),
-                              windowOrFullRange(s.window, s.level, lo, hi));
-    }
-    a.segmentLegend = output::segmentLegendOf(s, segments);
+    output::ViewAnnotations a = paneAnnotations(state, p, s, renderer.functionalRange(), segments);
     output::drawAnnotations(shown, f.camera, s, a, renderer);
     textures[static_cast<std::size_t>(p)].upload(shown);
     state.rendered(p, f.camera, std::move(f.image), interacting, f.milliseconds);
   }
   return rendered3d;
-}
-
-// The pane's rectangle of the window's image, clipped to the window.
-Image paneOf(const Image& window, glm::ivec2 origin, glm::ivec2 size) {
-  const glm::ivec2 lo = glm::clamp(origin, glm::ivec2(0), glm::ivec2(window.width, window.height));
-  const glm::ivec2 hi =
-      glm::clamp(origin + size, glm::ivec2(0), glm::ivec2(window.width, window.height));
-  Image pane(hi.x - lo.x, hi.y - lo.y);
-  for (int y = 0; y < pane.height; ++y)
-    std::copy_n(window.pixel(lo.x, lo.y + y), 4 * pane.width, pane.pixel(0, y));
-  return pane;
 }
 
 // One open study and what shows it: the session (its volumes), the renderer holding them in GL,
@@ -129,37 +102,8 @@ class OpenStudy {
     const mvw::study::Session& session = *session_;
     const Volume* functional = session.functional();
     session.attach(renderer_);
-    ViewerScene scene;
-    if (functional) {
-      scene.registration = ViewerRegistration::describePlacement(
-          config::toString(session.config().registration.method), session.placement()->report);
-      scene.functionalRange = renderer_.functionalRange();
-      scene.anatomicalFromFunctional = session.anatomicalFromFunctional();
-    }
-    if (const mvw::study::SegmentOverlay* segments = session.segments()) {
-      // Each segment's centre (the mean of its voxel centres), where the outlines put it.
-      const glm::dmat4 placed = mvw::study::anatomicalFromSegmentation(
-          *segments, functional, functional ? session.anatomicalFromFunctional() : glm::dmat4(1.0));
-      const Volume& masks = segments->masks;
-      const glm::ivec3 d = masks.dimensions();
-      for (int c = 0; c < masks.components(); ++c) {
-        glm::dvec3 sum(0.0);
-        double count = 0.0;
-        for (int k = 0; k < d.z; ++k)
-          for (int j = 0; j < d.y; ++j)
-            for (int i = 0; i < d.x; ++i)
-              if (masks.value(i, j, k, c) != 0.0) sum += glm::dvec3(i, j, k), count += 1.0;
-        if (count == 0.0) continue;
-        const glm::dvec3 world = masks.worldFromIndexPoint(sum / count);
-        scene.segmentCentres.push_back({segments->names[static_cast<std::size_t>(c)],
-                                        glm::dvec3(placed * glm::dvec4(world, 1.0))});
-      }
-    }
-    scene.centre = renderer_.centre();
-    scene.radius = renderer_.radius();
-    scene.valueRange = renderer_.valueRange();
-    state_ =
-        std::make_unique<ViewerState>(session.config(), session.anatomical(), functional, scene);
+    state_ = std::make_unique<ViewerState>(session.config(), session.anatomical(), functional,
+                                           studyScene(session, renderer_));
     panel_ = std::make_unique<ViewerPanel>(*state_, textures_, scale);
     // The functional volume as an image of its own (the PET/CT layout's MIP), uploaded once
     // the layout first asks for it.
@@ -215,12 +159,7 @@ int runViewer(ViewerOptions options) {
   if (!options.script.empty()) script = ViewerScript::load(options.script);
   // The frame log is opened before the window: a path that cannot be written is reported as
   // bad input with nothing drawn.
-  std::ofstream frameLog;
-  if (!options.frameLog.empty()) {
-    frameLog.open(options.frameLog, std::ios::binary | std::ios::trunc);
-    if (!frameLog) throw InputError(options.frameLog, "cannot write the frame log");
-    frameLog << "frame,ms,render3d_ms,render3d_width,render3d_height,interactive,drag_divisor\n";
-  }
+  FrameLog frameLog(options.frameLog);
   const float scale = static_cast<float>(options.uiScale);
   // The PACS browser outlives every study it opens (declared before them: a running retrieve
   // is joined after the study's GL objects are gone, before the window closes).
@@ -228,23 +167,22 @@ int runViewer(ViewerOptions options) {
   ImGuiSession imgui(context.window(), scale);
   render::WindowFramebuffer framebuffer(context);
   PacsBrowser browser(options.pacs);
-  browser.setServers(std::move(options.servers), options.serversFile, options.serversProblem);
+  browser.setServers(std::move(options.launch.servers), options.launch.serversFile,
+                     options.launch.serversProblem);
   PacsPanel pacsPanel(browser, scale);
   std::unique_ptr<OpenStudy> open;
-  if (options.session)
-    open = std::make_unique<OpenStudy>(context, std::move(options.session), scale);
+  if (options.launch.session)
+    open = std::make_unique<OpenStudy>(context, std::move(options.launch.session), scale);
   pacsPanel.setVisible(!open);
   auto showPacs = [&pacsPanel] { pacsPanel.setVisible(true); };
   // The window's title names the study shown (one opened from the PACS names its server).
   auto shown = [&] {
     open->panel().setOpenPacs(showPacs);
-    const std::string& name = open->session().config().name;
-    glfwSetWindowTitle(context.window(), ("mvw view" + (name.empty() ? "" : ": " + name)).c_str());
+    glfwSetWindowTitle(context.window(), viewerTitle(open->session().config().name).c_str());
   };
   if (open) shown();
 
-  auto lastSwap = std::chrono::steady_clock::now();
-
+  frameLog.start();
   int frames = 0;
   bool quit = false;
   while (!glfwWindowShouldClose(context.window()) && !quit &&
@@ -305,19 +243,12 @@ int runViewer(ViewerOptions options) {
         state.requests().setStatus("saved " + file->string());
       }
       if (auto shot = state.requests().takePaneScreenshotRequest())
-        io::writePng(
-            paneOf(framebuffer.read(), state.paneOrigin(shot->first), state.paneSize(shot->first)),
-            shot->second);
+        io::writePng(paneImage(framebuffer.read(), state.paneOrigin(shot->first),
+                               state.paneSize(shot->first)),
+                     shot->second);
     }
     glfwSwapBuffers(context.window());
-    if (frameLog.is_open()) {
-      const auto now = std::chrono::steady_clock::now();
-      frameLog << frames << ',' << std::chrono::duration<double, std::milli>(now - lastSwap).count()
-               << ',' << rendered3d.milliseconds << ',' << rendered3d.size.x << ','
-               << rendered3d.size.y << ',' << (dragging ? 1 : 0) << ',' << divisor << '\n'
-               << std::flush;  // a line per frame as it ends: a watcher sees the viewer live
-      lastSwap = now;
-    }
+    frameLog.frame(frames, rendered3d.milliseconds, rendered3d.size, dragging, divisor);
     ++frames;
     const bool idle =
         !open || (!open->state().anyDirty() && !open->state().registration().running());

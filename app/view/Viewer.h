@@ -2,25 +2,16 @@
 // `mvw view`: a 3D view and the three orthogonal MPR views with a linked crosshair, and a
 // control panel (Dear ImGui), on the same renderer and shaders as the headless path.
 #include <filesystem>
-#include <memory>
-#include <string>
-#include <vector>
 
 #include "mvw/pacs/Pacs.h"
-#include "mvw/study/Session.h"
-#include "mvw/viewer/PacsBrowser.h"
+#include "mvw/viewer/ViewerLaunch.h"
 
 namespace mvw::app {
 
 struct ViewerOptions {
-  // The study, loaded (Session::load); its config's file may be empty (volumes given on the
-  // command line). Null: the window opens on the PACS window alone.
-  std::unique_ptr<study::Session> session;
-  // The PACS servers the PACS window offers (servers.json), the file they came from, and why
-  // the default file could not be used (shown in the PACS window).
-  std::vector<viewer::PacsServerEntry> servers;
-  std::filesystem::path serversFile;
-  std::string serversProblem;
+  // The study, loaded, and the PACS servers (viewer::launchViewer); without a study the window
+  // opens on the PACS window alone.
+  viewer::ViewerLaunch launch;
   // The command line's --cache and time-outs: the PACS window's searches and retrieves use them.
   pacs::Options pacs;
   std::filesystem::path script;  // scripted events, for tests (see mvw/viewer/ViewerScript.h)

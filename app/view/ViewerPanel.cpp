@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,10 +10,13 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "mvw/core/Format.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/TransferFunction.h"
 #include "mvw/study/ModalityDefaults.h"
+#include "mvw/viewer/PanelText.h"
+#include "mvw/viewer/ViewControls.h"
 
 namespace mvw::app {
 
@@ -41,21 +43,12 @@ void colormapCombo(ViewerState& state, const char* label, ColorTarget target) {
 // atlas's names; without a label table the labels are numbered up to the volume's maximum.
 void glyphLabelPicker(ViewerState& state) {
   const std::vector<render::LabelGlyph> chosen = state.view3d().glyphLabels;
-  const std::string header = "glyph labels (" +
-                             (chosen.empty() ? std::string("all above the window")
-                                             : std::to_string(chosen.size()) + " chosen") +
-                             ")###glyph-labels";
+  const std::string header = glyphPickerHeader(chosen.size());
   ImGui::SetNextItemOpen(!chosen.empty(), ImGuiCond_Once);  // open where the study chose some
   if (!ImGui::CollapsingHeader(header.c_str())) return;
   static ImGuiTextFilter filter;
   filter.Draw("filter");
-  std::vector<std::pair<int, std::string>> labels;
-  for (const auto& [n, name] : state.labelNames())
-    if (n > 0) labels.emplace_back(n, name);
-  if (labels.empty()) {
-    const int top = std::clamp(int(state.scene().functionalRange.second), 0, 255);
-    for (int n = 1; n <= top; ++n) labels.emplace_back(n, "");
-  }
+  const auto labels = glyphPickerLabels(state.labelNames(), state.scene().functionalRange.second);
   // config::LabelGlyphKind's order: bumps, dimples, none, then the other kinds (issue 40).
   const char* kinds[] = {"bumps", "dimples", "none", "rings", "ridges", "cones", "crosses"};
   ImGui::BeginChild("glyph-label-list", ImVec2(0, 180), true);
@@ -86,25 +79,14 @@ void boxedText(ImDrawList* draw, ImVec2 at, ImU32 colour, const std::string& tex
   draw->AddText(at, colour, text.c_str());
 }
 
-std::string number(double v, const char* format = "%.3g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-// One volume's line of a sphere's statistics.
-void statsLine(const char* volume, const std::optional<study::RoiStats>& s,
+// One volume's lines of a sphere's statistics.
+void statsLine(const std::string& volume, const std::optional<study::RoiStats>& s,
                const std::string& problem) {
   if (!s) {
-    ImGui::TextWrapped("  %s: %s", volume, problem.c_str());
+    ImGui::TextWrapped("  %s: %s", volume.c_str(), problem.c_str());
     return;
   }
-  const std::string u = s->unit.empty() ? "" : " " + s->unit;
-  ImGui::Text("  %s: %zu voxels, %s ml", volume, s->voxels, number(s->volumeMl).c_str());
-  if (s->voxels == 0) return;
-  ImGui::Text("    max %s  mean %s  SD %s%s", number(s->max, "%.4g").c_str(),
-              number(s->mean, "%.4g").c_str(), number(s->sd, "%.4g").c_str(), u.c_str());
-  if (s->peak) ImGui::Text("    SUVpeak %s%s (1 cm3)", number(*s->peak, "%.4g").c_str(), u.c_str());
+  for (const std::string& line : roiStatsLines(volume, *s)) ImGui::TextUnformatted(line.c_str());
 }
 
 const ImU32 kRoiColour = IM_COL32(80, 255, 120, 255);
@@ -133,10 +115,8 @@ void ViewerPanel::drawMeasurements(int pane, ImVec2 pos, ImVec2 size) {
     draw->AddCircle(centre, std::max(1.0f, rx), kRoiColour, 64, 2.0f);
     draw->AddLine(ImVec2(centre.x - 3, centre.y), ImVec2(centre.x + 3, centre.y), kRoiTextColour);
     draw->AddLine(ImVec2(centre.x, centre.y - 3), ImVec2(centre.x, centre.y + 3), kRoiTextColour);
-    const std::string label = (i < saved ? "ROI " + std::to_string(i + 1) + "  " : std::string()) +
-                              "r " + number(spheres[i].radiusMm, "%.1f") + " mm";
     boxedText(draw, ImVec2(centre.x + rx * 0.72f + 4, centre.y - rx * 0.72f - 14), kRoiTextColour,
-              label);
+              sphereLabel(i, i < saved, spheres[i].radiusMm));
   }
   std::vector<config::RulerMeasurement> rulers = measurements.all().rulers;
   if (auto p = measurements.pendingRuler()) rulers.push_back(*p);
@@ -148,7 +128,7 @@ void ViewerPanel::drawMeasurements(int pane, ImVec2 pos, ImVec2 size) {
     draw->AddLine(a, b, kRulerColour, 2.0f);
     for (const ImVec2& e : {a, b}) draw->AddCircleFilled(e, 3.0f, kRulerColour);
     boxedText(draw, ImVec2((a.x + b.x) * 0.5f + 6, (a.y + b.y) * 0.5f - 16), kRulerColour,
-              number(ViewerMeasurements::rulerLengthMm(r), "%.1f") + " mm");
+              fixedNumber(ViewerMeasurements::rulerLengthMm(r), 1) + " mm");
   }
   draw->PopClipRect();
 }
@@ -209,9 +189,8 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
     drawMeasurements(pane, pos, size);
     // The values under the cursor, both volumes with their units, by the cursor on its pane.
     if (const auto c = state_.cursor(); c && c->first == pane) {
-      const glm::dvec4 clip = state_.paneCamera(pane).clipFromWorld * glm::dvec4(c->second, 1.0);
-      const ImVec2 at(pos.x + static_cast<float>((clip.x / clip.w + 1) * 0.5) * size.x,
-                      pos.y + static_cast<float>((1 - clip.y / clip.w) * 0.5) * size.y);
+      const glm::dvec2 f = measurements.toPane(pane, c->second);
+      const ImVec2 at(pos.x + float(f.x) * size.x, pos.y + float(f.y) * size.y);
       const std::string text = state_.readout(c->second);
       const float w = ImGui::CalcTextSize(text.c_str()).x;
       draw->PushClipRect(pos, ImVec2(pos.x + size.x, pos.y + size.y), true);
@@ -222,36 +201,17 @@ void ViewerPanel::drawPane(int pane, ImVec2 pos, ImVec2 size) {
     }
   }
   if (pane != k3d && !texture.empty()) {  // the linked crosshair
-    const glm::dvec4 c =
-        state_.paneCamera(pane).clipFromWorld * glm::dvec4(state_.crosshair(), 1.0);
-    const float cx = pos.x + static_cast<float>((c.x / c.w + 1) * 0.5) * size.x;
-    const float cy = pos.y + static_cast<float>((1 - c.y / c.w) * 0.5) * size.y;
+    const glm::dvec2 c = measurements.toPane(pane, state_.crosshair());
+    const float cx = pos.x + float(c.x) * size.x, cy = pos.y + float(c.y) * size.y;
     draw->AddLine(ImVec2(cx, pos.y), ImVec2(cx, pos.y + size.y), IM_COL32(80, 200, 255, 160));
     draw->AddLine(ImVec2(pos.x, cy), ImVec2(pos.x + size.x, cy), IM_COL32(80, 200, 255, 160));
   }
   // A pane that shows nothing says why, in the middle (one clause a line).
   if (const std::string message = state_.emptyPaneMessage(pane); !message.empty()) {
     // Word-wrapped to the pane, a new line after each "; ".
-    std::string why, line;
-    const float width = size.x - 16.0f;
-    std::size_t start = 0;
-    while (start < message.size()) {
-      // A parenthesis (a value range) stays on one line.
-      std::size_t end = message.find(message[start] == '(' ? ')' : ' ', start);
-      if (end != std::string::npos && message[start] == '(') end = message.find(' ', end);
-      if (end == std::string::npos) end = message.size();
-      const std::string word = message.substr(start, end - start);
-      const std::string longer = line.empty() ? word : line + " " + word;
-      if (!line.empty() && ImGui::CalcTextSize(longer.c_str()).x > width) {
-        why += line + "\n";
-        line = word;
-      } else {
-        line = longer;
-      }
-      if (!line.empty() && line.back() == ';') why += line + "\n", line.clear();
-      start = end + 1;
-    }
-    why += line;
+    const std::string why = wrapPaneMessage(message, size.x - 16.0f, [](const std::string& line) {
+      return ImGui::CalcTextSize(line.c_str()).x;
+    });
     const ImVec2 text = ImGui::CalcTextSize(why.c_str());
     draw->PushClipRect(pos, ImVec2(pos.x + size.x, pos.y + size.y), true);
     boxedText(
@@ -381,15 +341,11 @@ void ViewerPanel::drawFunctionalControls() {
 void ViewerPanel::drawFunctionalWindow() {
   render::RenderSettings& v = state_.view3d();
   const auto [flo, fhi] = state_.scene().functionalRange;
-  const bool userWindow = v.functionalHigh > v.functionalLow;
-  float fw[2] = {float(userWindow ? v.functionalLow : flo),
-                 float(userWindow ? v.functionalHigh : fhi)};
+  const auto [wlo, whi] = functionalWindow(v, state_.scene().functionalRange);
+  float fw[2] = {float(wlo), float(whi)};
   if (ImGui::DragFloatRange2("attribute", &fw[0], &fw[1], float(fhi - flo) / 200.0f, float(flo),
-                             float(fhi))) {
-    v.functionalLow = fw[0];
-    v.functionalHigh = std::max(double(fw[1]), double(fw[0]) + 1e-6 * (fhi - flo));
-    state_.markAllDirty();
-  }
+                             float(fhi)))
+    setFunctionalWindow(v, fw[0], fw[1], state_.scene().functionalRange), state_.markAllDirty();
   // The PET/CT layout's functional pane and MIP: the functional volume's own window.
   if (state_.petCtLayout()) {
     const auto [dlo, dhi] = state_.functionalDisplayWindow();
@@ -423,13 +379,9 @@ void ViewerPanel::drawGlyphControls() {
   }
   if (v.glyphMap.placement == render::GlyphPlacement::BlueNoise) {
     // The blue-noise spacing (the diameter follows at its default fraction) and the size range.
-    float spacing =
-        float(render::blueNoiseSpacing(v.glyphMap.size) * v.glyphDiameterMm / v.glyphMap.diameter);
-    if (ImGui::SliderFloat("glyph spacing mm", &spacing, 2, 30)) {
-      v.glyphDiameterMm = kBlueNoiseDiameterFraction * spacing;
-      v.glyphMap = render::blueNoiseGlyphMap(spacing, v.glyphDiameterMm, v.glyphMap.seed);
-      state_.markDirty(k3d);
-    }
+    float spacing = float(glyphSpacingMm(v));
+    if (ImGui::SliderFloat("glyph spacing mm", &spacing, 2, 30))
+      setGlyphSpacingMm(v, spacing), state_.markDirty(k3d);
     float minSize = float(v.glyphMinSize);
     if (ImGui::SliderFloat("smallest bump", &minSize, 0, 1))
       v.glyphMinSize = minSize, state_.markDirty(k3d);
@@ -440,11 +392,7 @@ void ViewerPanel::drawGlyphControls() {
   }
   // The legend, as the 3D pane shows it: what each bump size or kind means.
   for (const render::GlyphLegendEntry& e : state_.glyphLegend(k3d, v).entries)
-    ImGui::BulletText("%s  %s", e.label.c_str(),
-                      e.size <= 0 ? "no glyph"
-                                  : (std::to_string(int(std::lround(100 * e.size))) + " % " +
-                                     glyphKindName(e.kind))
-                                        .c_str());
+    ImGui::BulletText("%s", glyphLegendLine(e).c_str());
   int method = v.glyphSizeControl ? 0 : 1;
   const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};
   if (ImGui::Combo("glyph method", &method, methods, 2))
@@ -460,15 +408,12 @@ void ViewerPanel::drawGlyphControls() {
 
 // How the functional volume is placed, and the button that registers it again.
 void ViewerPanel::drawRegistration() {
-  const std::string& registration = state_.registration().description();
-  ImGui::TextWrapped("registration: %s",
-                     registration == "none" ? "none (world coordinates)" : registration.c_str());
-  if (state_.registration().running())
-    ImGui::Text("registering (mutual information)... %.1f s", state_.registration().seconds());
-  else if (ImGui::Button(
-               ("re-run registration (" + std::string(state_.registration().method()) + " MI)")
-                   .c_str()))
-    state_.registration().start();
+  ViewerRegistration& registration = state_.registration();
+  ImGui::TextWrapped("%s", registrationLine(registration.description()).c_str());
+  if (registration.running())
+    ImGui::Text("registering (mutual information)... %.1f s", registration.seconds());
+  else if (ImGui::Button(rerunRegistrationLabel(registration.method()).c_str()))
+    registration.start();
 }
 
 void ViewerPanel::drawCrosshair() {
@@ -498,19 +443,17 @@ void ViewerPanel::drawMeasurementControls() {
   const auto& spheres = measurements.all().spheres;
   const auto& stats = measurements.sphereStatistics();
   for (std::size_t i = 0; i < spheres.size(); ++i) {
-    const config::SphereMeasurement& s = spheres[i];
-    ImGui::TextColored(ImVec4(0.3f, 1.0f, 0.5f, 1.0f), "ROI %zu: r %.1f mm at %.1f, %.1f, %.1f",
-                       i + 1, s.radiusMm, s.centre[0], s.centre[1], s.centre[2]);
-    statsLine(ViewerState::volumeName(anatomical, "anatomical").c_str(), stats[i].anatomical,
+    ImGui::TextColored(ImVec4(0.3f, 1.0f, 0.5f, 1.0f), "%s", sphereHeader(i, spheres[i]).c_str());
+    statsLine(ViewerState::volumeName(anatomical, "anatomical"), stats[i].anatomical,
               stats[i].anatomicalProblem);
     if (functional)
-      statsLine(ViewerState::volumeName(*functional, "functional").c_str(), stats[i].functional,
+      statsLine(ViewerState::volumeName(*functional, "functional"), stats[i].functional,
                 stats[i].functionalProblem);
   }
   const auto& rulers = measurements.all().rulers;
   for (std::size_t i = 0; i < rulers.size(); ++i)
-    ImGui::TextColored(ImVec4(1.0f, 0.86f, 0.25f, 1.0f), "ruler %zu: %.1f mm", i + 1,
-                       ViewerMeasurements::rulerLengthMm(rulers[i]));
+    ImGui::TextColored(ImVec4(1.0f, 0.86f, 0.25f, 1.0f), "%s",
+                       rulerLine(i, ViewerMeasurements::rulerLengthMm(rulers[i])).c_str());
   if ((!spheres.empty() || !rulers.empty()) && ImGui::Button("clear measurements"))
     measurements.clear();
 }

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -64,6 +65,30 @@ TEST_F(HugePages, AUsersOwnHugetlbSettingIsKept) {
   restartWithHugePages(argv_, true);  // returns: no exec
   EXPECT_EQ(env("GLIBC_TUNABLES"), "glibc.malloc.hugetlb=0");
   EXPECT_EQ(env(kHugePagesMark), std::nullopt);
+}
+
+bool readsVolumes(std::vector<const char*> args) {
+  args.insert(args.begin(), "mvw");
+  args.push_back(nullptr);
+  return commandReadsVolumes(const_cast<char**>(args.data()));
+}
+
+TEST(CommandReadsVolumes, OnlyCommandsThatReadVolumesAreWorthASecondStart) {
+  EXPECT_TRUE(readsVolumes({"info", "ct.nii.gz"}));
+  EXPECT_TRUE(readsVolumes({"render", "study.json", "-o", "out"}));
+  EXPECT_FALSE(readsVolumes({"pacs", "find", "clinic"}));
+  EXPECT_FALSE(readsVolumes({"config", "reference"}));
+  EXPECT_FALSE(readsVolumes({}));
+  EXPECT_FALSE(readsVolumes({"--version"}));
+  EXPECT_FALSE(readsVolumes({"--help"}));
+}
+
+TEST(CommandReadsVolumes, TheGlobalOptionsValuesAreNotCommands) {
+  EXPECT_FALSE(readsVolumes({"--cache", "info", "pacs", "find", "x"}));
+  EXPECT_TRUE(readsVolumes({"--connect-timeout", "pacs", "stats", "pet.nii.gz"}));
+  EXPECT_FALSE(readsVolumes({"--read-timeout", "5", "config"}));
+  EXPECT_TRUE(readsVolumes({"--read-timeout=5", "view"}));
+  EXPECT_FALSE(readsVolumes({"--cache"}));  // the value missing: no command
 }
 
 }  // namespace

@@ -14,6 +14,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
+TEST(MaxBytes, OneMebibyteToOnePebibyte) {
+  EXPECT_EQ(maxBytesProblem("1048576"), "");
+  EXPECT_EQ(maxBytesProblem("1125899906842624"), "");
+  const std::string why = "must be a size from 1M to 1P (e.g. 512M, 4G)";
+  EXPECT_EQ(maxBytesProblem("1048575"), why);
+  EXPECT_EQ(maxBytesProblem("1125899906842625"), why);
+  EXPECT_EQ(maxBytesProblem("99999999999999999999999"), why);  // beyond 2^64
+  EXPECT_EQ(maxBytesProblem("4G"), why);                       // not yet a byte count
+  EXPECT_EQ(maxBytesProblem(""), why);
+}
+
 std::string refusal(const fs::path& p, const ReadOptions& options = {}) {
   try {
     readVolume(p, options);

@@ -49,6 +49,39 @@ std::string text(const Volume& v, const RoiReport& report) {
   return out.str();
 }
 
+TEST(RoiReport, RequestOfTheCommandLinesOptions) {
+  RoiOptions o;
+  o.sphere = {1.0, 2.0, 3.0, 4.5};
+  RoiRequest r = roiRequestOf(o);
+  ASSERT_TRUE(r.sphere);
+  EXPECT_EQ(r.sphere->centre, glm::dvec3(1.0, 2.0, 3.0));
+  EXPECT_EQ(r.sphere->radiusMm, 4.5);
+  EXPECT_FALSE(r.box);
+  EXPECT_EQ(r.threshold.kind, Threshold::Kind::None);
+
+  o = {};
+  o.box = {-1.0, -2.0, -3.0, 1.0, 2.0, 3.0};
+  o.thresholdFraction = 0.41;
+  r = roiRequestOf(o);
+  ASSERT_TRUE(r.box);
+  EXPECT_EQ(r.box->min, glm::dvec3(-1.0, -2.0, -3.0));
+  EXPECT_EQ(r.box->max, glm::dvec3(1.0, 2.0, 3.0));
+  EXPECT_EQ(r.threshold.kind, Threshold::Kind::FractionOfMax);
+  EXPECT_EQ(r.threshold.value, 0.41);
+
+  o = {};
+  o.labels = "seg.dcm";
+  o.label = 3;
+  o.threshold = 2.5;
+  r = roiRequestOf(o);
+  EXPECT_FALSE(r.sphere);
+  EXPECT_FALSE(r.box);
+  EXPECT_EQ(r.labels, fs::path("seg.dcm"));
+  EXPECT_EQ(r.label, 3);
+  EXPECT_EQ(r.threshold.kind, Threshold::Kind::Absolute);
+  EXPECT_EQ(r.threshold.value, 2.5);
+}
+
 TEST(RoiReport, BoxWithAThresholdAsText) {
   const Volume v = indexVolume();
   RoiRequest request = boxRequest();

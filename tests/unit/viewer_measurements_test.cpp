@@ -79,6 +79,20 @@ TEST_F(ViewerMeasurementsTest, SphereRoiDrawnByADragHasTheStatsOfMvwStats) {
 
 // The circle a sphere cuts from each MPR pane's plane (through the crosshair); a ruler's ends
 // on its pane, shown only on the plane it lies in.
+// Where the panel draws the cursor readout and the crosshair: onPlane's inverse.
+TEST_F(ViewerMeasurementsTest, WorldPointsOnThePanes) {
+  ViewerState state(study, ct, nullptr, sceneOf(ct));
+  renderAll(state);
+  for (int pane : {kAxial, kCoronal, kSagittal}) {
+    const glm::dvec2 middle = state.measurements().toPane(pane, state.crosshair());
+    EXPECT_NEAR(middle.x, 0.5, 1e-9);
+    EXPECT_NEAR(middle.y, 0.5, 1e-9);
+    const glm::dvec2 f = state.measurements().toPane(pane, state.onPlane(pane, 0.25, 0.8));
+    EXPECT_NEAR(f.x, 0.25, 1e-9);
+    EXPECT_NEAR(f.y, 0.8, 1e-9);
+  }
+}
+
 TEST_F(ViewerMeasurementsTest, SpheresAndRulersOnThePanes) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
   renderAll(state);

@@ -3,6 +3,7 @@
 #include <climits>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <string>
 
 #if defined(__linux__) && defined(__GLIBC__)
@@ -72,6 +73,20 @@ void restartWithHugePages(char** argv, bool worthASecondStart) {
   (void)argv;
   (void)worthASecondStart;
 #endif
+}
+
+bool commandReadsVolumes(char** argv) {
+  for (int i = 1; argv[i]; ++i) {
+    const char* a = argv[i];
+    if (a[0] == '-') {
+      for (const char* valued : {"--cache", "--connect-timeout", "--read-timeout"})
+        if (std::strcmp(a, valued) == 0 && argv[i + 1]) ++i;
+      continue;
+    }
+    // Commands that talk to a server or print text: a start is most of their run.
+    return std::strcmp(a, "pacs") != 0 && std::strcmp(a, "config") != 0;
+  }
+  return false;  // --version, --help, or nothing
 }
 
 }  // namespace mvw

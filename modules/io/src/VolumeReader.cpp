@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <numbers>
@@ -22,6 +24,15 @@
 #include "mvw/core/Format.h"
 
 namespace mvw::io {
+
+std::string maxBytesProblem(const std::string& bytes) {
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long n = std::strtoull(bytes.c_str(), &end, 10);
+  if (errno != 0 || end == bytes.c_str() || *end != '\0' || n < (1ull << 20) || n > (1ull << 50))
+    return "must be a size from 1M to 1P (e.g. 512M, 4G)";
+  return "";
+}
 
 namespace fs = std::filesystem;
 

@@ -1,6 +1,7 @@
 #include "mvw/study/RoiReport.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <nlohmann/json.hpp>
@@ -205,6 +206,21 @@ Volume readMeasuredVolume(const fs::path& source, bool anatomical, const io::Rea
                      "the study names no functional volume (for its anatomical volume: --of "
                      "anatomical)");
   return readSource(*study.functional, options, pacs);
+}
+
+RoiRequest roiRequestOf(const RoiOptions& o) {
+  RoiRequest request;
+  if (!o.sphere.empty())
+    request.sphere = SphereRoi{{o.sphere[0], o.sphere[1], o.sphere[2]}, o.sphere[3]};
+  else if (!o.box.empty())
+    request.box = BoxRoi{{o.box[0], o.box[1], o.box[2]}, {o.box[3], o.box[4], o.box[5]}};
+  request.labels = o.labels;
+  request.label = o.label;
+  if (!std::isnan(o.threshold))
+    request.threshold = {Threshold::Kind::Absolute, o.threshold};
+  else if (!std::isnan(o.thresholdFraction))
+    request.threshold = {Threshold::Kind::FractionOfMax, o.thresholdFraction};
+  return request;
 }
 
 RoiReport roiReport(const Volume& volume, const RoiRequest& request, const fs::path& source,

@@ -13,6 +13,13 @@ namespace mvw {
 // (docs/performance-log.md#start-up).
 void restartWithHugePages(char** argv, bool worthASecondStart);
 
+// Whether mvw's command line (argv, null-terminated) names a command that reads volumes, the
+// only ones a second start pays for: not `mvw pacs` or `mvw config`, nor --version or --help
+// without a command, whose whole run is shorter than a second start
+// (docs/performance-log.md#start-up). The command is the first argument that is not an option,
+// past the values of the global options --cache, --connect-timeout and --read-timeout.
+bool commandReadsVolumes(char** argv);
+
 // The variable that marks the second start and keeps GLIBC_TUNABLES as the user had it ("-":
 // unset) meanwhile.
 inline constexpr const char* kHugePagesMark = "MVW_GLIBC_TUNABLES_BEFORE";

@@ -28,6 +28,10 @@ struct ReadOptions {
 
 std::size_t defaultMaxBytes();
 
+// Why a byte count (the text `mvw info --max-memory 512M` becomes) cannot be ReadOptions'
+// maxBytes; empty where it can. 1 MiB .. 1 PiB; beyond 2^64 the text is no longer a number.
+std::string maxBytesProblem(const std::string& bytes);
+
 enum class FileFormat { Dicom, Nifti, MetaImage, Unknown };
 FileFormat detectFormat(const std::filesystem::path& path);
 

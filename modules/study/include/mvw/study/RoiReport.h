@@ -6,6 +6,7 @@
 // DICOM SEG that writes the ROIs back (written by dicomout, which study does not reach).
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -34,6 +35,19 @@ struct RoiRequest {
   int label = 0;                 // only this label or segment; 0: every one
   Threshold threshold;           // the metabolic volume's, if any
 };
+
+// The ROI options of `mvw stats` as given: --sphere X Y Z R and --box X0 Y0 Z0 X1 Y1 Z1 (empty:
+// not given), --labels, --label, --threshold and --threshold-fraction (NaN: not given).
+struct RoiOptions {
+  std::vector<double> sphere, box;
+  std::string labels;
+  int label = 0;
+  double threshold = std::numeric_limits<double>::quiet_NaN();
+  double thresholdFraction = std::numeric_limits<double>::quiet_NaN();
+};
+
+// The request of those options (checked by the command: at most one ROI, one threshold).
+RoiRequest roiRequestOf(const RoiOptions& o);
 
 struct ReportedRoi {
   std::string what;  // "sphere at ...", "box ...", or "label N \"name\""

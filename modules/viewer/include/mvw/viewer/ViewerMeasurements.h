@@ -83,6 +83,9 @@ class ViewerMeasurements {
   // the pane's first frame), where a ruler lies.
   std::optional<PaneCircle> paneCircle(int pane, const config::SphereMeasurement& sphere) const;
   PaneSegment paneSegment(int pane, const config::RulerMeasurement& ruler) const;
+  // Where a world point shows on the pane's last frame: fractions of its width and height (y
+  // down), 0.5 at its middle (the cursor readout and the crosshair are drawn there).
+  glm::dvec2 toPane(int pane, const glm::dvec3& world) const;
   // Every sphere's statistics as `mvw stats --json` names the fields (tests compare the two).
   void writeSphereStatistics(const std::filesystem::path& file) const;
 
@@ -93,7 +96,6 @@ class ViewerMeasurements {
     glm::dvec3 from{0.0}, to{0.0};
   };
   SphereStatistics computeStatistics(const config::SphereMeasurement& sphere) const;
-  glm::dvec2 toPane(int pane, const glm::dvec3& world) const;
 
   const PaneGeometry& panes_;
   const Volume& anatomical_;

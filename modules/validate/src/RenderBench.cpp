@@ -1,0 +1,142 @@
+#include "mvw/validate/RenderBench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
+#include "mvw/output/HeadlessGl.h"
+#include "mvw/render/Framing.h"
+#include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/Session.h"
+#include "mvw/study/StudyLoader.h"
+#include "mvw/study/ViewPlan.h"
+#include "mvw/validate/ImageMetrics.h"
+
+namespace mvw::validate {
+
+void runRenderBench(const RenderBenchOptions& o) {
+  std::vector<render::RenderMode> modes;
+  std::stringstream list(o.modes);
+  for (std::string name; std::getline(list, name, ',');) {
+    const auto m = render::parseRenderMode(name);
+    if (!m) throw InputError(o.study, "unknown mode '" + name + "' in --modes");
+    modes.push_back(*m);
+  }
+  const auto study = config::loadStudyConfig(o.study);
+  auto context = output::makeHeadlessContext(o.gl);
+  const Volume volume = mvw::study::readSource(study.anatomical, {}, o.pacs);
+  const auto t0 = std::chrono::steady_clock::now();
+  render::VolumeRenderer renderer(*context, volume, render::parseGradientSource(o.gradient));
+  const double uploadMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const glm::ivec3 d = volume.dimensions();
+  std::printf("mvw bench render: %s, %s, %s, %d x %d x %d, %d x %d pixels, %d frames per mode\n",
+              context->backend().c_str(), context->renderer().c_str(), context->version().c_str(),
+              d.x, d.y, d.z, o.size, o.size, o.frames);
+  std::printf("  upload (volume, gradient, blocks): %.0f ms, gradient from the %s%s\n", uploadMs,
+              render::toString(renderer.gradientSource()),
+              renderer.textureRuns() > 1
+                  ? (", slices folded into " + std::to_string(renderer.textureRuns()) +
+                     " runs (more than the GL's largest 3D texture)")
+                        .c_str()
+                  : "");
+  for (render::RenderMode mode : modes) {
+    render::RenderSettings s;
+    s.mode = mode;
+    s.size = {o.size, o.size};
+    s.transfer = render::transferPreset(o.preset);
+    s.camera.view = render::StandardView::Anterior;
+    s.stepMm = o.stepMm;
+    s.shading = !o.noShading;
+    renderer.render(s);  // compiles the program
+    double total = 0.0;
+    for (int f = 0; f < o.frames; ++f) {
+      s.camera.azimuthDeg = 360.0 * f / o.frames;
+      total += renderer.render(s).milliseconds;
+    }
+    const double ms = total / o.frames;
+    // Quality: the first frame against a 4x oversampled reference (a quarter of the step).
+    s.camera.azimuthDeg = 0.0;
+    const Image image = renderer.render(s).image;
+    const double step = s.stepMm > 0 ? s.stepMm : render::defaultStepMm(volume);
+    s.stepMm = step / 4.0;
+    const Image reference = renderer.render(s).image;
+    std::printf("  %-11s %8.1f ms/frame  %6.2f fps  step %.3f mm  PSNR %.1f dB vs 4x oversampled\n",
+                render::toString(mode).c_str(), ms, 1000.0 / ms, step, psnr(image, reference));
+  }
+}
+
+bool hasBenchFeature(const render::RenderSettings& s) {
+  return s.glyphs || s.fusion || s.depthCue || render::showsAnatomyOnCutFace(s);
+}
+
+std::string benchFeatureName(const render::RenderSettings& s) {
+  std::string name;
+  if (s.glyphs) name += "glyphs";
+  if (s.fusion) name += name.empty() ? "fusion" : "+fusion";
+  if (s.depthCue) name += name.empty() ? "depth cue" : "+depth cue";
+  if (render::showsAnatomyOnCutFace(s)) name += name.empty() ? "cut face" : "+cut face";
+  return name;
+}
+
+render::RenderSettings withoutBenchFeatures(render::RenderSettings s) {
+  s.glyphs = s.fusion = s.depthCue = false;
+  s.cutFace = render::CutFace::Plain;
+  return s;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void runFeatureBench(const FeatureBenchOptions& o) {
+  mvw::study::ViewOverrides overrides;
+  overrides.size = o.size;
+  mvw::study::Session session(config::loadStudyConfig(o.study), overrides);
+  auto context = output::makeHeadlessContext(o.gl);
+  session.load(o.pacs);
+  const config::StudyConfig& study = session.config();
+  render::VolumeRenderer renderer(*context, session.anatomical());
+  session.attach(renderer);
+  std::printf(
+      "mvw bench features: %s, %s %s, %d azimuth steps per view, with/without interleaved\n",
+      study.file.filename().c_str(), context->backend().c_str(), context->renderer().c_str(),
+      o.frames);
+  std::printf("  %-30s %-11s %-15s %10s %10s %8s\n", "view", "mode", "feature", "without", "with",
+              "ratio");
+  for (const mvw::study::PlannedView& v : session.views(renderer)) {
+    if (!hasBenchFeature(v.settings)) continue;
+    render::RenderSettings with = v.settings;
+    render::RenderSettings without = withoutBenchFeatures(with);
+    renderer.render(with);  // compile both programs, upload the glyph map
+    renderer.render(without);
+    std::vector<double> ratios;
+    double msWith = 0.0, msWithout = 0.0;
+    for (int f = 0; f < o.frames; ++f) {
+      with.camera.azimuthDeg = without.camera.azimuthDeg =
+          v.settings.camera.azimuthDeg + 360.0 * f / o.frames;
+      // Alternate which goes first, so neither always finds the caches warm.
+      const bool withFirst = f % 2 == 0;
+      const double a = renderer.render(withFirst ? with : without).milliseconds;
+      const double b = renderer.render(withFirst ? without : with).milliseconds;
+      const double w = withFirst ? a : b, wo = withFirst ? b : a;
+      msWith += w;
+      msWithout += wo;
+      ratios.push_back(w / wo);
+    }
+    std::printf("  %-30s %-11s %-15s %7.1f ms %7.1f ms %7.3fx  (median of per-frame ratios %.3f)\n",
+                v.config.name.c_str(), toString(v.config.mode).c_str(),
+                benchFeatureName(v.settings).c_str(), msWithout / o.frames, msWith / o.frames,
+                msWith / msWithout, median(ratios));
+  }
+}
+
+}  // namespace mvw::validate

@@ -1,0 +1,68 @@
+// What `mvw pacs` prints (mvw/pacs/MatchTable.h): the find table of studies and of series, the
+// JSON lines, and a transfer's summary.
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mvw/pacs/MatchTable.h"
+
+namespace mvw::pacs {
+namespace {
+
+std::string printed(const std::vector<Match>& matches, bool json, bool series) {
+  std::ostringstream out;
+  printMatches(out, matches, json, series);
+  return out.str();
+}
+
+TEST(MatchTable, Studies) {
+  const Match m{{"PatientName", "Doe^Jane"},         {"PatientID", "P-0001234567890"},
+                {"StudyDate", "20240102"},           {"ModalitiesInStudy", "CT\\PT"},
+                {"NumberOfStudyRelatedSeries", "3"}, {"StudyDescription", "PET-CT whole body"},
+                {"StudyInstanceUID", "1.2.3"}};
+  EXPECT_EQ(printed({m}, false, false),
+            "patient                 patient id    date      modalities series  description      "
+            "             StudyInstanceUID\n"
+            "Doe^Jane                P-0001234567  20240102  CT\\PT      3       PET-CT whole body "
+            "            1.2.3\n");
+}
+
+TEST(MatchTable, SeriesCutLongDescriptions) {
+  const Match m{{"SeriesNumber", "2"},
+                {"Modality", "PT"},
+                {"NumberOfSeriesRelatedInstances", "311"},
+                {"SeriesDescription", std::string(40, 'x')},
+                {"SeriesInstanceUID", "1.2.3.4"}};
+  EXPECT_EQ(printed({m}, false, true),
+            "number modality instances description                       SeriesInstanceUID\n"
+            "2      PT       311       " +
+                std::string(32, 'x') + "  1.2.3.4\n");
+}
+
+TEST(MatchTable, MissingValuesAreEmpty) {
+  EXPECT_EQ(printed({Match{}}, false, true),
+            "number modality instances description                       SeriesInstanceUID\n" +
+                std::string(60, ' ') + "\n");
+}
+
+TEST(MatchTable, JsonLines) {
+  const Match a{{"Modality", "CT"}}, b{{"Modality", "PT"}, {"SeriesNumber", "2"}};
+  EXPECT_EQ(printed({a, b}, true, true),
+            "{\"Modality\":\"CT\"}\n{\"Modality\":\"PT\",\"SeriesNumber\":\"2\"}\n");
+  EXPECT_EQ(printed({}, true, false), "");
+}
+
+TEST(MatchTable, TransferSummary) {
+  Transfer t;
+  t.instances = 3;
+  t.bytes = 1200000;
+  t.seconds = 0.05;
+  EXPECT_EQ(transferSummary("stored", t), "stored 3 instances, 1.2 MB in 0.05 s (24.0 MB/s)");
+  t.seconds = 0.0;
+  EXPECT_EQ(transferSummary("retrieved", t), "retrieved 3 instances, 1.2 MB in 0.00 s (0.0 MB/s)");
+}
+
+}  // namespace
+}  // namespace mvw::pacs
