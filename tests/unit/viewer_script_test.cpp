@@ -209,8 +209,9 @@ TEST(ViewerScriptTable, EveryCommandParsesItsExample) {
     EXPECT_NE(s.commands()[0].kind, Kind::Nothing);
     kinds.insert(s.commands()[0].kind);
     // A command whose arguments are not all optional complains without them.
-    if (*info.arguments && *info.arguments != '[')
+    if (*info.arguments && *info.arguments != '[') {
       EXPECT_NE(problemOf(info.name).find("missing"), std::string::npos);
+    }
   }
   EXPECT_EQ(kinds.size(), static_cast<std::size_t>(Kind::Quit))  // every kind but Nothing
       << "a command kind without an entry in the table";
