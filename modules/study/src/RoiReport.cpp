@@ -198,7 +198,7 @@ void printTotal(std::ostream& out, const RoiTotal& t) {
 
 Volume readMeasuredVolume(const fs::path& source, bool anatomical, const io::ReadOptions& options,
                           const pacs::Options& pacs) {
-  if (source.extension() != ".json") return io::readVolume(source, options);
+  if (!isStudyConfig(source)) return io::readVolume(source, options);
   const auto study = config::loadStudyConfig(source);
   if (anatomical) return readAnatomical(study.anatomical, options, pacs);
   if (!study.functional)

@@ -118,4 +118,6 @@ Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& option
   return s;
 }
 
+bool isStudyConfig(const std::filesystem::path& path) { return path.extension() == ".json"; }
+
 }  // namespace mvw::study

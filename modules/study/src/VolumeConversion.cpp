@@ -29,8 +29,6 @@ std::string volumeName(const ConversionRequest& request) {
 
 }  // namespace
 
-bool isStudyConfig(const fs::path& path) { return path.extension() == ".json"; }
-
 fs::path sidecarOf(const fs::path& output) {
   const std::string name = output.filename().string();
   for (const char* ext : {".nii.gz", ".nii", ".mha"})

@@ -104,7 +104,7 @@ std::vector<ReportedVolume> readReportedVolumes(const std::vector<std::filesyste
                                                 const pacs::Options& pacs) {
   std::vector<ReportedVolume> volumes;
   for (const auto& p : paths) {
-    if (p.extension() == ".json") {
+    if (isStudyConfig(p)) {
       const auto study = config::loadStudyConfig(p);
       volumes.push_back({"anatomical", readSource(study.anatomical, options, pacs)});
       if (study.functional)

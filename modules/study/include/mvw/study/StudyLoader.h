@@ -1,6 +1,8 @@
 #pragma once
 // Reading a study's volumes into a core Study: each source with its own DICOM series choice.
 // `mvw render`, `mvw view`, `mvw info`, `mvw bench` and `mvw validate` all read through here.
+#include <filesystem>
+
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Study.h"
 #include "mvw/core/Volume.h"
@@ -35,6 +37,10 @@ Volume readAnatomical(const config::VolumeSource& source, io::ReadOptions option
 // study's functional volume reads it here.
 Volume readFunctional(const config::StudyConfig& config, io::ReadOptions options,
                       const pacs::Options& pacs);
+
+// A path names a study config when it is a .json file (every command that takes a volume or a
+// study decides so here).
+bool isStudyConfig(const std::filesystem::path& path);
 
 // Both volumes of the study (the functional one when the config names it: readFunctional).
 Study loadStudy(const config::StudyConfig& config, const io::ReadOptions& options,

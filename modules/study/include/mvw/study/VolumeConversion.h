@@ -12,6 +12,7 @@
 #include "mvw/core/Volume.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/pacs/Pacs.h"
+#include "mvw/study/StudyLoader.h"  // isStudyConfig
 
 namespace mvw::study {
 
@@ -23,9 +24,6 @@ struct ConversionRequest {
   std::string volume;            // of a study config: "" (anatomical), functional, segmentation
   bool suv = true;               // PET values in SUVbw (else Bq/ml)
 };
-
-// A study config is a .json file.
-bool isStudyConfig(const std::filesystem::path& path);
 
 // OUT.nii.gz -> OUT.json (dcm2niix's sidecar name); empty for an extension mvw does not write.
 std::filesystem::path sidecarOf(const std::filesystem::path& output);
