@@ -260,8 +260,9 @@ TEST(RoiReport, TheSegOfAMetabolicVolume) {
   request.threshold = {Threshold::Kind::Absolute, 4.0};
   const RoiSegmentation seg = roiSegmentation(v, roiReport(v, request, "tiny.nii", kNoNote));
   ASSERT_EQ(seg.segments.size(), 1u);
-  EXPECT_EQ(seg.segments[0].label, "metabolic volume >= 4 Bq/ml");
-  EXPECT_EQ(seg.segments[0].description, "box 0.0, 0.0, 0.0 .. 2.0, 2.0, 0.0 mm LPS");
+  EXPECT_EQ(seg.segments[0].label, "");  // the SEG labels it by its code
+  EXPECT_EQ(seg.segments[0].description,
+            "metabolic volume >= 4 Bq/ml in box 0.0, 0.0, 0.0 .. 2.0, 2.0, 0.0 mm LPS");
   EXPECT_EQ(seg.segments[0].voxels, VoxelList({4, 5}));
   EXPECT_TRUE(seg.segments[0].metabolic);
   EXPECT_EQ(seg.algorithm, "mvw stats, threshold 4 Bq/ml");

@@ -95,8 +95,10 @@ void setGrid(DcmSegmentation& seg, const Volume& grid, const std::filesystem::pa
         "Dimension Index");
 }
 
-// One segment: its description and a frame per slice of the grid, each with its position and
-// the source image it lies on; its bits appended to `packed` from `bit` on (returned advanced).
+// One segment: its label and description, and a frame for each slice of the grid that holds a
+// voxel of it (the SEG IOD lets a segment leave out empty frames: a 153-voxel lesion of a
+// 299-slice PET is a few frames, not 299), each with its position and the source image it lies
+// on; its bits appended to `packed` from `bit` on (returned advanced).
 std::size_t addSegment(DcmSegmentation& seg, const SegmentMask& mask, const Volume& grid,
                        const DicomIdentity& source, const std::string& algorithm,
                        std::vector<Uint8>& packed, std::size_t bit) {
@@ -104,12 +106,15 @@ std::size_t addSegment(DcmSegmentation& seg, const SegmentMask& mask, const Volu
   const std::size_t slice = static_cast<std::size_t>(dims.x) * dims.y;
   std::vector<Uint8> frame(slice);
   DcmSegment* segment = nullptr;
-  const bool metabolic = mask.metabolic;
+  // The segmented property type (SCT), and the label of a segment that has none of its own: what
+  // its code says it is.
+  const char* typeCode = mask.metabolic ? "108369006" : "52988006";
+  const char* typeMeaning = mask.metabolic ? "Neoplasm" : "Lesion";
+  const std::string label = mask.label.empty() ? typeMeaning : mask.label;
   check(
-      DcmSegment::create(segment, mask.label.substr(0, 64).c_str(),
+      DcmSegment::create(segment, label.substr(0, 64).c_str(),
                          CodeSequenceMacro("49755003", "SCT", "Morphologically Altered Structure"),
-                         metabolic ? CodeSequenceMacro("108369006", "SCT", "Neoplasm")
-                                   : CodeSequenceMacro("52988006", "SCT", "Lesion"),
+                         CodeSequenceMacro(typeCode, "SCT", typeMeaning),
                          DcmSegTypes::SAT_SEMIAUTOMATIC, algorithm.substr(0, 64).c_str()),
       "Segment");
   if (!mask.description.empty())
@@ -121,8 +126,11 @@ std::size_t addSegment(DcmSegmentation& seg, const SegmentMask& mask, const Volu
   std::vector<std::vector<std::size_t>> bySlice(static_cast<std::size_t>(dims.z));
   for (std::size_t v : mask.voxels) bySlice[v / slice].push_back(v % slice);
   for (int k = 0; k < dims.z; ++k) {
+    const auto& voxels = bySlice[static_cast<std::size_t>(k)];
+    if (voxels.empty()) continue;
     std::fill(frame.begin(), frame.end(), Uint8{0});
-    for (std::size_t p : bySlice[static_cast<std::size_t>(k)]) {
+    packed.resize((bit + slice + 7) / 8, Uint8{0});
+    for (std::size_t p : voxels) {
       frame[p] = 1;
       packed[(bit + p) / 8] |= static_cast<Uint8>(1u << ((bit + p) % 8));
     }
@@ -187,13 +195,12 @@ void writeSegmentation(const std::filesystem::path& file, const Volume& grid,
   setIdentity(*seg, source, series);
   setGrid(*seg, grid, file);
 
-  const std::size_t slice = static_cast<std::size_t>(dims.x) * dims.y;
   // The frames' bits as the standard packs them: one stream, frame after frame, with no padding
   // between frames (PS3.5 8.1.1). DCMTK 3.6.7 pads each frame to a whole byte and cuts the
   // total, which shifts every frame after the first by a bit per frame when rows x columns is
   // not a multiple of 8 (DicomOut.SegReadBackVoxelForVoxel, 23 x 17 frames: 792 voxels wrong),
   // so the pixel data is written again from this stream below.
-  std::vector<Uint8> packed((slice * segments.size() * static_cast<std::size_t>(dims.z) + 7) / 8);
+  std::vector<Uint8> packed;
   std::size_t bit = 0;
   for (const SegmentMask& mask : segments)
     bit = addSegment(*seg, mask, grid, source, algorithm, packed, bit);
@@ -202,7 +209,8 @@ void writeSegmentation(const std::filesystem::path& file, const Volume& grid,
   DcmFileFormat ff;
   DcmDataset& dataset = *ff.getDataset();
   check(seg->writeDataset(dataset), file.string() + ": DICOM SEG");
-  MVW_CHECK_EQ(bit, slice * static_cast<std::size_t>(dims.z) * segments.size());
+  MVW_CHECK_EQ(bit % (static_cast<std::size_t>(dims.x) * dims.y), std::size_t{0});
+  MVW_CHECK_EQ(packed.size(), (bit + 7) / 8);
   check(dataset.putAndInsertUint8Array(DCM_PixelData, packed.data(),
                                        static_cast<unsigned long>(packed.size())),
         "PixelData");

@@ -287,6 +287,7 @@ RoiSegmentation roiSegmentation(const Volume& volume, const RoiReport& report) {
   RoiSegmentation out;
   const std::string unit = volume.metadata().unit.empty() ? "" : " " + volume.metadata().unit;
   out.algorithm = "mvw stats";
+  std::string firstName;  // what the first segment is: its label, or the metabolic volume
   for (std::size_t i = 0; i < report.rois.size(); ++i) {
     const ReportedRoi& roi = report.rois[i];
     RoiSegment m;
@@ -294,7 +295,10 @@ RoiSegmentation roiSegmentation(const Volume& volume, const RoiReport& report) {
     if (const auto& threshold = report.stats[i].thresholdValue) {
       m.voxels = metabolicVoxels(volume, roi.voxels, *threshold);
       m.metabolic = true;
-      m.label = "metabolic volume >= " + num(*threshold) + unit;
+      // Labelled by its code (Neoplasm, dicomout); the threshold and the ROI describe it.
+      const std::string name = "metabolic volume >= " + num(*threshold) + unit;
+      m.description = name + " in " + roi.what;
+      if (i == 0) firstName = name;
       out.algorithm =
           report.threshold.kind == Threshold::Kind::FractionOfMax
               ? "mvw stats, threshold " + num(report.threshold.value * 100) + " % of max"
@@ -302,13 +306,14 @@ RoiSegmentation roiSegmentation(const Volume& volume, const RoiReport& report) {
     } else {
       m.voxels = roi.voxels;
       m.label = roi.label ? roi.label->name : roi.what;
+      if (i == 0) firstName = m.label;
       out.algorithm = "mvw stats, ROI";
     }
     out.segments.push_back(std::move(m));
   }
   out.seriesDescription =
       out.segments.size() == 1
-          ? "mvw " + out.segments.front().label
+          ? "mvw " + firstName
           : "mvw segmentation (" + std::to_string(out.segments.size()) + " segments)";
   return out;
 }

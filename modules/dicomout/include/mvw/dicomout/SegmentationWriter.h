@@ -1,8 +1,9 @@
 #pragma once
-// Masks on a volume's grid as a binary DICOM Segmentation (SEG): one frame per slice and
-// segment, placed by each frame's position and the grid's orientation, referencing the source
-// images at the same positions; segment category and type coded (SCT: Morphologically Altered
-// Structure / Lesion or Neoplasm), the algorithm named.
+// Masks on a volume's grid as a binary DICOM Segmentation (SEG): a frame for each slice that holds
+// a voxel of a segment (empty frames are left out, as the SEG IOD allows), placed by its position
+// and the grid's orientation, referencing the source image at the same position; segment
+// category and type coded (SCT: Morphologically Altered Structure / Lesion or Neoplasm), the
+// algorithm named.
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -15,7 +16,7 @@
 namespace mvw::dicomout {
 
 struct SegmentMask {
-  std::string label;                // SegmentLabel
+  std::string label;                // SegmentLabel; "" labels it by its type's code meaning
   std::string description;          // SegmentDescription ("" for none)
   std::vector<std::size_t> voxels;  // linear indices on the grid (Volume::linearIndex)
   bool metabolic = false;           // a threshold's metabolic volume: type Neoplasm, else Lesion

@@ -90,7 +90,8 @@ nlohmann::json roiReportJson(const RoiReport& report);
 void printRoiReport(std::ostream& out, const Volume& volume, const RoiReport& report);
 
 // One segment of the SEG `mvw stats --seg` writes: an ROI, or with a threshold its metabolic
-// volume (dicomout::SegmentMask's fields).
+// volume (dicomout::SegmentMask's fields). A metabolic volume has no label of its own (the SEG
+// labels it by its code) and says its threshold and ROI in the description.
 struct RoiSegment {
   std::string label, description;
   VoxelList voxels;
