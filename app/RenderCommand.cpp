@@ -7,6 +7,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +22,7 @@ struct RenderOptions {
   std::string study;
   std::string outDir;
   mvw::study::ViewOverrides overrides;
+  std::vector<std::string> onlyViews;
   std::string gl;  // --gl (empty: MVW_GL, else auto)
   std::string gradient = "auto";
   DicomOutputOptions dicom;
@@ -33,6 +35,7 @@ void runRender(const RenderOptions& o) {
   request.study = o.study;
   request.outDir = o.outDir;
   request.overrides = o.overrides;
+  request.onlyViews = o.onlyViews;
   request.gl = o.gl;
   request.gradient = o.gradient;
   request.dicom = o.dicom.dicom;
@@ -50,6 +53,11 @@ void addRenderCommand(CLI::App& app, const pacs::Options& pacs) {
       "render", "Render the views of a study config headless (EGL or OSMesa) to PNG + render.json");
   cmd->add_option("study", o->study, "Study config (.json)")->required();
   cmd->add_option("-o,--output", o->outDir, "Output folder")->required();
+  cmd->add_option("--only-view", o->onlyViews,
+                  "Render only the view of this name (repeat for several); --view is a camera "
+                  "direction")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--mode", o->overrides.mode,
                   "composite | isosurface | mip | minip | average | mpr | shells-mip | shells-sum "
                   "| shells-lit");

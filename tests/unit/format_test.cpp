@@ -25,4 +25,17 @@ TEST(Format, FixedNumber) {
 }
 
 }  // namespace
+TEST(Format, CountOf) {
+  EXPECT_EQ(countOf(0, "instance"), "0 instances");
+  EXPECT_EQ(countOf(1, "instance"), "1 instance");
+  EXPECT_EQ(countOf(2, "view"), "2 views");
+}
+
+TEST(Format, Clipped) {
+  EXPECT_EQ(clipped("short", 12), "short");
+  EXPECT_EQ(clipped("exactly12chr", 12), "exactly12chr");
+  EXPECT_EQ(clipped("P-0001234567890", 12), "P-0001234...");
+  EXPECT_EQ(clipped("abcdef", 2), "ab");
+}
+
 }  // namespace mvw

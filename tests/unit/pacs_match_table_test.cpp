@@ -25,7 +25,7 @@ TEST(MatchTable, Studies) {
   EXPECT_EQ(printed({m}, false, false),
             "patient                 patient id    date      modalities series  description      "
             "             StudyInstanceUID\n"
-            "Doe^Jane                P-0001234567  20240102  CT\\PT      3       PET-CT whole body "
+            "Doe^Jane                P-0001234...  20240102  CT\\PT      3       PET-CT whole body "
             "            1.2.3\n");
 }
 
@@ -38,7 +38,7 @@ TEST(MatchTable, SeriesCutLongDescriptions) {
   EXPECT_EQ(printed({m}, false, true),
             "number modality instances description                       SeriesInstanceUID\n"
             "2      PT       311       " +
-                std::string(32, 'x') + "  1.2.3.4\n");
+                std::string(29, 'x') + "...  1.2.3.4\n");
 }
 
 TEST(MatchTable, MissingValuesAreEmpty) {
@@ -62,6 +62,8 @@ TEST(MatchTable, TransferSummary) {
   EXPECT_EQ(transferSummary("stored", t), "stored 3 instances, 1.2 MB in 0.05 s (24.0 MB/s)");
   t.seconds = 0.0;
   EXPECT_EQ(transferSummary("retrieved", t), "retrieved 3 instances, 1.2 MB in 0.00 s (0.0 MB/s)");
+  t.instances = 1;
+  EXPECT_EQ(transferSummary("stored", t), "stored 1 instance, 1.2 MB in 0.00 s (0.0 MB/s)");
 }
 
 }  // namespace

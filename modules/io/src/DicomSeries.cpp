@@ -56,10 +56,16 @@ std::string lower(std::string s) {
   return s;
 }
 
+// SeriesNumber is type 2: present but empty means no number, as absent does (-1), not 0.
+int seriesNumberOf(const vtkDICOMValue& value) {
+  if (!value.IsValid() || value.AsString().find_first_not_of(' ') == std::string::npos) return -1;
+  return value.AsInt();
+}
+
 std::string describe(const SeriesRef& s) {
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
-  std::string out = "#";
-  out += std::to_string(s.number);
+  std::string out = s.number < 0 ? "(no number)" : "#";
+  if (s.number >= 0) out += std::to_string(s.number);
   out += " " + s.modality + " \"" + s.description + "\" (" + s.uid + ")";
   return out;
 }
@@ -172,7 +178,7 @@ SeriesRef seriesRefFrom(vtkDICOMMetaData* meta) {
   SeriesRef s;
   s.uid = meta->Get(DC::SeriesInstanceUID).AsString();
   s.description = meta->Get(DC::SeriesDescription).AsString();
-  s.number = meta->Get(DC::SeriesNumber).IsValid() ? meta->Get(DC::SeriesNumber).AsInt() : -1;
+  s.number = seriesNumberOf(meta->Get(DC::SeriesNumber));
   s.modality = meta->Get(DC::Modality).AsString();
   return s;
 }
@@ -239,7 +245,7 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
     s.index = i;
     s.uid = rec.Get(DC::SeriesInstanceUID).AsString();
     s.description = rec.Get(DC::SeriesDescription).AsString();
-    s.number = rec.Get(DC::SeriesNumber).IsValid() ? rec.Get(DC::SeriesNumber).AsInt() : -1;
+    s.number = seriesNumberOf(rec.Get(DC::SeriesNumber));
     vtkDICOMMetaData* meta = dir->GetMetaDataForSeries(i);
     s.modality = meta ? meta->Get(DC::Modality).AsString() : "";
     series.push_back(s);

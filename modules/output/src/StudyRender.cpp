@@ -173,10 +173,37 @@ std::vector<std::string> writeViewDicom(const study::PlannedView& v, const Image
   return names;
 }
 
+// Keeps only the views named (--only-view), in the config's order; a name the config lacks is
+// the user's error, answered with the names it has.
+void keepViews(config::StudyConfig& study, const std::vector<std::string>& names,
+               const fs::path& file) {
+  if (names.empty()) return;
+  std::string known;
+  for (const config::ViewConfig& v : study.render.views)
+    known += (known.empty() ? "" : ", ") + v.name;
+  for (const std::string& name : names) {
+    bool found = false;
+    for (const config::ViewConfig& v : study.render.views) found = found || v.name == name;
+    if (!found)
+      throw InputError(file, "--only-view " + name +
+                                 ": the config has no view of that name (its views: " + known +
+                                 ")");
+  }
+  std::vector<config::ViewConfig> kept;
+  for (config::ViewConfig& v : study.render.views)
+    for (const std::string& name : names)
+      if (v.name == name) {
+        kept.push_back(std::move(v));
+        break;
+      }
+  study.render.views = std::move(kept);
+}
+
 }  // namespace
 
 RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::ostream& log) {
   config::StudyConfig studyConfig = config::loadStudyConfig(request.study);
+  keepViews(studyConfig, request.onlyViews, request.study);
   checkOutputFolder(request.outDir);
   study::Session session(std::move(studyConfig), request.overrides);
   // The context before the volumes: a --gl this machine cannot give fails in milliseconds.

@@ -3,6 +3,8 @@
 #include <iostream>
 #include <mutex>
 
+#include <unistd.h>
+
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcdicent.h>
@@ -13,6 +15,7 @@
 
 #include "Internal.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 
 namespace fs = std::filesystem;
 
@@ -87,12 +90,17 @@ void Receiver::acceptFile(const fs::path& file) {
 void Receiver::report(bool final) {
   if (onProgress_ && !final) onProgress_(transfer());
   if (!progress_) return;
+  // A running line rewritten by carriage returns reads on a terminal only; in a log file it
+  // is one long line of overprinted counts, so a file gets the final line alone.
+  static const bool tty = ::isatty(STDERR_FILENO) != 0;
+  if (!final && !tty) return;
   const auto now = std::chrono::steady_clock::now();
   if (!final && now - lastReport_ < std::chrono::milliseconds(500)) return;
   lastReport_ = now;
   const double s = std::chrono::duration<double>(now - start_).count();
   const double mb = static_cast<double>(bytes_) / 1e6;
-  std::fprintf(stderr, "pacs: %zu instances, %.1f MB, %.1f MB/s%s", received_.size(), mb,
+  std::fprintf(stderr, "pacs: %s, %.1f MB, %.1f MB/s%s",
+               mvw::countOf(static_cast<long long>(received_.size()), "instance").c_str(), mb,
                s > 0 ? mb / s : 0.0, final ? "\n" : "\r");
   lineOpen_ = !final;
   std::fflush(stderr);

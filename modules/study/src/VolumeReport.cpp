@@ -46,7 +46,7 @@ nlohmann::json volumeJson(const Volume& volume) {
   if (md.format == "DICOM") {
     j["series_instance_uid"] = md.seriesInstanceUid;
     j["series_description"] = md.seriesDescription;
-    j["series_number"] = md.seriesNumber;
+    j["series_number"] = md.seriesNumber < 0 ? nlohmann::json() : nlohmann::json(md.seriesNumber);
   }
   if (md.sliceSpacing) {
     const auto& ss = *md.sliceSpacing;
@@ -67,7 +67,9 @@ void printVolume(std::ostream& out, const Volume& volume) {
   out << md.sourcePath << "\n";
   out << "  format       " << md.format << "\n";
   if (md.format == "DICOM")
-    out << "  series       #" << md.seriesNumber << " \"" << md.seriesDescription << "\"\n"
+    out << "  series       "
+        << (md.seriesNumber < 0 ? "(no number)" : "#" + std::to_string(md.seriesNumber)) << " \""
+        << md.seriesDescription << "\"\n"
         << "  series UID   " << md.seriesInstanceUid << "\n";
   else if (!md.seriesDescription.empty())
     out << "  description  \"" << md.seriesDescription << "\"\n";

@@ -21,4 +21,15 @@ inline std::string fixedNumber(double x, int decimals) {
   return text;
 }
 
+// "1 instance", "2 instances": a count with its noun, singular for one.
+inline std::string countOf(long long n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+// A table cell at most `width` characters: a longer text ends in "..." so a reader sees it was cut.
+inline std::string clipped(const std::string& text, std::size_t width) {
+  if (text.size() <= width) return text;
+  return width <= 3 ? text.substr(0, width) : text.substr(0, width - 3) + "...";
+}
+
 }  // namespace mvw

@@ -16,6 +16,7 @@ struct RenderRequest {
   std::filesystem::path study;   // the study config (.json)
   std::filesystem::path outDir;  // made if missing
   study::ViewOverrides overrides;
+  std::vector<std::string> onlyViews;  // render only these views, by name (empty: every view)
   std::string gl;                 // --gl (empty: MVW_GL, else auto): output::makeHeadlessContext
   std::string gradient = "auto";  // render::parseGradientSource
   // Also each view's still as a DICOM Secondary Capture and its orbit as one multi-frame SC,
