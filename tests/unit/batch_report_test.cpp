@@ -217,13 +217,20 @@ TEST(BatchReport, AnOrbitShowsItsFirstFrameWithALinkToTheRest) {
   std::ofstream(out / "o" / "mip.mp4") << "mp4";
   for (const char* f : {"frame-000.png", "frame-001.png", "frame-002.png"})
     std::ofstream(out / "o" / "mip" / f) << "png";
+  fs::create_directories(out / "o" / "vr");
+  std::ofstream(out / "o" / "vr.png") << "png";
+  std::ofstream(out / "o" / "vr" / "frame-000.png") << "png";
   std::ofstream(out / "o" / "render.json") << R"({"views": [{"file": "mip.png", "orbit": {
     "folder": "mip", "movie": "mip.mp4",
-    "files": ["mip/frame-000.png", "mip/frame-001.png", "mip/frame-002.png"]}}]})";
+    "files": ["mip/frame-000.png", "mip/frame-001.png", "mip/frame-002.png"]}},
+    {"file": "vr.png", "orbit": {"folder": "vr", "files": ["vr/frame-000.png"]}}]})";
   writeRecord(out / "o" / "done.json", doneRecord({&o, out / "o", {}, {"render"}}, kContext, 1.0));
   const std::string html = buildBatchReport(out).indexHtml;
   EXPECT_NE(html.find("<img loading=\"lazy\" src=\"o/mip.png\"></a><figcaption>mip · <a "
                       "href=\"o/mip/\">orbit: 3 frames</a> · <a href=\"o/mip.mp4\">movie</a>"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<figcaption>vr · <a href=\"o/vr/\">orbit: 1 frame</a></figcaption>"),
             std::string::npos)
       << html;
   EXPECT_EQ(html.find("frame-00"), std::string::npos);

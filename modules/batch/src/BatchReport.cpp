@@ -182,13 +182,18 @@ void figures(std::ostream& body, const fs::path& dir, const StudyResult& r) {
       std::string orbit;
       if (v.contains("orbit") && v["orbit"].is_object()) {
         const nlohmann::json& o = v["orbit"];
+        std::size_t frames = 0;
         if (o.contains("files") && o["files"].is_array())
           for (const auto& f : o["files"])
-            if (f.is_string()) orbitFrames.push_back(f);
+            if (f.is_string()) {
+              orbitFrames.push_back(f);
+              ++frames;
+            }
         const std::string folder = o.value("folder", ""), movie = o.value("movie", "");
         if (!folder.empty())
           orbit += " · <a href=\"" + html(r.id + "/" + folder) +
-                   "/\">orbit: " + std::to_string(orbitFrames.size()) + " frames</a>";
+                   "/\">orbit: " + std::to_string(frames) +
+                   (frames == 1 ? " frame</a>" : " frames</a>");
         if (!movie.empty()) orbit += " · <a href=\"" + html(r.id + "/" + movie) + "\">movie</a>";
       }
       if (v.contains("file") && v["file"].is_string() &&
