@@ -449,8 +449,10 @@ BatchReportCounts writeBatchReport(const fs::path& out, const BatchReportPaging&
       counts = report(out, paging, sinks);
       summary.close();
       stats.close();
+      // As writeTextAtomically says it: a full disk may only show when the last buffer goes out.
       if (!summary || !stats)
-        throw Error(out.string() + ": the report's CSV files cannot be written");
+        throw InputError(out / (summary ? "stats.csv" : "summary.csv"),
+                         "cannot write (disk full or not writable?)");
     });
   });
   // An earlier report's pages beyond this one's (they are numbered without gaps).
