@@ -28,7 +28,7 @@ struct BatchOptions {
   std::string manifest, out, shard, partition, time, mem;
   int shards = 0, jobs = 1, tasks = 0, throttle = 0;
   double timeoutS = 3600.0;
-  bool submit = false;
+  bool submit = false, verify = false;
 };
 
 }  // namespace
@@ -56,6 +56,9 @@ void addBatchCommand(CLI::App& app) {
   run->add_option("--jobs,-j", opt->jobs, "Studies at once")->check(CLI::Range(1, 256));
   run->add_option("--timeout", opt->timeoutS, "Seconds a study may take before it is killed")
       ->check(CLI::Range(1.0, 7 * 24 * 3600.0));
+  run->add_flag("--verify", opt->verify,
+                "Hash every input again (default: an input whose size, modification time and "
+                "inode are unchanged keeps the SHA-256 remembered in OUT/hashes/)");
   setCommandBody(*run, [opt] {
     const batch::BatchShard shard = batch::resolveBatchShard(opt->shard, opt->shards);
     const batch::BatchManifest manifest = batch::loadBatchManifest(opt->manifest);
@@ -66,6 +69,7 @@ void addBatchCommand(CLI::App& app) {
     o.timeoutS = opt->timeoutS;
     o.mvwExecutable = batch::selfExecutable();
     o.version = kVersion;
+    o.verify = opt->verify;
     const batch::BatchRunCounts counts = batch::runBatch(manifest, o, std::cout);
     // A failed study is neither bad input to this command nor an internal fault: exit 1, the
     // studies said why (mvw batch report lists them).
@@ -114,6 +118,9 @@ void addBatchCommand(CLI::App& app) {
     o.partition = opt->partition;
     o.time = opt->time;
     o.mem = opt->mem;
+    // The controller's limit is checked before anything is written or submitted: a larger array
+    // is the user's request to change, not the server's failure.
+    if (opt->submit) batch::checkSlurmArraySize(opt->tasks, batch::slurmMaxArraySize());
     const fs::path script = batch::writeSlurmScript(o);
     if (!opt->submit) {
       std::cout << script.string() << "\n";

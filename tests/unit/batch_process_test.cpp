@@ -137,6 +137,35 @@ TEST(BatchFolders, LeftoversOfThisStudyOnlyAreRemoved) {
   EXPECT_EQ(names(out), (std::set<std::string>{".work-ab-1", "a", "a-b", ".work-b-5"}));
 }
 
+TEST(BatchFolders, OneListingFindsEveryStudysLeftovers) {
+  const fs::path out = test::scratchDir();
+  for (const char* name : {".work-a-123", ".old-a-9", ".work-a-b-123", ".work-ab-1", "a", "a-b",
+                           ".work-b-5", ".workers"})
+    fs::create_directories(out / name);
+  const Leftovers found = findLeftovers(out);
+  EXPECT_EQ(found.size(), 4u);
+  EXPECT_EQ(found.at("a").size(), 2u);
+  EXPECT_EQ(found.at("a-b"), std::vector<fs::path>{out / ".work-a-b-123"});
+  removeLeftovers(found, "a");
+  removeLeftovers(found, "c");
+  EXPECT_EQ(names(out), (std::set<std::string>{".work-a-b-123", ".work-ab-1", "a", "a-b",
+                                               ".work-b-5", ".workers"}));
+}
+
+TEST(BatchProcess, AFailedStatsRunLeavesNoStatsJson) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "stats.json");
+  std::ofstream(dir / "log.txt") << "mvw: error: bad\n";
+  BatchStudy render;
+  render.task = "render";
+  discardFailedOutput(render, dir);
+  EXPECT_TRUE(fs::exists(dir / "stats.json"));
+  BatchStudy stats;
+  stats.task = "stats";
+  discardFailedOutput(stats, dir);
+  EXPECT_EQ(names(dir), std::set<std::string>{"log.txt"});
+}
+
 TEST(BatchFolders, PublishReplacesTheLastResultWhole) {
   const fs::path out = test::scratchDir();
   const fs::path work = workFolder(out, "a");

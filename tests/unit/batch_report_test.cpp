@@ -5,6 +5,7 @@
 #include <fstream>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -111,17 +112,22 @@ TEST(BatchReport, CountsAndSummaryOfEveryStudy) {
   EXPECT_EQ(r.counts.done, 2);
   EXPECT_EQ(r.counts.failed, 1);
   EXPECT_EQ(r.counts.notRun, 1);
+  // Every ROI's name (the count, then the names); the metabolic mean and TLG where stats.json has
+  // them (PetStatisticsReachTheTables).
   EXPECT_EQ(r.summaryCsv,
             "id,status,task,seconds,exit_code,message,roi,unit,voxels,volume_ml,max,mean,sd,peak,"
-            "metabolic_volume_ml\n"
-            "a,done,render,1.25,,,,,,,,,,,\n"
-            "b,failed,render,0,2,\"mvw: error: /cohort/b.nii: is <bad> & \"\"odd\"\"\",,,,,,,,,\n"
-            "c,not run,,,,,,,,,,,,,\n"
-            "d,done,stats,2.5,,,whole,SUV,100,1.5,3,1.25,0.5,2.5,0.75\n");
+            "metabolic_volume_ml,metabolic_mean,tlg,rois,roi_names\n"
+            "a,done,render,1.25,,,,,,,,,,,,,,,\n"
+            "b,failed,render,0,2,\"mvw: error: /cohort/b.nii: is <bad> & \"\"odd\"\"\",,,,,,,,,,,,,"
+            "\n"
+            "c,not run,,,,,,,,,,,,,,,,,\n"
+            "d,done,stats,2.5,,,whole,SUV,100,1.5,3,1.25,0.5,2.5,0.75,,,2,"
+            "\"whole; hippo, left\"\n");
   EXPECT_EQ(r.statsCsv,
-            "id,roi,label,unit,voxels,volume_ml,max,mean,sd,peak,metabolic_volume_ml\n"
-            "d,whole,,SUV,100,1.5,3,1.25,0.5,2.5,0.75\n"
-            "d,\"hippo, left\",37,SUV,10,0.15,2,1,0.25,1.5,0.05\n");
+            "id,roi,label,unit,voxels,volume_ml,max,mean,sd,peak,metabolic_volume_ml,"
+            "metabolic_mean,tlg\n"
+            "d,whole,,SUV,100,1.5,3,1.25,0.5,2.5,0.75,,\n"
+            "d,\"hippo, left\",37,SUV,10,0.15,2,1,0.25,1.5,0.05,,\n");
 }
 
 TEST(BatchReport, IndexHtmlListsFailuresViewsAndStatistics) {
@@ -175,6 +181,112 @@ TEST(BatchReport, WritesTheThreeFilesAndRefusesAFolderNotARun) {
         std::string(e.what()),
         empty.string() + ": holds no batch.json: it is not the output folder of `mvw batch run`");
   }
+}
+
+// OUT with one PET stats study: its metabolic mean and TLG reach both tables and its page.
+TEST(BatchReport, PetStatisticsReachTheTables) {
+  const fs::path out = test::scratchDir() / "out";
+  fs::create_directories(out / "pet");
+  writeBatchIndex(out, "/cohort/cohort.csv", {"pet"});
+  const BatchStudy pet = studyOf("pet", "stats");
+  std::ofstream(out / "pet" / "stats.json") << R"({"roi": "sphere", "unit": "SUVbw", "voxels": 8,
+    "volume_ml": 0.5, "max": 9, "mean": 4, "sd": 1, "peak": 7, "metabolic_volume_ml": 0.25,
+    "metabolic_mean": 6.5, "tlg": 1.625})";
+  writeRecord(out / "pet" / "done.json",
+              doneRecord({&pet, out / "pet", {}, {"stats"}}, kContext, 1.0));
+  const BatchReportFiles r = buildBatchReport(out);
+  EXPECT_NE(r.summaryCsv.find("\npet,done,stats,1,,,sphere,SUVbw,8,0.5,9,4,1,7,0.25,6.5,1.625,1,"
+                              "sphere\n"),
+            std::string::npos)
+      << r.summaryCsv;
+  EXPECT_NE(r.statsCsv.find("\npet,sphere,,SUVbw,8,0.5,9,4,1,7,0.25,6.5,1.625\n"),
+            std::string::npos)
+      << r.statsCsv;
+  EXPECT_NE(r.indexHtml.find("<th>metabolic_mean</th><th>tlg</th></tr>\n<tr><td>sphere</td>"),
+            std::string::npos);
+  EXPECT_NE(r.indexHtml.find("<td>6.5</td><td>1.625</td></tr>"), std::string::npos);
+}
+
+// An orbit shows its first frame (the view's still) and links to its frames and movie.
+TEST(BatchReport, AnOrbitShowsItsFirstFrameWithALinkToTheRest) {
+  const fs::path out = test::scratchDir() / "out";
+  fs::create_directories(out / "o" / "mip");
+  writeBatchIndex(out, "/cohort/cohort.csv", {"o"});
+  const BatchStudy o = studyOf("o", "render");
+  std::ofstream(out / "o" / "mip.png") << "png";
+  std::ofstream(out / "o" / "mip.mp4") << "mp4";
+  for (const char* f : {"frame-000.png", "frame-001.png", "frame-002.png"})
+    std::ofstream(out / "o" / "mip" / f) << "png";
+  fs::create_directories(out / "o" / "vr");
+  std::ofstream(out / "o" / "vr.png") << "png";
+  std::ofstream(out / "o" / "vr" / "frame-000.png") << "png";
+  std::ofstream(out / "o" / "render.json") << R"({"views": [{"file": "mip.png", "orbit": {
+    "folder": "mip", "movie": "mip.mp4",
+    "files": ["mip/frame-000.png", "mip/frame-001.png", "mip/frame-002.png"]}},
+    {"file": "vr.png", "orbit": {"folder": "vr", "files": ["vr/frame-000.png"]}}]})";
+  writeRecord(out / "o" / "done.json", doneRecord({&o, out / "o", {}, {"render"}}, kContext, 1.0));
+  const std::string html = buildBatchReport(out).indexHtml;
+  EXPECT_NE(html.find("<img loading=\"lazy\" src=\"o/mip.png\"></a><figcaption>mip · <a "
+                      "href=\"o/mip/\">orbit: 3 frames</a> · <a href=\"o/mip.mp4\">movie</a>"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<figcaption>vr · <a href=\"o/vr/\">orbit: 1 frame</a></figcaption>"),
+            std::string::npos)
+      << html;
+  EXPECT_EQ(html.find("frame-00"), std::string::npos);
+}
+
+// A cohort larger than a page: the index holds the counts, the failures by message, the
+// durations and the pages; each page its studies, linked to its neighbours.
+TEST(BatchReport, ALargeCohortIsPagedAndItsFailuresGroupedByMessage) {
+  const fs::path out = test::scratchDir() / "out";
+  std::vector<std::string> ids;
+  for (int k = 0; k < 7; ++k) {
+    const std::string id = "s" + std::to_string(k);
+    ids.push_back(id);
+    fs::create_directories(out / id);
+    const BatchStudy s = studyOf(id, "render");
+    if (k % 2)
+      writeRecord(out / id / "failed.json",
+                  failedRecord({&s, out / id, {}, {"render"}}, kContext, 2,
+                               k == 5 ? "mvw: error: other" : "mvw: error: same", 0.5));
+    else
+      writeRecord(out / id / "done.json",
+                  doneRecord({&s, out / id, {}, {"render"}}, kContext, 3.0 + k));
+  }
+  writeBatchIndex(out, "/cohort/cohort.csv", ids);
+  const BatchReportFiles r = buildBatchReport(out, {3, 1'000'000});
+  ASSERT_EQ(r.pages.size(), 3u);
+  EXPECT_EQ(r.pages[0].first, "page-0001.html");
+  EXPECT_EQ(r.pages[2].first, "page-0003.html");
+  const auto has = [](const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+  };
+  EXPECT_TRUE(
+      has(r.indexHtml,
+          "<li>2 studies: exit 2: mvw: error: same<br><a href=\"page-0001.html#s1\">s1</a>, "
+          "<a href=\"page-0002.html#s3\">s3</a></li>\n"
+          "<li><a href=\"page-0002.html#s5\">s5</a>: exit 2: mvw: error: other</li>\n"))
+      << r.indexHtml;
+  EXPECT_TRUE(has(r.indexHtml, "<tr><td>&lt; 1 s</td><td>3</td>"));
+  EXPECT_TRUE(has(r.indexHtml, "<tr><td>2-5 s</td><td>1</td>"));
+  EXPECT_TRUE(has(r.indexHtml, "<tr><td>5-10 s</td><td>3</td>"));
+  EXPECT_TRUE(has(r.indexHtml,
+                  "<li><a href=\"page-0003.html\">s6 … s6</a>: 1 done, 0 failed, "
+                  "0 not run</li>"));
+  EXPECT_FALSE(has(r.indexHtml, "<section"));
+  EXPECT_TRUE(has(r.pages[1].second,
+                  "<a href=\"index.html\">index</a> · <a "
+                  "href=\"page-0001.html\">previous</a> · <a "
+                  "href=\"page-0003.html\">next</a>"));
+  EXPECT_TRUE(has(r.pages[1].second, "<section id=\"s3\""));
+  EXPECT_FALSE(has(r.pages[2].second, "next</a>"));
+  // Written: the pages beside index.html; a smaller report later removes them.
+  writeBatchReport(out, {3, 1'000'000});
+  EXPECT_TRUE(fs::exists(out / "page-0003.html"));
+  writeBatchReport(out);
+  EXPECT_FALSE(fs::exists(out / "page-0001.html"));
+  EXPECT_TRUE(has(buildBatchReport(out).indexHtml, "<section id=\"s6\""));
 }
 
 }  // namespace

@@ -13,17 +13,28 @@ fs::path workFolder(const fs::path& out, const std::string& id) {
   return out / (".work-" + id + "-" + std::to_string(::getpid()));
 }
 
-void removeLeftovers(const fs::path& out, const std::string& id) {
-  std::vector<fs::path> stale;
+Leftovers findLeftovers(const fs::path& out) {
+  Leftovers found;
   for (const auto& e : fs::directory_iterator(out)) {
     const std::string name = e.path().filename().string();
-    for (const char* prefix : {".work-", ".old-"}) {
-      const std::string p = std::string(prefix) + id + "-";
-      if (name.rfind(p, 0) == 0 && name.find('-', p.size()) == std::string::npos)
-        stale.push_back(e.path());
+    for (const std::string prefix : {".work-", ".old-"}) {
+      // The id is what lies between the prefix and the last '-' (the pid follows it).
+      const auto dash = name.rfind('-');
+      if (name.rfind(prefix, 0) == 0 && dash != std::string::npos && dash >= prefix.size())
+        found[name.substr(prefix.size(), dash - prefix.size())].push_back(e.path());
     }
   }
-  for (const auto& p : stale) fs::remove_all(p);
+  return found;
+}
+
+void removeLeftovers(const Leftovers& leftovers, const std::string& id) {
+  const auto it = leftovers.find(id);
+  if (it == leftovers.end()) return;
+  for (const auto& p : it->second) fs::remove_all(p);
+}
+
+void removeLeftovers(const fs::path& out, const std::string& id) {
+  removeLeftovers(findLeftovers(out), id);
 }
 
 void publish(const fs::path& work, const fs::path& out, const std::string& id) {

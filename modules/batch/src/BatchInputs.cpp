@@ -4,7 +4,6 @@
 #include <vector>
 
 #include "mvw/config/StudyConfig.h"
-#include "mvw/process/Sha256.h"
 
 namespace mvw::batch {
 
@@ -16,9 +15,12 @@ const char* const kRole = "an input of a batch study";
 
 }  // namespace
 
-std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study) {
+std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study,
+                                                       BatchHashCache* cache) {
+  BatchHashCache none;
+  BatchHashCache& hashes = cache ? *cache : none;
   std::map<std::string, std::string> sums;
-  sums[study.study.string()] = process::fileSha256(study.study, kRole);
+  sums[study.study.string()] = hashes.fileSha256(study.study, kRole);
   std::vector<fs::path> paths;
   if (study.study.extension() == ".json") {
     const config::StudyConfig config = config::loadStudyConfig(study.study);
@@ -36,7 +38,7 @@ std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study) 
   }
   for (const auto& p : paths) {
     const fs::path abs = fs::absolute(p).lexically_normal();
-    if (!sums.count(abs.string())) sums[abs.string()] = process::pathSha256(abs, kRole);
+    if (!sums.count(abs.string())) sums[abs.string()] = hashes.pathSha256(abs, kRole);
   }
   return sums;
 }

@@ -90,6 +90,11 @@ process::JobFunction mvwJobFunction(const fs::path& executable) {
   };
 }
 
+void discardFailedOutput(const BatchStudy& study, const fs::path& work) {
+  std::error_code ec;
+  if (study.task == "stats") fs::remove(work / "stats.json", ec);
+}
+
 std::string batchFailureMessage(const process::ProcessResult& result, const fs::path& log,
                                 double timeoutS) {
   std::string message = lastMessage(log);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mvw/batch/BatchFolders.h"
+#include "mvw/batch/BatchHashCache.h"
 #include "mvw/batch/BatchInputs.h"
 #include "mvw/batch/BatchProcess.h"
 #include "mvw/batch/BatchRecord.h"
@@ -51,21 +52,29 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
   };
   auto recordFailure = [&](const StudyRun& run, int status, const std::string& message,
                            double seconds) {
+    discardFailedOutput(*run.study, run.work);
     writeRecord(run.work / "failed.json", failedRecord(run, context, status, message, seconds));
     publish(run.work, out, run.study->id);
     ++counts.failed;
     line(run.study->id, "failed (exit " + std::to_string(status) + "): " + message);
   };
 
+  // OUT is listed once here, not once per study: the cost per study stays flat at any size.
+  const Leftovers leftovers = findLeftovers(out);
+  const int count = options.shard.count;
+  BatchHashCache hashes(out / "hashes",
+                        count == 1 ? std::string("all.tsv")
+                                   : "shard-" + std::to_string(options.shard.index) + "-of-" +
+                                         std::to_string(count) + ".tsv",
+                        options.verify);
   for (const BatchStudy* study : mine) {
-    removeLeftovers(out, study->id);
+    removeLeftovers(leftovers, study->id);
     StudyRun run{study, workFolder(out, study->id), {}, {}};
-    fs::create_directories(run.work);
     // A study whose inputs cannot be read fails as its process would: the same code and message.
     std::ostringstream problem;
     const int status = runReportingErrors(
         [&] {
-          run.inputs = batchInputChecksums(*study);
+          run.inputs = batchInputChecksums(*study, &hashes);
           run.command = batchCommand(*study, run.work);
           return kExitSuccess;
         },
@@ -73,18 +82,20 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
     if (status != kExitSuccess) {
       std::string message = problem.str();
       if (!message.empty() && message.back() == '\n') message.pop_back();
+      fs::create_directories(run.work);
       recordFailure(run, status, message, 0.0);
       continue;
     }
     if (decideStudy(out / study->id, *study, run.inputs) == StudyAction::kSkip) {
-      fs::remove_all(run.work);
       ++counts.skipped;
       line(study->id, "done before, skipped");
       continue;
     }
+    fs::create_directories(run.work);
     jobs.push_back(batchJob(*study, run.work, run.command));
     pending.push_back(std::move(run));
   }
+  hashes.save();
 
   pool.run(jobs, std::max(1, options.jobs), options.timeoutS,
            [&](std::size_t k, const process::ProcessResult& result) {

@@ -43,6 +43,41 @@ std::string controller() {
 
 }  // namespace
 
+int parseMaxArraySize(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string key, eq, value;
+    if (words >> key >> eq >> value && key == "MaxArraySize" && eq == "=" &&
+        value.find_first_not_of("0123456789") == std::string::npos && value.size() < 10)
+      return std::stoi(value);
+  }
+  return 0;
+}
+
+int slurmMaxArraySize() {
+  FILE* pipe = ::popen("scontrol show config 2>/dev/null", "r");
+  if (!pipe) return 0;
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = ::pclose(pipe);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return 0;
+  return parseMaxArraySize(output);
+}
+
+void checkSlurmArraySize(int tasks, int maxArraySize) {
+  if (maxArraySize <= 0 || tasks <= maxArraySize) return;
+  throw InputError("--tasks " + std::to_string(tasks),
+                   "is more than one Slurm array may hold on " + controller() +
+                       ": its MaxArraySize is " + std::to_string(maxArraySize) + " (task ids 0-" +
+                       std::to_string(maxArraySize - 1) + "); give --tasks " +
+                       std::to_string(maxArraySize) +
+                       " or fewer (each task runs a shard of the manifest, so fewer tasks still "
+                       "cover every study)");
+}
+
 std::string slurmScript(const SlurmJobOptions& o) {
   const fs::path out = fs::absolute(o.out).lexically_normal();
   const fs::path manifest = fs::absolute(o.manifest).lexically_normal();

@@ -5,15 +5,26 @@
 // that study deletes before it starts.
 #include <filesystem>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 namespace mvw::batch {
 
 // OUT/.work-<id>-<pid> for this process.
 std::filesystem::path workFolder(const std::filesystem::path& out, const std::string& id);
 
-// Deletes what a killed run of this study left: OUT/.work-<id>-* and OUT/.old-<id>-* (the part
-// after the id holding no '-', so study "a" never takes study "a-b"'s folders). Shards are
-// disjoint, so no other live task works on this id.
+// What killed runs left in OUT, by study id: OUT/.work-<id>-* and OUT/.old-<id>-* (the part
+// after the id holding no '-', so study "a" never takes study "a-b"'s folders). A run lists OUT
+// once with findLeftovers, not once per study: a cohort's rerun beside 100,000 folders would
+// otherwise cost studies x folders.
+using Leftovers = std::unordered_map<std::string, std::vector<std::filesystem::path>>;
+Leftovers findLeftovers(const std::filesystem::path& out);
+
+// Deletes the leftovers of this study. Shards are disjoint, so no other live task works on this
+// id.
+void removeLeftovers(const Leftovers& leftovers, const std::string& id);
+
+// The same for one study, listing OUT.
 void removeLeftovers(const std::filesystem::path& out, const std::string& id);
 
 // Moves the finished work folder into OUT/<id>. The old result steps aside first, so no moment

@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 
+#include "mvw/batch/BatchHashCache.h"
 #include "mvw/batch/BatchManifest.h"
 
 namespace mvw::batch {
@@ -11,7 +12,8 @@ namespace mvw::batch {
 // SHA-256 of the study config and of every local file it and the options name (a folder: every
 // file in it, in name order: process::pathSha256), keyed by absolute path. Throws InputError
 // naming a file that cannot be read ("an input of a batch study") or a study config that is
-// not valid.
-std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study);
+// not valid. With a cache, a file whose stat is unchanged keeps its remembered hash.
+std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study,
+                                                       BatchHashCache* cache = nullptr);
 
 }  // namespace mvw::batch

@@ -25,6 +25,10 @@ process::ProcessJob batchJob(const BatchStudy& study, const std::filesystem::pat
 // message when it cannot be started).
 process::JobFunction mvwJobFunction(const std::filesystem::path& exe);
 
+// Removes what a failed run wrote that is no result: the stdout file of a stats run (stats.json,
+// empty or cut short). The log and the markers stay.
+void discardFailedOutput(const BatchStudy& study, const std::filesystem::path& work);
+
 // The message of a failed run for failed.json and the report: the last line the command said
 // ("mvw: error: ..." when there is one), after why it was killed when it was.
 std::string batchFailureMessage(const process::ProcessResult& result,

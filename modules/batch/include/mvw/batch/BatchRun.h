@@ -5,7 +5,8 @@
 // its command has ended (BatchFolders), with OUT/<id>/done.json or OUT/<id>/failed.json
 // (BatchRecord): a killed run leaves only work folders, which the next run of that study
 // deletes. A done study is skipped while its inputs and its manifest line are unchanged
-// (BatchResume, on BatchInputs' checksums).
+// (BatchResume, on BatchInputs' checksums, reused from OUT/hashes/ while a file's stat is
+// unchanged: BatchHashCache). OUT is listed once per run, whatever the cohort's size.
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -22,6 +23,7 @@ struct BatchRunOptions {
   double timeoutS = 3600.0;             // per study; then it is killed and failed
   std::filesystem::path mvwExecutable;  // what each study runs (the caller's own binary)
   std::string version;                  // mvw's version, recorded in the markers
+  bool verify = false;                  // hash every input again, trusting no remembered hash
 };
 
 struct BatchRunCounts {

@@ -26,6 +26,21 @@ std::string slurmScript(const SlurmJobOptions& options);
 // returns its path. Throws InputError naming OUT when it cannot be made.
 std::filesystem::path writeSlurmScript(const SlurmJobOptions& options);
 
+// MaxArraySize from the text of `scontrol show config` ("MaxArraySize = 1001"); 0 when it does
+// not say.
+int parseMaxArraySize(const std::string& scontrolConfig);
+
+// The controller's MaxArraySize, asked with `scontrol show config` before submitting; 0 when
+// scontrol is missing or cannot reach the controller (sbatch then says what is wrong).
+int slurmMaxArraySize();
+
+// Throws InputError naming --tasks (exit 2) when `tasks` array tasks (ids 0..tasks-1) do not fit
+// one array of a controller whose MaxArraySize is `maxArraySize` (ids 0..MaxArraySize-1), saying
+// the limit and the largest --tasks allowed. The job is refused rather than split into several
+// arrays: one job id stays the one thing to watch, cancel and resubmit, and fewer tasks still
+// cover every study (each runs a shard). No check when `maxArraySize` is 0 (unknown).
+void checkSlurmArraySize(int tasks, int maxArraySize);
+
 // The scheduler could not be reached or refused the job: exit 3, naming the server.
 class SchedulerError : public ServiceError {
  public:
