@@ -11,6 +11,7 @@
 
 #include "mvw/config/ServerList.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/pacs/MatchTable.h"
 #include "mvw/pacs/Pacs.h"
 
@@ -132,6 +133,27 @@ void addPacsCommand(CLI::App& app) {
   store->callback([o] {
     const pacs::Server server = config::resolveServer(o->server);
     std::cout << pacs::transferSummary("stored", pacs::store(server, o->files, o->options)) << "\n";
+  });
+
+  // The cache folder is main's --cache (given before or after the command's name).
+  CLI::App* cache = cmd->add_subcommand(
+      "cache",
+      "The cache of PACS series: its folder and its quarantine (series whose files failed to "
+      "read after they were cached; each is retrieved again on its next read)");
+  auto clear = std::make_shared<bool>(false);
+  cache->add_flag("--clear-quarantine", *clear, "empty the quarantine");
+  cache->callback([&app, clear] {
+    pacs::Options options;
+    if (const CLI::Option* given = app.get_option_no_throw("--cache"); given && given->count())
+      options.cacheDir = given->as<std::string>();
+    const std::filesystem::path quarantine = pacs::quarantineRoot(options);
+    const pacs::QuarantineSize size =
+        *clear ? pacs::clearQuarantine(options) : pacs::quarantineSize(options);
+    const std::string held = std::to_string(size.series) + " series, " +
+                             fixedNumber(static_cast<double>(size.bytes) / 1e6, 1) + " MB";
+    std::cout << "cache: " << pacs::cacheRoot(options).string() << "\n"
+              << (*clear ? "quarantine emptied: " : "quarantine: ") << quarantine.string() << " ("
+              << held << ")\n";
   });
 }
 

@@ -207,6 +207,11 @@ std::string reason(long status) {
   }
 }
 
+// What to check when a server's own API, not its DICOMweb root, answered (issue 51).
+const char* const kCheckRoot =
+    " (check that the URL is the server's DICOMweb root, the path before /studies: Orthanc's is "
+    "http://host:port/dicom-web)";
+
 Response request(const Server& server, const std::string& url, const std::string& accept,
                  std::size_t limit, const Options& options, const std::string* postBody = nullptr,
                  const std::string& postType = "", const BodyStream* stream = nullptr) {
@@ -266,7 +271,13 @@ Response request(const Server& server, const std::string& url, const std::string
   if (type) r.contentType = type;
   if (r.status >= 300) {
     const std::string said = printable(r.body, 200);
+    // A study-level search every DICOMweb server answers: refused, the URL is likely not its
+    // root (Orthanc's own API answers /studies?limit=1 with HTTP 400).
+    const std::string studies = server.baseUrl + "/studies";
+    const bool studyQuery = url.compare(0, studies.size(), studies) == 0 &&
+                            (url.size() == studies.size() || url[studies.size()] == '?');
     throw ServiceError(server.text + ": HTTP " + std::to_string(r.status) + " " + reason(r.status) +
+                       ((r.status == 400 || r.status == 404) && studyQuery ? kCheckRoot : "") +
                        (said.empty() ? "" : ": " + said));
   }
   return r;
@@ -301,6 +312,13 @@ std::string valueText(const json& element) {
   return out;
 }
 
+// A server's own REST API answers /studies with a JSON array of its ids (Orthanc at
+// http://host:8042 rather than http://host:8042/dicom-web): what to check (issue 51).
+[[noreturn]] void notDicomJsonObject(const Server& server) {
+  throw ServiceError(server.text + ": answered a match that is not a DICOM JSON object" +
+                     kCheckRoot);
+}
+
 }  // namespace
 
 double webEcho(const Server& server, const Options& options) {
@@ -312,6 +330,11 @@ double webEcho(const Server& server, const Options& options) {
     throw ServiceError(server.text +
                        ": answered the QIDO-RS request with something that is not "
                        "DICOM JSON");
+  if (r.status != 204 && !r.body.empty()) {
+    const json answer = json::parse(r.body, nullptr, false);
+    if (answer.is_array() && !answer.empty() && !answer.front().is_object())
+      notDicomJsonObject(server);
+  }
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -350,8 +373,7 @@ std::vector<Match> webFind(const Server& server, const std::string& level, const
     throw ServiceError(server.text + ": answered more than " + std::to_string(kMaxMatches) +
                        " matches");
   for (const json& object : answer) {
-    if (!object.is_object())
-      throw ServiceError(server.text + ": answered a match that is not a DICOM JSON object");
+    if (!object.is_object()) notDicomJsonObject(server);
     Match m;
     for (const auto& [tag, element] : object.items()) {
       if (tag.size() != 8 || tag.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)

@@ -38,10 +38,18 @@ const OFList<OFString>& uncompressed() {
 
 std::string where(const Server& server) { return server.text; }
 
-[[noreturn]] void fail(const Server& server, const std::string& what, const OFCondition& cond) {
+// `callingAet`: the AE title mvw called as, named in the hint when the server aborted (issue
+// 51: Orthanc accepts the association of an AE title it does not know, then aborts its C-FIND
+// or C-GET, which DCMTK reports as "Peer aborted Association").
+[[noreturn]] void fail(const Server& server, const std::string& what, const OFCondition& cond,
+                       const std::string& callingAet = {}) {
   // DCMTK's texts can hold several lines: one message, one line.
   std::string text = cond.text();
   for (std::size_t at; (at = text.find('\n')) != std::string::npos;) text.replace(at, 1, "; ");
+  if (cond == DUL_PEERABORTEDASSOCIATION && !callingAet.empty())
+    text += " (check that the server knows the calling AE title '" + callingAet +
+            "': a PACS answers only the AE titles it lists, Orthanc under DicomModalities; give "
+            "the one it knows with --calling-aet or calling_aet in servers.json)";
   throw ServiceError(where(server) + ": " + what + ": " + text);
 }
 
@@ -142,7 +150,7 @@ std::string statusText(Uint16 status) {
 }
 
 void checkRetrieve(const Server& server, const char* what, OFCondition cond,
-                   OFList<RetrieveResponse*>& responses, StoreSink& sink) {
+                   OFList<RetrieveResponse*>& responses, StoreSink& sink, const Options& options) {
   Uint16 status = 0, failed = 0;
   bool any = false;
   for (RetrieveResponse* r : responses) {
@@ -153,7 +161,7 @@ void checkRetrieve(const Server& server, const char* what, OFCondition cond,
   }
   responses.clear();
   if (sink.error) std::rethrow_exception(sink.error);
-  if (cond.bad()) fail(server, std::string(what) + " broke off", cond);
+  if (cond.bad()) fail(server, std::string(what) + " broke off", cond, options.callingAet);
   if (!any) throw ServiceError(where(server) + ": " + what + " ended without a response");
   if (status == STATUS_MOVE_Failed_MoveDestinationUnknown)
     throw ServiceError(where(server) + ": " + what +
@@ -195,7 +203,7 @@ double dimseEcho(const Server& server, const Options& options) {
   const auto start = std::chrono::steady_clock::now();
   associate(scu, server, options);
   OFCondition cond = scu.sendECHORequest(0);
-  if (cond.bad()) fail(server, "C-ECHO", cond);
+  if (cond.bad()) fail(server, "C-ECHO", cond, options.callingAet);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   scu.releaseAssociation();
   return s;
@@ -238,7 +246,7 @@ std::vector<Match> dimseFind(const Server& server, const std::string& level, con
     }
     delete r;
   }
-  if (cond.bad()) fail(server, "C-FIND", cond);
+  if (cond.bad()) fail(server, "C-FIND", cond, options.callingAet);
   if (status != STATUS_Success)
     throw ServiceError(where(server) + ": C-FIND failed (" + statusText(status) + ")");
   scu.releaseAssociation();
@@ -268,7 +276,7 @@ void dimseRetrieve(const Server& server, const std::string& studyUid, const std:
                          "C-MOVE: give --move-to AET --port P)");
     for (DcmDataset& keys : requests) {
       OFCondition cond = scu.sendCGETRequest(id, &keys, &responses);
-      checkRetrieve(server, "C-GET", cond, responses, scu.sink);
+      checkRetrieve(server, "C-GET", cond, responses, scu.sink, options);
     }
     scu.releaseAssociation();
     return;
@@ -309,7 +317,7 @@ void dimseRetrieve(const Server& server, const std::string& studyUid, const std:
   for (DcmDataset& keys : requests) {
     cond = scu.sendMOVERequest(id, options.moveToAet.c_str(), &keys, &responses);
     // The move's last response comes after its last C-STORE was answered.
-    checkRetrieve(server, "C-MOVE", cond, responses, scp.sink);
+    checkRetrieve(server, "C-MOVE", cond, responses, scp.sink, options);
   }
   scu.releaseAssociation();
 }

@@ -68,6 +68,20 @@ struct FileUids {
 };
 std::optional<FileUids> readUids(const std::filesystem::path& file);
 
+// What makes an instance count as received (issue 50), the one check a retrieve (Receiver) and
+// the verified cache (cachedSeries) apply: the whole dataset parses; its native Pixel Data (or
+// Float / Double Float Pixel Data) holds at least ceil(Rows x Columns x frames x samples x
+// Bits Allocated / 8) bytes (two samples a pixel for YBR_*_422), or, encapsulated, every
+// frame's fragments and the sequence delimiter are present (as many fragments as frames at
+// least; a Basic Offset Table, when there is one, points at a fragment for each frame); it
+// carries a SOP Instance UID. The UIDs asked for are the caller's to compare.
+struct InstanceCheck {
+  std::optional<FileUids> uids;  // nullopt: `problem` says why
+  std::string problem;           // empty: the instance counts
+  bool ok() const { return uids.has_value() && problem.empty(); }
+};
+InstanceCheck checkInstance(const std::filesystem::path& file);
+
 // The instances of `seriesUid` (all of them, or only `instances`) retrieved into `receiver`.
 void webRetrieve(const Server& server, const std::string& studyUid, const std::string& seriesUid,
                  const std::vector<std::string>& instances, Receiver& receiver,
@@ -87,6 +101,12 @@ void webStore(const Server& server, const std::vector<std::filesystem::path>& fi
               const Options& options);
 void dimseStore(const Server& server, const std::vector<std::filesystem::path>& files,
                 const Options& options);
+
+// The cache folder of one study of one server: <cacheRoot>/<server key>/<studyUid>, holding a
+// folder per series (<seriesUid>, complete when it holds .complete) and the series each
+// selection chose (selection-<hex of the selection>).
+std::filesystem::path studyFolder(const Server& server, const std::string& studyUid,
+                                  const Options& options);
 
 // DCMTK logs to stderr by default; mvw says what went wrong itself, once. Called before any
 // DCMTK work.

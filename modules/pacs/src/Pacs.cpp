@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -258,26 +259,86 @@ std::set<std::string> instanceUids(const std::vector<Match>& instances) {
   return uids;
 }
 
-// Every listed instance present in `dir` as <uid>.dcm and carrying the UIDs asked for; the
-// files that fail are removed (they are fetched again).
+// Why the file of instance `uid` does not count as received (detail::checkInstance, then the
+// UIDs asked for), "" when it does.
+std::string instanceProblem(const fs::path& file, const std::string& uid,
+                            const std::string& studyUid, const std::string& seriesUid) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return "it is missing";
+  const detail::InstanceCheck check = detail::checkInstance(file);
+  if (!check.ok()) return check.problem;
+  const detail::FileUids& got = *check.uids;
+  if (got.sopInstance != uid) return "it carries the SOP Instance UID " + got.sopInstance;
+  if (got.series != seriesUid) return "it is of series " + got.series;
+  if (got.study != studyUid) return "it is of study " + got.study;
+  return {};
+}
+
+// Every listed instance present in `dir` as <uid>.dcm and counting as received; the files that
+// fail are removed (they are fetched again).
 std::vector<std::string> missingInstances(const fs::path& dir, const std::set<std::string>& uids,
                                           const std::string& studyUid,
                                           const std::string& seriesUid) {
   std::vector<std::string> missing;
   for (const std::string& uid : uids) {
     const fs::path file = dir / (uid + ".dcm");
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) {
-      missing.push_back(uid);
-      continue;
-    }
-    auto got = detail::readUids(file);
-    if (!got || got->sopInstance != uid || got->series != seriesUid || got->study != studyUid) {
+    if (!instanceProblem(file, uid, studyUid, seriesUid).empty()) {
+      std::error_code ec;
       fs::remove(file, ec);
       missing.push_back(uid);
     }
   }
   return missing;
+}
+
+// Why a complete series folder does not verify any more: its first instance that fails, named.
+std::string unverified(const fs::path& dir, const std::set<std::string>& uids,
+                       const std::string& studyUid, const std::string& seriesUid) {
+  for (const std::string& uid : uids) {
+    const fs::path file = dir / (uid + ".dcm");
+    if (std::string why = instanceProblem(file, uid, studyUid, seriesUid); !why.empty())
+      return file.filename().string() + ": " + why;
+  }
+  return {};
+}
+
+std::uint64_t treeBytes(const fs::path& dir) {
+  std::uint64_t bytes = 0;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::end(it);
+       it.increment(ec)) {
+    std::error_code sizeEc;
+    if (it->is_regular_file(sizeEc)) {
+      const auto n = it->file_size(sizeEc);
+      if (!sizeEc) bytes += n;
+    }
+  }
+  return bytes;
+}
+
+// UTC to the millisecond, fixed width: quarantine entries sort oldest first by name.
+std::string utcStamp() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  const auto ms =
+      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y%m%dT%H%M%S", &tm);
+  char out[48];
+  std::snprintf(out, sizeof out, "%s.%03dZ", text, static_cast<int>(ms));
+  return out;
+}
+
+// The entries of the quarantine, oldest first.
+std::vector<fs::path> quarantined(const fs::path& root) {
+  std::vector<fs::path> entries;
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(root, ec); !ec && it != fs::end(it); it.increment(ec))
+    if (it->is_directory(ec)) entries.push_back(it->path());
+  std::sort(entries.begin(), entries.end());
+  return entries;
 }
 
 // The listed instances with no <uid>.dcm in `dir` (each file there was checked on receipt).
@@ -363,32 +424,58 @@ Transfer store(const Server& server, const std::vector<fs::path>& inputs, const 
 fs::path cachedSeries(const Server& server, const std::string& studyUid,
                       const std::string& selection, const Options& options) {
   requireUid(studyUid, server.text + " study");
-  const fs::path studyDir = cacheRoot(options) / serverKey(server) / studyUid;
+  const fs::path studyDir = detail::studyFolder(server, studyUid, options);
   const fs::path selectionFile = studyDir / ("selection-" + hexOf(selection));
-  // Offline first: a selection resolved before, whose series folder is complete and verified.
+  // A series folder complete and verified; one that was complete and no longer verifies is
+  // moved into the quarantine (said), so it is retrieved again instead of failing every read.
   auto completeFolder = [&](const std::string& seriesUid) -> std::optional<fs::path> {
     const fs::path dir = studyDir / seriesUid;
-    std::ifstream in(dir / ".complete");
-    if (!in) return std::nullopt;
     std::set<std::string> uids;
-    for (std::string line; std::getline(in, line);)
-      if (isUid(line)) uids.insert(line);
-    if (uids.empty() || !missingInstances(dir, uids, studyUid, seriesUid).empty())
-      return std::nullopt;
-    std::size_t files = 0;
-    for (const auto& e : fs::directory_iterator(dir))
-      if (e.path().extension() == ".dcm") ++files;
-    if (files != uids.size()) return std::nullopt;
-    return dir;
+    {
+      std::ifstream in(dir / ".complete");
+      if (!in) return std::nullopt;
+      for (std::string line; std::getline(in, line);)
+        if (isUid(line)) uids.insert(line);
+    }
+    std::string why = uids.empty() ? std::string("its .complete lists no instance")
+                                   : unverified(dir, uids, studyUid, seriesUid);
+    if (why.empty()) {
+      std::size_t files = 0;
+      for (const auto& e : fs::directory_iterator(dir))
+        if (e.path().extension() == ".dcm") ++files;
+      if (files == uids.size()) return dir;
+      why = "it holds " + std::to_string(files) + " instance files where its .complete lists " +
+            std::to_string(uids.size());
+    }
+    const fs::path moved = quarantineSeries(dir, why, options);
+    std::cerr << "mvw: warning: the cached series " << seriesUid << " of " << server.text
+              << " no longer verifies (" << why << "): moved into " << moved.string()
+              << ", retrieving it again\n";
+    return std::nullopt;
   };
-  {
+  // Warm or cold, the same choice (issue 51): a series UID is read offline from a complete
+  // cache; a number, modality or description is the server's to resolve whenever it answers (a
+  // second series matching 'SEG' makes the choice ambiguous warm as cold).
+  const bool byUid = isUid(selection) && selection.find('.') != std::string::npos;
+  if (byUid)
+    if (auto dir = completeFolder(selection)) return *dir;
+  std::vector<Match> all;
+  try {
+    all = findSeries(server, studyUid, options);
+  } catch (const ServiceError& e) {
+    // Unreachable: the series this selection chose when the server last answered, said.
     std::ifstream in(selectionFile);
-    std::string seriesUid;
-    if (in && std::getline(in, seriesUid) && isUid(seriesUid))
-      if (auto dir = completeFolder(seriesUid)) return *dir;
+    std::string chosen;
+    if (!byUid && in && std::getline(in, chosen) && isUid(chosen))
+      if (auto dir = completeFolder(chosen)) {
+        std::cerr << "mvw: warning: " << e.what() << "; series '" << selection << "' of study "
+                  << studyUid << " is read from the cache as series " << chosen
+                  << ", the one it named when the server last answered\n";
+        return *dir;
+      }
+    throw;
   }
-  const Match series =
-      selectSeries(server, findSeries(server, studyUid, options), studyUid, selection);
+  const Match series = selectSeries(server, all, studyUid, selection);
   const std::string seriesUid = series.at("SeriesInstanceUID");
   if (!fs::exists(studyDir / seriesUid / ".complete") || !completeFolder(seriesUid)) {
     // The .partial folder survives an interruption; what it holds that verifies is kept.
@@ -463,6 +550,70 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
   // Verified: complete as found (completeFolder), or each instance as it arrived and those
   // kept from an interrupted retrieve by missingInstances. The next read checks it all again.
   return studyDir / seriesUid;
+}
+
+fs::path detail::studyFolder(const Server& server, const std::string& studyUid,
+                             const Options& options) {
+  return cacheRoot(options) / serverKey(server) / studyUid;
+}
+
+fs::path quarantineRoot(const Options& options) { return cacheRoot(options) / "quarantine"; }
+
+fs::path quarantineSeries(const fs::path& seriesDir, const std::string& why, const Options& options,
+                          std::uint64_t limitBytes) {
+  // Only <cache>/<server>/<study>/<series> moves: nothing outside the cache, no quarantine entry.
+  const fs::path root = fs::absolute(cacheRoot(options)).lexically_normal();
+  const fs::path dir = fs::absolute(seriesDir).lexically_normal();
+  const fs::path rel = dir.lexically_relative(root);
+  std::vector<std::string> parts;
+  for (const fs::path& part : rel) parts.push_back(part.string());
+  if (parts.size() != 3 || parts[0] == "quarantine" || parts[0] == ".." || !isUid(parts[1]) ||
+      !isUid(parts[2]) || !fs::is_directory(dir))
+    throw InputError(seriesDir, "is not a series folder of the PACS cache " + root.string());
+  const fs::path qroot = quarantineRoot(options);
+  fs::create_directories(qroot);
+  const std::string name = utcStamp() + "-" + parts[2];
+  fs::path target = qroot / name;
+  for (int i = 2; fs::exists(target); ++i) target = qroot / (name + "-" + std::to_string(i));
+  fs::rename(dir, target);
+  {
+    std::ofstream out(target / "why.txt");
+    out << "server folder: " << parts[0] << "\nstudy: " << parts[1] << "\nseries: " << parts[2]
+        << "\n"
+        << why << "\n";
+  }
+  // Bounded: the oldest go first; the one just moved stays, whatever its size.
+  std::vector<fs::path> entries = quarantined(qroot);
+  std::vector<std::uint64_t> sizes;
+  std::uint64_t total = 0;
+  for (const fs::path& e : entries) total += sizes.emplace_back(treeBytes(e));
+  for (std::size_t i = 0; i < entries.size() && total > limitBytes; ++i) {
+    if (entries[i] == target) continue;
+    std::error_code ec;
+    fs::remove_all(entries[i], ec);
+    if (!ec) total -= sizes[i];
+  }
+  return target;
+}
+
+QuarantineSize quarantineSize(const Options& options) {
+  QuarantineSize size;
+  for (const fs::path& e : quarantined(quarantineRoot(options))) {
+    ++size.series;
+    size.bytes += treeBytes(e);
+  }
+  return size;
+}
+
+QuarantineSize clearQuarantine(const Options& options) {
+  QuarantineSize size;
+  for (const fs::path& e : quarantined(quarantineRoot(options))) {
+    const std::uint64_t bytes = treeBytes(e);
+    fs::remove_all(e);
+    ++size.series;
+    size.bytes += bytes;
+  }
+  return size;
 }
 
 }  // namespace mvw::pacs

@@ -32,13 +32,16 @@ SegmentOverlay readSegmentOverlay(const config::VolumeSource& source, const io::
   config::VolumeSource local = source;
   if (!source.pacs.empty()) {
     // A PACS series from its verified cache folder: a SEG is its one file; "series" chose it.
-    local.path = localPath(source, pacs);
-    local.series.clear();
-    options.series.clear();
-    std::vector<std::filesystem::path> files;
-    for (const auto& e : std::filesystem::directory_iterator(local.path))
-      if (e.path().extension() == ".dcm") files.push_back(e.path());
-    if (files.size() == 1 && io::isDicomSegmentation(files.front())) local.path = files.front();
+    return readLocal(source, pacs, [&](const std::filesystem::path& folder) {
+      local.path = folder;
+      local.series.clear();
+      options.series.clear();
+      std::vector<std::filesystem::path> files;
+      for (const auto& e : std::filesystem::directory_iterator(local.path))
+        if (e.path().extension() == ".dcm") files.push_back(e.path());
+      if (files.size() == 1 && io::isDicomSegmentation(files.front())) local.path = files.front();
+      return readLocalSegmentOverlay(local, options);
+    });
   }
   return readLocalSegmentOverlay(local, options);
 }

@@ -19,12 +19,33 @@ std::filesystem::path localPath(const config::VolumeSource& source, const pacs::
   return pacs::cachedSeries(config::resolveServer(source.pacs), source.study, source.series, pacs);
 }
 
+void rethrowQuarantined(const config::VolumeSource& source, const std::filesystem::path& folder,
+                        const InputError& e, const pacs::Options& pacs) {
+  if (source.pacs.empty()) return;
+  // A file of the series, not the folder as a whole (a series mvw does not read as a volume
+  // reads no better when retrieved again).
+  const std::filesystem::path rel =
+      e.file().lexically_normal().lexically_relative(folder.lexically_normal());
+  if (rel.empty() || rel == "." || *rel.begin() == "..") return;
+  std::filesystem::path moved;
+  try {
+    moved = pacs::quarantineSeries(folder, e.what(), pacs);
+  } catch (const std::exception&) {
+    return;  // the read's own error says more than why the move failed
+  }
+  throw InputError(moved / rel, e.problem() + " (a PACS series in the cache that failed to read: " +
+                                    "moved into the cache's quarantine, retrieved again on the " +
+                                    "next run; `mvw pacs cache --clear-quarantine` empties it)");
+}
+
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options,
                   const pacs::Options& pacs) {
   // A PACS series is read from its verified cache folder, which holds that series alone.
   options.series = source.pacs.empty() ? source.series : std::string();
   options.sliceSpacing = source.sliceSpacingMm;
-  Volume volume = io::readVolume(localPath(source, pacs), options);
+  Volume volume = readLocal(source, pacs, [&](const std::filesystem::path& path) {
+    return io::readVolume(path, options);
+  });
   // A 4D volume becomes the one 3D volume every view and the registration use, with a note;
   // a frame the volume does not have is bad input, said before any heavy work.
   if (volume.components() > 1 || (source.frame && !source.frame->mean && source.frame->index > 0)) {

@@ -112,10 +112,38 @@ Transfer store(const Server& server, const std::vector<std::filesystem::path>& f
 
 // The folder in the verified cache holding the series `selection` of study `studyUid`,
 // retrieved first unless it is there complete and verified: every instance the server has (as
-// many as it states for the series, or every one it lists), each parsing and carrying the SOP
-// Instance, series and study UIDs asked for. An interrupted
-// retrieve leaves only a .partial folder, which the next call resumes.
+// many as it states for the series, or every one it lists), each whole (the dataset parses, the
+// Pixel Data holds every frame's bytes or fragments) and carrying the SOP Instance, series and
+// study UIDs asked for. An interrupted retrieve leaves only a .partial folder, which the next
+// call resumes. A cached series that no longer verifies is moved into the quarantine (said on
+// stderr) and retrieved again.
+//
+// Warm or cold, the same series is chosen: a selection that is a series UID (it has a dot) is
+// read from a complete cache without asking the server; one by number, modality or description
+// is resolved by the server whenever it answers, and only when it cannot be reached is the
+// series it chose last time read from the cache, with a warning naming that series' UID.
 std::filesystem::path cachedSeries(const Server& server, const std::string& studyUid,
                                    const std::string& selection, const Options& options);
+
+// The cache's quarantine: series whose files failed to read after they were cached, kept for
+// a look and never read again. At most kQuarantineBytes: the oldest are dropped beyond it (the
+// newest is always kept). `mvw pacs cache --clear-quarantine` empties it.
+inline constexpr std::uint64_t kQuarantineBytes = std::uint64_t{1} << 30;
+std::filesystem::path quarantineRoot(const Options& options);
+
+// Moves `seriesDir` (a series folder cachedSeries returned) into the quarantine, with a file
+// why.txt holding `why`, so the next cachedSeries retrieves it again; returns where it went.
+// InputError when `seriesDir` is not a series folder of the cache.
+std::filesystem::path quarantineSeries(const std::filesystem::path& seriesDir,
+                                       const std::string& why, const Options& options,
+                                       std::uint64_t limitBytes = kQuarantineBytes);
+
+// What the quarantine holds, or held before clearQuarantine emptied it.
+struct QuarantineSize {
+  int series = 0;
+  std::uint64_t bytes = 0;
+};
+QuarantineSize quarantineSize(const Options& options);
+QuarantineSize clearQuarantine(const Options& options);
 
 }  // namespace mvw::pacs

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "mvw/config/StudyConfig.h"
+#include "mvw/core/Error.h"
 #include "mvw/core/Study.h"
 #include "mvw/core/Volume.h"
 #include "mvw/io/VolumeReader.h"
@@ -17,6 +18,26 @@ namespace mvw::study {
 // line's --cache, --connect-timeout and --read-timeout; the viewer's saved server), so a read
 // that becomes a retrieve is configured by its caller alone. Every read below takes them.
 std::filesystem::path localPath(const config::VolumeSource& source, const pacs::Options& pacs);
+
+// What readLocal does with a read's InputError: returns when it is not a cached PACS file's,
+// else moves the series into the quarantine and throws the error naming where it went.
+void rethrowQuarantined(const config::VolumeSource& source, const std::filesystem::path& folder,
+                        const InputError& e, const pacs::Options& pacs);
+
+// `read(localPath(source, pacs))`. A PACS series whose file fails to read there (the error
+// names a file inside its cache folder) is moved into the cache's quarantine
+// (pacs::quarantineSeries) and the error names the file where it now lies: the next run
+// retrieves the series again instead of failing on the same cached file forever.
+template <class Read>
+auto readLocal(const config::VolumeSource& source, const pacs::Options& pacs, Read&& read) {
+  const std::filesystem::path path = localPath(source, pacs);
+  try {
+    return read(path);
+  } catch (const InputError& e) {
+    rethrowQuarantined(source, path, e, pacs);
+    throw;
+  }
+}
 
 // The volume a study names, read with `options` and the source's own series selection.
 Volume readSource(const config::VolumeSource& source, io::ReadOptions options,
