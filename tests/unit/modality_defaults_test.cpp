@@ -97,6 +97,90 @@ TEST(FunctionalDisplayWindow, ARobustRangeFromTheDataOrSuvFiveOrTen) {
   EXPECT_EQ(defaultFunctionalDisplayWindow(suv, suv.valueRange())[1], 10.0);
 }
 
+// A PET read alone (issue 51 item 3), from a folder or the PACS with no view or window of its
+// own: 1000 voxels, half background, 1.5 SUV, three hot voxels at 19.5. Not the full range
+// (W 19.5) that washes it out: 0-5 SUV, its MIP grey-inverted; without SUV 0 to the 99.5th
+// percentile, and why not SUV.
+Volume wholeBody(const std::string& unit) {
+  Volume v({10, 10, 10}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  v.metadata().modality = "PT";
+  v.metadata().unit = unit;
+  for (int n = 0; n < 1000; ++n)
+    v.setValue(n % 10, n / 10 % 10, n / 100, 0, n < 500 ? 0.0 : n < 997 ? 1.5 : 19.5);
+  return v;
+}
+
+TEST(ModalityDefaults, APetAloneOpensAsAMipAtZeroToFiveSuv) {
+  const Volume suv = wholeBody("SUVbw");
+  const ModalityDefaults d = modalityDefaults(suv, suv.valueRange());
+  EXPECT_EQ(d.preset, "pet-hot-metal");
+  EXPECT_EQ(d.isoValue, 2.5);
+  EXPECT_EQ(d.mpr.window, 5.0);
+  EXPECT_EQ(d.mpr.level, 2.5);
+  EXPECT_EQ(d.mode3d, RenderMode::Mip);
+  EXPECT_EQ(d.mipColors, ColorMap::GreyInverted);
+  EXPECT_TRUE(isEmission(suv));
+  EXPECT_EQ(noSuvNote(suv), "");
+  // CT and MR keep their composite.
+  EXPECT_EQ(modalityDefaults(volumeOf("CT", "HU"), {-1024, 3071}).mode3d, RenderMode::Composite);
+  EXPECT_EQ(modalityDefaults(volumeOf("MR", ""), {0, 900}).mode3d, RenderMode::Composite);
+  EXPECT_FALSE(isEmission(volumeOf("MR", "")));
+  EXPECT_TRUE(isEmission(volumeOf("NM", "")));
+}
+
+TEST(ModalityDefaults, APetWithoutSuvGetsItsOwnRangeAndSaysWhy) {
+  Volume bq = wholeBody("Bq/ml");
+  for (int n = 500; n < 997; ++n) bq.setValue(n % 10, n / 10 % 10, n / 100, 0, n * 10.0);
+  const ModalityDefaults d = modalityDefaults(bq, bq.valueRange());
+  // 500 voxels above 0: 5000 .. 9960 and three at 19.5 (below them); sorted, element
+  // floor(0.995 * 499) = 496 is 9930.
+  EXPECT_DOUBLE_EQ(d.mpr.level - 0.5 * d.mpr.window, 0.0);
+  EXPECT_DOUBLE_EQ(d.mpr.level + 0.5 * d.mpr.window, 9930.0);
+  EXPECT_EQ(d.mode3d, RenderMode::Mip);
+  bq.metadata().notes = {"a note on something else",
+                         "values in Bq/ml: SUVbw not computed (PatientWeight missing or not "
+                         "positive)"};
+  EXPECT_EQ(noSuvNote(bq), "no SUV: PatientWeight missing or not positive");
+  bq.metadata().notes = {"SUV conversion turned off: values in Bq/ml"};
+  EXPECT_EQ(noSuvNote(bq), "no SUV: SUV conversion turned off: values in Bq/ml");
+  bq.metadata().notes.clear();
+  EXPECT_EQ(noSuvNote(bq), "no SUV: values in Bq/ml");
+  EXPECT_EQ(noSuvNote(volumeOf("PT", "")), "no SUV: values in no unit");
+  EXPECT_EQ(noSuvNote(volumeOf("CT", "HU")), "");  // only emission images have an SUV to miss
+}
+
+// The rule reaches `mvw render` and the viewer through the planned views: the view a config
+// without views gets (implied) is the PET's MIP, and MIP and MPR views without a window get
+// the PET's; a view's own window, a composite and a CT stay as they are.
+TEST(ModalityDefaults, ViewsWithoutAWindowOfAPetAloneGetThePets) {
+  const Volume suv = wholeBody("SUVbw");
+  const ModalityDefaults d = modalityDefaults(suv, suv.valueRange());
+  config::StudyConfig study = studyWith(nlohmann::json::object());
+  study.render.views[0].implied = true;
+  PlannedView implied = planViews(study).at(0);
+  applyModalityView(implied, suv, d);
+  EXPECT_EQ(implied.settings.mode, RenderMode::Mip);
+  EXPECT_EQ(implied.config.mode, RenderMode::Mip);
+  ASSERT_TRUE(implied.settings.imageColors.has_value());
+  EXPECT_EQ(implied.settings.imageColors->map, ColorMap::GreyInverted);
+  EXPECT_EQ(implied.settings.window, 5.0);
+  EXPECT_EQ(implied.settings.level, 2.5);
+  PlannedView mpr = planViews(studyWith({{"mode", "mpr"}})).at(0);
+  applyModalityView(mpr, suv, d);
+  EXPECT_EQ(mpr.settings.window, 5.0);
+  EXPECT_FALSE(mpr.settings.imageColors.has_value());  // a view's own colour map (grey) stays
+  PlannedView own = planViews(studyWith({{"mode", "mip"}, {"window", 8}, {"level", 4}})).at(0);
+  applyModalityView(own, suv, d);
+  EXPECT_EQ(own.settings.window, 8.0);
+  PlannedView composite = planViews(studyWith(nlohmann::json::object())).at(0);
+  applyModalityView(composite, suv, d);
+  EXPECT_EQ(composite.settings.mode, RenderMode::Composite);
+  EXPECT_EQ(composite.settings.window, 0.0);
+  PlannedView ct = planViews(study).at(0);
+  applyModalityView(ct, volumeOf("CT", "HU"), d);
+  EXPECT_EQ(ct.settings.mode, RenderMode::Composite);
+}
+
 TEST(AttributeDefaults, AViewsOwnWindowOrClassesWin) {
   const nlohmann::json glyphs = nlohmann::json::object();
   PlannedView own =

@@ -9,10 +9,12 @@
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include "TestUtil.h"
 #include "ViewerTestUtil.h"
 #include "mvw/config/StudyConfig.h"
+#include "mvw/viewer/OpenedStudy.h"
 #include "mvw/viewer/ViewerScript.h"
 
 namespace mvw::viewer {
@@ -329,6 +331,73 @@ TEST_F(ViewerStateTest, CaptionsNameTheModeAndWindow) {
   EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)), "mip  W 3000 L 500");  // full range
   state.key('2', false);
   EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)), "isosurface  iso 300");
+}
+
+// A PET opened alone, from a folder or the PACS (issue 51 item 3): not washed out by its
+// hottest voxels. 315 voxels at SUV 1.5, one at 0 and one at 19.5: the panes at 0-5 SUV, the
+// 3D pane its grey-inverted MIP, and every pane's colour bar (the grey MPR panes' too) says so.
+TEST_F(ViewerStateTest, APetAloneOpensAtItsSuvWindowWithAColourBarOnEveryPane) {
+  Volume suv = makeVolume("PT", 0.0, 19.5);
+  suv.metadata().unit = "SUVbw";
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 9; ++i)
+        if ((i + j + k) % 16 != 0) suv.setValue(i, j, k, 0, 1.5);
+  ViewerState state(study, suv, nullptr, sceneOf(suv));
+  EXPECT_EQ(state.view3d().mode, RenderMode::Mip);
+  ASSERT_TRUE(state.view3d().imageColors.has_value());
+  EXPECT_EQ(state.view3d().imageColors->map, ColorMap::GreyInverted);
+  EXPECT_DOUBLE_EQ(state.view3d().window, 5.0);
+  EXPECT_DOUBLE_EQ(state.mprWindow(), 5.0);
+  EXPECT_DOUBLE_EQ(state.mprLevel(), 2.5);
+  renderAll(state);
+  const std::filesystem::path file = test::scratchDir() / "panes.json";
+  writePaneReport(state, file);
+  const nlohmann::json panes = nlohmann::json::parse(std::ifstream(file))["panes"];
+  ASSERT_EQ(panes.size(), 4u);
+  for (const nlohmann::json& p : panes) {
+    SCOPED_TRACE(p.dump());
+    EXPECT_EQ(p["window"], nlohmann::json({0.0, 5.0}));
+    ASSERT_TRUE(p["colour_bar"].is_object());
+    EXPECT_EQ(p["colour_bar"]["low"], 0.0);
+    EXPECT_EQ(p["colour_bar"]["high"], 5.0);
+    EXPECT_EQ(p["colour_bar"]["unit"], "SUVbw");
+  }
+  EXPECT_EQ(panes[0]["mode"], "mip");
+  EXPECT_EQ(panes[0]["colour_bar"]["colormap"], "grey-inverted");
+  EXPECT_EQ(panes[1]["colour_bar"]["colormap"], "grey");
+  // The PET/CT layout: the functional pane (the PET itself) in grey-inverted at 0-5 SUV too.
+  state.setLayout(config::ViewerLayout::PetCtAxial);
+  writePaneReport(state, file);
+  const nlohmann::json petCt = nlohmann::json::parse(std::ifstream(file))["panes"];
+  EXPECT_EQ(petCt[kCoronal]["colour_bar"]["colormap"], "grey-inverted");
+  EXPECT_EQ(petCt[kCoronal]["colour_bar"]["high"], 5.0);
+  EXPECT_EQ(petCt[k3d]["colour_bar"]["high"], 5.0);
+}
+
+// Without SUV (no weight or dose: Bq/ml) every pane's caption and colour bar and the readout
+// say "no SUV", the caption and readout why.
+TEST_F(ViewerStateTest, APetWithoutSuvSaysSoOnEveryPaneAndInTheReadout) {
+  Volume bq = makeVolume("PT", 0.0, 9000.0);
+  bq.metadata().unit = "Bq/ml";
+  bq.metadata().notes = {
+      "values in Bq/ml: SUVbw not computed (PatientWeight missing or not positive)"};
+  bq.setValue(5, 3, 2, 0, 4200.0);
+  ViewerState state(study, bq, nullptr, sceneOf(bq));
+  EXPECT_EQ(state.view3d().mode, RenderMode::Mip);
+  renderAll(state);
+  const std::filesystem::path file = test::scratchDir() / "panes.json";
+  writePaneReport(state, file);
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(file));
+  for (const nlohmann::json& p : report["panes"]) {
+    SCOPED_TRACE(p.dump());
+    EXPECT_NE(p["caption"].get<std::string>().find("no SUV: PatientWeight missing or not positive"),
+              std::string::npos);
+    EXPECT_EQ(p["colour_bar"]["unit"], "Bq/ml, no SUV");
+  }
+  EXPECT_EQ(state.readout({1.0, 0.0, 3.0}),
+            "PET 4200 Bq/ml (no SUV: PatientWeight missing or not positive)");
+  EXPECT_NE(report["readout"].get<std::string>().find("(no SUV: PatientWeight"), std::string::npos);
 }
 
 TEST_F(ViewerStateTest, MaximiseTogglesOnePane) {

@@ -6,6 +6,11 @@ usage: pngstat.py FILE                 -> "W H distinct_colours yellow_pixels"
        pngstat.py --crosshair-only A B -> exit 0 if A and B are the same size and every pixel
                                           that differs lies within 3 rows and 3 columns (the
                                           MPR crosshair's antialiased lines); prints "N"
+       pngstat.py --bar-only SHOT RAW  -> exit 0 if every pixel that differs lies where a colour
+                                          bar is drawn (render::drawBar: the right edge, from a
+                                          quarter to three quarters of the height, with its
+                                          labels) and some do: the viewer's grey bar that
+                                          `mvw render` does not draw; prints "N"
        pngstat.py --labels SHOT RAW    -> "left right top bottom": label-yellow pixels that SHOT
                                           (a pane as shown) has and RAW (its render) has not, in
                                           the four places the orientation labels go"""
@@ -86,6 +91,21 @@ def main():
                   (len(stray), col, row, stray[0]))
             sys.exit(1)
         sys.exit(0)
+    if sys.argv[1] == "--bar-only":
+        a = read(sys.argv[2])
+        diff = changed(a, read(sys.argv[3]))
+        print(len(diff))
+        w, h = a[0], a[1]
+        scale = max(0.4, min(w, h) / 600.0)
+        # drawBar's bar starts 14 + 44 (scaled) from the right edge; its title (a volume's
+        # name, up to 24 characters) may reach a third of a small pane further left.
+        left = min(w - (14 + 44 + 90) * scale, w * 0.55)
+        top, bottom = h / 4 - 40 * scale, h * 3 / 4 + 45 * scale
+        stray = [(x, y) for x, y in diff if x < left or y < top or y > bottom]
+        if stray:
+            print("%d pixels differ outside the colour bar, first at %s" % (len(stray), stray[0]))
+            sys.exit(1)
+        sys.exit(0 if diff else 1)
     if sys.argv[1] == "--labels":
         shot, raw = read(sys.argv[2]), read(sys.argv[3])
         if shot[:2] != raw[:2]:

@@ -26,6 +26,11 @@ using detail::FieldTable;
 using detail::Where;
 using nlohmann::json;
 
+// A view's window where it names none (study::modalityDefaults, study::applyModalityView).
+constexpr const char* kDefaultWindow =
+    "the anatomy's full value range; a PET or SPECT's mip and mpr views: 0-5 or 0-10 SUV, "
+    "without SUV 0 to its 99.5th percentile";
+
 // ---------------------------------------------------------------------------------------
 // The names of the enumerations
 
@@ -244,10 +249,10 @@ const FieldTable<ViewConfig>& viewTable() {
         .whenAbsent("chosen by the anatomy's modality")
         .optionalNumber("window", "Window width, in the anatomy's unit (goes with level).",
                         &V::window, 1e-9, 1e12)
-        .whenAbsent("the anatomy's full value range")
+        .whenAbsent(kDefaultWindow)
         .optionalNumber("level", "Window centre, in the anatomy's unit (goes with window).",
                         &V::level, -1e12, 1e12)
-        .whenAbsent("the anatomy's full value range")
+        .whenAbsent(kDefaultWindow)
         .number("iso", "Isosurface value, in the anatomy's unit.", &V::iso, -1e12, 1e12)
         .boolean("shading", "Gradient shading.", &V::shading)
         .enumeration("sampling", "How the volume is sampled between voxels.", &V::sampling,
@@ -887,6 +892,7 @@ void checkStudy(const json& j, StudyConfig& config) {
   if (config.render.views.empty()) {
     ViewConfig defaults;
     defaults.name = "view0";
+    defaults.implied = true;
     config.render.views.push_back(defaults);
   }
   for (std::size_t a = 0; a < config.render.views.size(); ++a)

@@ -12,6 +12,8 @@ namespace {
 
 bool isCt(const Volume& v) { return v.metadata().modality == "CT" || v.metadata().unit == "HU"; }
 
+bool inSuv(const Volume& v) { return v.metadata().unit.rfind("SUV", 0) == 0; }
+
 // Hounsfield values every CT reader knows: cortical bone starts near 300 HU; the soft-tissue
 // window is W 400 L 40.
 constexpr double kCtBoneIsoHu = 300.0;
@@ -21,11 +23,30 @@ constexpr double kIsoFractionOfRange = 0.4;
 
 }  // namespace
 
+bool isEmission(const Volume& volume) {
+  const std::string& m = volume.metadata().modality;
+  return m == "PT" || m == "NM";
+}
+
 std::string defaultPreset(const Volume& anatomy) {
   if (isCt(anatomy)) return "ct-bone";
-  const std::string& m = anatomy.metadata().modality;
-  if (m == "PT" || m == "NM") return "pet-hot-metal";
+  if (isEmission(anatomy)) return "pet-hot-metal";
   return "mr-default";
+}
+
+std::string noSuvNote(const Volume& volume) {
+  if (!isEmission(volume) || inSuv(volume)) return "";
+  const std::string& unit = volume.metadata().unit;
+  for (const std::string& note : volume.metadata().notes) {
+    if (note.find("SUV") == std::string::npos) continue;
+    // "values in Bq/ml: SUVbw not computed (PatientWeight missing or not positive)": the
+    // reason in the parentheses, the unit being said beside every value already.
+    const std::size_t open = note.find(" not computed (");
+    if (open != std::string::npos && note.back() == ')')
+      return "no SUV: " + note.substr(open + 15, note.size() - open - 16);
+    return "no SUV: " + note;
+  }
+  return "no SUV: values in " + (unit.empty() ? std::string("no unit") : unit);
 }
 
 ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, double> valueRange) {
@@ -37,10 +58,15 @@ ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, doubl
     d.mpr = kCtSoftTissue;
   } else {
     d.isoValue = lo + kIsoFractionOfRange * (hi - lo);
-    if (anatomy.metadata().unit.rfind("SUV", 0) == 0 && hi > kSuvLesionThreshold &&
-        lo < kSuvLesionThreshold)
+    if (inSuv(anatomy) && hi > kSuvLesionThreshold && lo < kSuvLesionThreshold)
       d.isoValue = kSuvLesionThreshold;
     d.mpr = windowOrFullRange(0.0, 0.0, lo, hi);
+  }
+  if (isEmission(anatomy)) {
+    const auto [low, high] = defaultFunctionalDisplayWindow(anatomy, valueRange);
+    d.mpr = WindowLevel{high - low, 0.5 * (low + high)};
+    d.mode3d = RenderMode::Mip;
+    d.mipColors = ColorMap::GreyInverted;
   }
   return d;
 }
@@ -67,7 +93,7 @@ std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKi
       functional.metadata().modality == "PT" || functional.metadata().modality == "NM";
   if (!emission || kind == config::FunctionalKind::Labels) return std::nullopt;
   const double max = range.second;
-  if (functional.metadata().unit.rfind("SUV", 0) == 0)
+  if (inSuv(functional))
     return std::array<double, 2>{kSuvLesionThreshold, std::max(max, kSuvLesionThreshold + 1.0)};
   if (!(max > 0)) return std::nullopt;
   return std::array<double, 2>{kRelativeUptakeThreshold * max, max};
@@ -93,7 +119,7 @@ std::array<double, 2> defaultFunctionalDisplayWindow(const Volume& functional,
     return above[static_cast<std::size_t>(p * static_cast<double>(above.size() - 1))];
   };
   const double top = percentile(0.995);
-  if (functional.metadata().unit.rfind("SUV", 0) == 0) return {0.0, top > 5.0 ? 10.0 : 5.0};
+  if (inSuv(functional)) return {0.0, top > 5.0 ? 10.0 : 5.0};
   // Below 0 is noise in perfusion (an ASL subtraction) and most other maps: from 0; a
   // statistic map's negative values (deactivation) are data.
   const std::string& unit = functional.metadata().unit;

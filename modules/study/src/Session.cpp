@@ -81,6 +81,11 @@ void prepareViews(std::vector<PlannedView>& views, const config::StudyConfig& st
                   const Volume& anatomical, const Volume* functional,
                   std::pair<double, double> functionalRange) {
   checkViewsAgainstAnatomy(views, anatomical, study.file);
+  // A PET or SPECT read alone: its window from its values (a pass over them), once.
+  std::optional<ModalityDefaults> emission;
+  if (isEmission(anatomical)) emission = modalityDefaults(anatomical, anatomical.valueRange());
+  for (PlannedView& v : views)
+    if (emission) applyModalityView(v, anatomical, *emission);
   const std::optional<WindowLevel> mpr = studyMprWindow(views, anatomical);
   for (PlannedView& v : views) {
     applyDefaultPreset(v, anatomical);

@@ -499,6 +499,23 @@ void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
   view.settings.functionalHigh = (*window)[1];
 }
 
+void applyModalityView(PlannedView& view, const Volume& anatomy, const ModalityDefaults& defaults) {
+  if (!isEmission(anatomy)) return;
+  render::RenderSettings& s = view.settings;
+  if (view.config.implied) {
+    s.mode = defaults.mode3d;
+    view.config.mode = defaults.mode3d;
+    // A colour map from the command line (--colormap) stays.
+    if (view.config.colormap == ColorMap::Grey) view.config.colormap = defaults.mipColors;
+    applyColorMaps(s, view.config.colormap, view.config.overlayColormap);
+  }
+  if (view.config.window ||
+      (s.mode != render::RenderMode::Mip && s.mode != render::RenderMode::Mpr))
+    return;
+  s.window = defaults.mpr.window;
+  s.level = defaults.mpr.level;
+}
+
 void applyCutFaceWindow(PlannedView& view, const WindowLevel& mpr) {
   if (view.config.window || !render::showsAnatomyOnCutFace(view.settings)) return;
   view.settings.window = mpr.window;

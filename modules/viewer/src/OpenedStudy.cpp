@@ -1,7 +1,13 @@
 #include "mvw/viewer/OpenedStudy.h"
 
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "mvw/core/Error.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/ModalityDefaults.h"
 #include "mvw/viewer/ViewerRegistration.h"
 
 namespace mvw::viewer {
@@ -60,11 +66,56 @@ output::ViewAnnotations paneAnnotations(const ViewerState& state, int pane,
                                     ViewerState::volumeName(functional, "functional")};
   } else {
     const auto [lo, hi] = state.scene().valueRange;
-    a.colourBar = output::colourBarOf(s, state.anatomical(), state.functional(), functionalRange,
-                                      windowOrFullRange(s.window, s.level, lo, hi));
+    const WindowLevel shown = windowOrFullRange(s.window, s.level, lo, hi);
+    a.colourBar =
+        output::colourBarOf(s, state.anatomical(), state.functional(), functionalRange, shown);
+    // Every pane that maps values to colours carries its scale (a reader reads a grey MPR's
+    // values off it as much as a coloured one's); `mvw render` draws bars for colour maps only,
+    // its images unchanged.
+    if (!a.colourBar && takesImageColors(s.mode))
+      a.colourBar =
+          output::ColourBar{shown.level - 0.5 * shown.window, shown.level + 0.5 * shown.window,
+                            state.anatomical().metadata().unit, greyTable(false),
+                            ViewerState::volumeName(state.anatomical(), "anatomical")};
   }
+  // A PET without SUV: its scale says so (the caption says why).
+  const bool functionalBar =
+      state.paneShowsFunctional(pane) || render::showsFunctional(s, state.functional() != nullptr);
+  const Volume& barVolume = functionalBar ? *state.functional() : state.anatomical();
+  if (a.colourBar && !study::noSuvNote(barVolume).empty()) a.colourBar->unit += ", no SUV";
   a.segmentLegend = output::segmentLegendOf(s, segments);
   return a;
+}
+
+void writePaneReport(const ViewerState& state, const std::filesystem::path& file) {
+  nlohmann::json panes = nlohmann::json::array();
+  for (int pane = 0; pane < kPaneCount; ++pane) {
+    const render::RenderSettings s = state.renderSettings(pane);
+    const output::ViewAnnotations a =
+        paneAnnotations(state, pane, s, state.scene().functionalRange, nullptr);
+    const auto [lo, hi] = state.scene().valueRange;
+    const WindowLevel w = windowOrFullRange(s.window, s.level, lo, hi);
+    nlohmann::json bar = nullptr;
+    if (a.colourBar)
+      bar = {{"low", a.colourBar->low},
+             {"high", a.colourBar->high},
+             {"unit", a.colourBar->unit},
+             {"title", a.colourBar->title},
+             {"colormap", a.colourBar->colors ? toString(a.colourBar->colors->map) : "hot-metal"}};
+    panes.push_back({{"pane", ViewerState::paneName(pane)},
+                     {"title", state.paneTitle(pane)},
+                     {"mode", toString(s.mode)},
+                     {"window", {w.level - 0.5 * w.window, w.level + 0.5 * w.window}},
+                     {"colour_bar", bar},
+                     {"caption", a.caption}});
+  }
+  // The panel's readout: at the cursor (the script's hover), else at the crosshair.
+  const auto cursor = state.cursor();
+  const nlohmann::json report = {
+      {"panes", panes}, {"readout", state.readout(cursor ? cursor->second : state.crosshair())}};
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out << report.dump(2) << "\n";
+  if (!out) throw InputError(file, "cannot write the pane report");
 }
 
 }  // namespace mvw::viewer

@@ -244,6 +244,7 @@ config::StudyConfig PacsBrowser::studyConfig() const {
   // opens the study exactly as it opens the same config from a file.
   config::ViewConfig view;
   view.name = "view0";
+  view.implied = true;
   study.render.views.push_back(view);
   return study;
 }

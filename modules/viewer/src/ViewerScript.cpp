@@ -13,6 +13,7 @@
 
 #include "mvw/core/Error.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/viewer/OpenedStudy.h"
 
 namespace mvw::viewer {
 
@@ -363,6 +364,13 @@ const Entry kCommands[] = {
       "dump 3d out/3d.png"},
      Kind::Dump,
      parsePaneFile},
+    {{"pane-report", "FILE",
+      "every pane as the window draws it, JSON: name, title, mode, window (low, high), colour "
+      "bar (low, high, unit, title, colour map; null: none), caption; and the readout at the "
+      "cursor (hover), else at the crosshair",
+      "pane-report out/panes.json"},
+     Kind::PaneReport,
+     parseFile},
     {{"save-config", "FILE", "the state as a study config (Ctrl+S)", "save-config out/saved.json"},
      Kind::SaveConfig,
      parseFile},
@@ -627,6 +635,9 @@ bool ViewerScript::step(ViewerState* statePointer, PacsBrowser* pacs) {
       break;
     case Kind::Dump:
       state.dump(c.pane, c.file);
+      break;
+    case Kind::PaneReport:
+      writePaneReport(state, c.file);
       break;
     case Kind::Colormap:
       state.setColormap(c.target, c.colormap);

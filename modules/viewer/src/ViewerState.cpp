@@ -95,6 +95,15 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   view3d_.camera.view = StandardView::Anterior;
   view3d_.isoValue = defaults.isoValue;
   view3d_.cutFace = CutFace::Anatomy;  // as a planned view has it by default (cut_face)
+  if (defaults.mode3d != RenderMode::Composite) {
+    // A PET read alone (study::modalityDefaults): its MIP under its own window, as the implied
+    // view of a config without views has it (study::applyModalityView).
+    view3d_.mode = defaults.mode3d;
+    view3d_.window = defaults.mpr.window;
+    view3d_.level = defaults.mpr.level;
+    if (defaults.mipColors != ColorMap::Grey)
+      view3d_.imageColors = mvw::study::colorTable(defaults.mipColors);
+  }
   mprWindow_ = defaults.mpr.window;
   mprLevel_ = defaults.mpr.level;
   crosshair_ = scene_.centre;
@@ -579,6 +588,11 @@ std::string ViewerState::caption(int pane, const render::RenderSettings& s) cons
   mvw::study::PlannedView shown{viewConfigOf(pane, layout_), s,
                                 pane == k3d && !petCtLayout() ? presetName_ : ""};
   std::string text = mvw::study::viewCaption(shown, windowOrFullRange(s.window, s.level, lo, hi));
+  // A PET without SUV says so, with why (study::noSuvNote), on every pane that shows it.
+  const bool showsFunctional = render::showsFunctional(s, functional_ != nullptr);
+  for (const Volume* v : {&anatomical_, showsFunctional ? functional_ : nullptr})
+    if (const std::string note = v ? mvw::study::noSuvNote(*v) : ""; !note.empty())
+      text += "  " + note;
   if (!petCtLayout()) return text;
   if (pane == kCoronal && functional_) {
     // The functional pane's window is the functional one (the anatomy's is drawn black).
@@ -588,6 +602,8 @@ std::string ViewerState::caption(int pane, const render::RenderSettings& s) cons
     const std::string& unit = functional_->metadata().unit;
     text = "mpr " + config::toString(shown.config.view) + window +
            (unit.empty() ? "(no unit)" : unit) + "  " + toString(functionalColors_.map);
+    if (const std::string note = mvw::study::noSuvNote(*functional_); !note.empty())
+      text += "  " + note;
   }
   return paneTitle(pane) + "  " + text;
 }
@@ -713,13 +729,20 @@ ViewerProbe ViewerState::probe(const glm::dvec3& world) const {
 
 std::string ViewerState::readout(const glm::dvec3& world) const {
   const ViewerProbe p = probe(world);
+  // A PET without SUV: its value says so, and why (study::noSuvNote).
+  const auto noSuv = [](const Volume& v) {
+    const std::string note = mvw::study::noSuvNote(v);
+    return note.empty() ? note : " (" + note + ")";
+  };
   std::string text = volumeName(anatomical_, "anatomical") + " " +
-                     (p.anatomicalInside ? formatValue(p.anatomical, anatomical_.metadata().unit)
+                     (p.anatomicalInside ? formatValue(p.anatomical, anatomical_.metadata().unit) +
+                                               noSuv(anatomical_)
                                          : std::string("outside"));
   if (functional_)
     text += " | " + volumeName(*functional_, "functional") + " " +
-            (p.functionalInside ? formatValue(p.functional, functional_->metadata().unit)
-                                : std::string("outside"));
+            (p.functionalInside
+                 ? formatValue(p.functional, functional_->metadata().unit) + noSuv(*functional_)
+                 : std::string("outside"));
   return text;
 }
 

@@ -96,6 +96,10 @@ inline constexpr int kMaxOrbitFrames = 720;
 // its key: the parser starts from a default-constructed ViewConfig.
 struct ViewConfig {
   std::string name;  // output file stem; default "view<N>"
+  // The one view loadStudyConfig gives a config that names none (and the PACS window its
+  // studies): no key of the config, never written back. Its mode, colour map and window are
+  // then the modality's (study::ModalityDefaults::mode3d): a PET read alone opens as its MIP.
+  bool implied = false;
   RenderMode mode = RenderMode::Composite;
   ViewName view = ViewName::Anterior;
   double azimuth = 0.0, elevation = 0.0, roll = 0.0;  // degrees

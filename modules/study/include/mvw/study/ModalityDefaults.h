@@ -10,6 +10,8 @@
 
 #include "mvw/config/StudyConfig.h"
 
+#include "mvw/core/ColorMap.h"
+#include "mvw/core/RenderMode.h"
 #include "mvw/core/Volume.h"
 #include "mvw/core/WindowLevel.h"
 
@@ -18,14 +20,30 @@ namespace mvw::study {
 struct ModalityDefaults {
   std::string preset;     // transfer function preset name
   double isoValue = 0.0;  // isosurface value in the volume's unit
-  WindowLevel mpr;        // the MPR panes' window
+  WindowLevel mpr;        // the MPR panes' window (and an emission image's MIP's)
+  // The view a study gets where its config names none (config::ViewConfig::implied): the
+  // viewer's 3D pane and `mvw render`'s one view. A composite with the preset; a PET or SPECT
+  // read alone: its MIP in `mipColors` under the `mpr` window, as nuclear medicine reads it.
+  RenderMode mode3d = RenderMode::Composite;
+  ColorMap mipColors = ColorMap::Grey;
 };
+
+// Whether the volume is an emission image: PET or SPECT (DICOM modality PT or NM).
+bool isEmission(const Volume& volume);
 
 // CT (or HU): bone preset, bone isosurface (300 HU), soft-tissue window (W 400 L 40).
 // PET/SPECT: hot-metal preset, in SUV the isosurface at SUV 2.5 (kSuvLesionThreshold) where the
-// volume reaches it. Otherwise (MR, unknown, PET in other units): the MR or PET preset, the
-// isosurface at 40 % of the value range and the full range as window.
+// volume reaches it, a grey-inverted MIP as the implied view, and as window the one the volume
+// gets where it is shown alone (defaultFunctionalDisplayWindow: 0-5 or 0-10 SUV; without SUV 0
+// to the 99.5th percentile), so that a PET opened from a folder or the PACS is not washed out
+// by its few hottest voxels. Otherwise (MR, unknown): the MR preset, the isosurface at 40 % of
+// the value range and the full range as window.
 ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, double> valueRange);
+
+// Why an emission image's values are not SUV, for every pane and readout that shows it:
+// "no SUV: PatientWeight missing or not positive" (the reader's note, io's DicomSuv, without
+// its "values in Bq/ml" preamble); "" for a volume in SUV and for other modalities.
+std::string noSuvNote(const Volume& volume);
 
 // The preset part of modalityDefaults, which needs no value range.
 std::string defaultPreset(const Volume& anatomy);

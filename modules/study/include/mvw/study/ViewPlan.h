@@ -10,6 +10,7 @@
 #include "mvw/core/Volume.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/ModalityDefaults.h"
 
 namespace mvw::study {
 
@@ -68,6 +69,13 @@ void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
 // view's, else the modality's, ModalityDefaults::mpr), so the face shows what an MPR on that
 // plane shows, in `mvw render` as in the viewer.
 void applyCutFaceWindow(PlannedView& view, const WindowLevel& mpr);
+
+// An emission image read alone (ModalityDefaults of a PET or SPECT anatomy; nothing for other
+// modalities): the view the study gets where its config names none (config::ViewConfig::implied)
+// becomes its MIP in the modality's colour map (grey-inverted), and every MIP or MPR view that
+// names no window gets the modality's (0-5 or 0-10 SUV; without SUV 0 to the 99.5th
+// percentile). `mvw render` and the viewer (study::prepareViews) share it.
+void applyModalityView(PlannedView& view, const Volume& anatomy, const ModalityDefaults& defaults);
 
 // Glyph views whose config leaves the blue-noise spacing open get it from the functional
 // volume's voxel and the rendered scale (defaultGlyphSpacingMm), the diameter following.

@@ -2,6 +2,7 @@
 // A study opened in the viewer, as the window loop hands it to the state and the panes: the
 // scene its renderer reports, the segments' centres, and each pane's annotations (drawn by
 // `mvw render`'s painter, output::drawAnnotations).
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,5 +38,12 @@ output::ViewAnnotations paneAnnotations(const ViewerState& state, int pane,
                                         const render::RenderSettings& s,
                                         std::pair<double, double> functionalRange,
                                         const study::SegmentOverlay* segments);
+
+// Every pane as the window draws it (the script's pane-report), JSON: {"panes": [{"pane",
+// "title", "mode", "window": [low, high], "colour_bar": {"low", "high", "unit", "title",
+// "colormap"} or null, "caption"}, ...], "readout": the panel's readout at the cursor (else at
+// the crosshair)}, so that a test reads what a reader sees without reading pixels. Throws
+// InputError naming the file where it cannot be written.
+void writePaneReport(const ViewerState& state, const std::filesystem::path& file);
 
 }  // namespace mvw::viewer

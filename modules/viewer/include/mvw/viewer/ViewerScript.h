@@ -38,6 +38,7 @@ class ViewerScript {
       PaneScreenshot,
       SaveConfig,
       Dump,
+      PaneReport,
       Colormap,
       Orbit,
       Layout,
