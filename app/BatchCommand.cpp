@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +17,7 @@
 #include "mvw/batch/BatchShard.h"
 #include "mvw/batch/BatchSlurm.h"
 #include "mvw/core/ExitCode.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/Version.h"
 
 namespace mvw::app {
@@ -31,9 +33,23 @@ struct BatchOptions {
   bool submit = false;
 };
 
+// mvw's own options given to the batch command that its studies need too: the PACS cache (made
+// absolute: a Slurm task starts elsewhere) and the time-outs where they are not the defaults.
+std::vector<std::string> mvwOptionsOf(const pacs::Options& pacs) {
+  std::vector<std::string> o;
+  if (!pacs.cacheDir.empty())
+    o.insert(o.end(), {"--cache", fs::absolute(pacs.cacheDir).lexically_normal().string()});
+  const pacs::Options defaults;
+  if (pacs.connectTimeoutS != defaults.connectTimeoutS)
+    o.insert(o.end(), {"--connect-timeout", shortNumber(pacs.connectTimeoutS)});
+  if (pacs.readTimeoutS != defaults.readTimeoutS)
+    o.insert(o.end(), {"--read-timeout", shortNumber(pacs.readTimeoutS)});
+  return o;
+}
+
 }  // namespace
 
-void addBatchCommand(CLI::App& app) {
+void addBatchCommand(CLI::App& app, const pacs::Options& pacs) {
   auto opt = std::make_shared<BatchOptions>();
   CLI::App* cohort = app.add_subcommand(
       "batch",
@@ -56,7 +72,7 @@ void addBatchCommand(CLI::App& app) {
   run->add_option("--jobs,-j", opt->jobs, "Studies at once")->check(CLI::Range(1, 256));
   run->add_option("--timeout", opt->timeoutS, "Seconds a study may take before it is killed")
       ->check(CLI::Range(1.0, 7 * 24 * 3600.0));
-  setCommandBody(*run, [opt] {
+  setCommandBody(*run, [opt, &pacs] {
     const batch::BatchShard shard = batch::resolveBatchShard(opt->shard, opt->shards);
     const batch::BatchManifest manifest = batch::loadBatchManifest(opt->manifest);
     batch::BatchRunOptions o;
@@ -65,6 +81,7 @@ void addBatchCommand(CLI::App& app) {
     o.jobs = opt->jobs;
     o.timeoutS = opt->timeoutS;
     o.mvwExecutable = batch::selfExecutable();
+    o.mvwOptions = mvwOptionsOf(pacs);
     o.version = kVersion;
     const batch::BatchRunCounts counts = batch::runBatch(manifest, o, std::cout);
     // A failed study is neither bad input to this command nor an internal fault: exit 1, the
@@ -101,7 +118,7 @@ void addBatchCommand(CLI::App& app) {
   slurm->add_option("--throttle", opt->throttle, "At most K tasks at once (the array's %K)")
       ->check(CLI::Range(1, 100000));
   slurm->add_flag("--submit", opt->submit, "Submit with sbatch and print the job id");
-  slurm->callback([opt] {
+  slurm->callback([opt, &pacs] {
     // The manifest is checked now, not by N failing tasks later.
     batch::loadBatchManifest(opt->manifest);
     batch::SlurmJobOptions o;
@@ -114,6 +131,7 @@ void addBatchCommand(CLI::App& app) {
     o.partition = opt->partition;
     o.time = opt->time;
     o.mem = opt->mem;
+    o.mvwOptions = mvwOptionsOf(pacs);
     const fs::path script = batch::writeSlurmScript(o);
     if (!opt->submit) {
       std::cout << script.string() << "\n";

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   mvw::app::addViewCommand(app, pacsOptions);
   mvw::app::addValidateCommand(app, pacsOptions);
   mvw::app::addConfigCommand(app);
-  mvw::app::addBatchCommand(app);
+  mvw::app::addBatchCommand(app, pacsOptions);
   mvw::app::addPacsCommand(app);
   // Every number option is finite: NaN passes any range check (comparisons with it are false)
   // and inf overflows what it scales.

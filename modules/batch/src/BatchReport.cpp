@@ -137,8 +137,12 @@ BatchReportFiles buildBatchReport(const fs::path& out) {
          << (seconds.empty() ? "" : " · " + oneDecimal(marker["seconds"]) + " s")
          << "</small></h2>\n";
     if (status == "failed") {
-      body << "<p class=\"message\">exit " << exitCode << ": " << html(message) << " (<a href=\""
-           << html(id) << "/log.txt\">log</a>)</p>\n";
+      // The log is linked only where it is: a study stopped before its command ran may have
+      // none (a run of an older mvw).
+      body << "<p class=\"message\">exit " << exitCode << ": " << html(message);
+      if (fs::is_regular_file(dir / "log.txt"))
+        body << " (<a href=\"" << html(id) << "/log.txt\">log</a>)";
+      body << "</p>\n";
       failures << "<li><a href=\"#" << html(id) << "\">" << html(id) << "</a>: exit " << exitCode
                << ": " << html(message) << "</li>\n";
     }

@@ -16,11 +16,32 @@
 #include "mvw/batch/BatchResume.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/ExitCode.h"
+#include "mvw/io/AtomicFile.h"
 #include "mvw/process/ProcessPool.h"
+#include "mvw/process/Sha256.h"
 
 namespace mvw::batch {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// The inputs a failed.json records for a study that could not be started: every checksum
+// when they can be had, else the study config's alone ("" when even it cannot be read), so
+// that the record always says what the study was run on.
+std::map<std::string, std::string> inputsAsFarAsReadable(const BatchStudy& study) {
+  try {
+    return batchInputChecksums(study);
+  } catch (const std::exception&) {
+  }
+  try {
+    return {{study.study.string(), process::fileSha256(study.study)}};
+  } catch (const std::exception&) {
+    return {{study.study.string(), ""}};
+  }
+}
+
+}  // namespace
 
 BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& options,
                         std::ostream& progress) {
@@ -61,18 +82,24 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
     removeLeftovers(out, study->id);
     StudyRun run{study, workFolder(out, study->id), {}, {}};
     fs::create_directories(run.work);
-    // A study whose inputs cannot be read fails as its process would: the same code and message.
+    // A study whose inputs cannot be read fails as its process would: the same code and message,
+    // in its log.txt too (the report links it), with the command and the inputs it would have
+    // run on in failed.json.
     std::ostringstream problem;
     const int status = runReportingErrors(
         [&] {
           run.inputs = batchInputChecksums(*study);
-          run.command = batchCommand(*study, run.work);
+          run.command = batchCommand(*study, run.work, options.mvwOptions);
           return kExitSuccess;
         },
         problem);
     if (status != kExitSuccess) {
       std::string message = problem.str();
+      io::writeTextAtomically(run.work / "log.txt", message);
       if (!message.empty() && message.back() == '\n') message.pop_back();
+      if (run.command.empty())
+        run.command = batchCommandOrPlain(*study, run.work, options.mvwOptions);
+      if (run.inputs.empty()) run.inputs = inputsAsFarAsReadable(*study);
       recordFailure(run, status, message, 0.0);
       continue;
     }

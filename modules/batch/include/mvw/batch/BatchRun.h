@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "mvw/batch/BatchManifest.h"
 #include "mvw/batch/BatchShard.h"
@@ -21,7 +22,10 @@ struct BatchRunOptions {
   int jobs = 1;
   double timeoutS = 3600.0;             // per study; then it is killed and failed
   std::filesystem::path mvwExecutable;  // what each study runs (the caller's own binary)
-  std::string version;                  // mvw's version, recorded in the markers
+  // mvw's own options each study's command ends with (--cache DIR, the PACS time-outs):
+  // batchCommand's mvwOptions.
+  std::vector<std::string> mvwOptions;
+  std::string version;  // mvw's version, recorded in the markers
 };
 
 struct BatchRunCounts {
