@@ -17,6 +17,7 @@
 #include "mvw/core/Error.h"
 #include "mvw/core/ExitCode.h"
 #include "mvw/io/AtomicFile.h"
+#include "mvw/io/Interrupt.h"
 #include "mvw/process/ProcessPool.h"
 #include "mvw/process/Sha256.h"
 
@@ -61,6 +62,9 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
   BatchRunCounts counts;
   const RecordContext context{manifest.file, options.version};
   std::vector<StudyRun> pending;
+  // Ctrl-C or scancel's SIGTERM removes the work folders of the studies not yet published
+  // (io::installInterruptCleanup): OUT keeps only complete studies.
+  std::vector<io::RemovedOnInterrupt> pendingGuards;
   std::vector<process::ProcessJob> jobs;
   const std::vector<const BatchStudy*> mine = shardStudies(manifest, options.shard);
   counts.total = static_cast<int>(mine.size());
@@ -82,6 +86,7 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
     removeLeftovers(out, study->id);
     StudyRun run{study, workFolder(out, study->id), {}, {}};
     fs::create_directories(run.work);
+    io::RemovedOnInterrupt workGuard(run.work);
     // A study whose inputs cannot be read fails as its process would: the same code and message,
     // in its log.txt too (the report links it), with the command and the inputs it would have
     // run on in failed.json.
@@ -111,6 +116,7 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
     }
     jobs.push_back(batchJob(*study, run.work, run.command));
     pending.push_back(std::move(run));
+    pendingGuards.push_back(std::move(workGuard));
   }
 
   pool.run(jobs, std::max(1, options.jobs), options.timeoutS,
@@ -120,11 +126,13 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
                recordFailure(run, result.status,
                              batchFailureMessage(result, run.work / "log.txt", options.timeoutS),
                              result.seconds);
+               pendingGuards[k].release();
                return;
              }
              // done.json is the last file written: it exists only beside complete outputs.
              writeRecord(run.work / "done.json", doneRecord(run, context, result.seconds));
              publish(run.work, out, run.study->id);
+             pendingGuards[k].release();
              ++counts.done;
              char secs[32];
              std::snprintf(secs, sizeof secs, "%.1f", result.seconds);

@@ -14,6 +14,7 @@
 
 #include "Internal.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/Interrupt.h"
 #include "mvw/io/StagedFolder.h"
 
 namespace fs = std::filesystem;
@@ -394,6 +395,9 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
     // The .partial folder survives an interruption; what it holds that verifies is kept.
     const fs::path partial = studyDir / (seriesUid + ".partial");
     fs::create_directories(partial);
+    // Ctrl-C keeps it too, and says so (io/Interrupt.h): the next run resumes from it.
+    const io::RemovedOnInterrupt resumable(fs::absolute(partial),
+                                           io::RemovedOnInterrupt::Action::Keep);
     bool resuming = false;
     for (const auto& e : fs::directory_iterator(partial))
       if (e.path().extension() != ".dcm")
