@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +17,7 @@
 #include "mvw/batch/BatchShard.h"
 #include "mvw/batch/BatchSlurm.h"
 #include "mvw/core/ExitCode.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/Version.h"
 
 namespace mvw::app {
@@ -31,9 +33,23 @@ struct BatchOptions {
   bool submit = false, verify = false;
 };
 
+// mvw's own options given to the batch command that its studies need too: the PACS cache (made
+// absolute: a Slurm task starts elsewhere) and the time-outs where they are not the defaults.
+std::vector<std::string> mvwOptionsOf(const pacs::Options& pacs) {
+  std::vector<std::string> o;
+  if (!pacs.cacheDir.empty())
+    o.insert(o.end(), {"--cache", fs::absolute(pacs.cacheDir).lexically_normal().string()});
+  const pacs::Options defaults;
+  if (pacs.connectTimeoutS != defaults.connectTimeoutS)
+    o.insert(o.end(), {"--connect-timeout", shortNumber(pacs.connectTimeoutS)});
+  if (pacs.readTimeoutS != defaults.readTimeoutS)
+    o.insert(o.end(), {"--read-timeout", shortNumber(pacs.readTimeoutS)});
+  return o;
+}
+
 }  // namespace
 
-void addBatchCommand(CLI::App& app) {
+void addBatchCommand(CLI::App& app, const pacs::Options& pacs) {
   auto opt = std::make_shared<BatchOptions>();
   CLI::App* cohort = app.add_subcommand(
       "batch",
@@ -59,7 +75,7 @@ void addBatchCommand(CLI::App& app) {
   run->add_flag("--verify", opt->verify,
                 "Hash every input again (default: an input whose size, modification time and "
                 "inode are unchanged keeps the SHA-256 remembered in OUT/hashes/)");
-  setCommandBody(*run, [opt] {
+  setCommandBody(*run, [opt, &pacs] {
     const batch::BatchShard shard = batch::resolveBatchShard(opt->shard, opt->shards);
     const batch::BatchManifest manifest = batch::loadBatchManifest(opt->manifest);
     batch::BatchRunOptions o;
@@ -68,6 +84,7 @@ void addBatchCommand(CLI::App& app) {
     o.jobs = opt->jobs;
     o.timeoutS = opt->timeoutS;
     o.mvwExecutable = batch::selfExecutable();
+    o.mvwOptions = mvwOptionsOf(pacs);
     o.version = kVersion;
     o.verify = opt->verify;
     const batch::BatchRunCounts counts = batch::runBatch(manifest, o, std::cout);
@@ -105,7 +122,7 @@ void addBatchCommand(CLI::App& app) {
   slurm->add_option("--throttle", opt->throttle, "At most K tasks at once (the array's %K)")
       ->check(CLI::Range(1, 100000));
   slurm->add_flag("--submit", opt->submit, "Submit with sbatch and print the job id");
-  slurm->callback([opt] {
+  slurm->callback([opt, &pacs] {
     // The manifest is checked now, not by N failing tasks later.
     batch::loadBatchManifest(opt->manifest);
     batch::SlurmJobOptions o;
@@ -118,6 +135,7 @@ void addBatchCommand(CLI::App& app) {
     o.partition = opt->partition;
     o.time = opt->time;
     o.mem = opt->mem;
+    o.mvwOptions = mvwOptionsOf(pacs);
     // The controller's limit is checked before anything is written or submitted: a larger array
     // is the user's request to change, not the server's failure.
     if (opt->submit) batch::checkSlurmArraySize(opt->tasks, batch::slurmMaxArraySize());

@@ -1,8 +1,10 @@
 #include "PacsCommand.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,6 +45,26 @@ void addConnection(CLI::App* cmd, PacsCli& o) {
                   "seconds to wait for the next bytes of an answer (default 60)")
       ->check(CLI::Range(0.1, 86400.0));
   cmd->add_flag("-q,--quiet", o.quiet, "no progress on stderr");
+}
+
+// "mvw pacs store: skipped 8 files that are not DICOM: 6 .png, 1 .json (render.json), ...": by
+// kind, most first, a kind of one file named, so an orbit's frames do not hide render.json.
+std::string skippedSummary(const std::vector<std::filesystem::path>& skipped) {
+  std::map<std::string, std::vector<std::filesystem::path>> byKind;
+  for (const std::filesystem::path& f : skipped)
+    byKind[f.extension().empty() ? "(no extension)" : f.extension().string()].push_back(f);
+  std::vector<std::pair<std::string, std::vector<std::filesystem::path>>> kinds(byKind.begin(),
+                                                                                byKind.end());
+  std::stable_sort(kinds.begin(), kinds.end(),
+                   [](const auto& a, const auto& b) { return a.second.size() > b.second.size(); });
+  std::string text = "mvw pacs store: skipped " + std::to_string(skipped.size()) +
+                     (skipped.size() == 1 ? " file that is" : " files that are") + " not DICOM:";
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    const auto& [kind, files] = kinds[i];
+    text += (i ? ", " : " ") + std::to_string(files.size()) + " " + kind;
+    if (files.size() == 1) text += " (" + files[0].filename().string() + ")";
+  }
+  return text;
 }
 
 }  // namespace
@@ -127,12 +149,18 @@ void addPacsCommand(CLI::App& app) {
   });
 
   CLI::App* store = cmd->add_subcommand(
-      "store", "DICOM files (or every file under folders) to the server: STOW-RS or C-STORE");
+      "store",
+      "DICOM files (or the DICOM files under folders, the rest skipped) to the server: "
+      "STOW-RS or C-STORE");
   addConnection(store, *o);
   store->add_option("FILE", o->files, "DICOM files or folders")->required();
   store->callback([o] {
     const pacs::Server server = config::resolveServer(o->server);
-    std::cout << pacs::transferSummary("stored", pacs::store(server, o->files, o->options)) << "\n";
+    // A folder a command wrote holds more than DICOM (mvw render --dicom: PNGs, render.json):
+    // its DICOM files go, the rest is named as skipped.
+    const pacs::StoreFiles chosen = pacs::storeFiles(o->files);
+    if (!chosen.skipped.empty()) std::cerr << skippedSummary(chosen.skipped) << "\n";
+    std::cout << pacs::transferSummary("stored", pacs::store(server, chosen, o->options)) << "\n";
   });
 
   // The cache folder is main's --cache (given before or after the command's name).

@@ -23,11 +23,14 @@
 #include "mvw/core/ExitCode.h"
 #include "mvw/core/HugePages.h"
 #include "mvw/core/Version.h"
+#include "mvw/io/Interrupt.h"
 #include "mvw/pacs/Pacs.h"
 #include "view/ViewCommand.h"
 
 int main(int argc, char** argv) {
   mvw::restartWithHugePages(argv, mvw::commandReadsVolumes(argv));
+  // SIGINT and SIGTERM remove every staged output and exit 130 / 143 (io/Interrupt.h).
+  mvw::io::installInterruptCleanup();
   CLI::App app{
       "mvw - multimodal volume workstation: anatomy + functional volumes, registered and rendered"};
   app.require_subcommand(1);
@@ -57,7 +60,7 @@ int main(int argc, char** argv) {
   mvw::app::addViewCommand(app, pacsOptions);
   mvw::app::addValidateCommand(app, pacsOptions);
   mvw::app::addConfigCommand(app);
-  mvw::app::addBatchCommand(app);
+  mvw::app::addBatchCommand(app, pacsOptions);
   mvw::app::addPacsCommand(app);
   // Every number option is finite: NaN passes any range check (comparisons with it are false)
   // and inf overflows what it scales.

@@ -76,6 +76,36 @@ TEST(BatchProcess, RegisterCommandFromTheStudyConfig) {
   }
 }
 
+// A config naming PACS series has no paths to give register: it registers the config itself.
+// mvw's own options of the batch run (--cache, time-outs) end every study's command.
+TEST(BatchProcess, PacsStudiesAndTheRunsOwnOptions) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "pacs.json")
+      << R"({"anatomical": {"pacs": "dicom://ORTHANC@pacs:4242", "study": "1.2", "series": "CT"},
+             "functional": {"pacs": "http://pacs:8042/dicom-web", "study": "1.2",
+                            "series": "PT", "kind": "pet"}})";
+  BatchStudy s;
+  s.id = "p";
+  s.study = dir / "pacs.json";
+  s.task = "register";
+  const Args cache{"--cache", "/cache", "--read-timeout", "5"};
+  EXPECT_EQ(batchCommand(s, "/w", cache), (Args{"register", (dir / "pacs.json").string(), "-o",
+                                                "/w", "--cache", "/cache", "--read-timeout", "5"}));
+  s.task = "render";
+  s.options = {{"size", "64 64"}};
+  EXPECT_EQ(batchCommand(s, "/w", cache),
+            (Args{"render", (dir / "pacs.json").string(), "-o", "/w", "--size", "64", "64",
+                  "--cache", "/cache", "--read-timeout", "5"}));
+  // A config that cannot be read still has a command for failed.json.
+  std::ofstream(dir / "bad.json") << "{";
+  s.study = dir / "bad.json";
+  s.task = "register";
+  s.options = {};
+  EXPECT_EQ(batchCommandOrPlain(s, "/w", cache),
+            (Args{"register", (dir / "bad.json").string(), "-o", "/w", "--cache", "/cache",
+                  "--read-timeout", "5"}));
+}
+
 TEST(BatchProcess, JobsExecTheExecutableWithStdoutWhereTheTaskWantsIt) {
   const fs::path dir = test::scratchDir();
   BatchStudy stats, render;

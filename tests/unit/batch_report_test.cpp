@@ -56,6 +56,7 @@ fs::path makeOutput() {
   fs::create_directories(out / "b");
   writeRecord(out / "b" / "failed.json",
               failedRecord({&b, out / "b", {}, {"render"}}, kContext, 2, kMessage, 0.0));
+  std::ofstream(out / "b" / "log.txt") << kMessage << "\n";
   fs::create_directories(out / "d");
   std::ofstream(out / "d" / "stats.json") << R"([
     {"roi": "whole", "unit": "SUV", "voxels": 100, "volume_ml": 1.5, "max": 3, "mean": 1.25,
@@ -145,6 +146,11 @@ TEST(BatchReport, IndexHtmlListsFailuresViewsAndStatistics) {
       has("<section id=\"b\" class=\"failed\"><h2>b <small>failed · render · 0.0 "
           "s</small></h2>\n<p class=\"message\">exit 2: "));
   EXPECT_TRUE(has("(<a href=\"b/log.txt\">log</a>)</p>\n"));
+  // A failed study without its log (an older mvw's, stopped before it ran): no link to nothing.
+  fs::remove(out / "b" / "log.txt");
+  const std::string noLog = buildBatchReport(out).indexHtml;
+  EXPECT_EQ(noLog.find("b/log.txt"), std::string::npos);
+  EXPECT_NE(noLog.find("&quot;odd&quot;</p>\n"), std::string::npos);
   EXPECT_TRUE(
       has("<section id=\"c\" class=\"notrun\"><h2>c <small>not run</small></h2>\n"
           "</section>\n"));

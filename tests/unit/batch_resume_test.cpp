@@ -72,6 +72,38 @@ TEST(BatchResume, InputChecksumsCoverTheStudyAndTheFilesItsOptionsName) {
   }
 }
 
+// A study config naming PACS series (what the viewer's Ctrl+S saves): each series is an input by
+// its server, study and series, never a path (issue 51: "cannot make absolute path" before).
+TEST(BatchResume, APacsSeriesIsAnInputByServerStudyAndSeries) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "ct.nii") << "x";
+  std::ofstream(dir / "pacs.json") << R"({"anatomical": {"path": "ct.nii"},
+             "functional": {"pacs": "http://pacs:8042/dicom-web", "study": "1.2.3",
+                            "series": "4.5.6", "kind": "pet"}})";
+  BatchStudy study;
+  study.id = "p";
+  study.study = dir / "pacs.json";
+  study.task = "render";
+  study.line = "p,pacs.json,render";
+  const auto inputs = batchInputChecksums(study);
+  ASSERT_EQ(inputs.size(), 3u);
+  const std::string key = pacsInputKey("http://pacs:8042/dicom-web", "1.2.3", "4.5.6");
+  EXPECT_EQ(key, "pacs http://pacs:8042/dicom-web study 1.2.3 series 4.5.6");
+  ASSERT_EQ(inputs.count(key), 1u);
+  EXPECT_EQ(inputs.at(key).size(), 64u);
+  EXPECT_EQ(inputs.at((dir / "ct.nii").string()), process::fileSha256(dir / "ct.nii"));
+  EXPECT_EQ(pacsInputKey("dicom://ORTHANC@pacs:4242", "1.2", "CT"),
+            "pacs dicom://ORTHANC@pacs:4242 study 1.2 series CT");
+  // Unchanged without asking the server; another series named: run again.
+  const fs::path folder = dir / "out" / "p";
+  markDone(folder, study, inputs);
+  EXPECT_EQ(decideStudy(folder, study, batchInputChecksums(study)), StudyAction::kSkip);
+  std::ofstream(dir / "pacs.json") << R"({"anatomical": {"path": "ct.nii"},
+             "functional": {"pacs": "http://pacs:8042/dicom-web", "study": "1.2.3",
+                            "series": "4.5.7", "kind": "pet"}})";
+  EXPECT_EQ(decideStudy(folder, study, batchInputChecksums(study)), StudyAction::kRun);
+}
+
 TEST(BatchResume, SkipsADoneStudyWhoseInputsAndLineAreUnchanged) {
   const Fixture f = makeStudy();
   const fs::path folder = f.dir / "out" / "s1";

@@ -15,6 +15,11 @@ const char* const kRole = "an input of a batch study";
 
 }  // namespace
 
+std::string pacsInputKey(const std::string& server, const std::string& study,
+                         const std::string& series) {
+  return "pacs " + server + " study " + study + " series " + series;
+}
+
 std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study,
                                                        BatchHashCache* cache) {
   BatchHashCache none;
@@ -24,9 +29,22 @@ std::map<std::string, std::string> batchInputChecksums(const BatchStudy& study,
   std::vector<fs::path> paths;
   if (study.study.extension() == ".json") {
     const config::StudyConfig config = config::loadStudyConfig(study.study);
-    paths.push_back(config.anatomical.path);
-    if (config.functional) paths.push_back(config.functional->path);
-    if (config.segmentation) paths.push_back(config.segmentation->path);
+    // A PACS series is what the config names, not bytes here: the identity itself is hashed, so
+    // the study reruns when the config names another server, study or series (its bytes
+    // change anyway), never because the cache was filled or emptied between runs.
+    auto add = [&](const config::VolumeSource& source) {
+      if (source.pacs.empty()) {
+        paths.push_back(source.path);
+        return;
+      }
+      const std::string key = pacsInputKey(source.pacs, source.study, source.series);
+      process::Sha256 sha;
+      sha.add(key.data(), key.size());
+      sums[key] = sha.hex();
+    };
+    add(config.anatomical);
+    if (config.functional) add(*config.functional);
+    if (config.segmentation) add(*config.segmentation);
     if (!config.registration.transform.empty()) paths.push_back(config.registration.transform);
   }
   // An option naming a file (a label table, a transform) is an input too.

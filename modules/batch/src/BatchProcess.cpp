@@ -34,7 +34,8 @@ std::string lastMessage(const fs::path& log) {
 
 }  // namespace
 
-std::vector<std::string> batchCommand(const BatchStudy& study, const fs::path& folder) {
+std::vector<std::string> batchCommand(const BatchStudy& study, const fs::path& folder,
+                                      const std::vector<std::string>& mvwOptions) {
   std::vector<std::string> args{study.task};
   if (study.task == "render") {
     args.insert(args.end(), {study.study.string(), "-o", folder.string()});
@@ -45,12 +46,17 @@ std::vector<std::string> batchCommand(const BatchStudy& study, const fs::path& f
     if (!config.functional)
       throw InputError(study.study,
                        "has no functional volume to register (batch study '" + study.id + "')");
-    args.insert(args.end(), {"--fixed", config.anatomical.path.string(), "--moving",
-                             config.functional->path.string(), "-o", folder.string()});
-    if (!config.anatomical.series.empty())
-      args.insert(args.end(), {"--fixed-series", config.anatomical.series});
-    if (!config.functional->series.empty())
-      args.insert(args.end(), {"--moving-series", config.functional->series});
+    if (!config.anatomical.pacs.empty() || !config.functional->pacs.empty()) {
+      // A PACS series has no path to name: mvw register reads the config's series itself.
+      args.insert(args.end(), {study.study.string(), "-o", folder.string()});
+    } else {
+      args.insert(args.end(), {"--fixed", config.anatomical.path.string(), "--moving",
+                               config.functional->path.string(), "-o", folder.string()});
+      if (!config.anatomical.series.empty())
+        args.insert(args.end(), {"--fixed-series", config.anatomical.series});
+      if (!config.functional->series.empty())
+        args.insert(args.end(), {"--moving-series", config.functional->series});
+    }
   }
   for (const auto& [name, value] : study.options) {
     args.push_back("--" + name);
@@ -58,7 +64,20 @@ std::vector<std::string> batchCommand(const BatchStudy& study, const fs::path& f
     std::istringstream words(value);
     for (std::string w; words >> w;) args.push_back(w);
   }
+  args.insert(args.end(), mvwOptions.begin(), mvwOptions.end());
   return args;
+}
+
+std::vector<std::string> batchCommandOrPlain(const BatchStudy& study, const fs::path& folder,
+                                             const std::vector<std::string>& mvwOptions) {
+  try {
+    return batchCommand(study, folder, mvwOptions);
+  } catch (const std::exception&) {
+    std::vector<std::string> args{study.task, study.study.string()};
+    if (study.task != "stats") args.insert(args.end(), {"-o", folder.string()});
+    args.insert(args.end(), mvwOptions.begin(), mvwOptions.end());
+    return args;
+  }
 }
 
 process::ProcessJob batchJob(const BatchStudy& study, const fs::path& work,

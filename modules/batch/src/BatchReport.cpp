@@ -223,9 +223,14 @@ std::string section(const fs::path& out, const StudyResult& r) {
        << (r.task.empty() ? "" : " · " + r.task)
        << (r.seconds.empty() ? "" : " · " + oneDecimal(r.marker["seconds"]) + " s")
        << "</small></h2>\n";
-  if (r.status == "failed")
-    body << "<p class=\"message\">exit " << r.exitCode << ": " << html(r.message) << " (<a href=\""
-         << html(r.id) << "/log.txt\">log</a>)</p>\n";
+  if (r.status == "failed") {
+    // The log is linked only where it is: a study stopped before its command ran may have none
+    // (a run of an older mvw).
+    body << "<p class=\"message\">exit " << r.exitCode << ": " << html(r.message);
+    if (fs::is_regular_file(out / r.id / "log.txt"))
+      body << " (<a href=\"" << html(r.id) << "/log.txt\">log</a>)";
+    body << "</p>\n";
+  }
   if (r.status == "done" && r.marker.contains("outputs") && r.marker["outputs"].is_object())
     figures(body, out / r.id, r);
   if (!r.rois.empty()) {

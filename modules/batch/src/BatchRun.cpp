@@ -17,11 +17,33 @@
 #include "mvw/batch/BatchResume.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/ExitCode.h"
+#include "mvw/io/AtomicFile.h"
+#include "mvw/io/Interrupt.h"
 #include "mvw/process/ProcessPool.h"
+#include "mvw/process/Sha256.h"
 
 namespace mvw::batch {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// The inputs a failed.json records for a study that could not be started: every checksum
+// when they can be had, else the study config's alone ("" when even it cannot be read), so
+// that the record always says what the study was run on.
+std::map<std::string, std::string> inputsAsFarAsReadable(const BatchStudy& study) {
+  try {
+    return batchInputChecksums(study);
+  } catch (const std::exception&) {
+  }
+  try {
+    return {{study.study.string(), process::fileSha256(study.study)}};
+  } catch (const std::exception&) {
+    return {{study.study.string(), ""}};
+  }
+}
+
+}  // namespace
 
 BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& options,
                         std::ostream& progress) {
@@ -41,6 +63,9 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
   BatchRunCounts counts;
   const RecordContext context{manifest.file, options.version};
   std::vector<StudyRun> pending;
+  // Ctrl-C or scancel's SIGTERM removes the work folders of the studies not yet published
+  // (io::installInterruptCleanup): OUT keeps only complete studies.
+  std::vector<io::RemovedOnInterrupt> pendingGuards;
   std::vector<process::ProcessJob> jobs;
   const std::vector<const BatchStudy*> mine = shardStudies(manifest, options.shard);
   counts.total = static_cast<int>(mine.size());
@@ -70,19 +95,26 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
   for (const BatchStudy* study : mine) {
     removeLeftovers(leftovers, study->id);
     StudyRun run{study, workFolder(out, study->id), {}, {}};
-    // A study whose inputs cannot be read fails as its process would: the same code and message.
+    // A study whose inputs cannot be read fails as its process would: the same code and message,
+    // in its log.txt too (the report links it), with the command and the inputs it would have
+    // run on in failed.json.
     std::ostringstream problem;
     const int status = runReportingErrors(
         [&] {
           run.inputs = batchInputChecksums(*study, &hashes);
-          run.command = batchCommand(*study, run.work);
+          run.command = batchCommand(*study, run.work, options.mvwOptions);
           return kExitSuccess;
         },
         problem);
     if (status != kExitSuccess) {
       std::string message = problem.str();
-      if (!message.empty() && message.back() == '\n') message.pop_back();
       fs::create_directories(run.work);
+      const io::RemovedOnInterrupt workGuard(run.work);
+      io::writeTextAtomically(run.work / "log.txt", message);
+      if (!message.empty() && message.back() == '\n') message.pop_back();
+      if (run.command.empty())
+        run.command = batchCommandOrPlain(*study, run.work, options.mvwOptions);
+      if (run.inputs.empty()) run.inputs = inputsAsFarAsReadable(*study);
       recordFailure(run, status, message, 0.0);
       continue;
     }
@@ -92,6 +124,7 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
       continue;
     }
     fs::create_directories(run.work);
+    pendingGuards.emplace_back(run.work);
     jobs.push_back(batchJob(*study, run.work, run.command));
     pending.push_back(std::move(run));
   }
@@ -104,11 +137,13 @@ BatchRunCounts runBatch(const BatchManifest& manifest, const BatchRunOptions& op
                recordFailure(run, result.status,
                              batchFailureMessage(result, run.work / "log.txt", options.timeoutS),
                              result.seconds);
+               pendingGuards[k].release();
                return;
              }
              // done.json is the last file written: it exists only beside complete outputs.
              writeRecord(run.work / "done.json", doneRecord(run, context, result.seconds));
              publish(run.work, out, run.study->id);
+             pendingGuards[k].release();
              ++counts.done;
              char secs[32];
              std::snprintf(secs, sizeof secs, "%.1f", result.seconds);

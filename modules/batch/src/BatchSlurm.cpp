@@ -98,7 +98,9 @@ std::string slurmScript(const SlurmJobOptions& o) {
   s << "set -eu\n"
     << "exec " << quote(fs::absolute(o.mvwExecutable).string()) << " batch run "
     << quote(manifest.string()) << " -o " << quote(out.string())
-    << " --shard \"${SLURM_ARRAY_TASK_ID}/" << o.tasks << "\" --jobs " << o.jobs << "\n";
+    << " --shard \"${SLURM_ARRAY_TASK_ID}/" << o.tasks << "\" --jobs " << o.jobs;
+  for (const std::string& option : o.mvwOptions) s << " " << quote(option);
+  s << "\n";
   return s.str();
 }
 

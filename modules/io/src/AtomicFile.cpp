@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mvw/core/Error.h"
+#include "mvw/io/Interrupt.h"
 
 namespace mvw::io {
 
@@ -14,6 +15,7 @@ namespace fs = std::filesystem;
 void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
   const fs::path tmp =
       path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+  const RemovedOnInterrupt onInterrupt(fs::absolute(tmp));  // Ctrl-C: no .tmp-* is left
   try {
     write(tmp);
     fs::rename(tmp, path);

@@ -72,6 +72,7 @@ void StagedFolder::make() {
                                  dir_.parent_path().string() + " (" +
                                  (ec ? ec.message() : std::string("it exists")) + ")");
   made_ = true;
+  onInterrupt_ = RemovedOnInterrupt(dir_);
 }
 
 void StagedFolder::moveIn(const std::string& name) {

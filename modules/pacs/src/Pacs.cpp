@@ -15,6 +15,7 @@
 
 #include "Internal.h"
 #include "mvw/core/Error.h"
+#include "mvw/io/Interrupt.h"
 #include "mvw/io/StagedFolder.h"
 
 namespace fs = std::filesystem;
@@ -388,27 +389,11 @@ Transfer get(const Server& server, const std::string& studyUid,
 }
 
 Transfer store(const Server& server, const std::vector<fs::path>& inputs, const Options& options) {
-  std::vector<fs::path> files;
-  for (const fs::path& p : inputs) {
-    std::error_code ec;
-    if (fs::is_directory(p, ec)) {
-      std::vector<fs::path> inDir;
-      for (const auto& e : fs::recursive_directory_iterator(p))
-        if (e.is_regular_file()) inDir.push_back(e.path());
-      std::sort(inDir.begin(), inDir.end());
-      files.insert(files.end(), inDir.begin(), inDir.end());
-    } else {
-      requireReadable(p);
-      files.push_back(p);
-    }
-  }
-  std::uint64_t bytes = 0;
-  for (const fs::path& f : files) {
-    if (!detail::readUids(f)) throw InputError(f, "is not a DICOM file with a SOP Instance UID");
-    bytes += fs::file_size(f);
-  }
-  if (files.empty())
-    throw InputError(inputs.empty() ? fs::path("FILE") : inputs.front(), "holds no files to store");
+  return store(server, storeFiles(inputs), options);
+}
+
+Transfer store(const Server& server, const StoreFiles& chosen, const Options& options) {
+  const std::vector<fs::path>& files = chosen.files;
   const auto start = std::chrono::steady_clock::now();
   if (server.protocol == Protocol::DicomWeb)
     detail::webStore(server, files, options);
@@ -416,7 +401,7 @@ Transfer store(const Server& server, const std::vector<fs::path>& inputs, const 
     detail::dimseStore(server, files, options);
   Transfer t;
   t.instances = static_cast<int>(files.size());
-  t.bytes = bytes;
+  t.bytes = chosen.bytes;
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return t;
 }
@@ -481,6 +466,9 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
     // The .partial folder survives an interruption; what it holds that verifies is kept.
     const fs::path partial = studyDir / (seriesUid + ".partial");
     fs::create_directories(partial);
+    // Ctrl-C keeps it too, and says so (io/Interrupt.h): the next run resumes from it.
+    const io::RemovedOnInterrupt resumable(fs::absolute(partial),
+                                           io::RemovedOnInterrupt::Action::Keep);
     bool resuming = false;
     for (const auto& e : fs::directory_iterator(partial))
       if (e.path().extension() != ".dcm")

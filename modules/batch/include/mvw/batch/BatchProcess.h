@@ -12,9 +12,20 @@
 
 namespace mvw::batch {
 
-// The command line (after the executable) that runs `study` with its outputs in `folder`.
-// Throws InputError when a register study's config has no functional volume.
-std::vector<std::string> batchCommand(const BatchStudy& study, const std::filesystem::path& folder);
+// The command line (after the executable) that runs `study` with its outputs in `folder`, then
+// `mvwOptions` (mvw's own options the batch run was given: --cache and the PACS time-outs, so
+// that a study naming PACS series reads the cache the run was told of). A register study whose
+// config names a PACS series registers the config itself (`register STUDY.json`); one of local
+// files names them (--fixed, --moving). Throws InputError when a register study's config has no
+// functional volume.
+std::vector<std::string> batchCommand(const BatchStudy& study, const std::filesystem::path& folder,
+                                      const std::vector<std::string>& mvwOptions = {});
+
+// The same command when the study cannot be run (its config is not valid): what the user would
+// run to see the problem, for failed.json. Never throws.
+std::vector<std::string> batchCommandOrPlain(const BatchStudy& study,
+                                             const std::filesystem::path& folder,
+                                             const std::vector<std::string>& mvwOptions = {});
 
 // The pool job of a study: args[0] is where its stdout goes ("" = the job's log, for render and
 // register; stats.json in its work folder for stats), the rest is `command`.

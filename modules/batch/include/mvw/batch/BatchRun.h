@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "mvw/batch/BatchManifest.h"
 #include "mvw/batch/BatchShard.h"
@@ -22,8 +23,11 @@ struct BatchRunOptions {
   int jobs = 1;
   double timeoutS = 3600.0;             // per study; then it is killed and failed
   std::filesystem::path mvwExecutable;  // what each study runs (the caller's own binary)
-  std::string version;                  // mvw's version, recorded in the markers
-  bool verify = false;                  // hash every input again, trusting no remembered hash
+  // mvw's own options each study's command ends with (--cache DIR, the PACS time-outs):
+  // batchCommand's mvwOptions.
+  std::vector<std::string> mvwOptions;
+  std::string version;   // mvw's version, recorded in the markers
+  bool verify = false;   // hash every input again, trusting no remembered hash
 };
 
 struct BatchRunCounts {

@@ -4,6 +4,7 @@
 // with sbatch.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "mvw/core/Error.h"
 
@@ -17,6 +18,8 @@ struct SlurmJobOptions {
   std::string partition;  // "" = the cluster's default
   std::string time;       // "" = the partition's default (e.g. 01:00:00)
   std::string mem;        // "" = the partition's default (e.g. 8G)
+  // mvw's own options each task's `mvw batch run` is given (--cache, the PACS time-outs).
+  std::vector<std::string> mvwOptions;
 };
 
 // The sbatch script's text.

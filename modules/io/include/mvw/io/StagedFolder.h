@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "mvw/io/Interrupt.h"
+
 namespace mvw::io {
 
 class StagedFolder {
@@ -52,7 +54,8 @@ class StagedFolder {
   explicit StagedFolder(const std::filesystem::path& destination);
   StagedFolder(const std::filesystem::path& destination, Options options);
   // Not committed (an exception on the way, or an early return): removes the temporary folder
-  // and all it holds; the destination is as it was. Committed: removes what commit() left.
+  // and all it holds; the destination is as it was. Committed: removes what commit() left. A
+  // process interrupted by SIGINT or SIGTERM removes it too (io::installInterruptCleanup).
   ~StagedFolder();
   StagedFolder(const StagedFolder&) = delete;
   StagedFolder& operator=(const StagedFolder&) = delete;
@@ -81,6 +84,7 @@ class StagedFolder {
   Options options_;
   bool made_ = false;
   bool committed_ = false;
+  RemovedOnInterrupt onInterrupt_;  // Ctrl-C removes the temporary folder too (Interrupt.h)
 };
 
 }  // namespace mvw::io

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "mvw/pacs/StoreFiles.h"
+
 namespace mvw::pacs {
 
 enum class Protocol { DicomWeb, Dimse };
@@ -105,10 +107,13 @@ Transfer get(const Server& server, const std::string& studyUid,
              const std::vector<std::string>& series, const std::filesystem::path& outDir,
              const Options& options);
 
-// The files (or every file under each folder) sent to the server: STOW-RS or C-STORE.
-// InputError for a file that is not DICOM, ServiceError when the server refuses one.
+// The files (and every DICOM file under each folder: storeFiles) sent to the server: STOW-RS or
+// C-STORE. InputError for a file named that is not DICOM, ServiceError when the server refuses
+// one.
 Transfer store(const Server& server, const std::vector<std::filesystem::path>& files,
                const Options& options);
+// Those storeFiles chose (the caller says what it skipped).
+Transfer store(const Server& server, const StoreFiles& chosen, const Options& options);
 
 // The folder in the verified cache holding the series `selection` of study `studyUid`,
 // retrieved first unless it is there complete and verified: every instance the server has (as
