@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "mvw/config/StudyConfig.h"
+#include "mvw/process/Sha256.h"
 
 namespace mvw::batch {
 
