@@ -361,23 +361,31 @@ std::vector<Match> webFind(const Server& server, const std::string& level, const
     query += v.empty() ? "includefield=" + k : k + "=" + queryValue(v);
   }
   Response r = request(server, url + query, "application/dicom+json", kMaxQueryBytes, options);
+  if (r.status == 204) return {};
+  return parseQidoAnswer(server.text, r.body, inPath, keys);
+}
+
+std::vector<Match> parseQidoAnswer(const std::string& serverText, const std::string& body,
+                                   const std::set<std::string>& inPath, const Match& keys) {
   std::vector<Match> matches;
-  if (r.status == 204 || r.body.empty()) return matches;
-  json answer = json::parse(r.body, nullptr, false);
+  if (body.empty()) return matches;
+  json answer = json::parse(body, nullptr, false);
   if (answer.is_discarded() || !answer.is_array())
-    throw ServiceError(server.text +
+    throw ServiceError(serverText +
                        ": answered the QIDO-RS request with something that is not "
                        "a DICOM JSON array: '" +
-                       printable(r.body, 60) + "'");
+                       printable(body, 60) + "'");
   if (answer.size() > kMaxMatches)
-    throw ServiceError(server.text + ": answered more than " + std::to_string(kMaxMatches) +
+    throw ServiceError(serverText + ": answered more than " + std::to_string(kMaxMatches) +
                        " matches");
   for (const json& object : answer) {
-    if (!object.is_object()) notDicomJsonObject(server);
+    if (!object.is_object())
+      throw ServiceError(serverText + ": answered a match that is not a DICOM JSON object" +
+                         kCheckRoot);
     Match m;
     for (const auto& [tag, element] : object.items()) {
       if (tag.size() != 8 || tag.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
-        throw ServiceError(server.text + ": answered a DICOM JSON key that is not a tag: '" +
+        throw ServiceError(serverText + ": answered a DICOM JSON key that is not a tag: '" +
                            printable(tag, 20) + "'");
       const unsigned long t = std::stoul(tag, nullptr, 16);
       const std::string keyword = keywordOf(t >> 16, t & 0xffff);
@@ -385,7 +393,7 @@ std::vector<Match> webFind(const Server& server, const std::string& level, const
     }
     // The path's UIDs belong to the match as well (Orthanc repeats them; others may not).
     for (const std::string& k : inPath)
-      if (!m.count(k)) m[k] = key(k.c_str());
+      if (!m.count(k)) m[k] = matchValue(keys, k.c_str());
     matches.push_back(std::move(m));
   }
   return matches;

@@ -209,6 +209,19 @@ double dimseEcho(const Server& server, const Options& options) {
   return s;
 }
 
+Match matchFromIdentifier(DcmDataset& identifier) {
+  Match m;
+  for (unsigned long i = 0; i < identifier.card(); ++i) {
+    DcmElement* e = identifier.getElement(i);
+    if (!e || e->ident() == EVR_SQ) continue;
+    OFString text;
+    e->getOFStringArray(text);
+    const std::string keyword = keywordOf(e->getGTag(), e->getETag());
+    if (!keyword.empty() && keyword != "QueryRetrieveLevel") m[keyword] = text.c_str();
+  }
+  return m;
+}
+
 std::vector<Match> dimseFind(const Server& server, const std::string& level, const Match& keys,
                              const Options& options) {
   DcmSCU scu;
@@ -233,16 +246,7 @@ std::vector<Match> dimseFind(const Server& server, const std::string& level, con
   for (QRResponse* r : responses) {
     status = r->m_status;
     if (r->m_dataset && DICOM_PENDING_STATUS(r->m_status)) {
-      Match m;
-      for (unsigned long i = 0; i < r->m_dataset->card(); ++i) {
-        DcmElement* e = r->m_dataset->getElement(i);
-        if (!e || e->ident() == EVR_SQ) continue;
-        OFString text;
-        e->getOFStringArray(text);
-        const std::string keyword = keywordOf(e->getGTag(), e->getETag());
-        if (!keyword.empty() && keyword != "QueryRetrieveLevel") m[keyword] = text.c_str();
-      }
-      matches.push_back(std::move(m));
+      matches.push_back(matchFromIdentifier(*r->m_dataset));
     }
     delete r;
   }

@@ -13,6 +13,8 @@
 
 #include "mvw/pacs/Pacs.h"
 
+class DcmDataset;
+
 namespace mvw::pacs::detail {
 
 // The UIDs a received instance must carry; empty: any.
@@ -97,6 +99,15 @@ std::vector<Match> webFind(const Server& server, const std::string& level, const
                            const Options& options);
 std::vector<Match> dimseFind(const Server& server, const std::string& level, const Match& keys,
                              const Options& options);
+// A QIDO-RS answer's body (DICOM JSON) as matches: the keywords DCMTK's dictionary knows, each
+// value as text; the UIDs of the request path (`inPath`, their values from `keys`) added where
+// the answer leaves them out. ServiceError naming `serverText` for anything but an array of
+// DICOM JSON objects keyed by tags. Its own function for tests/fuzz/fuzz_qido.cpp.
+std::vector<Match> parseQidoAnswer(const std::string& serverText, const std::string& body,
+                                   const std::set<std::string>& inPath, const Match& keys);
+// One C-FIND response's identifier as a match: every element but sequences and
+// QueryRetrieveLevel, by keyword, its values as text. For tests/fuzz/fuzz_cfind.cpp too.
+Match matchFromIdentifier(DcmDataset& identifier);
 void webStore(const Server& server, const std::vector<std::filesystem::path>& files,
               const Options& options);
 void dimseStore(const Server& server, const std::vector<std::filesystem::path>& files,
