@@ -21,6 +21,7 @@
 
 #include "DicomGeometry.h"
 #include "FileChecks.h"
+#include "FrameHeaders.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
 
@@ -67,7 +68,10 @@ void checkPixelDataSizes(vtkDICOMMetaData* meta, vtkStringArray* files) {
     if (frames > (1 << 20))
       throw InputError(file, "implausible NumberOfFrames " + std::to_string(frames));
     const std::string ts = meta->Get(static_cast<int>(f), DC::TransferSyntaxUID).AsString();
-    if (!isUncompressed(ts)) continue;
+    if (!isUncompressed(ts)) {
+      checkEncapsulatedFrames(file, frameCodecOf(ts), {rows, cols, spp, bits}, frames);
+      continue;
+    }
     // YBR_FULL_422 stores two samples per pixel on average, not three.
     if (meta->Get(static_cast<int>(f), DC::PhotometricInterpretation).AsString() == "YBR_FULL_422")
       spp = 2;

@@ -14,8 +14,10 @@ class vtkStringArray;
 
 namespace mvw::io::detail {
 
-// Refuses files whose header claims more pixel data than the file holds (uncompressed only:
-// a compressed stream's length says nothing about the decoded size).
+// Refuses files whose header claims more pixel data than the file holds (uncompressed: a
+// compressed stream's length says nothing about the decoded size) and, compressed, files with
+// a frame whose own header does not match Rows, Columns, SamplesPerPixel or BitsAllocated
+// (FrameHeaders.h), before any decoder runs.
 void checkPixelDataSizes(vtkDICOMMetaData* meta, vtkStringArray* files);
 
 // The files of a series (one frame each) that are not slices of its main stack: those of
