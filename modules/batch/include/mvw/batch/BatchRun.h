@@ -26,8 +26,8 @@ struct BatchRunOptions {
   // mvw's own options each study's command ends with (--cache DIR, the PACS time-outs):
   // batchCommand's mvwOptions.
   std::vector<std::string> mvwOptions;
-  std::string version;   // mvw's version, recorded in the markers
-  bool verify = false;   // hash every input again, trusting no remembered hash
+  std::string version;  // mvw's version, recorded in the markers
+  bool verify = false;  // hash every input again, trusting no remembered hash
 };
 
 struct BatchRunCounts {
