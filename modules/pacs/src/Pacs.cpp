@@ -317,18 +317,19 @@ std::uint64_t treeBytes(const fs::path& dir) {
   return bytes;
 }
 
-// UTC to the millisecond, fixed width: quarantine entries sort oldest first by name.
+// UTC to the microsecond, fixed width: quarantine entries sort oldest first by name.
 std::string utcStamp() {
   const auto now = std::chrono::system_clock::now();
   const std::time_t t = std::chrono::system_clock::to_time_t(now);
-  const auto ms =
-      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  const auto us =
+      std::chrono::duration_cast<std::chrono::microseconds>(now.time_since_epoch()).count() %
+      1000000;
   std::tm tm{};
   gmtime_r(&t, &tm);
   char text[32];
   std::strftime(text, sizeof text, "%Y%m%dT%H%M%S", &tm);
   char out[48];
-  std::snprintf(out, sizeof out, "%s.%03dZ", text, static_cast<int>(ms));
+  std::snprintf(out, sizeof out, "%s.%06dZ", text, static_cast<int>(us));
   return out;
 }
 
@@ -560,9 +561,13 @@ fs::path quarantineSeries(const fs::path& seriesDir, const std::string& why, con
     throw InputError(seriesDir, "is not a series folder of the PACS cache " + root.string());
   const fs::path qroot = quarantineRoot(options);
   fs::create_directories(qroot);
-  const std::string name = utcStamp() + "-" + parts[2];
-  fs::path target = qroot / name;
-  for (int i = 2; fs::exists(target); ++i) target = qroot / (name + "-" + std::to_string(i));
+  // A name taken (the same series moved within the same microsecond) is made again with a later
+  // stamp, never suffixed: a suffixed name, or one freed by the bound below and given again,
+  // would not sort by age, and a later bound would drop a newer entry before an older one.
+  fs::path target;
+  do {
+    target = qroot / (utcStamp() + "-" + parts[2]);
+  } while (fs::exists(target));
   fs::rename(dir, target);
   {
     std::ofstream out(target / "why.txt");
