@@ -24,6 +24,7 @@
 #include "FrameHeaders.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
+#include "mvw/io/PixelData.h"
 
 namespace mvw::io::detail {
 
@@ -72,15 +73,14 @@ void checkPixelDataSizes(vtkDICOMMetaData* meta, vtkStringArray* files) {
       checkEncapsulatedFrames(file, frameCodecOf(ts), {rows, cols, spp, bits}, frames);
       continue;
     }
-    // YBR_FULL_422 stores two samples per pixel on average, not three.
-    if (meta->Get(static_cast<int>(f), DC::PhotometricInterpretation).AsString() == "YBR_FULL_422")
-      spp = 2;
-    // Each factor is bounded above (rows, columns < 2^32, spp <= 4, frames <= 2^20, bits <= 64).
-    const double need = std::ceil(static_cast<double>(rows) * cols * spp * frames * bits / 8.0);
+    const std::uint64_t need = nativePixelDataBytes(
+        static_cast<std::uint64_t>(rows), static_cast<std::uint64_t>(cols),
+        static_cast<std::uint64_t>(frames), static_cast<std::uint64_t>(spp),
+        static_cast<std::uint64_t>(bits),
+        meta->Get(static_cast<int>(f), DC::PhotometricInterpretation).AsString());
     const std::uintmax_t have = regularFileSize(file);
-    if (need > static_cast<double>(have))
-      throw InputError(file, "truncated: the header describes " +
-                                 std::to_string(static_cast<unsigned long long>(need)) +
+    if (need > have)
+      throw InputError(file, "truncated: the header describes " + std::to_string(need) +
                                  " bytes of pixel data but the file has only " +
                                  std::to_string(have) + " bytes");
   }

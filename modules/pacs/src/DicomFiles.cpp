@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <mutex>
 #include <set>
 
@@ -22,6 +23,7 @@
 #include "Internal.h"
 #include "mvw/core/Error.h"
 #include "mvw/core/Format.h"
+#include "mvw/io/PixelData.h"
 
 namespace fs = std::filesystem;
 
@@ -132,13 +134,9 @@ std::string pixelProblem(DcmDataset& ds) {
   // Native: the values of every frame, bit-packed for Bits Allocated 1 (a SEG), padded to even.
   OFString photometric;
   ds.findAndGetOFString(DCM_PhotometricInterpretation, photometric);
-  // YBR_FULL_422 and YBR_PARTIAL_422 share the chroma of two pixels: two samples a pixel.
-  const std::uint64_t perPixel =
-      samples == 3 && (photometric == "YBR_FULL_422" || photometric == "YBR_PARTIAL_422") ? 2u
-                                                                                          : samples;
-  const std::uint64_t bitCount = static_cast<std::uint64_t>(rows) * columns *
-                                 static_cast<std::uint64_t>(frames) * perPixel * bits;
-  const std::uint64_t needed = (bitCount + 7) / 8;
+  const std::uint64_t perPixel = io::storedSamplesPerPixel(samples, photometric.c_str());
+  const std::uint64_t needed = io::nativePixelDataBytes(
+      rows, columns, static_cast<std::uint64_t>(frames), samples, bits, photometric.c_str());
   const std::uint64_t holds = px->getLengthField();
   if (holds == DCM_UndefinedLength)
     return std::string("its ") + name + " is encapsulated in a native transfer syntax (" +
@@ -147,7 +145,8 @@ std::string pixelProblem(DcmDataset& ds) {
     return std::string("its ") + name + " holds " + str(holds) + " bytes where " + str(rows) +
            " rows x " + str(columns) + " columns x " + str(static_cast<std::uint64_t>(frames)) +
            " frames x " + str(perPixel) + " samples x " + str(bits) + " bits need " +
-           str(needed + (needed & 1));
+           (needed == std::numeric_limits<std::uint64_t>::max() ? std::string("more than 2^64")
+                                                                : str(needed + (needed & 1)));
   return {};
 }
 
