@@ -1,0 +1,75 @@
+"""Every error type: mvw.InputError (a ValueError naming the file), mvw.ServiceError (a
+ConnectionError naming the server), TypeError for a bad argument type; nothing aborts."""
+import socket
+
+import numpy as np
+import pytest
+
+import mvw
+
+
+def test_exception_classes():
+    assert issubclass(mvw.InputError, ValueError)
+    assert issubclass(mvw.ServiceError, ConnectionError)
+    assert mvw.InputError.__doc__ and mvw.ServiceError.__doc__
+
+
+def test_missing_file_is_an_input_error_naming_it(tmp_path):
+    missing = tmp_path / "nothing.nii.gz"
+    with pytest.raises(mvw.InputError) as caught:
+        mvw.read(missing)
+    assert str(missing) in str(caught.value)
+    assert caught.value.file == str(missing)
+    assert "no such file" in caught.value.problem
+
+
+def test_bad_file_is_an_input_error_naming_it(tmp_path):
+    bad = tmp_path / "bad.nii"
+    bad.write_bytes(b"\0" * 400)
+    with pytest.raises(ValueError) as caught:  # catchable as the built-in base
+        mvw.read(bad)
+    assert isinstance(caught.value, mvw.InputError)
+    assert caught.value.file == str(bad) and str(bad) in str(caught.value)
+
+
+def test_frame_out_of_range_is_an_input_error(data):
+    path = data / "nibabel" / "example4d.nii.gz"
+    with pytest.raises(mvw.InputError, match="example4d"):
+        mvw.read(path, frame=1000)
+    with pytest.raises(mvw.InputError, match="'mean'"):
+        mvw.read(path, frame="middle")
+
+
+def _closed_port():
+    with socket.socket() as s:  # a port nobody listens on: the connection is refused
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_unreachable_pacs_is_a_service_error_naming_it(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))  # the PACS cache, not ~/.cache
+    server = f"http://127.0.0.1:{_closed_port()}/dicom-web"
+    config = tmp_path / "study.json"
+    config.write_text('{ "anatomical": { "pacs": "%s", "study": "1.2.3", "series": "1.2.3.4" } }'
+                      % server)
+    with pytest.raises(mvw.ServiceError) as caught:
+        mvw.read(config)
+    assert isinstance(caught.value, ConnectionError)
+    assert server.split("/dicom-web")[0].split("//")[1] in str(caught.value)
+
+
+def test_bad_argument_types_are_type_errors(data):
+    with pytest.raises(TypeError):
+        mvw.read(42)
+    with pytest.raises(TypeError):
+        mvw.read(data / "nibabel" / "example4d.nii.gz", frame=1.5)
+    with pytest.raises(TypeError):
+        mvw.stats("not a volume", sphere=(0, 0, 0, 1))
+    with pytest.raises(TypeError):
+        mvw.stats(mvw.read(data / "derived" / "pet_like.nii.gz"), sphere="centre")
+    with pytest.raises(TypeError, match="dtype"):
+        mvw.Volume.from_array(np.zeros((2, 2, 2), np.int64), affine_lps=np.eye(4))
+    with pytest.raises(TypeError, match="exactly one of affine_lps and affine_ras"):
+        mvw.Volume.from_array(np.zeros((2, 2, 2), np.int16))
+    with pytest.raises(TypeError, match="4 x 4"):
+        mvw.Volume.from_array(np.zeros((2, 2, 2), np.int16), affine_lps=np.eye(3))
