@@ -10,7 +10,8 @@
 // accuracy and the confusion matrix, the glyph blobs' sizes against the glyph's disc, and per
 // region with >= 2,000 visible pixels how many fully visible glyphs it carries; writes the
 // renders and a crop per kind to OUT.
-//   [MVW_GLYPH_RADIUS_PX=R] mvw_glyph_legibility_bench DATA_DIR OUT [PERMUTATIONS] [SIZES...]
+//   [MVW_GLYPH_RADIUS_PX=R] [MVW_GLYPH_LAYER_RADII=L] mvw_glyph_legibility_bench DATA_DIR OUT
+//   [PERMUTATIONS] [SIZES...]
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -194,6 +195,10 @@ int main(int argc, char** argv) {
             spacing, mvw::kBlueNoiseDiameterFraction * spacing, s.glyphMap.seed);
         s.glyphDiameterMm = mvw::kBlueNoiseDiameterFraction * spacing;
       }
+      // Composite's one glyph layer (RenderSettings::glyphLayerMm, issue 52's prototype), in
+      // glyph radii so that one value suits every size.
+      if (const char* layer = std::getenv("MVW_GLYPH_LAYER_RADII"))
+        s.glyphLayerMm = std::atof(layer) * 0.5 * s.glyphDiameterMm;
       glyphRadiusPx = 0.5 * s.glyphDiameterMm / mmPerPixel;
       diameterMm = s.glyphDiameterMm;
       for (int q : region)
@@ -215,6 +220,19 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < region.size(); ++i)
         if (kindOfLabel.count(region[i])) ++counts[region[i]].visible;
       const std::vector<double> d = reader::glyphChange(glyphs.image, plain.image);
+      if (p == 0) {
+        // What the reader sees: white where the glyphs changed a pixel by kChanged, grey for the
+        // chosen regions.
+        Image change(w, h);
+        for (std::size_t i = 0; i < region.size(); ++i) {
+          const std::uint8_t v = std::abs(d[i]) >= reader::kChanged ? 255
+                                 : kindOfLabel.count(region[i])     ? 70
+                                                                    : 0;
+          std::fill_n(change.rgba.begin() + long(4 * i), 3, v);
+          change.rgba[4 * i + 3] = 255;
+        }
+        mvw::io::writePng(change, out / (stem + "-change.png"));
+      }
       for (const reader::Blob& blob : reader::changedBlobs(d, w, h)) {
         const int label = region[std::size_t(blob.middle)];
         if (!kindOfLabel.count(label) || blob.edge) continue;
