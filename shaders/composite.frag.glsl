@@ -21,11 +21,17 @@ uniform bool uShading;
 struct RayState {
   vec4 color;   // associated colour, alpha
   float depth;  // distance where the opacity first passed 0.5
+#if defined(MVW_GLYPH_KINDS)
+  float glyphStart;  // the ray's first sample that ran the glyph code (uGlyphLayerMm > 0)
+#endif
 };
 
 void setupHook(inout RayState s, Ray ray) {
   s.color = vec4(0.0);
   s.depth = -1.0;
+#if defined(MVW_GLYPH_KINDS)
+  s.glyphStart = -1.0;
+#endif
 }
 
 bool skipHook(RayState s, float t, vec3 tex) { return !blockVisible(tex); }
@@ -74,6 +80,12 @@ int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, c
 #endif
       if (g.a > 0.0 && (1.0 - s.color.a) * max(alpha, glyphAlpha) > 1.0 / 255.0) {
         if (!glyphs) return 2;
+#if defined(MVW_GLYPH_KINDS)
+        if (uGlyphLayerMm > 0.0) {
+          if (s.glyphStart < 0.0) s.glyphStart = t;
+          gGlyphMaxDepth = s.glyphStart + uGlyphLayerMm - t;
+        }
+#endif
         vec3 bumped = glyphNormalMapped(uGlyphFromWorld * (ray.origin + t * ray.dir), n, -ray.dir, g.a);
         if (bumped != n) alpha = max(alpha, glyphAlpha);
         n = bumped;

@@ -40,12 +40,18 @@ uniform float uGlyphRadiusMm;
 // The attribute at the anatomical voxel nearest `world`, not interpolated: a kind must not
 // blend with its neighbour's (raycast/common.glsl).
 float glyphAttributeNearest(vec3 world);
+// Composite DVR, one layer (issue 52 prototype, RenderSettings::glyphLayerMm; 0: off): the
+// glyph's centre must lie at most gGlyphMaxDepth mm beyond the sample along the frame's
+// opposite (the ray), set per sample by composite.frag.glsl; 1e30: no limit.
+uniform float uGlyphLayerMm;
+float gGlyphMaxDepth = 1e30;
 
 // d: from the glyph's centre to the sample (map voxels); p: the sample (map voxels).
 vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
   vec3 dw = uWorldFromGlyph * d;
   float h = dot(dw, frame);
   vec3 tw = dw - h * frame;  // along the surface, from the glyph's foot
+  if (h > gGlyphMaxDepth) return nO;  // the centre lies beyond the layer
   float a = glyphAttributeNearest(uWorldFromGlyph * p - tw);
   if (a <= 0.0) return nO;
   float kind = floor(a * 0.5);

@@ -164,6 +164,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setRayUniforms(p, s, camera, step);
   setShadingUniforms(p, s, camera);
   if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize, s.glyphDvrOpacity, step);
+  if (s.glyphs) glUniform1f(p.uniform("uGlyphLayerMm"), float(std::max(s.glyphLayerMm, 0.0)));
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentOutlines);
   if (showsImageColors(s)) updateImageColormap(s.imageColors);

@@ -102,6 +102,11 @@ struct RenderSettings {
   // Composite DVR (beyond the paper): the least opacity per mm of ray a bump gives the samples
   // it tilts, so bumps show in translucent tissue (mvw/core/GlyphDefaults.h).
   double glyphDvrOpacity = kGlyphDvrOpacityPerMm;
+  // Composite DVR with glyph kinds (issue 52, a prototype): > 0 draws only the glyphs whose
+  // centre lies within this many mm beyond the ray's first glyph sample, one layer of the 3D
+  // lattice instead of glyphs from several depths run together on the screen; whole or
+  // nothing per glyph, as the test is on its centre. 0: every depth (today's images).
+  double glyphLayerMm = 0.0;
   // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
   double functionalLow = 0.0, functionalHigh = 0.0;
   // Nominal attribute (labels), chosen by the reader (issue 15 item 4): when not empty only

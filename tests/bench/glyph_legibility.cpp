@@ -1,0 +1,343 @@
+// Issue 52's benchmark (not a test): can the reader of the glyph kinds (tests/render/
+// GlyphReader.h, the sphere test's k-nearest-neighbour classifier on 22 features, unchanged)
+// tell the kinds apart on real anatomy? ch2better + AAL, the whole brain seen from the left, at
+// 1024 and 512 px, isosurface and composite, headlight and a light from the upper left; ten
+// lateral left-hemisphere regions in two folds of five, each fold given the five kinds under
+// several permuted assignments. A glyph patch of one fold is classified by the patches of the
+// other fold only (regions distinct between training and testing, so a region's own shading is
+// no cue). Truth per pixel: the AAL label at the ray's reported sample (the isosurface's hit,
+// composite's 0.5 opacity point), searched 1 mm before to 3 mm beyond it. Prints per view the
+// accuracy and the confusion matrix, the glyph blobs' sizes against the glyph's disc, and per
+// region with >= 2,000 visible pixels how many fully visible glyphs it carries; writes the
+// renders and a crop per kind to OUT.
+//   [MVW_GLYPH_RADIUS_PX=R] [MVW_GLYPH_LAYER_RADII=L] mvw_glyph_legibility_bench DATA_DIR OUT
+//   [PERMUTATIONS] [SIZES...]
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <nlohmann/json.hpp>
+
+#include "GlyphReader.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/core/GlyphDefaults.h"
+#include "mvw/io/Png.h"
+#include "mvw/render/GlContext.h"
+#include "mvw/render/GlyphMap.h"
+#include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/Session.h"
+
+namespace {
+
+namespace reader = mvw::test::reader;
+using mvw::Image;
+
+const std::vector<std::string> kKinds = {"bumps", "rings", "ridges", "cones", "crosses"};
+// Two folds of five lateral regions each, spread over the hemisphere alike.
+const std::vector<std::vector<std::string>> kFolds = {
+    {"Precentral_L", "Frontal_Mid_L", "Temporal_Sup_L", "Parietal_Inf_L", "Occipital_Mid_L"},
+    {"Postcentral_L", "Frontal_Inf_Tri_L", "Temporal_Mid_L", "SupraMarginal_L", "Frontal_Sup_L"}};
+
+// The kind of region i of fold f under permutation p: every permutation a different one, the
+// two folds shifted against each other.
+int kindOf(int f, int i, int p) { return (i + p * (f == 0 ? 1 : 2) + f) % 5; }
+
+struct Condition {
+  int size;
+  std::string mode;
+  bool lit;
+  std::string name() const {
+    return std::to_string(size) + " px " + mode + (lit ? " lit" : " headlight");
+  }
+};
+
+struct RegionCount {
+  long visible = 0;
+  int patches = 0, full = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: %s DATA_DIR OUT [PERMUTATIONS] [SIZES...]\n", argv[0]);
+    return 2;
+  }
+  const std::filesystem::path data = argv[1], out = argv[2];
+  const int perms = argc > 3 ? std::atoi(argv[3]) : 3;
+  std::vector<int> sizes;
+  for (int a = 4; a < argc; ++a) sizes.push_back(std::atoi(argv[a]));
+  if (sizes.empty()) sizes = {1024, 512};
+  std::filesystem::create_directories(out);
+
+  std::vector<Condition> conditions;
+  for (int size : sizes)
+    for (const char* mode : {"isosurface", "composite"})
+      for (bool lit : {false, true}) conditions.push_back({size, mode, lit});
+  // One study, every view: plain (no glyphs) first, then each permutation's.
+  nlohmann::json views = nlohmann::json::array();
+  for (std::size_t c = 0; c < conditions.size(); ++c)
+    for (int p = -1; p < perms; ++p) {
+      const Condition& k = conditions[c];
+      std::string name = "c";  // "c" + std::to_string(c) trips GCC 12's -Wrestrict
+      name += std::to_string(c) + "p" + std::to_string(p + 1);
+      nlohmann::json v = {{"name", name},     {"mode", k.mode},   {"view", "left"},
+                          {"width", k.size},  {"height", k.size}, {"jitter", false},
+                          {"annotate", false}};
+      if (k.mode == "isosurface")
+        v["iso"] = 60;
+      else
+        v["preset"] = "mr-default";
+      if (k.lit) v["light"] = {-0.8, 0.8};
+      nlohmann::json labels = nlohmann::json::object();
+      for (int f = 0; f < 2; ++f)
+        for (int i = 0; i < 5; ++i)
+          labels[kFolds[std::size_t(f)][std::size_t(i)]] =
+              kKinds[std::size_t(kindOf(f, i, std::max(p, 0)))];
+      v["glyphs"] = {{"labels", labels}};
+      views.push_back(v);
+    }
+  const nlohmann::json study = {
+      {"anatomical", {{"path", (data / "mricron/ch2better.nii.gz").string()}}},
+      {"functional", {{"path", (data / "mricron/aal.nii.gz").string()}, {"kind", "labels"}}},
+      {"render", {{"views", views}}}};
+  const std::filesystem::path configFile = out / "glyph-legibility.json";
+  std::ofstream(configFile) << study.dump(1);
+
+  mvw::study::Session session(mvw::config::loadStudyConfig(configFile));
+  auto context = mvw::render::createHeadlessContext({16, 16});
+  session.load({});
+  mvw::render::VolumeRenderer renderer(*context, session.anatomical());
+  session.attach(renderer);
+  const std::vector<mvw::study::PlannedView> planned = session.views(renderer);
+  const mvw::Volume& labels = *session.functional();
+  const glm::dmat4 indexFromAnatomical =
+      glm::inverse(labels.worldFromIndex()) * glm::inverse(session.anatomicalFromFunctional());
+  auto labelAt = [&](const glm::dvec3& world) {
+    const glm::dvec3 ijk = glm::dvec3(indexFromAnatomical * glm::dvec4(world, 1.0));
+    const glm::ivec3 n = labels.dimensions(), i(glm::round(ijk));
+    if (glm::any(glm::lessThan(i, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(i, n)))
+      return 0;
+    return int(labels.value(i.x, i.y, i.z));
+  };
+
+  std::printf("glyph legibility (issue 52): ch2better + AAL, %s, %d permutations, %s %s\n",
+              "left view", perms, context->backend().c_str(), context->renderer().c_str());
+  std::map<int, std::vector<reader::Tile>> bySize;
+  std::size_t view = 0;
+  for (std::size_t c = 0; c < conditions.size(); ++c) {
+    const Condition& k = conditions[c];
+    const mvw::render::RenderedFrame plain = [&] {
+      mvw::render::RenderSettings s = planned[view++].settings;
+      s.glyphs = false;
+      return renderer.render(s);
+    }();
+    const int w = plain.image.width, h = plain.image.height;
+    // The truth: region (label) per pixel, -1 where no ray meets the brain.
+    std::vector<int> region(std::size_t(w) * h, -1);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float t = plain.image.depth[std::size_t(y) * w + x];
+        if (t < 0.0f) continue;
+        const mvw::render::WorldRay ray = mvw::render::rayThrough(
+            plain.camera, {(x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0});
+        int label = 0;
+        for (double dt = -1.0; dt <= 3.0 && label == 0; dt += 0.25)
+          label = labelAt(ray.origin + (t + dt) * ray.direction);
+        region[std::size_t(y) * w + x] = label;
+      }
+    const mvw::render::WorldRay r0 = mvw::render::rayThrough(plain.camera, {0.0, 0.0});
+    const mvw::render::WorldRay r1 = mvw::render::rayThrough(plain.camera, {2.0 / w, 0.0});
+    const double mmPerPixel = glm::length(r1.origin - r0.origin);
+    // How squarely the surface faces the viewer, |n . v| (n from the reported samples of the
+    // neighbouring pixels; -1 where unknown or where the depth jumps: a fold's edge).
+    std::vector<double> facing(region.size(), -1.0);
+    auto hitAt = [&](int x, int y) {
+      const mvw::render::WorldRay ray = mvw::render::rayThrough(
+          plain.camera, {(x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0});
+      return ray.origin + double(plain.image.depth[std::size_t(y) * w + x]) * ray.direction;
+    };
+    for (int y = 1; y < h - 1; ++y)
+      for (int x = 1; x < w - 1; ++x) {
+        auto t = [&](int xx, int yy) { return plain.image.depth[std::size_t(yy) * w + xx]; };
+        if (t(x - 1, y) < 0 || t(x + 1, y) < 0 || t(x, y - 1) < 0 || t(x, y + 1) < 0) continue;
+        if (std::abs(t(x + 1, y) - t(x - 1, y)) > 8.0 * mmPerPixel ||
+            std::abs(t(x, y + 1) - t(x, y - 1)) > 8.0 * mmPerPixel)
+          continue;
+        const glm::dvec3 n = glm::normalize(
+            glm::cross(hitAt(x + 1, y) - hitAt(x - 1, y), hitAt(x, y + 1) - hitAt(x, y - 1)));
+        facing[std::size_t(y) * w + x] = std::abs(glm::dot(n, r0.direction));
+      }
+    // Blobs by how the surface under them faces the viewer: [facing bin][speck, partial, whole,
+    // run together]; blobs that span a fold (depth range over a glyph diameter).
+    std::array<std::array<int, 4>, 3> byFacing{};
+    int acrossFold = 0;
+    long changed = 0, changedInBig = 0, chosenPixels = 0;
+    std::vector<reader::Tile> tiles;
+    std::map<int, RegionCount> counts;  // by label, summed over the permutations
+    std::vector<double> areas;          // blob area / glyph disc, blobs in a chosen region
+    double glyphRadiusPx = 0.0, diameterMm = 0.0;
+    for (int p = 0; p < perms; ++p) {
+      mvw::render::RenderSettings s = planned[view++].settings;
+      // Another screen radius than the product's floor (kGlyphKindRadiusPixels), as the sphere
+      // test's MVW_KIND_PX: the same blue-noise map at the spacing that gives it.
+      if (const char* px = std::getenv("MVW_GLYPH_RADIUS_PX")) {
+        const double spacing = std::atof(px) * mmPerPixel / (0.5 * mvw::kBlueNoiseDiameterFraction);
+        s.glyphMap = mvw::render::blueNoiseGlyphMap(
+            spacing, mvw::kBlueNoiseDiameterFraction * spacing, s.glyphMap.seed);
+        s.glyphDiameterMm = mvw::kBlueNoiseDiameterFraction * spacing;
+      }
+      // Composite's one glyph layer (RenderSettings::glyphLayerMm, issue 52's prototype), in
+      // glyph radii so that one value suits every size.
+      if (const char* layer = std::getenv("MVW_GLYPH_LAYER_RADII"))
+        s.glyphLayerMm = std::atof(layer) * 0.5 * s.glyphDiameterMm;
+      glyphRadiusPx = 0.5 * s.glyphDiameterMm / mmPerPixel;
+      diameterMm = s.glyphDiameterMm;
+      for (int q : region)
+        if (std::any_of(s.glyphLabels.begin(), s.glyphLabels.end(),
+                        [&](const mvw::render::LabelGlyph& g) { return g.label == q; }))
+          ++chosenPixels;
+      std::map<int, int> kindOfLabel, foldOfLabel;
+      std::map<int, std::string> nameOfLabel;
+      for (const mvw::render::LabelGlyph& g : s.glyphLabels)
+        for (int f = 0; f < 2; ++f)
+          for (int i = 0; i < 5; ++i)
+            if (g.name == kFolds[std::size_t(f)][std::size_t(i)])
+              kindOfLabel[g.label] = kindOf(f, i, p), foldOfLabel[g.label] = f;
+      const mvw::render::RenderedFrame glyphs = renderer.render(s);
+      const std::string stem =
+          std::to_string(k.size) + "-" + k.mode + (k.lit ? "-lit" : "") + "-p" + std::to_string(p);
+      mvw::io::writePng(glyphs.image, out / (stem + ".png"));
+      if (p == 0) mvw::io::writePng(plain.image, out / (stem + "-plain.png"));
+      for (std::size_t i = 0; i < region.size(); ++i)
+        if (kindOfLabel.count(region[i])) ++counts[region[i]].visible;
+      const std::vector<double> d = reader::glyphChange(glyphs.image, plain.image);
+      if (p == 0) {
+        // What the reader sees: white where the glyphs changed a pixel by kChanged, grey for the
+        // chosen regions.
+        Image change(w, h);
+        for (std::size_t i = 0; i < region.size(); ++i) {
+          const std::uint8_t v = std::abs(d[i]) >= reader::kChanged ? 255
+                                 : kindOfLabel.count(region[i])     ? 70
+                                                                    : 0;
+          std::fill_n(change.rgba.begin() + long(4 * i), 3, v);
+          change.rgba[4 * i + 3] = 255;
+        }
+        mvw::io::writePng(change, out / (stem + "-change.png"));
+      }
+      for (const reader::Blob& blob : reader::changedBlobs(d, w, h)) {
+        const int label = region[std::size_t(blob.middle)];
+        if (!kindOfLabel.count(label) || blob.edge) continue;
+        int inside = 0;
+        for (int q : blob.pixels) inside += region[std::size_t(q)] == label;
+        const double area = double(blob.pixels.size()) / (M_PI * glyphRadiusPx * glyphRadiusPx);
+        areas.push_back(area);
+        double f = 0.0, fn = 0.0, tMin = 1e30, tMax = -1e30;
+        for (int q : blob.pixels) {
+          if (facing[std::size_t(q)] >= 0.0) f += facing[std::size_t(q)], fn += 1.0;
+          const double tq = plain.image.depth[std::size_t(q)];
+          if (tq >= 0.0) tMin = std::min(tMin, tq), tMax = std::max(tMax, tq);
+        }
+        f = fn > 0.0 ? f / fn : 0.0;
+        acrossFold += tMax - tMin > diameterMm;
+        ++byFacing[f >= 0.7   ? 0
+                   : f >= 0.4 ? 1
+                              : 2][area < 0.25   ? 0
+                                   : area < 0.7  ? 1
+                                   : area <= 1.6 ? 2
+                                                 : 3];
+        for (int q : blob.pixels)
+          if (std::abs(d[std::size_t(q)]) >= reader::kChanged) {
+            ++changed;
+            if (area > 1.6) ++changedInBig;
+          }
+        // Inside its region (a patch across two regions has no one kind to be read).
+        if (inside < 0.9 * double(blob.pixels.size())) continue;
+        if (area >= 0.7 && area <= 1.6) ++counts[label].full;
+        if (!reader::isGlyphPatch(blob, glyphRadiusPx)) continue;
+        ++counts[label].patches;
+        tiles.push_back({kindOfLabel[label], foldOfLabel[label],
+                         reader::describe(d, w, blob.pixels, glyphRadiusPx)});
+      }
+      // A crop per kind (the first permutation at the largest size): the region's middle, 160 px
+      // enlarged three times.
+      if (p == 0 && k.size == sizes.front())
+        for (const auto& [label, kind] : kindOfLabel) {
+          double cx = 0.0, cy = 0.0, n = 0.0;
+          for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+              if (region[std::size_t(y) * w + x] == label) cx += x, cy += y, n += 1.0;
+          if (n < 1.0) continue;
+          const int x0 = std::clamp(int(cx / n) - 80, 0, w - 160);
+          const int y0 = std::clamp(int(cy / n) - 80, 0, h - 160);
+          Image crop(480, 480);
+          for (int y = 0; y < 480; ++y)
+            for (int x = 0; x < 480; ++x)
+              std::copy_n(glyphs.image.pixel(x0 + x / 3, y0 + y / 3), 4, crop.pixel(x, y));
+          mvw::io::writePng(crop, out / (stem + "-" + kKinds[std::size_t(kind)] + "-" +
+                                         std::to_string(label) + ".png"));
+        }
+    }
+    std::printf("\n== %s: glyph diameter %.2f mm, radius %.1f px (%.3f mm per px)\n",
+                k.name().c_str(), diameterMm, glyphRadiusPx, mmPerPixel);
+    std::sort(areas.begin(), areas.end());
+    auto share = [&](double lo, double hi) {
+      return 100.0 *
+             double(std::count_if(areas.begin(), areas.end(),
+                                  [&](double a) { return a >= lo && a < hi; })) /
+             double(std::max<std::size_t>(areas.size(), 1));
+    };
+    std::printf(
+        "blobs in the chosen regions: %zu; area / glyph disc: median %.2f; < 0.25 (specks) %.0f "
+        "%%, 0.25-0.7 (partial) %.0f %%, 0.7-1.6 (whole) %.0f %%, > 1.6 (run together) %.0f %%\n",
+        areas.size(), areas.empty() ? 0.0 : areas[areas.size() / 2], share(0.0, 0.25),
+        share(0.25, 0.7), share(0.7, 1.6), share(1.6, 1e9));
+    std::printf("blobs spanning a fold (depth range over a glyph diameter): %.0f %%\n",
+                100.0 * acrossFold / double(std::max<std::size_t>(areas.size(), 1)));
+    const char* bins[] = {"faces the viewer (|n.v| >= 0.7)", "oblique (0.4-0.7)",
+                          "grazing (< 0.4)"};
+    for (int b = 0; b < 3; ++b) {
+      const auto& row = byFacing[std::size_t(b)];
+      const int n = row[0] + row[1] + row[2] + row[3];
+      std::printf(
+          "  %-32s %4d blobs: specks %3.0f %%, partial %3.0f %%, whole %3.0f %%, "
+          "run together %3.0f %%\n",
+          bins[b], n, 100.0 * row[0] / std::max(n, 1), 100.0 * row[1] / std::max(n, 1),
+          100.0 * row[2] / std::max(n, 1), 100.0 * row[3] / std::max(n, 1));
+    }
+    std::printf(
+        "changed pixels: %.1f %% of the chosen regions' pixels, %.0f %% of them in blobs "
+        "over 1.6 glyph discs\n",
+        100.0 * double(changed) / double(std::max(chosenPixels, 1L)),
+        100.0 * double(changedInBig) / double(std::max(changed, 1L)));
+    std::printf("%-18s %8s %8s %8s   (per permutation)\n", "region", "visible", "patches", "whole");
+    for (int f = 0; f < 2; ++f)
+      for (const std::string& name : kFolds[std::size_t(f)]) {
+        int label = -1;
+        for (const mvw::render::LabelGlyph& g : planned[view - 1].settings.glyphLabels)
+          if (g.name == name) label = g.label;
+        const RegionCount& rc = counts[label];
+        std::printf("%-18s %8ld %8.1f %8.1f%s\n", name.c_str(), rc.visible / perms,
+                    double(rc.patches) / perms, double(rc.full) / perms,
+                    rc.visible / perms >= 2000 && rc.full < 3 * perms ? "  < 3 whole glyphs" : "");
+      }
+    reader::print(reader::classify(tiles, 5), kKinds, k.name().c_str());
+    std::fflush(stdout);
+    // Pooled per size, the group still the fold: a patch is judged by the other fold's regions
+    // in every view.
+    bySize[k.size].insert(bySize[k.size].end(), tiles.begin(), tiles.end());
+  }
+  for (const auto& [size, tiles] : bySize) {
+    const std::string title = std::to_string(size) + " px, the four views pooled";
+    reader::print(reader::classify(tiles, 5), kKinds, title.c_str());
+  }
+  return 0;
+}
