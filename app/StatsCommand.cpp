@@ -54,14 +54,8 @@ void writeSeg(const StatsOptions& opt, const Volume& volume, const study::RoiRep
 
 void runStats(StatsOptions opt) {
   const int rois = (!opt.roi.sphere.empty()) + (!opt.roi.box.empty()) + (!opt.roi.labels.empty());
-  const char* kRoiChoice =
-      "give exactly one of --sphere X Y Z R, --box X0 Y0 Z0 X1 Y1 Z1 or --labels FILE";
-  if (rois > 1) throw CLI::ValidationError("ROI", kRoiChoice);
-  if (!std::isnan(opt.roi.threshold) && !std::isnan(opt.roi.thresholdFraction))
-    throw CLI::ValidationError("--threshold", "give --threshold or --threshold-fraction, not both");
-  if (!std::isnan(opt.roi.thresholdFraction) &&
-      !(opt.roi.thresholdFraction > 0 && opt.roi.thresholdFraction <= 1))
-    throw CLI::ValidationError("--threshold-fraction", "must lie in (0, 1], e.g. 0.41");
+  if (const auto problem = study::roiOptionsProblem(opt.roi))
+    throw CLI::ValidationError(problem->option, problem->problem);
   if (opt.roi.label != 0 && opt.roi.labels.empty() && rois != 0)
     throw CLI::ValidationError("--label", "needs --labels FILE");
   checkDicomOutput(opt.dicom, !opt.seg.empty(), {});

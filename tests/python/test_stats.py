@@ -43,7 +43,7 @@ def test_labels_equal_cli(data, mvw_cli):
 
 def test_roi_choice_is_checked(data):
     volume = mvw.read(data / "derived" / "pet_like.nii.gz")
-    with pytest.raises(ValueError, match="exactly one of sphere, box and labels"):
+    with pytest.raises(ValueError, match="exactly one of sphere, box or labels"):
         mvw.stats(volume)
     with pytest.raises(ValueError, match="exactly one"):
         mvw.stats(volume, sphere=(0, 0, 0, 5), box=(0, 0, 0, 1, 1, 1))

@@ -82,6 +82,34 @@ TEST(RoiReport, RequestOfTheCommandLinesOptions) {
   EXPECT_EQ(r.threshold.value, 2.5);
 }
 
+TEST(RoiReport, OptionsProblemsAreSaidInTheCallersNames) {
+  RoiOptions o;
+  EXPECT_FALSE(roiOptionsProblem(o));  // none: a folder's SEG may give the labels later
+  o.sphere = {0, 0, 0, 5};
+  o.thresholdFraction = 1.0;
+  EXPECT_FALSE(roiOptionsProblem(o));
+  o.box = {0, 0, 0, 1, 1, 1};
+  auto p = roiOptionsProblem(o);
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->option, "ROI");
+  EXPECT_EQ(p->problem,
+            "give exactly one of --sphere X Y Z R, --box X0 Y0 Z0 X1 Y1 Z1 or --labels FILE");
+  o.box.clear();
+  o.threshold = 2.5;
+  const RoiOptionNames python{"sphere", "box", "labels", "threshold", "threshold_fraction"};
+  p = roiOptionsProblem(o, python);
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->problem, "give threshold or threshold_fraction, not both");
+  o.threshold = std::numeric_limits<double>::quiet_NaN();
+  for (double bad : {0.0, -0.1, 1.01, 2.0}) {
+    o.thresholdFraction = bad;
+    p = roiOptionsProblem(o);
+    ASSERT_TRUE(p) << bad;
+    EXPECT_EQ(p->option, "--threshold-fraction");
+    EXPECT_EQ(p->problem, "must lie in (0, 1], e.g. 0.41");
+  }
+}
+
 TEST(RoiReport, BoxWithAThresholdAsText) {
   const Volume v = indexVolume();
   RoiRequest request = boxRequest();

@@ -81,22 +81,20 @@ py::object statsOf(const VolumePtr& volume, const std::optional<std::vector<doub
   roi.box = numbers(box, 6, "box", "(x0, y0, z0, x1, y1, z1) in LPS mm");
   if (labels) roi.labels = labels->string();
   roi.label = label;
-  // The command line's checks (mvw stats), said with the arguments' Python names.
-  const int rois = !roi.sphere.empty() + !roi.box.empty() + !roi.labels.empty();
-  const char* kRoiChoice = "mvw.stats: give exactly one of sphere, box and labels";
-  if (rois > 1) throw py::value_error(kRoiChoice);
-  if (threshold && thresholdFraction)
-    throw py::value_error("mvw.stats: give threshold or threshold_fraction, not both");
   if (threshold) {
     if (!std::isfinite(*threshold))
       throw py::value_error("mvw.stats: threshold must be a finite number");
     roi.threshold = *threshold;
   }
-  if (thresholdFraction) {
-    if (!(*thresholdFraction > 0 && *thresholdFraction <= 1))
-      throw py::value_error("mvw.stats: threshold_fraction must lie in (0, 1], e.g. 0.41");
-    roi.thresholdFraction = *thresholdFraction;
-  }
+  if (thresholdFraction) roi.thresholdFraction = *thresholdFraction;
+  // The command line's checks (mvw stats), said with the arguments' Python names.
+  const study::RoiOptionNames names{"sphere", "box", "labels", "threshold", "threshold_fraction"};
+  if (const auto problem = study::roiOptionsProblem(roi, names))
+    throw py::value_error(
+        "mvw.stats: " + (problem->problem.rfind("must", 0) == 0 ? problem->option + " " : "") +
+        problem->problem);
+  const int rois = !roi.sphere.empty() + !roi.box.empty() + !roi.labels.empty();
+  const std::string kRoiChoice = "mvw.stats: give exactly one of sphere, box or labels";
   // A folder of one image series and its DICOM SEG: without an ROI, the SEG's segments.
   if (rois == 0) {
     const auto& segs = volume->metadata().segmentationFiles;

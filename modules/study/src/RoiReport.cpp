@@ -208,6 +208,20 @@ Volume readMeasuredVolume(const fs::path& source, bool anatomical, const io::Rea
   return readSource(*study.functional, options, pacs);
 }
 
+std::optional<RoiOptionProblem> roiOptionsProblem(const RoiOptions& o,
+                                                  const RoiOptionNames& names) {
+  const int rois = !o.sphere.empty() + !o.box.empty() + !o.labels.empty();
+  if (rois > 1)
+    return RoiOptionProblem{
+        "ROI", "give exactly one of " + names.sphere + ", " + names.box + " or " + names.labels};
+  if (!std::isnan(o.threshold) && !std::isnan(o.thresholdFraction))
+    return RoiOptionProblem{names.threshold, "give " + names.threshold + " or " +
+                                                 names.thresholdFraction + ", not both"};
+  if (!std::isnan(o.thresholdFraction) && !(o.thresholdFraction > 0 && o.thresholdFraction <= 1))
+    return RoiOptionProblem{names.thresholdFraction, "must lie in (0, 1], e.g. 0.41"};
+  return std::nullopt;
+}
+
 RoiRequest roiRequestOf(const RoiOptions& o) {
   RoiRequest request;
   if (!o.sphere.empty())

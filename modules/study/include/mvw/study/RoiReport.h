@@ -46,7 +46,25 @@ struct RoiOptions {
   double thresholdFraction = std::numeric_limits<double>::quiet_NaN();
 };
 
-// The request of those options (checked by the command: at most one ROI, one threshold).
+// How a caller's users spell those options: the command line's flags, or mvw.stats's Python
+// arguments.
+struct RoiOptionNames {
+  std::string sphere = "--sphere X Y Z R", box = "--box X0 Y0 Z0 X1 Y1 Z1",
+              labels = "--labels FILE", threshold = "--threshold",
+              thresholdFraction = "--threshold-fraction";
+};
+
+// What is wrong with ROI options as given, the one home of these rules for `mvw stats` and
+// mvw.stats: at most one of sphere, box and labels; a threshold or a fraction of the maximum, not
+// both; a fraction in (0, 1]. The option it concerns ("ROI" for the choice) and the problem, in
+// `names`; nothing when they hold.
+struct RoiOptionProblem {
+  std::string option, problem;
+};
+std::optional<RoiOptionProblem> roiOptionsProblem(const RoiOptions& o,
+                                                  const RoiOptionNames& names = {});
+
+// The request of those options (checked first by roiOptionsProblem).
 RoiRequest roiRequestOf(const RoiOptions& o);
 
 struct ReportedRoi {
