@@ -5,6 +5,7 @@
 #include <limits>
 #include <mutex>
 #include <set>
+#include <string>
 
 #include <unistd.h>
 
@@ -233,11 +234,20 @@ void Receiver::report(bool final) {
   lastReport_ = now;
   const double s = std::chrono::duration<double>(now - start_).count();
   const double mb = static_cast<double>(bytes_) / 1e6;
-  std::fprintf(stderr, "pacs: %s, %.1f MB, %.1f MB/s%s",
-               mvw::countOf(static_cast<long long>(received_.size()), "instance").c_str(), mb,
-               s > 0 ? mb / s : 0.0, final ? "\n" : "\r");
+  const int n =
+      std::fprintf(stderr, "pacs: %s, %.1f MB, %.1f MB/s%s",
+                   mvw::countOf(static_cast<long long>(received_.size()), "instance").c_str(), mb,
+                   s > 0 ? mb / s : 0.0, final ? "\n" : "\r");
   lineOpen_ = !final;
+  lineLength_ = n > 0 ? static_cast<std::size_t>(n) : 0;
   std::fflush(stderr);
+}
+
+void Receiver::clearLine() {
+  if (!lineOpen_) return;
+  std::fprintf(stderr, "%s\r", std::string(lineLength_, ' ').c_str());
+  std::fflush(stderr);
+  lineOpen_ = false;
 }
 
 Transfer Receiver::transfer() const {

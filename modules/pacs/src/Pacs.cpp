@@ -384,7 +384,9 @@ Transfer get(const Server& server, const std::string& studyUid,
                          std::to_string(receiver.countOf(uid)) + " of the " +
                          std::to_string(expected) + " instances it holds");
   }
-  receiver.report(true);
+  // The caller says what was retrieved (transferSummary): a closing count here would be a
+  // second final line saying the same.
+  receiver.clearLine();
   staging.commit();
   return receiver.transfer();
 }
