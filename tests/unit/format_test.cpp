@@ -29,6 +29,9 @@ TEST(Format, CountOf) {
   EXPECT_EQ(countOf(0, "instance"), "0 instances");
   EXPECT_EQ(countOf(1, "instance"), "1 instance");
   EXPECT_EQ(countOf(2, "view"), "2 views");
+  EXPECT_EQ(countOf(1, "study", "studies"), "1 study");
+  EXPECT_EQ(countOf(3, "study", "studies"), "3 studies");
+  EXPECT_EQ(countOf(2, "series", "series"), "2 series");
 }
 
 TEST(Format, Clipped) {

@@ -99,9 +99,9 @@ std::string pixelProblem(DcmDataset& ds) {
     // Item 0 is the Basic Offset Table; every frame needs a fragment of its own at least.
     const std::uint64_t fragments = seq->card() - 1;
     if (fragments < static_cast<std::uint64_t>(frames))
-      return "its encapsulated Pixel Data holds " + str(fragments) + " fragment" +
-             (fragments == 1 ? "" : "s") + " for " + str(static_cast<std::uint64_t>(frames)) +
-             " frame" + (frames == 1 ? "" : "s");
+      return "its encapsulated Pixel Data holds " +
+             mvw::countOf(static_cast<long long>(fragments), "fragment") + " for " +
+             mvw::countOf(static_cast<long long>(frames), "frame");
     DcmPixelItem* table = nullptr;
     if (seq->getItem(table, 0).bad() || table == nullptr)
       return "its Basic Offset Table is missing";

@@ -21,9 +21,10 @@ inline std::string fixedNumber(double x, int decimals) {
   return text;
 }
 
-// "1 instance", "2 instances": a count with its noun, singular for one.
-inline std::string countOf(long long n, const std::string& noun) {
-  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+// "1 instance", "2 instances": a count with its noun, singular for one. `plural` for a noun
+// that does not take an "s": countOf(n, "study", "studies"), countOf(n, "series", "series").
+inline std::string countOf(long long n, const std::string& noun, const std::string& plural = "") {
+  return std::to_string(n) + " " + (n == 1 ? noun : plural.empty() ? noun + "s" : plural);
 }
 
 // A table cell at most `width` characters: a longer text ends in "..." so a reader sees it was cut.
