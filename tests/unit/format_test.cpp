@@ -34,6 +34,13 @@ TEST(Format, CountOf) {
   EXPECT_EQ(countOf(2, "series", "series"), "2 series");
 }
 
+TEST(Format, Printable) {
+  EXPECT_EQ(printable("plain text, 1.5 mm"), "plain text, 1.5 mm");
+  EXPECT_EQ(printable(std::string("a\x1b[2Jb\rc\nd\te\x7f\0f", 15)),
+            "a\\x1b[2Jb\\x0dc\\x0ad\\x09e\\x7f\\x00f");
+  EXPECT_EQ(printable("M\xc3\xbcller"), "M\xc3\xbcller");  // UTF-8 as it is
+}
+
 TEST(Format, Clipped) {
   EXPECT_EQ(clipped("short", 12), "short");
   EXPECT_EQ(clipped("exactly12chr", 12), "exactly12chr");
