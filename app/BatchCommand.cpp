@@ -2,6 +2,7 @@
 
 #include "CommandBody.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -47,6 +48,24 @@ std::vector<std::string> mvwOptionsOf(const pacs::Options& pacs) {
   return o;
 }
 
+// What each task's command takes, read from its own command line (their one definition): a
+// manifest option none of them takes is refused when the manifest is loaded, naming its line,
+// not by every study's command once the cohort runs. Long names only: the child gets `--NAME`.
+batch::TaskOptions taskOptionsOf(const CLI::App& app) {
+  batch::TaskOptions known;
+  for (const std::string& task : batch::batchTasks()) {
+    auto& options = known[task];
+    for (const CLI::Option* o : app.get_subcommand(task)->get_options()) {
+      if (o->get_positional() || o == app.get_subcommand(task)->get_help_ptr()) continue;
+      batch::TaskOption how;
+      how.flag = o->get_expected_max() == 0 || o->get_type_size_max() == 0;
+      how.maxValues = std::max(1, o->get_items_expected_max());
+      for (const std::string& name : o->get_lnames()) options[name] = how;
+    }
+  }
+  return known;
+}
+
 }  // namespace
 
 void addBatchCommand(CLI::App& app, const pacs::Options& pacs) {
@@ -75,9 +94,10 @@ void addBatchCommand(CLI::App& app, const pacs::Options& pacs) {
   run->add_flag("--verify", opt->verify,
                 "Hash every input again (default: an input whose size, modification time and "
                 "inode are unchanged keeps the SHA-256 remembered in OUT/hashes/)");
-  setCommandBody(*run, [opt, &pacs] {
+  setCommandBody(*run, [opt, &pacs, &app] {
     const batch::BatchShard shard = batch::resolveBatchShard(opt->shard, opt->shards);
-    const batch::BatchManifest manifest = batch::loadBatchManifest(opt->manifest);
+    const batch::BatchManifest manifest =
+        batch::loadBatchManifest(opt->manifest, taskOptionsOf(app));
     batch::BatchRunOptions o;
     o.out = opt->out;
     o.shard = shard;
@@ -122,9 +142,9 @@ void addBatchCommand(CLI::App& app, const pacs::Options& pacs) {
   slurm->add_option("--throttle", opt->throttle, "At most K tasks at once (the array's %K)")
       ->check(CLI::Range(1, 100000));
   slurm->add_flag("--submit", opt->submit, "Submit with sbatch and print the job id");
-  slurm->callback([opt, &pacs] {
+  slurm->callback([opt, &pacs, &app] {
     // The manifest is checked now, not by N failing tasks later.
-    batch::loadBatchManifest(opt->manifest);
+    batch::loadBatchManifest(opt->manifest, taskOptionsOf(app));
     batch::SlurmJobOptions o;
     o.manifest = opt->manifest;
     o.out = opt->out;

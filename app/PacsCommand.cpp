@@ -57,8 +57,9 @@ std::string skippedSummary(const std::vector<std::filesystem::path>& skipped) {
                                                                                 byKind.end());
   std::stable_sort(kinds.begin(), kinds.end(),
                    [](const auto& a, const auto& b) { return a.second.size() > b.second.size(); });
-  std::string text = "mvw pacs store: skipped " + std::to_string(skipped.size()) +
-                     (skipped.size() == 1 ? " file that is" : " files that are") + " not DICOM:";
+  std::string text = "mvw pacs store: skipped " +
+                     countOf(static_cast<long long>(skipped.size()), "file") +
+                     (skipped.size() == 1 ? " that is" : " that are") + " not DICOM:";
   for (std::size_t i = 0; i < kinds.size(); ++i) {
     const auto& [kind, files] = kinds[i];
     text += (i ? ", " : " ") + std::to_string(files.size()) + " " + kind;
@@ -177,7 +178,7 @@ void addPacsCommand(CLI::App& app) {
     const std::filesystem::path quarantine = pacs::quarantineRoot(options);
     const pacs::QuarantineSize size =
         *clear ? pacs::clearQuarantine(options) : pacs::quarantineSize(options);
-    const std::string held = std::to_string(size.series) + " series, " +
+    const std::string held = countOf(size.series, "series", "series") + ", " +
                              fixedNumber(static_cast<double>(size.bytes) / 1e6, 1) + " MB";
     std::cout << "cache: " << pacs::cacheRoot(options).string() << "\n"
               << (*clear ? "quarantine emptied: " : "quarantine: ") << quarantine.string() << " ("

@@ -14,6 +14,7 @@
 #include "CliChecks.h"
 #include "DicomOutput.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/dicomout/SegmentationWriter.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/study/RoiReport.h"
@@ -48,8 +49,9 @@ void writeSeg(const StatsOptions& opt, const Volume& volume, const study::RoiRep
   series.seriesNumber = 3001;
   series.description = plan.seriesDescription;
   dicomout::writeSegmentation(opt.seg, volume, segments, id, series, plan.algorithm);
-  std::cerr << "mvw stats: wrote the DICOM SEG " << opt.seg << " (" << segments.size() << " segment"
-            << (segments.size() == 1 ? "" : "s") << ") " << identityNote(id) << "\n";
+  std::cerr << "mvw stats: wrote the DICOM SEG " << opt.seg << " ("
+            << countOf(static_cast<long long>(segments.size()), "segment") << ") "
+            << identityNote(id) << "\n";
 }
 
 void runStats(StatsOptions opt) {

@@ -30,9 +30,10 @@ fs::path write(const fs::path& file, const std::string& text) {
 }
 
 // The message loading `text` as `name` in `dir` throws, "" when it loads.
-std::string refusal(const fs::path& dir, const std::string& name, const std::string& text) {
+std::string refusal(const fs::path& dir, const std::string& name, const std::string& text,
+                    const TaskOptions& known = {}) {
   try {
-    loadBatchManifest(write(dir / name, text));
+    loadBatchManifest(write(dir / name, text), known);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -151,7 +152,8 @@ TEST(BatchManifest, RefusesBadJsonNamingTheStudy) {
             f + "study 1: \"id\" must be a string");
   EXPECT_EQ(refusal(dir, "bad.json",
                     R"([{"id": "a", "study": "study.json", "task": "render", "options": []}])"),
-            f + "study 1: \"options\" must be an object");
+            f + "study 1: \"options\" must be an object of options named without their dashes: "
+                "{\"size\": 256, \"mode\": \"mip\"}");
   EXPECT_EQ(refusal(dir, "bad.json",
                     R"([{"id": "a", "study": "study.json", "task": "render",
                          "options": {"size": [1, {}]}}])"),
@@ -162,6 +164,62 @@ TEST(BatchManifest, RefusesBadJsonNamingTheStudy) {
             f + "study 1: option 'size' must be a string, number, list or true/false");
   EXPECT_EQ(refusal(dir, "bad.json", "[]"), f + "lists no study");
   EXPECT_EQ(refusal(dir, "bad.json", "{").rfind(f + "is not valid JSON: ", 0), 0u);
+}
+
+// The options of the tasks' commands as the app hands them over (read from their command
+// lines): a line giving one its task does not take is refused when the manifest loads, naming
+// the line and the option, never left to fail each study's command once the cohort runs.
+TaskOptions someTaskOptions() {
+  return {{"render", {{"size", {false, 2}}, {"mode", {false, 1}}, {"perspective", {true, 0}}}},
+          {"stats", {{"box", {false, 6}}, {"labels", {false, 1}}, {"of", {false, 1}}}},
+          {"register", {{"metric-samples", {false, 1}}}}};
+}
+
+TEST(BatchManifest, RefusesOptionsTheTaskDoesNotTake) {
+  const fs::path dir = cohortDir();
+  const TaskOptions known = someTaskOptions();
+  const std::string f = (dir / "bad.csv").string() + ": ";
+  const std::string header = "id,study,task,size,box,perspective\n";
+  // Each option on a line of a task that takes it; an empty cell is no option.
+  EXPECT_EQ(refusal(dir, "bad.csv",
+                    header + "a,study.json,render,256 128,,true\nb,study.json,stats,,"
+                             "-300 -300 -300 300 300 300,\n",
+                    known),
+            "");
+  EXPECT_EQ(refusal(dir, "bad.csv", "id,study,task,sise\na,study.json,render,256\n", known),
+            f + "line 2: 'sise' is not an option of mvw render (did you mean 'size'?)");
+  EXPECT_EQ(
+      refusal(dir, "bad.csv", header + "a,study.json,render,,,\nb,study.json,stats,256,,\n", known),
+      f + "line 3: 'size' is not an option of mvw stats (mvw stats --help lists them)");
+  EXPECT_EQ(
+      refusal(dir, "bad.csv", "id,study,task,options\na,study.json,render,--size 256\n", known),
+      f + "line 2: 'options' is not an option of mvw render (a CSV manifest has one column "
+          "per option, named as the option without its dashes: size, view, ...; "
+          "\"options\" is the JSON manifest's object of them)");
+  EXPECT_EQ(refusal(dir, "bad.csv", header + "a,study.json,render,,,yes\n", known),
+            f + "line 2: 'perspective' is a flag of mvw render: true, false or empty, not 'yes'");
+  EXPECT_EQ(refusal(dir, "bad.csv", header + "a,study.json,render,true,,\n", known),
+            f + "line 2: 'size' of mvw render takes a value, not true");
+  EXPECT_EQ(refusal(dir, "bad.csv", header + "a,study.json,render,256 --mode mip,,\n", known),
+            f + "line 2: the value of 'size' holds '--mode': each option is a column of its own "
+                "(or a key of \"options\" in JSON), its cell the value");
+  EXPECT_EQ(refusal(dir, "bad.csv",
+                    "id,study,task,labels\na,study.json,stats,\"/my data/labels.nii\"\n", known),
+            f + "line 2: 'labels' of mvw stats takes one value, not 2 ('/my data/labels.nii': a "
+                "value is split at its spaces, quoted or not)");
+  EXPECT_EQ(refusal(dir, "bad.csv", header + "a,study.json,render,1 2 3,,\n", known),
+            f + "line 2: 'size' of mvw render takes at most 2 values, not 3 ('1 2 3': a value is "
+                "split at its spaces, quoted or not)");
+  // JSON: the same check, the study named by its place.
+  const std::string j = (dir / "bad.json").string() + ": ";
+  EXPECT_EQ(refusal(dir, "bad.json",
+                    R"([{"id": "a", "study": "study.json", "task": "register",
+                         "options": {"metric-sample": 5000}}])",
+                    known),
+            j + "study 1: 'metric-sample' is not an option of mvw register (did you mean "
+                "'metric-samples'?)");
+  // Without the table only the names' form is checked (the file format's tests, fuzzing).
+  EXPECT_EQ(refusal(dir, "bad.csv", "id,study,task,sise\na,study.json,render,256\n"), "");
 }
 
 TEST(BatchManifest, NamesTheTasks) {

@@ -29,6 +29,16 @@ TEST(Format, CountOf) {
   EXPECT_EQ(countOf(0, "instance"), "0 instances");
   EXPECT_EQ(countOf(1, "instance"), "1 instance");
   EXPECT_EQ(countOf(2, "view"), "2 views");
+  EXPECT_EQ(countOf(1, "study", "studies"), "1 study");
+  EXPECT_EQ(countOf(3, "study", "studies"), "3 studies");
+  EXPECT_EQ(countOf(2, "series", "series"), "2 series");
+}
+
+TEST(Format, Printable) {
+  EXPECT_EQ(printable("plain text, 1.5 mm"), "plain text, 1.5 mm");
+  EXPECT_EQ(printable(std::string("a\x1b[2Jb\rc\nd\te\x7f\0f", 15)),
+            "a\\x1b[2Jb\\x0dc\\x0ad\\x09e\\x7f\\x00f");
+  EXPECT_EQ(printable("M\xc3\xbcller"), "M\xc3\xbcller");  // UTF-8 as it is
 }
 
 TEST(Format, Clipped) {

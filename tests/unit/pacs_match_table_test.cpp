@@ -23,28 +23,56 @@ TEST(MatchTable, Studies) {
                 {"NumberOfStudyRelatedSeries", "3"}, {"StudyDescription", "PET-CT whole body"},
                 {"StudyInstanceUID", "1.2.3"}};
   EXPECT_EQ(printed({m}, false, false),
-            "patient                 patient id    date      modalities series  description      "
-            "             StudyInstanceUID\n"
-            "Doe^Jane                P-0001234...  20240102  CT\\PT      3       PET-CT whole body "
-            "            1.2.3\n");
+            "patient   patient id       date      modalities  series  description        "
+            "StudyInstanceUID\n"
+            "Doe^Jane  P-0001234567890  20240102  CT\\PT       3       PET-CT whole body  1.2.3\n");
+}
+
+// Columns as wide as their longest value: a real Patient ID (20 characters) whole, a value past
+// a column's cap cut with "...".
+TEST(MatchTable, StudyColumnsSizedFromTheirValues) {
+  const Match a{{"PatientName", "Doe^Jane"},         {"PatientID", "P-0001234567890"},
+                {"StudyDate", "20240102"},           {"ModalitiesInStudy", "CT\\PT"},
+                {"NumberOfStudyRelatedSeries", "3"}, {"StudyDescription", "PET-CT whole body"},
+                {"StudyInstanceUID", "1.2.3"}};
+  const Match b{{"PatientName", "QIN-HEADNECK-01-0024"},
+                {"PatientID", "QIN-HEADNECK-01-0024"},
+                {"StudyDate", "19860718"},
+                {"ModalitiesInStudy", "CT\\PT\\SEG"},
+                {"NumberOfStudyRelatedSeries", "4"},
+                {"StudyDescription", std::string(50, 'x')},
+                {"StudyInstanceUID", "1.2.3.4"}};
+  EXPECT_EQ(printed({a, b}, false, false),
+            "patient               patient id            date      modalities  series  "
+            "description                               StudyInstanceUID\n"
+            "Doe^Jane              P-0001234567890       20240102  CT\\PT       3       "
+            "PET-CT whole body                         1.2.3\n"
+            "QIN-HEADNECK-01-0024  QIN-HEADNECK-01-0024  19860718  CT\\PT\\SEG   4       " +
+                std::string(37, 'x') + "...  1.2.3.4\n");
+  // An ID past the cap (32): cut, with the ellipsis.
+  const Match c{{"PatientID", std::string(40, '7')}};
+  const std::string table = printed({c}, false, false);
+  EXPECT_NE(table.find(std::string(29, '7') + "...  "), std::string::npos) << table;
+  EXPECT_EQ(table.find(std::string(30, '7')), std::string::npos) << table;
 }
 
 TEST(MatchTable, SeriesCutLongDescriptions) {
   const Match m{{"SeriesNumber", "2"},
                 {"Modality", "PT"},
                 {"NumberOfSeriesRelatedInstances", "311"},
-                {"SeriesDescription", std::string(40, 'x')},
+                {"SeriesDescription", std::string(60, 'x')},
                 {"SeriesInstanceUID", "1.2.3.4"}};
   EXPECT_EQ(printed({m}, false, true),
-            "number modality instances description                       SeriesInstanceUID\n"
-            "2      PT       311       " +
-                std::string(29, 'x') + "...  1.2.3.4\n");
+            "number  modality  instances  description                                       "
+            "SeriesInstanceUID\n"
+            "2       PT        311        " +
+                std::string(45, 'x') + "...  1.2.3.4\n");
 }
 
 TEST(MatchTable, MissingValuesAreEmpty) {
   EXPECT_EQ(printed({Match{}}, false, true),
-            "number modality instances description                       SeriesInstanceUID\n" +
-                std::string(60, ' ') + "\n");
+            "number  modality  instances  description  SeriesInstanceUID\n" + std::string(42, ' ') +
+                "\n");
 }
 
 TEST(MatchTable, JsonLines) {

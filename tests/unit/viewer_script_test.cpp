@@ -240,6 +240,15 @@ TEST(ViewerScriptTable, UnknownCommandsAreNamed) {
   EXPECT_EQ(problemOf("#comment\nkey"), "line 2: key: missing key");
 }
 
+// A control byte the script file holds reaches the message escaped (\xNN), never raw: the
+// terminal or log showing the message is not cleared, recoloured or rung.
+TEST(ViewerScriptTable, ControlBytesInMessagesAreEscaped) {
+  EXPECT_EQ(problemOf("zoo\x1b[2Jm 3d 2"), "line 1: unknown command 'zoo\\x1b[2Jm'");
+  EXPECT_EQ(problemOf("layout \x07quad"),
+            "line 1: layout: unknown layout '\\x07quad' (" + config::viewerLayoutList() + ")");
+  EXPECT_EQ(problemOf("zoom 3d 2\x7f"), "line 1: zoom: factor '2\\x7f' is not a number");
+}
+
 TEST(ViewerScriptTable, TheHelpListsWhatTheParserAccepts) {
   std::string colormap, layout;
   for (const ViewerScript::CommandInfo& info : ViewerScript::commandInfo()) {

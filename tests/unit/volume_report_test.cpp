@@ -86,6 +86,13 @@ TEST(VolumeReport, DicomSeriesSlicesAndFractionalValues) {
   EXPECT_DOUBLE_EQ(j["slice_spacing"]["nominal_mm"].get<double>(), 3.27);
 }
 
+// One rule for every JSON report (info's, convert's sidecar): null for no number, 0 is one.
+TEST(VolumeReport, SeriesNumberJson) {
+  EXPECT_TRUE(seriesNumberJson(-1).is_null());
+  EXPECT_EQ(seriesNumberJson(0), 0);
+  EXPECT_EQ(seriesNumberJson(7), 7);
+}
+
 TEST(VolumeReport, Json) {
   const nlohmann::json j = volumeJson(ctLike());
   EXPECT_EQ(j["path"], "ct.nii");

@@ -39,7 +39,7 @@ TEST(VolumeValues, InfinitiesAreClampedOnReadWithANote) {
   EXPECT_EQ(r.value(2, 0, 1), -5.0);  // the smallest
   EXPECT_TRUE(std::isnan(r.value(0, 0, 0)));
   EXPECT_TRUE(hasNote(r,
-                      "1 voxels +inf clamped to the largest finite value 12; 1 voxels -inf "
+                      "1 voxel +inf clamped to the largest finite value 12; 1 voxel -inf "
                       "clamped to the smallest finite value -5"));
   EXPECT_EQ(r.valueRange(), std::make_pair(-5.0, 12.0));
 }

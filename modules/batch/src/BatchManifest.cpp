@@ -89,8 +89,73 @@ std::string whyBadOptionName(const std::string& name) {
   return "";
 }
 
+// Edits turning one name into the other (Levenshtein), for "did you mean".
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// Why the option `name` = `value` (as addOption stored it: "" for true) cannot go to `task`'s
+// command, "" when it can. The message is the one a user reads for the whole manifest, so it
+// names the option and the command, and what to write instead.
+std::string whyNotTaskOption(const TaskOptions& known, const std::string& task,
+                             const std::string& name, const std::string& value) {
+  const auto options = known.find(task);
+  if (options == known.end()) return "";
+  const std::string command = "mvw " + task;
+  const auto it = options->second.find(name);
+  if (it == options->second.end()) {
+    std::string closest;
+    std::size_t best = 3;  // at most 2 edits away: a typo, not another option
+    for (const auto& [candidate, how] : options->second)
+      if (const std::size_t d = editDistance(name, candidate); d < best) {
+        best = d;
+        closest = candidate;
+      }
+    std::string why = "'" + name + "' is not an option of " + command;
+    if (name == "options")
+      why +=
+          " (a CSV manifest has one column per option, named as the option without its "
+          "dashes: size, view, ...; \"options\" is the JSON manifest's object of them)";
+    else if (!closest.empty())
+      why += " (did you mean '" + closest + "'?)";
+    else
+      why += " (" + command + " --help lists them)";
+    return why;
+  }
+  const TaskOption& how = it->second;
+  if (how.flag && !value.empty())
+    return "'" + name + "' is a flag of " + command + ": true, false or empty, not '" + value + "'";
+  if (!how.flag && value.empty())
+    return "'" + name + "' of " + command + " takes a value, not true";
+  std::istringstream words(value);
+  int count = 0;
+  for (std::string w; words >> w; ++count)
+    if (w.rfind("--", 0) == 0)
+      return "the value of '" + name + "' holds '" + w +
+             "': each option is a column of its own (or a key of \"options\" in JSON), its "
+             "cell the value";
+  if (count > how.maxValues)
+    return "'" + name + "' of " + command + " takes " +
+           (how.maxValues == 1 ? std::string("one value")
+                               : "at most " + std::to_string(how.maxValues) + " values") +
+           ", not " + std::to_string(count) + " ('" + value +
+           "': a value is split at its spaces, quoted or not)";
+  return "";
+}
+
 void addStudy(BatchManifest& manifest, std::map<std::string, int>& ids, BatchStudy study,
-              const std::string& where) {
+              const std::string& where, const TaskOptions& known) {
   const fs::path& file = manifest.file;
   if (const std::string why = whyBadId(study.id); !why.empty())
     throw InputError(file, where + ": " + why);
@@ -108,9 +173,12 @@ void addStudy(BatchManifest& manifest, std::map<std::string, int>& ids, BatchStu
   if (const std::string why = whyUnreadable(config); !why.empty())
     throw InputError(file, where + ": the study config " + config.string() + ": " + why);
   study.study = fs::absolute(config);
-  for (const auto& [name, value] : study.options)
+  for (const auto& [name, value] : study.options) {
     if (const std::string why = whyBadOptionName(name); !why.empty())
       throw InputError(file, where + ": " + why);
+    if (const std::string why = whyNotTaskOption(known, study.task, name, value); !why.empty())
+      throw InputError(file, where + ": " + why);
+  }
   // An option naming a file relative to the manifest (a label table) is made absolute, as the
   // study column is: the children run elsewhere.
   for (auto& [name, value] : study.options) {
@@ -130,7 +198,7 @@ void addOption(BatchStudy& study, const std::string& name, const std::string& va
   study.options.emplace_back(name, value == "true" ? "" : value);
 }
 
-BatchManifest loadCsv(const fs::path& file, std::istream& in) {
+BatchManifest loadCsv(const fs::path& file, std::istream& in, const TaskOptions& known) {
   BatchManifest manifest{file, {}};
   std::map<std::string, int> ids;
   std::vector<std::string> header, fields;
@@ -167,13 +235,13 @@ BatchManifest loadCsv(const fs::path& file, std::istream& in) {
     for (std::size_t i = 3; i < header.size(); ++i) addOption(study, header[i], fields[i]);
     study.line = line;
     study.lineNumber = number;
-    addStudy(manifest, ids, std::move(study), where);
+    addStudy(manifest, ids, std::move(study), where, known);
   }
   if (header.empty()) throw InputError(file, "is empty: no header id,study,task");
   return manifest;
 }
 
-BatchManifest loadJson(const fs::path& file, std::istream& in) {
+BatchManifest loadJson(const fs::path& file, std::istream& in, const TaskOptions& known) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
@@ -202,7 +270,10 @@ BatchManifest loadJson(const fs::path& file, std::istream& in) {
           throw InputError(file, where + ": \"" + key + "\" must be a string");
         (key == "id" ? study.id : key == "task" ? study.task : study.studyText) = value;
       } else if (key == "options") {
-        if (!value.is_object()) throw InputError(file, where + ": \"options\" must be an object");
+        if (!value.is_object())
+          throw InputError(file, where +
+                                     ": \"options\" must be an object of options named without "
+                                     "their dashes: {\"size\": 256, \"mode\": \"mip\"}");
         for (const auto& [name, v] : value.items()) {
           std::string text;
           if (v.is_string())
@@ -230,21 +301,22 @@ BatchManifest loadJson(const fs::path& file, std::istream& in) {
     study.study = study.studyText;
     study.line = entry.dump();
     study.lineNumber = index;
-    addStudy(manifest, ids, std::move(study), where);
+    addStudy(manifest, ids, std::move(study), where, known);
   }
   return manifest;
 }
 
 }  // namespace
 
-BatchManifest loadBatchManifest(const fs::path& file) {
+BatchManifest loadBatchManifest(const fs::path& file, const TaskOptions& known) {
   requireReadable(file);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file, "cannot be read");
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
   const fs::path absolute = fs::absolute(file).lexically_normal();
-  BatchManifest manifest = ext == ".json" ? loadJson(absolute, in) : loadCsv(absolute, in);
+  BatchManifest manifest =
+      ext == ".json" ? loadJson(absolute, in, known) : loadCsv(absolute, in, known);
   if (manifest.studies.empty()) throw InputError(file, "lists no study");
   return manifest;
 }

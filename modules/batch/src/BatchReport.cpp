@@ -192,8 +192,7 @@ void figures(std::ostream& body, const fs::path& dir, const StudyResult& r) {
         const std::string folder = o.value("folder", ""), movie = o.value("movie", "");
         if (!folder.empty())
           orbit += " · <a href=\"" + html(r.id + "/" + folder) +
-                   "/\">orbit: " + std::to_string(frames) +
-                   (frames == 1 ? " frame</a>" : " frames</a>");
+                   "/\">orbit: " + countOf(frames, "frame") + "</a>";
         if (!movie.empty()) orbit += " · <a href=\"" + html(r.id + "/" + movie) + "\">movie</a>";
       }
       if (v.contains("file") && v["file"].is_string() &&
@@ -378,8 +377,8 @@ BatchReportCounts report(const fs::path& out, const BatchReportPaging& paging, S
           << "</li>\n";
         continue;
       }
-      h << "<li>" << g.count << " studies: exit " << g.exitCode << ": " << html(g.message)
-        << "<br>";
+      h << "<li>" << countOf(g.count, "study", "studies") << ": exit " << g.exitCode << ": "
+        << html(g.message) << "<br>";
       for (std::size_t i = 0; i < g.ids.size(); ++i) h << (i ? ", " : "") << link(g.ids[i]);
       if (g.count > static_cast<int>(g.ids.size()))
         h << " and " << g.count - static_cast<int>(g.ids.size()) << " more (summary.csv)";

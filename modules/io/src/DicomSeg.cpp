@@ -22,6 +22,7 @@
 #include "DicomFile.h"
 #include "FileChecks.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 
 namespace mvw::io {
 
@@ -394,12 +395,12 @@ Volume labelVolume(const Segmentation& seg) {
       out.dataAs<std::uint16_t>()[v] = static_cast<std::uint16_t>(label);
   }
   auto& notes = out.metadata().notes;
-  notes.push_back("DICOM SEG (" + seg.type + "), " + std::to_string(seg.frames) + " frames, " +
-                  std::to_string(seg.segments.size()) +
-                  " segments; values are segment numbers (0: none)");
+  notes.push_back("DICOM SEG (" + seg.type + "), " + countOf(seg.frames, "frame") + ", " +
+                  countOf(static_cast<long long>(seg.segments.size()), "segment") +
+                  "; values are segment numbers (0: none)");
   for (const auto& s : seg.segments) {
     std::string line = "segment " + std::to_string(s.number) + " \"" + s.label + "\", " +
-                       std::to_string(s.frames) + " frames";
+                       countOf(s.frames, "frame");
     if (s.rgb) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "#%02x%02x%02x", (*s.rgb)[0], (*s.rgb)[1], (*s.rgb)[2]);
@@ -408,8 +409,9 @@ Volume labelVolume(const Segmentation& seg) {
     notes.push_back(line);
   }
   if (overlapping)
-    notes.push_back(std::to_string(overlapping) +
-                    " voxels lie in more than one segment: labelled with the highest number");
+    notes.push_back(countOf(static_cast<long long>(overlapping), "voxel") +
+                    (overlapping == 1 ? " lies" : " lie") +
+                    " in more than one segment: labelled with the highest number");
   return out;
 }
 

@@ -185,8 +185,8 @@ std::string leaveOutStrayFiles(vtkDICOMReader* reader, vtkStringArray* files,
         .push_back(fileName(files, f));
   }
   if (left == 0 || kept->GetNumberOfValues() < 1) return "";
-  std::string note = std::to_string(left) + " of " + std::to_string(n) +
-                     " files of the series left out as not slices of its stack:";
+  std::string note = std::to_string(left) + " of " + countOf(n, "file") +
+                     " of the series left out as not slices of its stack:";
   std::string sep;
   auto reason = [&](const std::vector<std::string>& names, const std::string& why) {
     if (names.empty()) return;
@@ -238,9 +238,8 @@ std::string chooseLargestStack(vtkDICOMReader* reader, vtkStringArray* files) {
   return "the series holds " + std::to_string(stackFiles.size()) +
          " stacks of slices that do not line up (orientation, position or a second location "
          "per slice): the largest, " +
-         std::to_string(stackSlices[best]) + " slices from " +
-         std::to_string(stackFiles[best].size()) + " of " +
-         std::to_string(files->GetNumberOfValues()) + " files, was read" +
+         countOf(stackSlices[best], "slice") + " from " + std::to_string(stackFiles[best].size()) +
+         " of " + countOf(files->GetNumberOfValues(), "file") + ", was read" +
          (left.empty() ? std::string() : "; files left out: " + listed(left));
 }
 

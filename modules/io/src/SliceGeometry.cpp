@@ -24,6 +24,7 @@
 
 #include "FileChecks.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 
 namespace mvw::io::detail {
 
@@ -306,7 +307,7 @@ void noteUnevenSlices(std::vector<std::string>& notes, const SliceOffsets& o,
     const long missing = std::lround(gaps[r] / local) - 1;
     notes.push_back("gap of " + fmt(gaps[r]) + " mm after slice " + std::to_string(r + 1) + " of " +
                     std::to_string(n) + " (at " + lpsText(positions[o.g.order[r]]) + "): about " +
-                    std::to_string(missing) + " slice" + (missing == 1 ? "" : "s") + " missing");
+                    countOf(missing, "slice") + " missing");
   }
 }
 

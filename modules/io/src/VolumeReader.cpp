@@ -108,12 +108,12 @@ void clampInfinities(Volume& volume, const fs::path& path) {
         if (std::isinf(p[i])) p[i] = p[i] > 0 ? hi : lo;
       std::string note;
       if (plus)
-        note = std::to_string(plus) + " voxels +inf clamped to the largest finite value " +
-               shortNumber(hi);
+        note = countOf(static_cast<long long>(plus), "voxel") +
+               " +inf clamped to the largest finite value " + shortNumber(hi);
       if (minus) {
         if (!note.empty()) note += "; ";
-        note += std::to_string(minus) + " voxels -inf clamped to the smallest finite value " +
-                shortNumber(lo);
+        note += countOf(static_cast<long long>(minus), "voxel") +
+                " -inf clamped to the smallest finite value " + shortNumber(lo);
       }
       volume.metadata().notes.push_back(note);
     }

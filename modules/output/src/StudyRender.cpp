@@ -11,6 +11,7 @@
 #include "RenderRecord.h"
 #include "mvw/config/StudyConfig.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/WindowLevel.h"
 #include "mvw/dicomout/SecondaryCapture.h"
 #include "mvw/io/AtomicFile.h"
@@ -250,12 +251,12 @@ RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::
         << " ms\n";
   }
   writeOutputs(request.outDir, outputs, orbits, studyRecord(session, renderer, *context), staging);
-  out << "wrote " << outputs.size() << " view(s) and render.json to " << request.outDir.string()
-      << "\n";
+  out << "wrote " << countOf(static_cast<long long>(outputs.size()), "view")
+      << " and render.json to " << request.outDir.string() << "\n";
   RenderedStudy rendered;
   rendered.views = static_cast<int>(outputs.size());
   if (identity) {
-    out << "wrote " << dicomObjects << " DICOM Secondary Capture object(s) "
+    out << "wrote " << countOf(dicomObjects, "DICOM Secondary Capture object") << " "
         << dicomout::identityNote(*identity) << "\n";
     // Only once every view is rendered and every object written: exactly this run's objects.
     for (const Output& o : outputs)

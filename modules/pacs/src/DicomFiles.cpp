@@ -5,6 +5,7 @@
 #include <limits>
 #include <mutex>
 #include <set>
+#include <string>
 
 #include <unistd.h>
 
@@ -98,9 +99,9 @@ std::string pixelProblem(DcmDataset& ds) {
     // Item 0 is the Basic Offset Table; every frame needs a fragment of its own at least.
     const std::uint64_t fragments = seq->card() - 1;
     if (fragments < static_cast<std::uint64_t>(frames))
-      return "its encapsulated Pixel Data holds " + str(fragments) + " fragment" +
-             (fragments == 1 ? "" : "s") + " for " + str(static_cast<std::uint64_t>(frames)) +
-             " frame" + (frames == 1 ? "" : "s");
+      return "its encapsulated Pixel Data holds " +
+             mvw::countOf(static_cast<long long>(fragments), "fragment") + " for " +
+             mvw::countOf(static_cast<long long>(frames), "frame");
     DcmPixelItem* table = nullptr;
     if (seq->getItem(table, 0).bad() || table == nullptr)
       return "its Basic Offset Table is missing";
@@ -233,11 +234,20 @@ void Receiver::report(bool final) {
   lastReport_ = now;
   const double s = std::chrono::duration<double>(now - start_).count();
   const double mb = static_cast<double>(bytes_) / 1e6;
-  std::fprintf(stderr, "pacs: %s, %.1f MB, %.1f MB/s%s",
-               mvw::countOf(static_cast<long long>(received_.size()), "instance").c_str(), mb,
-               s > 0 ? mb / s : 0.0, final ? "\n" : "\r");
+  const int n =
+      std::fprintf(stderr, "pacs: %s, %.1f MB, %.1f MB/s%s",
+                   mvw::countOf(static_cast<long long>(received_.size()), "instance").c_str(), mb,
+                   s > 0 ? mb / s : 0.0, final ? "\n" : "\r");
   lineOpen_ = !final;
+  lineLength_ = n > 0 ? static_cast<std::size_t>(n) : 0;
   std::fflush(stderr);
+}
+
+void Receiver::clearLine() {
+  if (!lineOpen_) return;
+  std::fprintf(stderr, "%s\r", std::string(lineLength_, ' ').c_str());
+  std::fflush(stderr);
+  lineOpen_ = false;
 }
 
 Transfer Receiver::transfer() const {

@@ -38,7 +38,12 @@ class Receiver {
   void addBytes(std::uint64_t n) { bytes_ += n; }
   // Told after each instance received (Options::onProgress).
   void setOnProgress(std::function<void(const Transfer&)> f) { onProgress_ = std::move(f); }
+  // The progress line: on a terminal a running line rewritten by carriage returns (at most
+  // twice a second), and with `final` the closing count ("pacs: 3 instances, 1.2 MB, ...").
   void report(bool final);
+  // Wipes a running line without a closing count: for a caller that says what it received
+  // itself (`mvw pacs get` prints transferSummary), so one final line says it.
+  void clearLine();
   Transfer transfer() const;
   const std::filesystem::path& staging() const { return staging_; }
   int count() const { return static_cast<int>(received_.size()); }
@@ -55,6 +60,7 @@ class Receiver {
   bool progress_;
   std::function<void(const Transfer&)> onProgress_;
   bool lineOpen_ = false;
+  std::size_t lineLength_ = 0;  // of the running line, to wipe it
   std::set<std::string> received_;
   std::map<std::string, long> perSeries_;
   std::uint64_t bytes_ = 0;

@@ -15,6 +15,7 @@
 
 #include "Internal.h"
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/io/Interrupt.h"
 #include "mvw/io/StagedFolder.h"
 
@@ -382,9 +383,11 @@ Transfer get(const Server& server, const std::string& studyUid,
     if (receiver.countOf(uid) != expected)
       throw ServiceError(server.text + ": the retrieve of series " + uid + " ended with " +
                          std::to_string(receiver.countOf(uid)) + " of the " +
-                         std::to_string(expected) + " instances it holds");
+                         countOf(expected, "instance") + " it holds");
   }
-  receiver.report(true);
+  // The caller says what was retrieved (transferSummary): a closing count here would be a
+  // second final line saying the same.
+  receiver.clearLine();
   staging.commit();
   return receiver.transfer();
 }
@@ -492,8 +495,8 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
         if (e.path().extension() == ".dcm") listed.insert(e.path().stem().string());
       if (static_cast<long>(listed.size()) != stated)
         throw ServiceError(server.text + ": the retrieve of series " + seriesUid + " ended with " +
-                           std::to_string(listed.size()) + " of the " + std::to_string(stated) +
-                           " instances it holds");
+                           std::to_string(listed.size()) + " of the " +
+                           countOf(stated, "instance") + " it holds");
       allReceivedNow = true;
     } else {
       listed = instanceUids(findInstances(server, studyUid, seriesUid, options));
@@ -514,8 +517,8 @@ fs::path cachedSeries(const Server& server, const std::string& studyUid,
       missing = absentInstances(partial, listed);
       if (!missing.empty())
         throw ServiceError(server.text + ": the retrieve of series " + seriesUid + " ended with " +
-                           std::to_string(missing.size()) + " of " + std::to_string(listed.size()) +
-                           " instances missing");
+                           std::to_string(missing.size()) + " of " +
+                           countOf(static_cast<long long>(listed.size()), "instance") + " missing");
     }
     for (const auto& e : fs::directory_iterator(partial))
       if (e.path().extension() == ".dcm" &&

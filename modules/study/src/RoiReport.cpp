@@ -270,8 +270,10 @@ RoiReport roiReport(const Volume& volume, const RoiRequest& request, const fs::p
   for (const auto& roi : report.rois) {
     report.stats.push_back(roiStatistics(volume, roi.voxels, so));
     if (report.stats.back().voxels == 0 && report.rois.size() == 1)
-      throw InputError(source, "the " + roi.what + " holds no voxel with data (its " +
-                                   std::to_string(report.stats.back().noData) + " voxels are NaN)");
+      throw InputError(source,
+                       "the " + roi.what + " holds no voxel with data (its " +
+                           countOf(static_cast<long long>(report.stats.back().noData), "voxel") +
+                           (report.stats.back().noData == 1 ? " is" : " are") + " NaN)");
   }
   if (segmentList && report.rois.size() > 1) report.total = segmentTotal(volume, report);
   return report;

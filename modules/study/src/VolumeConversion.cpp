@@ -11,6 +11,7 @@
 #include "mvw/io/StagedFolder.h"
 #include "mvw/io/VolumeWriter.h"
 #include "mvw/study/StudyLoader.h"
+#include "mvw/study/VolumeReport.h"
 
 namespace mvw::study {
 
@@ -105,7 +106,7 @@ nlohmann::json conversionSidecar(nlohmann::json description, const Volume& volum
   j["source_path"] = fs::absolute(request.input).lexically_normal().string();
   const auto& md = volume.metadata();
   j["series_description"] = md.seriesDescription;
-  j["series_number"] = md.seriesNumber < 0 ? nlohmann::json() : nlohmann::json(md.seriesNumber);
+  j["series_number"] = seriesNumberJson(md.seriesNumber);
   j["series_instance_uid"] = md.seriesInstanceUid;
   if (md.suvFactor) j["suv_factor"] = *md.suvFactor;  // SUVbw = Bq/ml x suv_factor
   if (isStudyConfig(request.input)) {

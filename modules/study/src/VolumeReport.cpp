@@ -21,6 +21,10 @@ std::string valueText(double v) {
 
 }  // namespace
 
+nlohmann::json seriesNumberJson(int seriesNumber) {
+  return seriesNumber < 0 ? nlohmann::json() : nlohmann::json(seriesNumber);
+}
+
 nlohmann::json volumeJson(const Volume& volume) {
   const auto& md = volume.metadata();
   const glm::ivec3 d = volume.dimensions();
@@ -46,7 +50,7 @@ nlohmann::json volumeJson(const Volume& volume) {
   if (md.format == "DICOM") {
     j["series_instance_uid"] = md.seriesInstanceUid;
     j["series_description"] = md.seriesDescription;
-    j["series_number"] = md.seriesNumber < 0 ? nlohmann::json() : nlohmann::json(md.seriesNumber);
+    j["series_number"] = seriesNumberJson(md.seriesNumber);
   }
   if (md.sliceSpacing) {
     const auto& ss = *md.sliceSpacing;

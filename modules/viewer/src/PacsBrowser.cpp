@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 
 namespace mvw::viewer {
 
@@ -394,7 +395,7 @@ void PacsBrowser::takeStudies(std::vector<pacs::Match> studies) {
   study_ = -1;
   series_.clear();
   for (std::string& c : chosen_) c.clear();
-  status_ = std::to_string(studies_.size()) + (studies_.size() == 1 ? " study" : " studies");
+  status_ = countOf(static_cast<long long>(studies_.size()), "study", "studies");
 }
 
 void PacsBrowser::takeSeries(std::vector<pacs::Match> series) {

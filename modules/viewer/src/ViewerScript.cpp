@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "mvw/core/Error.h"
+#include "mvw/core/Format.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/viewer/OpenedStudy.h"
 
@@ -21,6 +22,14 @@ namespace {
 
 using Command = ViewerScript::Command;
 using Kind = Command::Kind;
+
+// Every message about a script line is formed here: "line N: problem", with the script's own
+// bytes the problem quotes (a word, a server's name) made printable, so a stray control byte in
+// the file cannot garble the terminal or the log that shows the message.
+[[noreturn]] void scriptError(const std::filesystem::path& source, int line,
+                              const std::string& problem) {
+  throw InputError(source, "line " + std::to_string(line) + ": " + printable(problem));
+}
 
 // The tokens of one line, consumed in order; every complaint names the file and the line.
 class LineReader {
@@ -33,7 +42,7 @@ class LineReader {
   bool empty() const { return tokens_.empty(); }
   bool more() const { return next_ < tokens_.size(); }
   [[noreturn]] void fail(const std::string& problem) const {
-    throw InputError(source_, "line " + std::to_string(number_) + ": " + problem);
+    scriptError(source_, number_, problem);
   }
   std::string word(const char* what) {
     if (!more()) fail(command() + ": missing " + what);
@@ -567,8 +576,7 @@ bool ViewerScript::step(ViewerState* statePointer, PacsBrowser* pacs) {
     if (c.kind == Kind::Quit) return false;
     if (c.kind == Kind::Screenshot) idleRequests_.requestScreenshot(c.file);
     if (c.kind != Kind::Nothing && c.kind != Kind::Wait && c.kind != Kind::Screenshot)
-      throw InputError(source_, "line " + std::to_string(c.line) +
-                                    ": no study is open (open one from the PACS first)");
+      scriptError(source_, c.line, "no study is open (open one from the PACS first)");
     return true;
   }
   ViewerState& state = *statePointer;
@@ -694,8 +702,7 @@ bool ViewerScript::step(ViewerState* statePointer, PacsBrowser* pacs) {
 }
 
 void ViewerScript::runPacs(const Command& c, PacsBrowser* pacs) {
-  const std::string where = "line " + std::to_string(c.line) + ": ";
-  auto fail = [&](const std::string& problem) { throw InputError(source_, where + problem); };
+  auto fail = [&](const std::string& problem) { scriptError(source_, c.line, problem); };
   if (!pacs) fail("the PACS commands need the viewer's PACS panel");
   if (c.kind != Kind::PacsReport && c.kind != Kind::PacsWait)
     pacs->requestWindow();  // what the script does, on screen

@@ -1,5 +1,5 @@
 #pragma once
-// Numbers as messages and notes show them.
+// Numbers and quoted text as messages and notes show them.
 #include <cstdio>
 #include <string>
 
@@ -21,9 +21,28 @@ inline std::string fixedNumber(double x, int decimals) {
   return text;
 }
 
-// "1 instance", "2 instances": a count with its noun, singular for one.
-inline std::string countOf(long long n, const std::string& noun) {
-  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+// "1 instance", "2 instances": a count with its noun, singular for one. `plural` for a noun
+// that does not take an "s": countOf(n, "study", "studies"), countOf(n, "series", "series").
+inline std::string countOf(long long n, const std::string& noun, const std::string& plural = "") {
+  return std::to_string(n) + " " + (n == 1 ? noun : plural.empty() ? noun + "s" : plural);
+}
+
+// `text` with each control byte (below 0x20, and 0x7f) written as \xNN: a message that quotes
+// a file's bytes cannot move the terminal's cursor, clear it, ring or break into lines. Bytes
+// from 0x80 stay as they are (UTF-8 names).
+inline std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", byte);
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return out;
 }
 
 // A table cell at most `width` characters: a longer text ends in "..." so a reader sees it was cut.

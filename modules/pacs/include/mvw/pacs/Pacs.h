@@ -102,7 +102,9 @@ Match selectSeries(const Server& server, const std::vector<Match>& series,
 
 // Every instance of the chosen series (all series of the study when `series` is empty) into
 // `outDir`, one file per instance named <SOPInstanceUID>.dcm. Staged in a hidden folder inside
-// outDir and moved in when all are verified; nothing is left on failure.
+// outDir and moved in when all are verified; nothing is left on failure. Progress (a running
+// line on a terminal) ends without a closing count: the caller prints what it returns
+// (transferSummary).
 Transfer get(const Server& server, const std::string& studyUid,
              const std::vector<std::string>& series, const std::filesystem::path& outDir,
              const Options& options);

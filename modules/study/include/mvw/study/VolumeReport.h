@@ -16,6 +16,11 @@
 
 namespace mvw::study {
 
+// A series number as every JSON report writes it (`mvw info --json`, `mvw convert`'s sidecar):
+// the number, or null for a series without one (SeriesNumber is optional in DICOM, and 0 is a
+// number a series may have; VolumeMetadata keeps -1 for none).
+nlohmann::json seriesNumberJson(int seriesNumber);
+
 // One volume's report ("path", "format", "dimensions", ..., "notes"; `mvw convert`'s sidecar
 // starts from it).
 nlohmann::json volumeJson(const Volume& volume);
