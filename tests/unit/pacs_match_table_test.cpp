@@ -92,6 +92,9 @@ TEST(MatchTable, TransferSummary) {
   EXPECT_EQ(transferSummary("retrieved", t), "retrieved 3 instances, 1.2 MB in 0.00 s (0.0 MB/s)");
   t.instances = 1;
   EXPECT_EQ(transferSummary("stored", t), "stored 1 instance, 1.2 MB in 0.00 s (0.0 MB/s)");
+  t.bytes = 40200;  // a SEG: kB below a megabyte, not "0.0 MB"
+  t.seconds = 0.03;
+  EXPECT_EQ(transferSummary("retrieved", t), "retrieved 1 instance, 40.2 kB in 0.03 s (1.3 MB/s)");
 }
 
 }  // namespace

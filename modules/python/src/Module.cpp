@@ -94,7 +94,7 @@ py::object statsOf(const VolumePtr& volume, const std::optional<std::vector<doub
         "mvw.stats: " + (problem->problem.rfind("must", 0) == 0 ? problem->option + " " : "") +
         problem->problem);
   const int rois = !roi.sphere.empty() + !roi.box.empty() + !roi.labels.empty();
-  const std::string kRoiChoice = "mvw.stats: give exactly one of sphere, box or labels";
+  const std::string kRoiChoice = "mvw.stats: " + study::roiChoice(names);
   // A folder of one image series and its DICOM SEG: without an ROI, the SEG's segments.
   if (rois == 0) {
     const auto& segs = volume->metadata().segmentationFiles;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -211,15 +212,35 @@ Volume readMeasuredVolume(const fs::path& source, bool anatomical, const io::Rea
 std::optional<RoiOptionProblem> roiOptionsProblem(const RoiOptions& o,
                                                   const RoiOptionNames& names) {
   const int rois = !o.sphere.empty() + !o.box.empty() + !o.labels.empty();
-  if (rois > 1)
-    return RoiOptionProblem{
-        "ROI", "give exactly one of " + names.sphere + ", " + names.box + " or " + names.labels};
+  if (rois > 1) return RoiOptionProblem{"ROI", roiChoice(names)};
   if (!std::isnan(o.threshold) && !std::isnan(o.thresholdFraction))
     return RoiOptionProblem{names.threshold, "give " + names.threshold + " or " +
                                                  names.thresholdFraction + ", not both"};
   if (!std::isnan(o.thresholdFraction) && !(o.thresholdFraction > 0 && o.thresholdFraction <= 1))
     return RoiOptionProblem{names.thresholdFraction, "must lie in (0, 1], e.g. 0.41"};
   return std::nullopt;
+}
+
+std::string roiChoice(const RoiOptionNames& names) {
+  return "give exactly one of " + names.sphere + ", " + names.box + " or " + names.labels;
+}
+
+fs::path studySegmentation(const fs::path& source, const pacs::Options& pacs) {
+  if (!isStudyConfig(source)) return {};
+  const auto study = config::loadStudyConfig(source);
+  if (!study.segmentation) return {};
+  const fs::path path = localPath(*study.segmentation, pacs);
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) return path;
+  // A series folder (the PACS cache's holds its instances and the hidden list .complete).
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(path, ec))
+    if (entry.is_regular_file(ec) && entry.path().filename().string().front() != '.')
+      files.push_back(entry.path());
+  if (files.size() != 1)
+    throw InputError(path, "the study's segmentation holds " + countOf(files.size(), "file") +
+                               ": give one DICOM SEG or label volume file, or name an ROI");
+  return files.front();
 }
 
 RoiRequest roiRequestOf(const RoiOptions& o) {

@@ -63,6 +63,15 @@ struct RoiOptionProblem {
 };
 std::optional<RoiOptionProblem> roiOptionsProblem(const RoiOptions& o,
                                                   const RoiOptionNames& names = {});
+// "give exactly one of ...": the ROI choice, said in `names`.
+std::string roiChoice(const RoiOptionNames& names = {});
+
+// The label map a study config's own "segmentation" gives `mvw stats` when no ROI is named: its
+// file, or the one file of its series (a DICOM SEG from a folder or the PACS, retrieved into the
+// verified cache with `pacs`); empty for a volume file or a study without a segmentation. A
+// series folder holding more or fewer than one file throws InputError naming it.
+std::filesystem::path studySegmentation(const std::filesystem::path& source,
+                                        const pacs::Options& pacs);
 
 // The request of those options (checked first by roiOptionsProblem).
 RoiRequest roiRequestOf(const RoiOptions& o);
