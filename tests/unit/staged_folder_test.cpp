@@ -2,6 +2,11 @@
 // commit moves the staged entries into place, no commit leaves nothing behind (not even the
 // temporary folder), an exception on the way leaves the earlier output as it was, and each
 // option keeps the contract its users rely on.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -53,6 +58,42 @@ TEST(StagedFolder, CommitMovesEveryStagedEntryIntoANewFolder) {
   EXPECT_EQ(entries(out), (std::set<std::string>{"a.txt", "frames"}));
   EXPECT_EQ(read(out / "a.txt"), "a");
   EXPECT_EQ(read(out / "frames" / "0.png"), "f");
+}
+
+// What kill -9 leaves (no handler runs): the next StagedFolder of its purpose beside it removes
+// it, but never a live process's (locked), one just made (younger than 10 s, before its flock),
+// another purpose's, or a name it did not make.
+TEST(StagedFolder, AFolderAKilledProcessLeftIsRemovedByTheNextOne) {
+  const fs::path root = test::scratchDir();
+  const auto aged = [&](const std::string& name) {
+    fs::create_directories(root / name / "frames");
+    put(root / name / "frames" / "0.png", "f");
+    fs::last_write_time(root / name, fs::file_time_type::clock::now() - std::chrono::minutes(5));
+    return root / name;
+  };
+  const fs::path killed = aged(".mvw-staging-999999-0-out");
+  const fs::path killedInside = aged(".mvw-staging-999998-3");
+  const fs::path live = aged(".mvw-staging-999997-0-out");
+  const fs::path otherPurpose = aged(".mvw-render-999999-0-out");
+  const fs::path notOurs = aged(".mvw-staging-notapid-0");
+  fs::create_directory(root / ".mvw-staging-999996-0-out");  // just made: younger than 10 s
+  const int fd = ::open(live.c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);  // as its live process holds it
+  {
+    StagedFolder staged(root / "out");
+    EXPECT_FALSE(fs::exists(killed));
+    EXPECT_FALSE(fs::exists(killedInside));
+    EXPECT_TRUE(fs::exists(live));
+    EXPECT_TRUE(fs::exists(otherPurpose));
+    EXPECT_TRUE(fs::exists(notOurs));
+    EXPECT_TRUE(fs::exists(root / ".mvw-staging-999996-0-out"));
+    // This process's own folder is locked while it lives: another StagedFolder keeps it.
+    fs::last_write_time(staged.path(), fs::file_time_type::clock::now() - std::chrono::minutes(5));
+    StagedFolder second(root / "other");
+    EXPECT_TRUE(fs::exists(staged.path()));
+  }
+  ::close(fd);
 }
 
 TEST(StagedFolder, WithoutACommitNothingIsLeft) {

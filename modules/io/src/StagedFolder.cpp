@@ -1,10 +1,15 @@
 #include "mvw/io/StagedFolder.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <chrono>
 #include <utility>
+#include <vector>
 
 #include "mvw/core/Check.h"
 #include "mvw/core/Error.h"
@@ -28,6 +33,33 @@ fs::path nearestExisting(fs::path path) {
 std::string uniqueName(const std::string& purpose) {
   static std::atomic<unsigned> counter{0};
   return ".mvw-" + purpose + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+// The temporary folders of `purpose` in `parent` that killed processes left: named as
+// uniqueName names them, not `keep`, older than 10 s (the moment between a live process's
+// mkdir and its flock), and not locked by a live process. A file system without flock() keeps
+// them all.
+void removeAbandoned(const fs::path& parent, const std::string& purpose, const fs::path& keep) {
+  const std::string prefix = ".mvw-" + purpose + "-";
+  std::vector<fs::path> abandoned;
+  std::error_code ec;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || it->path() == keep) continue;
+    std::size_t digits = prefix.size();
+    while (digits < name.size() && std::isdigit(static_cast<unsigned char>(name[digits]))) ++digits;
+    if (digits == prefix.size() || digits >= name.size() || name[digits] != '-') continue;
+    std::error_code entryError;
+    if (it->is_symlink(entryError) || !it->is_directory(entryError)) continue;
+    const auto written = fs::last_write_time(it->path(), entryError);
+    if (entryError || fs::file_time_type::clock::now() - written < std::chrono::seconds(10))
+      continue;
+    const int fd = ::open(it->path().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) continue;
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) abandoned.push_back(it->path());
+    ::close(fd);
+  }
+  for (const fs::path& path : abandoned) fs::remove_all(path, ec);
 }
 
 }  // namespace
@@ -57,6 +89,7 @@ StagedFolder::StagedFolder(const fs::path& destination, Options options)
 StagedFolder::~StagedFolder() {
   std::error_code ec;
   if (made_) fs::remove_all(dir_, ec);  // after a Replace commit, nothing is left at dir_
+  if (lock_ >= 0) ::close(lock_);
 }
 
 const fs::path& StagedFolder::path() {
@@ -73,6 +106,11 @@ void StagedFolder::make() {
                                  (ec ? ec.message() : std::string("it exists")) + ")");
   made_ = true;
   onInterrupt_ = RemovedOnInterrupt(dir_);
+  // Locked while this process lives (released by the kernel however it ends), so that a later
+  // run tells this folder from one a killed process left; then those are removed.
+  lock_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock_ >= 0) ::flock(lock_, LOCK_EX | LOCK_NB);
+  removeAbandoned(dir_.parent_path(), options_.purpose, dir_);
 }
 
 void StagedFolder::moveIn(const std::string& name) {

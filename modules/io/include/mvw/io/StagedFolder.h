@@ -39,7 +39,10 @@ class StagedFolder {
   };
   struct Options {
     // Names the temporary folder, .mvw-<purpose>-<pid>-<n>[-<destination's name>], so one
-    // left behind by a killed process says which command made it.
+    // left behind by a killed process says which command made it. Such a folder (kill -9, a
+    // power cut: no handler ran) is removed by the next StagedFolder of its purpose made
+    // beside it: each live one is locked by its process (flock, which the kernel releases when
+    // the process dies), so one that can be locked and is older than 10 s is abandoned.
     std::string purpose = "staging";
     Place place = Place::Beside;
     Mode mode = Mode::Merge;
@@ -84,6 +87,7 @@ class StagedFolder {
   Options options_;
   bool made_ = false;
   bool committed_ = false;
+  int lock_ = -1;                   // the temporary folder, flock()ed while this process lives
   RemovedOnInterrupt onInterrupt_;  // Ctrl-C removes the temporary folder too (Interrupt.h)
 };
 
