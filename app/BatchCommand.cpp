@@ -55,8 +55,13 @@ batch::TaskOptions taskOptionsOf(const CLI::App& app) {
   batch::TaskOptions known;
   for (const std::string& task : batch::batchTasks()) {
     auto& options = known[task];
-    for (const CLI::Option* o : app.get_subcommand(task)->get_options()) {
-      if (o->get_positional() || o == app.get_subcommand(task)->get_help_ptr()) continue;
+    const CLI::App* command = app.get_subcommand(task);
+    // Its own options, and mvw's (--cache and the time-outs), which every command takes.
+    std::vector<const CLI::Option*> all = command->get_options();
+    for (const CLI::Option* o : app.get_options())
+      if (o != app.get_help_ptr() && !o->check_lname("version")) all.push_back(o);
+    for (const CLI::Option* o : all) {
+      if (o->get_positional() || o == command->get_help_ptr()) continue;
       batch::TaskOption how;
       how.flag = o->get_expected_max() == 0 || o->get_type_size_max() == 0;
       how.maxValues = std::max(1, o->get_items_expected_max());

@@ -77,23 +77,13 @@ void runStats(StatsOptions opt) {
   read.series = opt.series;
   read.suv = !opt.noSuv;
   const Volume volume = study::readMeasuredVolume(source, opt.of == "anatomical", read, opt.pacs);
-  // A folder of one image series and its DICOM SEG: without an ROI, the SEG's segments are the
-  // ROIs (as `mvw info` lists the SEG beside the series).
-  // A study config's own "segmentation" (a file, a folder or a PACS series) likewise.
+  // Without an ROI: the study config's own segmentation, or the one DICOM SEG beside the
+  // series in its folder (as `mvw info` lists it).
   if (rois == 0) {
-    const fs::path own = study::studySegmentation(source, opt.pacs);
-    const auto& segs = volume.metadata().segmentationFiles;
-    if (!own.empty()) {
-      opt.roi.labels = own.string();
-      std::cerr << "mvw stats: note: the ROIs are the segments or labels of " << opt.roi.labels
-                << " (the study's segmentation)\n";
-    } else if (segs.size() == 1) {
-      opt.roi.labels = segs.front();
-      std::cerr << "mvw stats: note: the ROIs are the segments of " << opt.roi.labels
-                << " (the DICOM SEG beside the series)\n";
-    } else {
-      throw CLI::ValidationError("ROI", study::roiChoice());
-    }
+    const auto labels = study::defaultLabels(volume, source, opt.pacs);
+    if (!labels) throw CLI::ValidationError("ROI", study::roiChoice());
+    opt.roi.labels = labels->path;
+    std::cerr << "mvw stats: note: " << labels->note << "\n";
   }
   if (opt.roi.label != 0 && opt.roi.labels.empty())
     throw CLI::ValidationError("--label", "needs --labels FILE");

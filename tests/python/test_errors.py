@@ -73,3 +73,11 @@ def test_bad_argument_types_are_type_errors(data):
         mvw.Volume.from_array(np.zeros((2, 2, 2), np.int16))
     with pytest.raises(TypeError, match="4 x 4"):
         mvw.Volume.from_array(np.zeros((2, 2, 2), np.int16), affine_lps=np.eye(3))
+
+
+def test_an_empty_axis_is_a_value_error_not_an_abort():
+    # A Volume's constructor would abort the interpreter on an empty axis: refused before it.
+    with pytest.raises(ValueError, match="axis 0 of the array has 0 elements"):
+        mvw.Volume.from_array(np.zeros((0, 4, 4), np.int16), affine_lps=np.eye(4))
+    with pytest.raises(ValueError, match="axis 3 of the array has 0 elements"):
+        mvw.Volume.from_array(np.zeros((2, 2, 2, 0), np.float32), affine_lps=np.eye(4))

@@ -2,6 +2,8 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/vfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -35,13 +37,33 @@ std::string uniqueName(const std::string& purpose) {
   return ".mvw-" + purpose + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
+// Whether `dir` lies on a local file system, where flock() is seen by every process that can
+// see the folder. On NFS, SMB or FUSE a lock may hold only on the host that took it, so a live
+// process on another node (a Slurm task writing into a shared OUT) could look abandoned.
+bool onLocalFileSystem(const fs::path& dir) {
+  struct statfs info {};
+  if (::statfs(dir.c_str(), &info) != 0) return false;
+  switch (static_cast<unsigned long>(info.f_type)) {
+    case 0xEF53UL:      // ext2, ext3, ext4
+    case 0x58465342UL:  // xfs
+    case 0x9123683EUL:  // btrfs
+    case 0x01021994UL:  // tmpfs
+    case 0x794C7630UL:  // overlayfs (containers)
+    case 0x2FC12FC1UL:  // zfs
+    case 0xF2F52010UL:  // f2fs
+      return true;
+    default:
+      return false;
+  }
+}
+
 // The temporary folders of `purpose` in `parent` that killed processes left: named as
 // uniqueName names them, not `keep`, older than 10 s (the moment between a live process's
-// mkdir and its flock), and not locked by a live process. A file system without flock() keeps
-// them all.
+// mkdir and its flock), and not locked by a live process. Only on a local file system (above);
+// elsewhere they stay, as they did before.
 void removeAbandoned(const fs::path& parent, const std::string& purpose, const fs::path& keep) {
+  if (!onLocalFileSystem(parent)) return;
   const std::string prefix = ".mvw-" + purpose + "-";
-  std::vector<fs::path> abandoned;
   std::error_code ec;
   for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
@@ -56,10 +78,16 @@ void removeAbandoned(const fs::path& parent, const std::string& purpose, const f
       continue;
     const int fd = ::open(it->path().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0) continue;
-    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) abandoned.push_back(it->path());
+    // Removed while locked, and only if the name still holds the folder locked (not one a new
+    // process made there since: it would have replaced it first).
+    struct stat locked {
+    }, named{};
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::fstat(fd, &locked) == 0 &&
+        ::lstat(it->path().c_str(), &named) == 0 && locked.st_ino == named.st_ino &&
+        locked.st_dev == named.st_dev)
+      fs::remove_all(it->path(), entryError);
     ::close(fd);
   }
-  for (const fs::path& path : abandoned) fs::remove_all(path, ec);
 }
 
 }  // namespace

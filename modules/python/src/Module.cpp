@@ -95,11 +95,11 @@ py::object statsOf(const VolumePtr& volume, const std::optional<std::vector<doub
         problem->problem);
   const int rois = !roi.sphere.empty() + !roi.box.empty() + !roi.labels.empty();
   const std::string kRoiChoice = "mvw.stats: " + study::roiChoice(names);
-  // A folder of one image series and its DICOM SEG: without an ROI, the SEG's segments.
+  // Without an ROI, as mvw stats: the one DICOM SEG beside the series the volume was read from.
   if (rois == 0) {
-    const auto& segs = volume->metadata().segmentationFiles;
-    if (segs.size() != 1) throw py::value_error(kRoiChoice);
-    roi.labels = segs.front();
+    const auto labels = study::defaultLabels(*volume, {}, {});
+    if (!labels) throw py::value_error(kRoiChoice);
+    roi.labels = labels->path;
   }
   if (roi.label != 0 && roi.labels.empty()) throw py::value_error("mvw.stats: label needs labels");
 

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -90,6 +91,14 @@ VolumePtr fromArray(const py::array& array, const py::object& affineLps,
     throw py::type_error("mvw.Volume.from_array: give exactly one of affine_lps and affine_ras");
   const glm::dmat4 worldFromIndex = affineLps.is_none() ? glmOf(affineRas, true, "affine_ras")
                                                         : glmOf(affineLps, false, "affine_lps");
+  // A Volume holds at least one voxel and int-sized axes (its constructor checks, and a failed
+  // check aborts): said here as the argument's error.
+  for (py::ssize_t axis = 0; axis < array.ndim(); ++axis)
+    if (array.shape(axis) < 1 || array.shape(axis) > std::numeric_limits<int>::max())
+      throw py::value_error("mvw.Volume.from_array: axis " + std::to_string(axis) +
+                            " of the array has " + std::to_string(array.shape(axis)) +
+                            " elements; each must have 1 to " +
+                            std::to_string(std::numeric_limits<int>::max()));
   const glm::ivec3 dims(static_cast<int>(array.shape(0)), static_cast<int>(array.shape(1)),
                         static_cast<int>(array.shape(2)));
   const int components = array.ndim() == 4 ? static_cast<int>(array.shape(3)) : 1;

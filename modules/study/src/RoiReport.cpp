@@ -229,6 +229,10 @@ fs::path studySegmentation(const fs::path& source, const pacs::Options& pacs) {
   if (!isStudyConfig(source)) return {};
   const auto study = config::loadStudyConfig(source);
   if (!study.segmentation) return {};
+  if (study.segmentation->frame)
+    throw InputError(source,
+                     "its segmentation names a frame of a 4D label map; mvw stats "
+                     "measures one whole label map: give it with --labels FILE");
   const fs::path path = localPath(*study.segmentation, pacs);
   std::error_code ec;
   if (!fs::is_directory(path, ec)) return path;
@@ -239,8 +243,22 @@ fs::path studySegmentation(const fs::path& source, const pacs::Options& pacs) {
       files.push_back(entry.path());
   if (files.size() != 1)
     throw InputError(path, "the study's segmentation holds " + countOf(files.size(), "file") +
-                               ": give one DICOM SEG or label volume file, or name an ROI");
+                               ": mvw stats measures one DICOM SEG or label volume file: give "
+                               "it with --labels FILE, or name an ROI");
   return files.front();
+}
+
+std::optional<DefaultLabels> defaultLabels(const Volume& volume, const fs::path& source,
+                                           const pacs::Options& pacs) {
+  const fs::path own = source.empty() ? fs::path() : studySegmentation(source, pacs);
+  if (!own.empty())
+    return DefaultLabels{own.string(), "the ROIs are the segments or labels of " + own.string() +
+                                           " (the study's segmentation)"};
+  const auto& segs = volume.metadata().segmentationFiles;
+  if (segs.size() == 1)
+    return DefaultLabels{segs.front(), "the ROIs are the segments of " + segs.front() +
+                                           " (the DICOM SEG beside the series)"};
+  return std::nullopt;
 }
 
 RoiRequest roiRequestOf(const RoiOptions& o) {

@@ -68,10 +68,22 @@ std::string roiChoice(const RoiOptionNames& names = {});
 
 // The label map a study config's own "segmentation" gives `mvw stats` when no ROI is named: its
 // file, or the one file of its series (a DICOM SEG from a folder or the PACS, retrieved into the
-// verified cache with `pacs`); empty for a volume file or a study without a segmentation. A
-// series folder holding more or fewer than one file throws InputError naming it.
+// verified cache with `pacs`); empty for a volume file or a study without a segmentation. One
+// that names a frame of a 4D label map, or a series folder holding more or fewer than one
+// file, throws InputError naming it and asking for --labels: stats measures one whole file.
 std::filesystem::path studySegmentation(const std::filesystem::path& source,
                                         const pacs::Options& pacs);
+
+// The label map `mvw stats` and mvw.stats measure when no ROI is named, the one home of that
+// choice: a study config's own segmentation (studySegmentation; `source` is the config, or
+// empty), else the one DICOM SEG beside the volume's DICOM series (its metadata's
+// segmentationFiles); with the note that tells the user which. Nothing when neither.
+struct DefaultLabels {
+  std::string path, note;
+};
+std::optional<DefaultLabels> defaultLabels(const Volume& volume,
+                                           const std::filesystem::path& source,
+                                           const pacs::Options& pacs);
 
 // The request of those options (checked first by roiOptionsProblem).
 RoiRequest roiRequestOf(const RoiOptions& o);
