@@ -112,17 +112,17 @@ void runFeatureBench(const FeatureBenchOptions& o) {
       o.frames);
   std::printf("  %-30s %-11s %-15s %10s %10s %8s\n", "view", "mode", "feature", "without", "with",
               "ratio");
-  for (const mvw::study::PlannedView& v : session.views(renderer)) {
-    if (!hasBenchFeature(v.settings)) continue;
-    render::RenderSettings with = v.settings;
-    render::RenderSettings without = withoutBenchFeatures(with);
+  // One row: `with` against `without`, interleaved over the orbit.
+  auto row = [&](const std::string& view, const render::RenderSettings& with0,
+                 const render::RenderSettings& without0, const std::string& feature) {
+    render::RenderSettings with = with0, without = without0;
     renderer.render(with);  // compile both programs, upload the glyph map
     renderer.render(without);
     std::vector<double> ratios;
     double msWith = 0.0, msWithout = 0.0;
     for (int f = 0; f < o.frames; ++f) {
       with.camera.azimuthDeg = without.camera.azimuthDeg =
-          v.settings.camera.azimuthDeg + 360.0 * f / o.frames;
+          with0.camera.azimuthDeg + 360.0 * f / o.frames;
       // Alternate which goes first, so neither always finds the caches warm.
       const bool withFirst = f % 2 == 0;
       const double a = renderer.render(withFirst ? with : without).milliseconds;
@@ -133,9 +133,18 @@ void runFeatureBench(const FeatureBenchOptions& o) {
       ratios.push_back(w / wo);
     }
     std::printf("  %-30s %-11s %-15s %7.1f ms %7.1f ms %7.3fx  (median of per-frame ratios %.3f)\n",
-                v.config.name.c_str(), toString(v.config.mode).c_str(),
-                benchFeatureName(v.settings).c_str(), msWithout / o.frames, msWith / o.frames,
-                msWith / msWithout, median(ratios));
+                view.c_str(), toString(with0.mode).c_str(), feature.c_str(), msWithout / o.frames,
+                msWith / o.frames, msWith / msWithout, median(ratios));
+  };
+  for (const mvw::study::PlannedView& v : session.views(renderer)) {
+    if (!hasBenchFeature(v.settings)) continue;
+    row(v.config.name, v.settings, withoutBenchFeatures(v.settings), benchFeatureName(v.settings));
+    // Fusion with another feature: also fusion alone, against the same view unfused (a fused
+    // depth-cued MIP against the plain depth-cued one).
+    render::RenderSettings unfused = v.settings;
+    unfused.fusion = false;
+    if (v.settings.fusion && hasBenchFeature(unfused))
+      row(v.config.name, v.settings, unfused, "fusion alone");
   }
 }
 
