@@ -6,6 +6,7 @@
 #include <thread>
 
 #include <glm/common.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "TextureUpload.h"
@@ -60,6 +61,67 @@ BlockGrid::BlockGrid(const Volume& volume) {
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   checkGl("uploading the block grid");
+}
+
+void BlockGrid::setFunctional(const Volume& functional,
+                              const glm::dmat4& functionalIndexFromIndex) {
+  constexpr int kB = kBlockVoxels;
+  const glm::ivec3 fd = functional.dimensions();
+  const std::vector<float> values = valuesOf(functional);
+  const glm::dmat3 linear(functionalIndexFromIndex);
+  glm::dmat3 spread;  // |linear|: a box's half extent in the functional's index space
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) spread[c][r] = std::abs(linear[c][r]);
+  std::vector<glm::vec4> fused(minMax_.size());
+  auto work = [&](int bk0, int bk1) {
+    for (int bk = bk0; bk < bk1; ++bk)
+      for (int bj = 0; bj < count_.y; ++bj)
+        for (int bi = 0; bi < count_.x; ++bi) {
+          // A sample in block b sits (as blockOf maps it, clamped to the grid) in continuous
+          // index coordinates b kB - 0.5 .. b kB + kB - 0.5, within the box's -0.5 .. dims - 0.5;
+          // a hundredth of a voxel more either side, in both grids, for the shader's rounding
+          // (its functional position comes from another product than its block).
+          const glm::ivec3 b(bi, bj, bk);
+          const glm::dvec3 lo = glm::dvec3(b * kB) - 0.51;
+          const glm::dvec3 hi = glm::min(glm::dvec3(b * kB + kB), glm::dvec3(dims_)) - 0.49;
+          const glm::dvec3 centre =
+              glm::dvec3(functionalIndexFromIndex * glm::dvec4(0.5 * (lo + hi), 1.0));
+          const glm::dvec3 half = spread * (0.5 * (hi - lo)) + 0.01;
+          const glm::dvec3 flo = centre - half, fhi = centre + half;
+          float mn = 3.4e38f, mx = -3.4e38f;
+          // The functional sample counts only inside its box (-0.5 .. fd - 0.5); trilinear
+          // filtering there reads the voxels floor(p) and floor(p) + 1, clamped to the edge.
+          if (glm::all(glm::greaterThanEqual(fhi, glm::dvec3(-0.5))) &&
+              glm::all(glm::lessThanEqual(flo, glm::dvec3(fd) - 0.5))) {
+            const glm::ivec3 i0 = glm::max(glm::ivec3(glm::floor(flo)), glm::ivec3(0));
+            const glm::ivec3 i1 = glm::min(glm::ivec3(glm::floor(fhi)) + 1, fd - 1);
+            for (int k = i0.z; k <= i1.z; ++k)
+              for (int j = i0.y; j <= i1.y; ++j)
+                for (int i = i0.x; i <= i1.x; ++i) {
+                  const float v = values[(static_cast<std::size_t>(k) * fd.y + j) * fd.x + i];
+                  mn = v < mn ? v : mn;
+                  mx = v > mx ? v : mx;
+                }
+            // Widened by a hundred-thousandth: a filtered sample may round past its voxels.
+            if (mn <= mx) {
+              mn -= 1e-5f * std::abs(mn) + 1e-30f;
+              mx += 1e-5f * std::abs(mx) + 1e-30f;
+            }
+          }
+          const std::size_t at = (static_cast<std::size_t>(bk) * count_.y + bj) * count_.x + bi;
+          fused[at] = glm::vec4(minMax_[at], mn, mx);
+        }
+  };
+  std::thread other(work, 0, count_.z / 2);
+  work(count_.z / 2, count_.z);
+  other.join();
+  if (!fusedTexture_.id()) fusedTexture_ = makeTexture();
+  glBindTexture(GL_TEXTURE_3D, fusedTexture_.id());
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA32F, count_.x, count_.y, count_.z, 0, GL_RGBA, GL_FLOAT,
+               fused.data());
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  checkGl("uploading the fused block grid");
 }
 
 namespace {

@@ -89,7 +89,7 @@ struct VolumeRenderer::Impl {
                           const Camera& camera) const;
   void setFunctionalUniforms(const ShaderProgram& p, const RenderSettings& s, bool fusion,
                              glm::vec2 window) const;
-  void bindTextures(const ShaderProgram& p, GLuint overlayColormap) const;
+  void bindTextures(const ShaderProgram& p, GLuint overlayColormap, bool fusedBlocks) const;
   void updateImageColormap(const std::optional<ColorTable>& table);
 };
 
@@ -168,7 +168,8 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentOutlines);
   if (showsImageColors(s)) updateImageColormap(s.imageColors);
-  bindTextures(p, functional.colormap(s.overlayColors));
+  // The fused projections skip by both volumes' block ranges (BlockGrid::setFunctional).
+  bindTextures(p, functional.colormap(s.overlayColors), fusion && isProjectionMode(s.mode));
 
   glViewport(0, 0, s.size.x, s.size.y);
   glDisable(GL_DEPTH_TEST);
@@ -305,7 +306,8 @@ void VolumeRenderer::Impl::setFunctionalUniforms(const ShaderProgram& p, const R
 }
 
 // Every sampler on its own unit, also those the program does not use (uniform -1 is ignored).
-void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayColormap) const {
+void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayColormap,
+                                        bool fusedBlocks) const {
   const struct {
     const char* name;
     GLenum target;
@@ -315,7 +317,7 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayCo
                {"uAttribute", GL_TEXTURE_3D, volume.attribute()},
                {"uBlocks", GL_TEXTURE_3D, blocks.visibility()},
                {"uTransfer", GL_TEXTURE_2D, transfer.texture()},
-               {"uBlockRange", GL_TEXTURE_3D, blocks.minMax()},
+               {"uBlockRange", GL_TEXTURE_3D, fusedBlocks ? blocks.fusedMinMax() : blocks.minMax()},
                {"uFunctional", GL_TEXTURE_3D, functional.texture()},
                {"uColormap", GL_TEXTURE_1D, overlayColormap},
                {"uGlyphCells", GL_TEXTURE_3D, glyphs.cells()},
@@ -413,6 +415,9 @@ void VolumeRenderer::setFunctional(const Volume& functional,
                                    const glm::dmat4& anatomicalFromFunctional) {
   impl_->context.makeCurrent();
   impl_->functional.set(functional, anatomicalFromFunctional);
+  impl_->blocks.setFunctional(functional, glm::inverse(functional.worldFromIndex()) *
+                                              glm::inverse(anatomicalFromFunctional) *
+                                              impl_->volume.worldFromIndex());
 }
 
 void VolumeRenderer::setSegmentation(const Volume& masks, const std::vector<glm::vec3>& colours,
