@@ -19,6 +19,7 @@
 #include "GlyphTextures.h"
 #include "RaycastPrograms.h"
 #include "RenderTarget.h"
+#include "SampleCeiling.h"
 #include "SegmentTextures.h"
 #include "ShellRenderer.h"
 #include "TextureUpload.h"
@@ -61,6 +62,7 @@ struct VolumeRenderer::Impl {
   detail::RaycastPrograms programs;
   detail::RenderTarget target;
   detail::VertexArray vao;
+  detail::SampleCeiling ceiling;
   std::unique_ptr<detail::ShellRenderer> shells;  // made on the first shell-mode frame
   // The view's colour map (RenderSettings::imageColors), uploaded when it changes.
   detail::Texture imageColormap;
@@ -424,6 +426,24 @@ void VolumeRenderer::setSegmentation(const Volume& masks, const std::vector<glm:
                                      const glm::dmat4& anatomicalFromSegmentation) {
   impl_->context.makeCurrent();
   impl_->segments.set(masks, colours, anatomicalFromSegmentation);
+}
+
+double VolumeRenderer::sampleCeiling(glm::ivec2 size, int samples, int rounds) {
+  Impl& m = *impl_;
+  m.context.makeCurrent();
+  m.volume.setLinear(true);
+  m.target.bind(size);
+  const double perSecond =
+      m.ceiling.samplesPerSecond(m.volume.intensity(), m.vao.id(), size, samples, rounds);
+  m.target.read();  // unbinds it, as a frame does
+  return perSecond;
+}
+
+double VolumeRenderer::nominalSamples(const RenderSettings& s) const {
+  const Impl& m = *impl_;
+  const auto [a, b] = m.rayBox(s);
+  return detail::nominalSamples(m.cameraFor(s), s.size, m.volume.textureFromWorld(), glm::min(a, b),
+                                glm::max(a, b), s.stepMm > 0 ? s.stepMm : m.defaultStep);
 }
 
 bool VolumeRenderer::hasFunctional() const { return impl_->functional.present(); }
