@@ -14,6 +14,27 @@
 
 namespace mvw::render::detail {
 
+namespace {
+
+// work(first, end) over the block slices 0 .. slices, on two threads.
+template <typename Work>
+void onTwoThreads(int slices, const Work& work) {
+  std::thread other(work, 0, slices / 2);
+  work(slices / 2, slices);
+  other.join();
+}
+
+// A 3D texture of one texel per block, read with texelFetch (nearest).
+void uploadBlocks(GLuint texture, glm::ivec3 count, GLint internalFormat, GLenum format,
+                  GLenum type, const void* data) {
+  glBindTexture(GL_TEXTURE_3D, texture);
+  glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, count.x, count.y, count.z, 0, format, type, data);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
+}  // namespace
+
 BlockGrid::BlockGrid(const Volume& volume) {
   constexpr int kB = kBlockVoxels;
   const glm::ivec3 dims = volume.dimensions();
@@ -48,18 +69,12 @@ BlockGrid::BlockGrid(const Volume& volume) {
             minMax_[(static_cast<std::size_t>(bk) * count_.y + bj) * count_.x + bi] = {mn, mx};
           }
     };
-    std::thread other(work, 0, count_.z / 2);
-    work(count_.z / 2, count_.z);
-    other.join();
+    onTwoThreads(count_.z, work);
     return 0;
   });
   visibility_ = makeTexture();
   minMaxTexture_ = makeTexture();
-  glBindTexture(GL_TEXTURE_3D, minMaxTexture_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, count_.x, count_.y, count_.z, 0, GL_RG, GL_FLOAT,
-               minMax_.data());
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  uploadBlocks(minMaxTexture_.id(), count_, GL_RG32F, GL_RG, GL_FLOAT, minMax_.data());
   checkGl("uploading the block grid");
 }
 
@@ -112,15 +127,9 @@ void BlockGrid::setFunctional(const Volume& functional,
           fused[at] = glm::vec4(minMax_[at], mn, mx);
         }
   };
-  std::thread other(work, 0, count_.z / 2);
-  work(count_.z / 2, count_.z);
-  other.join();
+  onTwoThreads(count_.z, work);
   if (!fusedTexture_.id()) fusedTexture_ = makeTexture();
-  glBindTexture(GL_TEXTURE_3D, fusedTexture_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA32F, count_.x, count_.y, count_.z, 0, GL_RGBA, GL_FLOAT,
-               fused.data());
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  uploadBlocks(fusedTexture_.id(), count_, GL_RGBA32F, GL_RGBA, GL_FLOAT, fused.data());
   checkGl("uploading the fused block grid");
 }
 
@@ -201,11 +210,8 @@ void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, d
     visibleBox_.second =
         glm::mix(glm::dvec3(last + 1) * size, glm::dvec3(1.0), glm::equal(last, count_ - 1));
   }
-  glBindTexture(GL_TEXTURE_3D, visibility_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, count_.x, count_.y, count_.z, 0, GL_RED_INTEGER,
-               GL_UNSIGNED_BYTE, distance.data());
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  uploadBlocks(visibility_.id(), count_, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+               distance.data());
 }
 
 }  // namespace mvw::render::detail
