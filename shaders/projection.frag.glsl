@@ -14,8 +14,9 @@
 // cue, before the maximum (MVW_DEPTH_CUE: a hot lesion in front reads brighter than one
 // behind); or the mean of its fractions over the samples inside it, shown where the mean
 // exceeds the threshold (MVW_FUSION_MEAN, minip and average). A compile-time variant: the
-// fused program visits every sample (a block the anatomy's extremes skip may hold the
-// functional maximum), the plain ones keep their skipping.
+// fused program reads both volumes' ranges per block (uBlockRange bound to the fused grid,
+// BlockGrid::setFunctional: RG the anatomy's, BA the functional's there) and skips a block only
+// where neither projection can change; the plain ones read the anatomy's alone.
 
 uniform vec2 uWindowLevel;  // window width, level (centre), in the volume's unit
 
@@ -90,7 +91,21 @@ void setupHook(inout RayState s, Ray ray) {
 #endif
 }
 
-#if defined(MVW_MIP) && !defined(MVW_DEPTH_CUE) && !defined(MVW_NEAREST) && !defined(MVW_FUSION)
+#if defined(MVW_FUSION) && !defined(MVW_FUSION_MEAN)
+// The (cued) fraction the functional volume adds at the ray's sample t to the maximum, -1
+// where none (outside its box, or at or under the threshold).
+float fusedPhi(RayState s, float t) {
+  bool inside;
+  float u = overlayFractionAt(s.fusedOrigin + t * s.fusedDir, inside);
+  if (!(inside && u > uOverlayThreshold)) return -1.0;  // a NaN too
+  float phi = clamp(u, 0.0, 1.0);
+#if defined(MVW_DEPTH_CUE)
+  phi *= max(s.cue0 - s.cue1 * t, 0.0);  // eq. (3): beta(z') phi(z), before the maximum
+#endif
+  return phi;
+}
+#endif
+
 // Before the ray proper, every PREPASS_STRIDE-th of its samples: their maximum, less a
 // margin, bounds the ray's maximum from below, so blocks whose maximum lies under it are
 // skipped from the start. The maximum so far alone skips no block before the ray has met
@@ -101,7 +116,11 @@ void setupHook(inout RayState s, Ray ray) {
 // rays meet the air around a body first; with it, 2-5 % slower on the Cranium CT.) Not with
 // nearest-neighbour sampling (MVW_NEAREST): were the compiler to evaluate the same expression
 // differently in the two loops (a fused multiply-add in one only), a sample there could read
-// another voxel altogether, which no margin short of the value range covers.
+// another voxel altogether, which no margin short of the value range covers. A fused MIP
+// bounds the anatomy's maximum alike, not the functional one's: a functional fetch on every
+// 16th sample of every ray cost more than it saved on the few rays through a hot spot (the
+// Cranium CT with its PET-like volume, docs/performance-log.md#fused-skipping).
+#if defined(MVW_MIP) && !defined(MVW_DEPTH_CUE) && !defined(MVW_NEAREST)
 #define RAY_PREPASS
 #define PREPASS_STRIDE 16.0
 void prepassHook(inout RayState s, float t0, float tEnd) {
@@ -119,52 +138,66 @@ void prepassHook(inout RayState s, float t0, float tEnd) {
 // block leaves its range): a block whose maximum cannot beat the ray's maximum so far (MIP; with
 // the depth cue, that maximum's emission under the cue at this sample, which only falls along
 // the ray), or whose minimum cannot go below its minimum (MinIP), holds no sample that changes
-// the result; ties keep the first sample, so none is lost. Average reads every sample, and so
-// does a fused projection (the anatomy's block grid knows nothing of the functional volume).
-#if defined(MVW_FUSION)
-bool skipHook(RayState s, float t, vec3 tex) { return false; }
-#elif defined(MVW_MIP) && defined(MVW_DEPTH_CUE)
-bool skipHook(RayState s, float t, vec3 tex) {
-  return max(s.cue0 - s.cue1 * t, 0.0) * clamp(blockRange(tex).y * s.scale + s.offset, 0.0, 1.0) <=
-         s.value;
+// the result; ties keep the first sample, so none is lost. Average reads every sample.
+// anatomySettled: no sample of the anatomy in the block (its range r) changes the projection.
+#if defined(MVW_MIP) && defined(MVW_DEPTH_CUE)
+bool anatomySettled(RayState s, float t, vec2 r) {
+  return max(s.cue0 - s.cue1 * t, 0.0) * clamp(r.y * s.scale + s.offset, 0.0, 1.0) <= s.value;
 }
 #elif defined(MVW_MIP)
-bool skipHook(RayState s, float t, vec3 tex) {
-  float blockMax = blockRange(tex).y;
-  return blockMax <= s.value || blockMax < s.bound;
-}
+bool anatomySettled(RayState s, float t, vec2 r) { return r.y <= s.value || r.y < s.bound; }
 #elif defined(MVW_MINIP)
-bool skipHook(RayState s, float t, vec3 tex) { return blockRange(tex).x >= s.value; }
+bool anatomySettled(RayState s, float t, vec2 r) { return r.x >= s.value; }
 #else
+bool anatomySettled(RayState s, float t, vec2 r) { return false; }
+#endif
+#if defined(MVW_FUSION) && !defined(MVW_FUSION_MEAN)
+// A fused projection's maximum: no functional sample in the block (its range r, the fused
+// grid's BA) changes it where even the block's maximum, as fusedPhi would take it at this
+// sample (fraction and cue fall monotonically with the value and along the ray), is at or
+// under the threshold or the maximum so far. The mean reads every sample, and so its
+// projection (average, minip) skips nothing. The functional volume's part of the test, and the
+// state and sample it was made at, are kept for what follows in the loop (the lean loop's
+// hand-over, the full loop's hand-back).
+bool gFunctionalSettled;
+RayState gState;
+float gT;
+bool skipHook(RayState s, float t, vec3 tex) {
+  gState = s;
+  gT = t;
+  vec4 r = texelFetch(uBlockRange, blockOf(tex), 0);
+  float u = (r.w - uFunctionalRange.x) / (uFunctionalRange.y - uFunctionalRange.x);
+  float phi = clamp(u, 0.0, 1.0);
+#if defined(MVW_DEPTH_CUE)
+  phi *= max(s.cue0 - s.cue1 * t, 0.0);
+#endif
+  gFunctionalSettled = u <= uOverlayThreshold || phi <= s.fused;
+  return anatomySettled(s, t, r.xy) && gFunctionalSettled;
+}
+#elif defined(MVW_FUSION)
 bool skipHook(RayState s, float t, vec3 tex) { return false; }
+#else
+bool skipHook(RayState s, float t, vec3 tex) { return anatomySettled(s, t, blockRange(tex)); }
 #endif
 
 #if defined(MVW_FUSION)
 // The functional volume at the ray's sample t (see the top of this file).
 void fuseSample(inout RayState s, float t, Ray ray) {
+#if defined(MVW_FUSION_MEAN)
   bool inside;
   float u = overlayFractionAt(s.fusedOrigin + t * s.fusedDir, inside);
-#if defined(MVW_FUSION_MEAN)
   if (inside) {
     s.fused += u;
     s.fusedCount++;
   }
 #else
-  if (inside && u > uOverlayThreshold) {
-    float phi = clamp(u, 0.0, 1.0);
-#if defined(MVW_DEPTH_CUE)
-    phi *= max(s.cue0 - s.cue1 * t, 0.0);  // eq. (3): beta(z') phi(z), before the maximum
-#endif
-    s.fused = max(s.fused, phi);
-  }
+  s.fused = max(s.fused, fusedPhi(s, t));  // -1 (none) leaves it as it is
 #endif
 }
 #endif
 
-bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
-#if defined(MVW_FUSION)
-  fuseSample(s, t, ray);
-#endif
+// The anatomy's projection at a sample of `value`.
+void anatomySample(inout RayState s, float t, float value) {
 #if defined(MVW_MIP)
 #if defined(MVW_DEPTH_CUE)
   value = (s.cue0 - s.cue1 * t) * clamp(value * s.scale + s.offset, 0.0, 1.0);  // eq. (3): beta(z') phi(z)
@@ -177,8 +210,38 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   s.value += value;
 #endif
   s.count++;
+}
+
+bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
+#if defined(MVW_FUSION)
+  fuseSample(s, t, ray);
+#endif
+  anatomySample(s, t, value);
   return true;
 }
+
+#if defined(MVW_FUSION) && !defined(MVW_FUSION_MEAN)
+// A fused maximum's rays start in the lean loop, which reads the anatomy alone: llvmpipe runs
+// the full loop's second fetch on every sample, skipped or not. A sample in a block where the
+// functional volume cannot change the projection (skipHook just said so) is the anatomy's
+// alone; the first elsewhere is handed over, and the full loop reads both from there on.
+#define RAY_LEAN_LOOP
+float leanSampleValue(vec3 tex) { return sampleValue(tex); }
+int leanSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
+  if (!gFunctionalSettled) return 2;
+  anatomySample(s, t, value);
+  return 0;
+}
+#if defined(MVW_MIP) || defined(MVW_MINIP)
+// Past a hot spot, back to the lean loop at a sample that changes neither projection: the
+// functional volume's settled in its block, and the anatomy's value is one its block test
+// would have passed (average: every sample changes the sum, so no hand-back).
+#define RAY_HAND_BACK
+bool handBackHook(float value) {
+  return gFunctionalSettled && anatomySettled(gState, gT, vec2(value));
+}
+#endif
+#endif
 
 void finishHook(inout RayState s, Ray ray, vec2 span) {
   if (s.count == 0) {

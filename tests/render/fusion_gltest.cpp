@@ -179,7 +179,8 @@ TEST(FusedProjection, AlongTheSliceAxisEqualsBothProjectionsThroughTheColourMaps
 }
 
 // Fusion asked where the functional volume lies below the threshold everywhere: the fused
-// programs (which read every sample) show the very pixels of the plain ones (which skip).
+// programs (which skip only where neither volume can change the projection, and read the
+// second volume in a loop of their own) show the very pixels of the plain ones.
 TEST(FusedProjection, NothingAboveTheThresholdLeavesThePlainProjection) {
   const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
   auto ctx = createHeadlessContext({16, 16});

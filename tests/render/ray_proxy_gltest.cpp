@@ -128,6 +128,55 @@ TEST(Raycast, OnlyPixelsWhoseRayMissesTheBoxAreLeftToTheClearedBackground) {
   }
 }
 
+// The samples `mvw bench render` puts against the ceiling (VolumeRenderer::nominalSamples): each
+// ray's chord through the crop box over the step, summed over the image, as the rays traced on
+// the CPU give them, for orthographic and perspective cameras, an oblique volume and a crop.
+TEST(Raycast, NominalSamplesAreEveryRaysChordThroughTheBoxOverTheStep) {
+  CameraSettings oblique;
+  oblique.azimuthDeg = 37.0;
+  oblique.elevationDeg = 23.0;
+  CameraSettings perspective = oblique;
+  perspective.perspective = true;
+  perspective.zoom = 1.7;
+  const Case cases[] = {
+      {"anterior", glm::dmat3(1.0), CameraSettings{}},
+      {"perspective", glm::dmat3(1.0), perspective},
+      {"oblique volume", rotation(30.0, 20.0), oblique},
+      {"cropped", glm::dmat3(1.0), oblique, {0.2, 0.1, 0.3}, {0.7, 0.9, 0.6}},
+  };
+  const glm::ivec3 dims(40, 32, 24);
+  auto ctx = createHeadlessContext({16, 16});
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const Volume v =
+        makeVolume(dims, makeWorldFromIndex({-20.0, -12.0, -18.0}, {1.0, 1.25, 1.5}, c.direction),
+                   [](glm::dvec3) { return 1.0f; });
+    VolumeRenderer renderer(*ctx, v);
+    RenderSettings s;
+    s.mode = RenderMode::Mip;
+    s.size = {96, 80};
+    s.camera = c.camera;
+    s.cropMin = c.cropMin;
+    s.cropMax = c.cropMax;
+    s.stepMm = 0.4;
+    const Camera camera = renderer.render(s).camera;
+    const glm::dvec3 lo = c.cropMin * glm::dvec3(dims) - 0.5;
+    const glm::dvec3 hi = c.cropMax * glm::dvec3(dims) - 0.5;
+    double expected = 0.0;
+    int crossing = 0;
+    for (int y = 0; y < s.size.y; ++y)
+      for (int x = 0; x < s.size.x; ++x) {
+        const glm::dvec2 ndc((x + 0.5) / s.size.x * 2 - 1, 1 - (y + 0.5) / s.size.y * 2);
+        if (const auto chord = chordThroughBox(v, rayThrough(camera, ndc), lo, hi, 0.0)) {
+          expected += *chord / s.stepMm;
+          ++crossing;
+        }
+      }
+    EXPECT_GT(crossing, 500);
+    EXPECT_NEAR(renderer.nominalSamples(s), expected, 1e-9 * expected);
+  }
+}
+
 // A ray that crosses the box and meets nothing writes the same background, to the bit, as the
 // clear leaves where no ray runs: a sphere in a box, rays past the sphere inside the box and
 // rays outside it, for a background whose 8-bit values sit halfway between two levels.

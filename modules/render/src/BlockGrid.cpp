@@ -6,12 +6,34 @@
 #include <thread>
 
 #include <glm/common.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "TextureUpload.h"
 #include "TransferTable.h"
 
 namespace mvw::render::detail {
+
+namespace {
+
+// work(first, end) over the block slices 0 .. slices, on two threads.
+template <typename Work>
+void onTwoThreads(int slices, const Work& work) {
+  std::thread other(work, 0, slices / 2);
+  work(slices / 2, slices);
+  other.join();
+}
+
+// A 3D texture of one texel per block, read with texelFetch (nearest).
+void uploadBlocks(GLuint texture, glm::ivec3 count, GLint internalFormat, GLenum format,
+                  GLenum type, const void* data) {
+  glBindTexture(GL_TEXTURE_3D, texture);
+  glTexImage3D(GL_TEXTURE_3D, 0, internalFormat, count.x, count.y, count.z, 0, format, type, data);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
+}  // namespace
 
 BlockGrid::BlockGrid(const Volume& volume) {
   constexpr int kB = kBlockVoxels;
@@ -47,19 +69,68 @@ BlockGrid::BlockGrid(const Volume& volume) {
             minMax_[(static_cast<std::size_t>(bk) * count_.y + bj) * count_.x + bi] = {mn, mx};
           }
     };
-    std::thread other(work, 0, count_.z / 2);
-    work(count_.z / 2, count_.z);
-    other.join();
+    onTwoThreads(count_.z, work);
     return 0;
   });
   visibility_ = makeTexture();
   minMaxTexture_ = makeTexture();
-  glBindTexture(GL_TEXTURE_3D, minMaxTexture_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, count_.x, count_.y, count_.z, 0, GL_RG, GL_FLOAT,
-               minMax_.data());
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  uploadBlocks(minMaxTexture_.id(), count_, GL_RG32F, GL_RG, GL_FLOAT, minMax_.data());
   checkGl("uploading the block grid");
+}
+
+void BlockGrid::setFunctional(const Volume& functional,
+                              const glm::dmat4& functionalIndexFromIndex) {
+  constexpr int kB = kBlockVoxels;
+  const glm::ivec3 fd = functional.dimensions();
+  const std::vector<float> values = valuesOf(functional);
+  const glm::dmat3 linear(functionalIndexFromIndex);
+  glm::dmat3 spread;  // |linear|: a box's half extent in the functional's index space
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) spread[c][r] = std::abs(linear[c][r]);
+  std::vector<glm::vec4> fused(minMax_.size());
+  auto work = [&](int bk0, int bk1) {
+    for (int bk = bk0; bk < bk1; ++bk)
+      for (int bj = 0; bj < count_.y; ++bj)
+        for (int bi = 0; bi < count_.x; ++bi) {
+          // A sample in block b sits (as blockOf maps it, clamped to the grid) in continuous
+          // index coordinates b kB - 0.5 .. b kB + kB - 0.5, within the box's -0.5 .. dims - 0.5;
+          // a hundredth of a voxel more either side, in both grids, for the shader's rounding
+          // (its functional position comes from another product than its block).
+          const glm::ivec3 b(bi, bj, bk);
+          const glm::dvec3 lo = glm::dvec3(b * kB) - 0.51;
+          const glm::dvec3 hi = glm::min(glm::dvec3(b * kB + kB), glm::dvec3(dims_)) - 0.49;
+          const glm::dvec3 centre =
+              glm::dvec3(functionalIndexFromIndex * glm::dvec4(0.5 * (lo + hi), 1.0));
+          const glm::dvec3 half = spread * (0.5 * (hi - lo)) + 0.01;
+          const glm::dvec3 flo = centre - half, fhi = centre + half;
+          float mn = 3.4e38f, mx = -3.4e38f;
+          // The functional sample counts only inside its box (-0.5 .. fd - 0.5); trilinear
+          // filtering there reads the voxels floor(p) and floor(p) + 1, clamped to the edge.
+          if (glm::all(glm::greaterThanEqual(fhi, glm::dvec3(-0.5))) &&
+              glm::all(glm::lessThanEqual(flo, glm::dvec3(fd) - 0.5))) {
+            const glm::ivec3 i0 = glm::max(glm::ivec3(glm::floor(flo)), glm::ivec3(0));
+            const glm::ivec3 i1 = glm::min(glm::ivec3(glm::floor(fhi)) + 1, fd - 1);
+            for (int k = i0.z; k <= i1.z; ++k)
+              for (int j = i0.y; j <= i1.y; ++j)
+                for (int i = i0.x; i <= i1.x; ++i) {
+                  const float v = values[(static_cast<std::size_t>(k) * fd.y + j) * fd.x + i];
+                  mn = v < mn ? v : mn;
+                  mx = v > mx ? v : mx;
+                }
+            // Widened by a hundred-thousandth: a filtered sample may round past its voxels.
+            if (mn <= mx) {
+              mn -= 1e-5f * std::abs(mn) + 1e-30f;
+              mx += 1e-5f * std::abs(mx) + 1e-30f;
+            }
+          }
+          const std::size_t at = (static_cast<std::size_t>(bk) * count_.y + bj) * count_.x + bi;
+          fused[at] = glm::vec4(minMax_[at], mn, mx);
+        }
+  };
+  onTwoThreads(count_.z, work);
+  if (!fusedTexture_.id()) fusedTexture_ = makeTexture();
+  uploadBlocks(fusedTexture_.id(), count_, GL_RGBA32F, GL_RGBA, GL_FLOAT, fused.data());
+  checkGl("uploading the fused block grid");
 }
 
 namespace {
@@ -139,11 +210,8 @@ void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, d
     visibleBox_.second =
         glm::mix(glm::dvec3(last + 1) * size, glm::dvec3(1.0), glm::equal(last, count_ - 1));
   }
-  glBindTexture(GL_TEXTURE_3D, visibility_.id());
-  glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, count_.x, count_.y, count_.z, 0, GL_RED_INTEGER,
-               GL_UNSIGNED_BYTE, distance.data());
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  uploadBlocks(visibility_.id(), count_, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+               distance.data());
 }
 
 }  // namespace mvw::render::detail

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -34,8 +35,18 @@ class BlockGrid {
   // none is; the whole box with skipEmpty false.
   std::pair<glm::dvec3, glm::dvec3> visibleBox() const { return visibleBox_; }
 
+  // The fused projections' grid (issue 53): per block of this grid, the anatomy's min/max
+  // (RG, as minMax) and the functional volume's (BA) over every point a sample in the block
+  // can read it at, through functionalIndexFromIndex (this volume's voxel index -> the
+  // functional's, affine: the registration); +3.4e38 / -3.4e38 where no sample in the block
+  // lies inside the functional volume. A fused ray then skips a block only where neither
+  // volume can change its projection. Context current.
+  void setFunctional(const Volume& functional, const glm::dmat4& functionalIndexFromIndex);
+
   GLuint visibility() const { return visibility_.id(); }
   GLuint minMax() const { return minMaxTexture_.id(); }
+  // RGBA32F; 0 before setFunctional.
+  GLuint fusedMinMax() const { return fusedTexture_.id(); }
 
  private:
   glm::ivec3 dims_, count_;
@@ -45,7 +56,7 @@ class BlockGrid {
   std::vector<glm::vec4> lut_;
   double lo_ = 0.0, hi_ = 0.0;
   int skipEmpty_ = -1;
-  Texture visibility_, minMaxTexture_;
+  Texture visibility_, minMaxTexture_, fusedTexture_;
 };
 
 }  // namespace mvw::render::detail

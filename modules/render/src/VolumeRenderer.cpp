@@ -19,6 +19,7 @@
 #include "GlyphTextures.h"
 #include "RaycastPrograms.h"
 #include "RenderTarget.h"
+#include "SampleCeiling.h"
 #include "SegmentTextures.h"
 #include "ShellRenderer.h"
 #include "TextureUpload.h"
@@ -61,6 +62,7 @@ struct VolumeRenderer::Impl {
   detail::RaycastPrograms programs;
   detail::RenderTarget target;
   detail::VertexArray vao;
+  detail::SampleCeiling ceiling;
   std::unique_ptr<detail::ShellRenderer> shells;  // made on the first shell-mode frame
   // The view's colour map (RenderSettings::imageColors), uploaded when it changes.
   detail::Texture imageColormap;
@@ -89,7 +91,7 @@ struct VolumeRenderer::Impl {
                           const Camera& camera) const;
   void setFunctionalUniforms(const ShaderProgram& p, const RenderSettings& s, bool fusion,
                              glm::vec2 window) const;
-  void bindTextures(const ShaderProgram& p, GLuint overlayColormap) const;
+  void bindTextures(const ShaderProgram& p, GLuint overlayColormap, bool fusedBlocks) const;
   void updateImageColormap(const std::optional<ColorTable>& table);
 };
 
@@ -168,7 +170,8 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentOutlines);
   if (showsImageColors(s)) updateImageColormap(s.imageColors);
-  bindTextures(p, functional.colormap(s.overlayColors));
+  // The fused projections skip by both volumes' block ranges (BlockGrid::setFunctional).
+  bindTextures(p, functional.colormap(s.overlayColors), fusion && isProjectionMode(s.mode));
 
   glViewport(0, 0, s.size.x, s.size.y);
   glDisable(GL_DEPTH_TEST);
@@ -305,7 +308,8 @@ void VolumeRenderer::Impl::setFunctionalUniforms(const ShaderProgram& p, const R
 }
 
 // Every sampler on its own unit, also those the program does not use (uniform -1 is ignored).
-void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayColormap) const {
+void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayColormap,
+                                        bool fusedBlocks) const {
   const struct {
     const char* name;
     GLenum target;
@@ -315,7 +319,7 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayCo
                {"uAttribute", GL_TEXTURE_3D, volume.attribute()},
                {"uBlocks", GL_TEXTURE_3D, blocks.visibility()},
                {"uTransfer", GL_TEXTURE_2D, transfer.texture()},
-               {"uBlockRange", GL_TEXTURE_3D, blocks.minMax()},
+               {"uBlockRange", GL_TEXTURE_3D, fusedBlocks ? blocks.fusedMinMax() : blocks.minMax()},
                {"uFunctional", GL_TEXTURE_3D, functional.texture()},
                {"uColormap", GL_TEXTURE_1D, overlayColormap},
                {"uGlyphCells", GL_TEXTURE_3D, glyphs.cells()},
@@ -413,12 +417,33 @@ void VolumeRenderer::setFunctional(const Volume& functional,
                                    const glm::dmat4& anatomicalFromFunctional) {
   impl_->context.makeCurrent();
   impl_->functional.set(functional, anatomicalFromFunctional);
+  impl_->blocks.setFunctional(functional, glm::inverse(functional.worldFromIndex()) *
+                                              glm::inverse(anatomicalFromFunctional) *
+                                              impl_->volume.worldFromIndex());
 }
 
 void VolumeRenderer::setSegmentation(const Volume& masks, const std::vector<glm::vec3>& colours,
                                      const glm::dmat4& anatomicalFromSegmentation) {
   impl_->context.makeCurrent();
   impl_->segments.set(masks, colours, anatomicalFromSegmentation);
+}
+
+double VolumeRenderer::sampleCeiling(glm::ivec2 size, int samples, int rounds) {
+  Impl& m = *impl_;
+  m.context.makeCurrent();
+  m.volume.setLinear(true);
+  m.target.bind(size);
+  const double perSecond =
+      m.ceiling.samplesPerSecond(m.volume.intensity(), m.vao.id(), size, samples, rounds);
+  m.target.read();  // unbinds it, as a frame does
+  return perSecond;
+}
+
+double VolumeRenderer::nominalSamples(const RenderSettings& s) const {
+  const Impl& m = *impl_;
+  const auto [a, b] = m.rayBox(s);
+  return detail::nominalSamples(m.cameraFor(s), s.size, m.volume.textureFromWorld(), glm::min(a, b),
+                                glm::max(a, b), s.stepMm > 0 ? s.stepMm : m.defaultStep);
 }
 
 bool VolumeRenderer::hasFunctional() const { return impl_->functional.present(); }

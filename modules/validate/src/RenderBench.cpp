@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mvw/config/StudyConfig.h"
@@ -46,6 +48,17 @@ void runRenderBench(const RenderBenchOptions& o) {
                      " runs (more than the GL's largest 3D texture)")
                         .c_str()
                   : "");
+  // The ceiling, at 256 samples a pixel (the order of a ray's through a head CT at its step),
+  // measured again before each mode, whose fraction of it takes that measurement: the load
+  // on a shared machine moves both alike.
+  const int ceilingSamples = 256;
+  auto measureCeiling = [&] { return renderer.sampleCeiling({o.size, o.size}, ceilingSamples); };
+  const char* threads = std::getenv("LP_NUM_THREADS");
+  std::printf(
+      "  ceiling: %.0f M trilinear samples/s (one fetch of the intensity texture and an add "
+      "per sample, %d per pixel, fastest of 3 draws); %u cores, LP_NUM_THREADS %s\n",
+      measureCeiling() * 1e-6, ceilingSamples, std::thread::hardware_concurrency(),
+      threads ? threads : "unset (llvmpipe: one thread per core)");
   for (render::RenderMode mode : modes) {
     render::RenderSettings s;
     s.mode = mode;
@@ -55,20 +68,28 @@ void runRenderBench(const RenderBenchOptions& o) {
     s.stepMm = o.stepMm;
     s.shading = !o.noShading;
     renderer.render(s);  // compiles the program
-    double total = 0.0;
+    const double ceiling = measureCeiling();
+    double total = 0.0, samples = 0.0;
     for (int f = 0; f < o.frames; ++f) {
       s.camera.azimuthDeg = 360.0 * f / o.frames;
       total += renderer.render(s).milliseconds;
+      samples += renderer.nominalSamples(s);
     }
     const double ms = total / o.frames;
+    // Every sample the rays would take without skipping, per second: skipping can lift a
+    // mode past the ceiling.
+    const double perSecond = samples / (total * 1e-3);
     // Quality: the first frame against a 4x oversampled reference (a quarter of the step).
     s.camera.azimuthDeg = 0.0;
     const Image image = renderer.render(s).image;
     const double step = s.stepMm > 0 ? s.stepMm : render::defaultStepMm(volume);
     s.stepMm = step / 4.0;
     const Image reference = renderer.render(s).image;
-    std::printf("  %-11s %8.1f ms/frame  %6.2f fps  step %.3f mm  PSNR %.1f dB vs 4x oversampled\n",
-                render::toString(mode).c_str(), ms, 1000.0 / ms, step, psnr(image, reference));
+    std::printf(
+        "  %-11s %8.1f ms/frame  %6.2f fps  step %.3f mm  PSNR %.1f dB vs 4x oversampled"
+        "  %.0f M samples/s = %.2f of the ceiling (%.0f M/s)\n",
+        render::toString(mode).c_str(), ms, 1000.0 / ms, step, psnr(image, reference),
+        perSecond * 1e-6, perSecond / ceiling, ceiling * 1e-6);
   }
 }
 
@@ -112,17 +133,17 @@ void runFeatureBench(const FeatureBenchOptions& o) {
       o.frames);
   std::printf("  %-30s %-11s %-15s %10s %10s %8s\n", "view", "mode", "feature", "without", "with",
               "ratio");
-  for (const mvw::study::PlannedView& v : session.views(renderer)) {
-    if (!hasBenchFeature(v.settings)) continue;
-    render::RenderSettings with = v.settings;
-    render::RenderSettings without = withoutBenchFeatures(with);
+  // One row: `with` against `without`, interleaved over the orbit.
+  auto row = [&](const std::string& view, const render::RenderSettings& with0,
+                 const render::RenderSettings& without0, const std::string& feature) {
+    render::RenderSettings with = with0, without = without0;
     renderer.render(with);  // compile both programs, upload the glyph map
     renderer.render(without);
     std::vector<double> ratios;
     double msWith = 0.0, msWithout = 0.0;
     for (int f = 0; f < o.frames; ++f) {
       with.camera.azimuthDeg = without.camera.azimuthDeg =
-          v.settings.camera.azimuthDeg + 360.0 * f / o.frames;
+          with0.camera.azimuthDeg + 360.0 * f / o.frames;
       // Alternate which goes first, so neither always finds the caches warm.
       const bool withFirst = f % 2 == 0;
       const double a = renderer.render(withFirst ? with : without).milliseconds;
@@ -133,9 +154,18 @@ void runFeatureBench(const FeatureBenchOptions& o) {
       ratios.push_back(w / wo);
     }
     std::printf("  %-30s %-11s %-15s %7.1f ms %7.1f ms %7.3fx  (median of per-frame ratios %.3f)\n",
-                v.config.name.c_str(), toString(v.config.mode).c_str(),
-                benchFeatureName(v.settings).c_str(), msWithout / o.frames, msWith / o.frames,
-                msWith / msWithout, median(ratios));
+                view.c_str(), toString(with0.mode).c_str(), feature.c_str(), msWithout / o.frames,
+                msWith / o.frames, msWith / msWithout, median(ratios));
+  };
+  for (const mvw::study::PlannedView& v : session.views(renderer)) {
+    if (!hasBenchFeature(v.settings)) continue;
+    row(v.config.name, v.settings, withoutBenchFeatures(v.settings), benchFeatureName(v.settings));
+    // Fusion with another feature: also fusion alone, against the same view unfused (a fused
+    // depth-cued MIP against the plain depth-cued one).
+    render::RenderSettings unfused = v.settings;
+    unfused.fusion = false;
+    if (v.settings.fusion && hasBenchFeature(unfused))
+      row(v.config.name, v.settings, unfused, "fusion alone");
   }
 }
 

@@ -66,6 +66,14 @@ class VolumeRenderer {
   glm::dvec3 centre() const;
   double radius() const;
 
+  // The sampling ceiling (issue 53): trilinear samples per second of the volume's own
+  // intensity texture with a trivial shader (a fetch and an add per sample), `samples` per
+  // pixel over `size` pixels, the fastest of `rounds` draws.
+  double sampleCeiling(glm::ivec2 size, int samples, int rounds = 3);
+  // The samples a frame of `settings` takes without skipping: each ray's length in the box it
+  // samples (the crop) over the step. A mode's samples per second against the ceiling.
+  double nominalSamples(const RenderSettings& settings) const;
+
   // A functional volume on its own grid (component 0), placed by the registration:
   // anatomicalFromFunctional maps functional world points (LPS mm) to anatomical ones.
   void setFunctional(const Volume& functional, const glm::dmat4& anatomicalFromFunctional);
