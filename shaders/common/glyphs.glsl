@@ -105,7 +105,7 @@ vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
 // facing the viewer, so a kind's outline is the same whole disc on a gyral crown, a flank or a
 // sphere. The kind is the attribute on the glyph centre's ray at the depth of the pixel's own
 // sample (its foot), so a glyph is whole across its region's edge. Isosurface: a pixel whose
-// hit lies more than a glyph radius in depth from where its centre's ray meets the surface
+// hit lies more than two glyph radii in depth from where its centre's ray meets the surface
 // (gGlyphSurfaceValue, the isovalue) is left flat, so a glyph stops at a fold's edge instead of
 // running down into the sulcus; and the shape's tilts are taken relative to the surface's own
 // normal (its flat parts are the surface), as on the sphere. Composite: the tilts relative to
@@ -140,9 +140,9 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   if (a <= 0.0) a = glyphAttributeNearest(foot - frame);  // 1 mm deeper
   if (a <= 0.0) return nO;
   if (gGlyphSurfaceValue > -1e29) {
-    // The centre's ray meets the surface within a glyph radius of the sample's depth.
-    float before = sampleValue(toTexture(foot + uGlyphRadiusMm * frame));
-    float beyond = sampleValue(toTexture(foot - uGlyphRadiusMm * frame));
+    // The centre's ray meets the surface within two glyph radii of the sample's depth.
+    float before = sampleValue(toTexture(foot + 2.0 * uGlyphRadiusMm * frame));
+    float beyond = sampleValue(toTexture(foot - 2.0 * uGlyphRadiusMm * frame));
     if (before >= gGlyphSurfaceValue || beyond < gGlyphSurfaceValue) return nO;
   }
   float kind = floor(a * 0.5);
