@@ -101,7 +101,7 @@ vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
 // Glyphs on the visible surface (issue 52; RenderSettings::glyphOnSurface): instead of the 3D
 // lattice that the surface cuts at random depths, the glyph centres form a hexagonal lattice on
 // the image (uGlyphScreenRadiusPx > 0: a glyph's radius in pixels, the centres
-// 2 / kBlueNoiseDiameterFraction radii apart), and each glyph's shape is laid out on the disc
+// uGlyphScreenSpacingPx apart: 2 / kBlueNoiseDiameterFraction radii), and each glyph's shape is laid out on the disc
 // facing the viewer, so a kind's outline is the same whole disc on a gyral crown, a flank or a
 // sphere. The kind is the attribute on the glyph centre's ray at the depth of the pixel's own
 // sample (its foot), so a glyph is whole across its region's edge. Isosurface: a pixel whose
@@ -111,6 +111,7 @@ vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
 // normal (its flat parts are the surface), as on the sphere. Composite: the tilts relative to
 // the viewer (the frame of glyphNormalMapped), over the surface's own normal elsewhere.
 uniform float uGlyphScreenRadiusPx;  // 0: the 3D lattice
+uniform float uGlyphScreenSpacingPx;  // between neighbouring centres
 uniform vec3 uGlyphScreenRight;      // world unit vectors of the image's x and y
 uniform vec3 uGlyphScreenUp;
 float gGlyphSurfaceValue = -1e30;  // set by isosurface.frag.glsl: its isovalue
@@ -118,7 +119,7 @@ float gGlyphSurfaceValue = -1e30;  // set by isosurface.frag.glsl: its isovalue
 vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   vec3 frame = cross(uGlyphScreenRight, uGlyphScreenUp);  // towards the viewer
   float R = uGlyphScreenRadiusPx;
-  float S = 2.0 / 0.85 * R;  // kBlueNoiseDiameterFraction
+  float S = uGlyphScreenSpacingPx;
   float H = 0.8660254 * S;
   vec2 q = gl_FragCoord.xy;
   vec2 best = vec2(0.0);

@@ -170,6 +170,8 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
     const bool onSurface = s.glyphOnSurface && !camera.perspective && camera.halfHeightMm > 0;
     const double radiusPx = 0.5 * s.glyphDiameterMm * s.size.y / (2.0 * camera.halfHeightMm);
     glUniform1f(p.uniform("uGlyphScreenRadiusPx"), onSurface ? float(radiusPx) : 0.0f);
+    glUniform1f(p.uniform("uGlyphScreenSpacingPx"),
+                float(2.0 * radiusPx / kBlueNoiseDiameterFraction));
     glUniform3fv(p.uniform("uGlyphScreenRight"), 1, glm::value_ptr(glm::vec3(camera.right)));
     glUniform3fv(p.uniform("uGlyphScreenUp"), 1, glm::value_ptr(glm::vec3(camera.up)));
   }
