@@ -60,6 +60,9 @@ void finishHook(inout RayState s, Ray ray, vec2 span) {
     return;
   }
 #endif
+#if defined(MVW_GLYPH_KINDS)
+  gGlyphSurfaceValue = uIsoValue;  // glyphs on the surface: where the centre's ray meets it
+#endif
 #if defined(MVW_GLYPHS)
   n = glyphNormal(hit, n, g.a);
 #endif

@@ -46,27 +46,10 @@ float glyphAttributeNearest(vec3 world);
 uniform float uGlyphLayerMm;
 float gGlyphMaxDepth = 1e30;
 
-// d: from the glyph's centre to the sample (map voxels); p: the sample (map voxels).
-vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
-  vec3 dw = uWorldFromGlyph * d;
-  float h = dot(dw, frame);
-  vec3 tw = dw - h * frame;  // along the surface, from the glyph's foot
-  if (h > gGlyphMaxDepth) return nO;  // the centre lies beyond the layer
-  float a = glyphAttributeNearest(uWorldFromGlyph * p - tw);
-  if (a <= 0.0) return nO;
-  float kind = floor(a * 0.5);
-  float size = mix(uGlyphMinSize, 1.0, clamp(a - 2.0 * kind, 0.0, 1.0));
-  float r2 = uGlyphRadiusMm * uGlyphRadiusMm;
-  // The apparent radius: the size's, at most the chord the surface cuts (as for bumps below).
-  // A glyph the surface only grazes (its chord under 0.6 of the apparent radius) is left out:
-  // too small for its shape to be read, it would only be a speck of some kind.
-  float rho2 = min(size * size * r2, r2 - h * h);
-  float t2 = dot(tw, tw);
-  if (rho2 < 0.36 * size * size * r2 || t2 >= rho2) return nO;
-  vec3 tv = tw * inversesqrt(rho2);  // |tv| < 1: the position on the glyph's disc
-  float r = sqrt(t2 / rho2);
+// A kind's shape: the normal at tv on the glyph's disc (|tv| = r < 1, in the plane normal to
+// frame), or nO where the shape leaves the surface flat.
+vec3 glyphKindShape(int k, vec3 tv, float r, vec3 frame, vec3 nO) {
   vec3 radial = tv / max(r, 1e-4);
-  int k = int(kind);
   if (k == 0) return sqrt(max(1.0 - r * r, 0.0)) * frame + tv;  // bumps: a hemisphere
   if (k == 1) return sqrt(max(1.0 - r * r, 0.0)) * frame - tv;  // dimples: a bowl
   if (k == 2) {
@@ -93,6 +76,90 @@ vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
   if (abs(across) >= 1.0) return nO;
   return sqrt(1.0 - across * across) * frame + across * b;
 }
+
+// d: from the glyph's centre to the sample (map voxels); p: the sample (map voxels).
+vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
+  vec3 dw = uWorldFromGlyph * d;
+  float h = dot(dw, frame);
+  vec3 tw = dw - h * frame;  // along the surface, from the glyph's foot
+  if (h > gGlyphMaxDepth) return nO;  // the centre lies beyond the layer
+  float a = glyphAttributeNearest(uWorldFromGlyph * p - tw);
+  if (a <= 0.0) return nO;
+  float kind = floor(a * 0.5);
+  float size = mix(uGlyphMinSize, 1.0, clamp(a - 2.0 * kind, 0.0, 1.0));
+  float r2 = uGlyphRadiusMm * uGlyphRadiusMm;
+  // The apparent radius: the size's, at most the chord the surface cuts (as for bumps below).
+  // A glyph the surface only grazes (its chord under 0.6 of the apparent radius) is left out:
+  // too small for its shape to be read, it would only be a speck of some kind.
+  float rho2 = min(size * size * r2, r2 - h * h);
+  float t2 = dot(tw, tw);
+  if (rho2 < 0.36 * size * size * r2 || t2 >= rho2) return nO;
+  vec3 tv = tw * inversesqrt(rho2);  // |tv| < 1: the position on the glyph's disc
+  return glyphKindShape(int(kind), tv, sqrt(t2 / rho2), frame, nO);
+}
+
+// Glyphs on the visible surface (issue 52; RenderSettings::glyphOnSurface): instead of the 3D
+// lattice that the surface cuts at random depths, the glyph centres form a hexagonal lattice on
+// the image (uGlyphScreenRadiusPx > 0: a glyph's radius in pixels, the centres
+// uGlyphScreenSpacingPx apart: 2 / kBlueNoiseDiameterFraction radii), and each glyph's shape is laid out on the disc
+// facing the viewer, so a kind's outline is the same whole disc on a gyral crown, a flank or a
+// sphere. The kind is the attribute on the glyph centre's ray at the depth of the pixel's own
+// sample (its foot), so a glyph is whole across its region's edge. Isosurface: a pixel whose
+// hit lies more than two glyph radii in depth from where its centre's ray meets the surface
+// (gGlyphSurfaceValue, the isovalue) is left flat, so a glyph stops at a fold's edge instead of
+// running down into the sulcus; and the shape's tilts are taken relative to the surface's own
+// normal (its flat parts are the surface), as on the sphere. Composite: the tilts relative to
+// the viewer (the frame of glyphNormalMapped), over the surface's own normal elsewhere.
+uniform float uGlyphScreenRadiusPx;  // 0: the 3D lattice
+uniform float uGlyphScreenSpacingPx;  // between neighbouring centres
+uniform vec3 uGlyphScreenRight;      // world unit vectors of the image's x and y
+uniform vec3 uGlyphScreenUp;
+float gGlyphSurfaceValue = -1e30;  // set by isosurface.frag.glsl: its isovalue
+
+vec3 glyphScreenNormal(vec3 world, vec3 nO) {
+  vec3 frame = cross(uGlyphScreenRight, uGlyphScreenUp);  // towards the viewer
+  float R = uGlyphScreenRadiusPx;
+  float S = uGlyphScreenSpacingPx;
+  float H = 0.8660254 * S;
+  vec2 q = gl_FragCoord.xy;
+  vec2 best = vec2(0.0);
+  float bestD2 = 1e30;
+  float row0 = floor(q.y / H);
+  for (int i = 0; i < 2; ++i) {
+    float row = row0 + float(i);
+    float offset = mod(row, 2.0) * 0.5 * S;
+    vec2 c = vec2(floor((q.x - offset) / S + 0.5) * S + offset, row * H);
+    vec2 dq = q - c;
+    float d2 = dot(dq, dq);
+    if (d2 < bestD2) bestD2 = d2, best = dq;
+  }
+  if (bestD2 >= R * R) return nO;
+  float mmPerPx = uGlyphRadiusMm / R;
+  vec3 offsetMm = (best.x * uGlyphScreenRight + best.y * uGlyphScreenUp) * mmPerPx;
+  vec3 foot = world - offsetMm;  // the centre's ray at the sample's depth
+  float a = glyphAttributeNearest(foot);
+  if (a <= 0.0) a = glyphAttributeNearest(foot - frame);  // 1 mm deeper
+  if (a <= 0.0) return nO;
+  if (gGlyphSurfaceValue > -1e29) {
+    // The centre's ray meets the surface within two glyph radii of the sample's depth.
+    float before = sampleValue(toTexture(foot + 2.0 * uGlyphRadiusMm * frame));
+    float beyond = sampleValue(toTexture(foot - 2.0 * uGlyphRadiusMm * frame));
+    if (before >= gGlyphSurfaceValue || beyond < gGlyphSurfaceValue) return nO;
+  }
+  float kind = floor(a * 0.5);
+  float size = mix(uGlyphMinSize, 1.0, clamp(a - 2.0 * kind, 0.0, 1.0));
+  float r = sqrt(bestD2) / (size * R);
+  if (r >= 1.0) return nO;
+  vec3 tv = (best.x * uGlyphScreenRight + best.y * uGlyphScreenUp) / (size * R);
+  if (gGlyphSurfaceValue < -1e29) return glyphKindShape(int(kind), tv, r, frame, nO);
+  // Isosurface: the shape turned from the viewer's frame onto the surface's normal (Rodrigues'
+  // rotation taking frame to nO; a surface turned away from the viewer keeps the viewer's).
+  vec3 g = glyphKindShape(int(kind), tv, r, frame, frame);
+  vec3 v = cross(frame, nO);
+  float c = dot(frame, nO);
+  if (c <= 0.05) return g;
+  return g * c + cross(v, g) + v * (dot(v, g) / (1.0 + c));
+}
 #endif
 
 // nO: the unit outward surface normal of the anatomy at `world`; u: the functional attribute
@@ -112,6 +179,14 @@ vec3 glyphNormalMapped(vec3 p, vec3 nO, vec3 frame, float u) {
 #endif
   // At or below the window's low end: the anatomy's own normal, bit for bit (for every method
   // and convexity: "both" would otherwise draw full dimples where there is no attribute).
+#if defined(MVW_GLYPH_KINDS)
+  // Glyphs on the surface: the kind is read at the glyph's foot, so a glyph is whole across
+  // its region's edge (composite runs the glyph code only where the attribute is: u > 0).
+  if (uGlyphScreenRadiusPx > 0.0) {
+    if (gGlyphMaxDepth < 0.0) return nO;  // composite: beyond the one layer
+    return glyphScreenNormal(uWorldFromGlyph * p, nO);
+  }
+#endif
   if (u <= 0.0) return nO;
 #if defined(MVW_GLYPH_BOTH)
   float beta = 2.0 * u - 1.0;

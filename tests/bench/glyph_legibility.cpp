@@ -10,7 +10,8 @@
 // accuracy and the confusion matrix, the glyph blobs' sizes against the glyph's disc, and per
 // region with >= 2,000 visible pixels how many fully visible glyphs it carries; writes the
 // renders and a crop per kind to OUT.
-//   [MVW_GLYPH_RADIUS_PX=R] [MVW_GLYPH_LAYER_RADII=L] mvw_glyph_legibility_bench DATA_DIR OUT
+//   [MVW_GLYPH_RADIUS_PX=R] [MVW_GLYPH_LAYER_RADII=L] [MVW_GLYPH_ON_SURFACE=0|1]
+//   mvw_glyph_legibility_bench DATA_DIR OUT
 //   [PERMUTATIONS] [SIZES...]
 #include <algorithm>
 #include <array>
@@ -199,6 +200,9 @@ int main(int argc, char** argv) {
       // glyph radii so that one value suits every size.
       if (const char* layer = std::getenv("MVW_GLYPH_LAYER_RADII"))
         s.glyphLayerMm = std::atof(layer) * 0.5 * s.glyphDiameterMm;
+      // Glyphs on the visible surface (RenderSettings::glyphOnSurface, "on_surface") or not,
+      // whatever the view says.
+      if (const char* on = std::getenv("MVW_GLYPH_ON_SURFACE")) s.glyphOnSurface = *on == '1';
       glyphRadiusPx = 0.5 * s.glyphDiameterMm / mmPerPixel;
       diameterMm = s.glyphDiameterMm;
       for (int q : region)

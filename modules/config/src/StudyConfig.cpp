@@ -134,6 +134,11 @@ const FieldTable<ViewConfig>& glyphTable() {
         .number("dvr_opacity",
                 "Composite, blue-noise: the least opacity per mm of ray a bump gives its samples.",
                 &ViewConfig::glyphDvrOpacity, 0.0, 1.0)
+        .boolean("on_surface",
+                 "Glyph kinds, orthographic views: the glyphs on the visible surface, a lattice on "
+                 "the image, each shape whole on the disc facing the viewer (issue 52); false, a "
+                 "3D lattice the surface cuts. They keep to the image when the view turns.",
+                 &ViewConfig::glyphOnSurface)
         .optionalNumber("diameter_mm", "Glyph diameter in mm.", &ViewConfig::glyphDiameterMm, 0.1,
                         1000.0)
         .whenAbsent("blue-noise: a fraction of the spacing; paper: the paper's diameter")

@@ -166,7 +166,17 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setRayUniforms(p, s, camera, step);
   setShadingUniforms(p, s, camera);
   if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize, s.glyphDvrOpacity, step);
-  if (s.glyphs) glUniform1f(p.uniform("uGlyphLayerMm"), float(std::max(s.glyphLayerMm, 0.0)));
+  if (s.glyphs) {
+    glUniform1f(p.uniform("uGlyphLayerMm"), float(std::max(s.glyphLayerMm, 0.0)));
+    // Glyphs on the visible surface: the glyph's radius in pixels (0: the 3D lattice).
+    const bool onSurface = s.glyphOnSurface && !camera.perspective && camera.halfHeightMm > 0;
+    const double radiusPx = 0.5 * s.glyphDiameterMm * s.size.y / (2.0 * camera.halfHeightMm);
+    glUniform1f(p.uniform("uGlyphScreenRadiusPx"), onSurface ? float(radiusPx) : 0.0f);
+    glUniform1f(p.uniform("uGlyphScreenSpacingPx"),
+                float(2.0 * radiusPx / kBlueNoiseDiameterFraction));
+    glUniform3fv(p.uniform("uGlyphScreenRight"), 1, glm::value_ptr(glm::vec3(camera.right)));
+    glUniform3fv(p.uniform("uGlyphScreenUp"), 1, glm::value_ptr(glm::vec3(camera.up)));
+  }
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentOutlines);
   if (showsImageColors(s)) updateImageColormap(s.imageColors);

@@ -339,6 +339,7 @@ void setGlyphs(render::RenderSettings& s, const config::ViewConfig& v,
   s.glyphConvexity = v.glyphConvexity;
   s.glyphMinSize = v.glyphMinSize;
   s.glyphDvrOpacity = v.glyphDvrOpacity;
+  s.glyphOnSurface = v.glyphOnSurface;
   s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
   {
     // The map follows the config's placement even while glyphs are off, so a viewer that
@@ -564,6 +565,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.glyphSeed = s.glyphMap.seed;
   v.glyphMinSize = s.glyphMinSize;
   v.glyphDvrOpacity = s.glyphDvrOpacity;
+  v.glyphOnSurface = s.glyphOnSurface;
   // Chosen labels by number (a table beside the volume names them again), in the modes
   // that draw glyphs, kept while glyphs are switched off.
   if (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface)

@@ -131,6 +131,7 @@ struct ViewConfig {
   double glyphMinSize = kGlyphMinSize;
   std::optional<double> glyphDiameterMm;
   double glyphDvrOpacity = kGlyphDvrOpacityPerMm;  // per mm of ray (composite DVR)
+  bool glyphOnSurface = false;  // glyph kinds: a lattice on the image (render::RenderSettings)
   int glyphCount = 16, glyphMapSize = 128;
   double glyphMapDiameter = 32.0;
   unsigned glyphSeed = 1;

@@ -107,6 +107,13 @@ struct RenderSettings {
   // lattice instead of glyphs from several depths run together on the screen; whole or
   // nothing per glyph, as the test is on its centre. 0: every depth (today's images).
   double glyphLayerMm = 0.0;
+  // Glyph kinds (issue 52): the glyphs on the visible surface, a hexagonal lattice on the image
+  // (each glyph's radius the glyph diameter's half, in pixels at the view's scale; orthographic
+  // views only, a perspective view keeps the 3D lattice), each shape laid out on the disc that
+  // faces the viewer, instead of the 3D lattice that the surface cuts at random depths
+  // (shaders/common/glyphs.glsl: glyphScreenNormal). The glyphs keep to the image, not to the
+  // anatomy, when the view turns.
+  bool glyphOnSurface = false;
   // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
   double functionalLow = 0.0, functionalHigh = 0.0;
   // Nominal attribute (labels), chosen by the reader (issue 15 item 4): when not empty only
