@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "PyErrors.h"
+#include "PyRegistration.h"
+#include "PyStudy.h"
 #include "PyVolume.h"
 #include "mvw/core/Error.h"
 #include "mvw/pacs/Pacs.h"
@@ -136,6 +138,8 @@ Errors: mvw.InputError (a ValueError naming the file), mvw.ServiceError (a Conne
 naming the server), TypeError for an argument of the wrong type.)doc";
   bindErrors(m);
   bindVolume(m);
+  bindRegistration(m);
+  bindStudy(m);
   m.def("read", &readPath, py::arg("path"), py::arg("series") = py::none(),
         py::arg("frame") = py::none(), py::arg("suv") = true, py::kw_only(),
         py::arg("volume") = py::none(), R"doc(
