@@ -103,3 +103,13 @@ def test_render_errors(study, data, tmp_path):
         mvw.Study(42)
     with pytest.raises(mvw.InputError, match="nothing.nii"):
         mvw.Study({"anatomical": {"path": str(tmp_path / "nothing.nii")}})
+
+
+def test_egl_beside_osmesa_is_refused_not_broken(config):
+    """Mesa cannot make an EGL render target while an OSMesa context lives: said, not a GL
+    error (where this machine has no EGL, its own InputError, also a ValueError)."""
+    first = mvw.Study(config, gl="osmesa")
+    with pytest.raises(ValueError, match="OSMesa|egl|EGL"):
+        mvw.Study(config, gl="egl")
+    del first
+    assert mvw.Study(config, gl="osmesa").render("axial").shape == (64, 64, 4)

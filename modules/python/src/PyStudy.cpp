@@ -41,7 +41,18 @@ class Study {
     py::gil_scoped_release released;
     // In renderStudy's order: the context before the volumes (a --gl this machine cannot give
     // fails in milliseconds), the volumes, then the renderer.
-    onGlThread([&] { context_ = output::makeHeadlessContext(gl); });
+    onGlThread([&] {
+      context_ = output::makeHeadlessContext(gl);
+      // Mesa: an EGL context made while an OSMesa one lives in the process cannot make its
+      // render target (GL_INVALID_OPERATION); the other orders work.
+      if (context_->backend().rfind("egl", 0) == 0 && liveOsMesa() > 0) {
+        context_.reset();
+        throw py::value_error(
+            "mvw.Study: an EGL context cannot be made while a Study rendering with OSMesa lives "
+            "(a Mesa limitation): delete that Study first, or give gl='osmesa'");
+      }
+      if (context_->backend() == "osmesa") ++liveOsMesa();
+    });
     try {
       session_->load(pacs::Options{});
       onGlThread([&] {
@@ -126,8 +137,15 @@ class Study {
     if (!renderer_ && !context_) return;
     onGlThread([this] {
       renderer_.reset();
+      if (context_ && context_->backend() == "osmesa") --liveOsMesa();
       context_.reset();
     });
+  }
+
+  // The OSMesa contexts alive (counted on the GL thread only).
+  static int& liveOsMesa() {
+    static int count = 0;
+    return count;
   }
 
   std::unique_ptr<study::Session> session_;
