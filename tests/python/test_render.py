@@ -2,6 +2,7 @@
 views as named, a size given (--size) and a view given as a dict; and renders from several
 Python threads at once."""
 import json
+import os
 import subprocess
 import threading
 
@@ -32,7 +33,6 @@ def config(data, tmp_path_factory):
 
 
 def cli_render(config, out, *args):
-    import os
     done = subprocess.run([os.environ["MVW"], "render", str(config), "-o", str(out), *args],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
@@ -105,11 +105,27 @@ def test_render_errors(study, data, tmp_path):
         mvw.Study({"anatomical": {"path": str(tmp_path / "nothing.nii")}})
 
 
-def test_egl_beside_osmesa_is_refused_not_broken(config):
-    """Mesa cannot make an EGL render target while an OSMesa context lives: said, not a GL
-    error (where this machine has no EGL, its own InputError, also a ValueError)."""
-    first = mvw.Study(config, gl="osmesa")
-    with pytest.raises(ValueError, match="OSMesa|egl|EGL"):
-        mvw.Study(config, gl="egl")
-    del first
-    assert mvw.Study(config, gl="osmesa").render("axial").shape == (64, 64, 4)
+def test_one_backend_at_a_time(study, config):
+    """The GL functions are loaded for one backend at a time (OSMesa and EGL are separate
+    libraries): a Study on another backend while one lives is refused, saying so; the same
+    backend is accepted."""
+    out = cli_render(config, config.parent / "gl", "--only-view", "axial")
+    backend = json.loads((out / "render.json").read_text())["gl_backend"]  # the one auto gives
+    other = "egl" if backend == "osmesa" else "osmesa"
+    with pytest.raises(ValueError, match=f"renders with {backend} .* would use"):
+        mvw.Study(config, gl=other)
+    same = mvw.Study(config, gl="osmesa" if backend == "osmesa" else "egl")
+    assert np.array_equal(same.render("axial"), study.render("axial"))
+
+
+def test_a_study_deleted_leaves_the_others_whole(study, config):
+    """A Study's GL objects go with its own context: deleting one (its names are the same
+    numbers as another context's) leaves another Study's textures alone."""
+    expected = [study.render(v["name"]) for v in VIEWS]
+    other = mvw.Study(config)
+    other.render("bone")
+    third = mvw.Study(config)  # current on the GL thread when `other` goes
+    del other
+    for view, image in zip(VIEWS, expected):
+        assert np.array_equal(study.render(view["name"]), image)
+        assert np.array_equal(third.render(view["name"]), image)

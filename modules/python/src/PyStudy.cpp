@@ -43,19 +43,25 @@ class Study {
     // fails in milliseconds), the volumes, then the renderer.
     onGlThread([&] {
       context_ = output::makeHeadlessContext(gl);
-      // Mesa: an EGL context made while an OSMesa one lives in the process cannot make its
-      // render target (GL_INVALID_OPERATION); the other orders work.
-      if (context_->backend().rfind("egl", 0) == 0 && liveOsMesa() > 0) {
+      // The GL functions are loaded for the context made last (render::GlContext), and OSMesa
+      // and EGL are separate libraries: one backend at a time in a process.
+      Backends& live = liveBackends();
+      if (live.count > 0 && live.name != context_->backend()) {
+        const std::string made = context_->backend();
         context_.reset();
-        throw py::value_error(
-            "mvw.Study: an EGL context cannot be made while a Study rendering with OSMesa lives "
-            "(a Mesa limitation): delete that Study first, or give gl='osmesa'");
+        throw py::value_error("mvw.Study: this process renders with " + live.name +
+                              " while a Study on it lives, and this one would use " + made +
+                              ": one GL backend at a time (delete the others first, or give "
+                              "gl='" +
+                              live.name + "')");
       }
-      if (context_->backend() == "osmesa") ++liveOsMesa();
+      live.name = context_->backend();
+      ++live.count;
     });
     try {
       session_->load(pacs::Options{});
       onGlThread([&] {
+        context_->makeCurrent();
         renderer_ =
             std::make_unique<render::VolumeRenderer>(*context_, session_->anatomical(), source);
         session_->attach(*renderer_);
@@ -119,6 +125,7 @@ class Study {
           planned = session_->views(views, overrides, renderer_->functionalRange());
         }
         const study::PlannedView& v = planned.empty() ? planned_[index] : planned[index];
+        context_->makeCurrent();  // the painter draws after the renderer, in the same context
         image = output::viewPainter(*renderer_, *session_, v)(v.settings).image;
       });
     }
@@ -136,16 +143,23 @@ class Study {
   void release() {
     if (!renderer_ && !context_) return;
     onGlThread([this] {
+      // The renderer deletes its GL objects in the current context: its own, not another
+      // Study's (GL names are numbers from 1 in every context: another's textures would go).
+      if (context_) context_->makeCurrent();
       renderer_.reset();
-      if (context_ && context_->backend() == "osmesa") --liveOsMesa();
+      if (context_) --liveBackends().count;
       context_.reset();
     });
   }
 
-  // The OSMesa contexts alive (counted on the GL thread only).
-  static int& liveOsMesa() {
-    static int count = 0;
-    return count;
+  // The backend of the contexts alive (on the GL thread only).
+  struct Backends {
+    std::string name;
+    int count = 0;
+  };
+  static Backends& liveBackends() {
+    static Backends live;
+    return live;
   }
 
   std::unique_ptr<study::Session> session_;
