@@ -78,6 +78,8 @@ class Study {
   // during the interpreter's finalisation.
   ~Study() { release(); }
 
+  std::string backend() const { return context_->backend(); }
+
   std::vector<std::string> viewNames() const {
     std::vector<std::string> names;
     for (const study::PlannedView& v : planned_) names.push_back(v.config.name);
@@ -216,6 +218,9 @@ Raises mvw.InputError naming the config or the volume that cannot be used, mvw.S
 a PACS series that cannot be retrieved.)doc");
   cls.def_property_readonly("views", &Study::viewNames,
                             "The names of the config's views, in its order.");
+  cls.def_property_readonly("gl_backend", &Study::backend,
+                            "The headless GL it renders with: egl-device, egl-surfaceless or "
+                            "osmesa (render.json's gl_backend).");
   cls.def("render", &Study::render, py::arg("view") = py::none(), py::arg("size") = py::none(),
           R"doc(
 One view as an image: a NumPy array (height, width, 4) of uint8, RGBA, row 0 at the top: the
