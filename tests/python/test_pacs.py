@@ -5,6 +5,7 @@ import json
 import os
 import pathlib
 import shutil
+import signal
 import socket
 import subprocess
 
@@ -34,6 +35,13 @@ def server(data, tmp_path_factory):
                        check=True, capture_output=True)
         yield env["ORTHANC_WEB"], env["ORTHANC_DIMSE"], work
     finally:
+        # Killed outright (its storage is thrown away): SIGTERM costs Orthanc about 5 s.
+        pid = work / "orthanc" / "orthanc.pid"
+        if pid.exists():
+            try:
+                os.kill(int(pid.read_text()), signal.SIGKILL)
+            except (ProcessLookupError, ValueError):
+                pass
         subprocess.run(["bash", str(ORTHANC), "stop", str(work / "orthanc")], capture_output=True)
 
 
