@@ -110,15 +110,8 @@ void addPacsCommand(CLI::App& app) {
   find->callback([o] {
     const pacs::Server server = config::resolveServer(o->server);
     if (!o->query.studyUid.empty()) {
-      auto series = pacs::findSeries(server, o->query.studyUid, o->options);
-      if (series.empty()) {
-        // An unknown study and a study without series read alike: say which.
-        pacs::StudyQuery q;
-        q.studyUid = o->query.studyUid;
-        if (pacs::findStudies(server, q, o->options).empty())
-          throw InputError(server.text, "has no study " + o->query.studyUid);
-      }
-      pacs::printMatches(std::cout, series, o->json, true);
+      pacs::printMatches(std::cout, pacs::findStudySeries(server, o->query.studyUid, o->options),
+                         o->json, true);
     } else {
       pacs::printMatches(std::cout, pacs::findStudies(server, o->query, o->options), o->json,
                          false);

@@ -964,6 +964,10 @@ StudyConfig loadStudyConfig(const fs::path& file) {
                          "study config");
     throw InputError(file, std::string("not valid JSON: ") + e.what());
   }
+  return studyConfigFromJson(j, file);
+}
+
+StudyConfig studyConfigFromJson(const json& j, const fs::path& file) {
   if (!j.is_object()) throw InputError(file, "a study config must be a JSON object");
   StudyConfig config;
   config.file = file;

@@ -37,32 +37,6 @@ std::string frameName(int k) {
   return buf;
 }
 
-// A view's image as the reader sees it: the render, and (annotate) what ViewAnnotations.h lists.
-struct ViewPainter {
-  render::VolumeRenderer& renderer;
-  const study::Session& session;
-  const study::PlannedView& view;
-  WindowLevel shown;
-  std::string caption;
-  bool overlayShown;
-
-  render::RenderedFrame operator()(const render::RenderSettings& settings) const {
-    render::RenderedFrame f = renderer.render(settings);
-    if (!view.config.annotate) return f;
-    const Volume* functional = session.functional();
-    ViewAnnotations a;
-    a.caption = caption;
-    if (functional)
-      a.glyphLegend =
-          study::glyphLegend(view, functional->metadata().unit, renderer.functionalRange());
-    a.colourBar =
-        colourBarOf(settings, session.anatomical(), functional, renderer.functionalRange(), shown);
-    a.segmentLegend = segmentLegendOf(settings, session.segments());
-    drawAnnotations(f.image, f.camera, settings, a, renderer);
-    return f;
-  }
-};
-
 // The rest of an orbit's frames (frame 0 is the still itself, at the view's own azimuth),
 // written with the movie into the staging folder; returns render.json's "orbit" record.
 nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame& still,
@@ -202,6 +176,34 @@ void keepViews(config::StudyConfig& study, const std::vector<std::string>& names
 
 }  // namespace
 
+render::RenderedFrame ViewPainter::operator()(const render::RenderSettings& settings) const {
+  render::RenderedFrame f = renderer.render(settings);
+  if (!view.config.annotate) return f;
+  const Volume* functional = session.functional();
+  ViewAnnotations a;
+  a.caption = caption;
+  if (functional)
+    a.glyphLegend =
+        study::glyphLegend(view, functional->metadata().unit, renderer.functionalRange());
+  a.colourBar =
+      colourBarOf(settings, session.anatomical(), functional, renderer.functionalRange(), shown);
+  a.segmentLegend = segmentLegendOf(settings, session.segments());
+  drawAnnotations(f.image, f.camera, settings, a, renderer);
+  return f;
+}
+
+ViewPainter viewPainter(render::VolumeRenderer& renderer, const study::Session& session,
+                        const study::PlannedView& view) {
+  const auto [lo, hi] = renderer.valueRange();
+  const WindowLevel shown = windowOrFullRange(view.settings.window, view.settings.level, lo, hi);
+  return ViewPainter{renderer,
+                     session,
+                     view,
+                     shown,
+                     study::viewCaption(view, shown),
+                     render::showsFunctional(view.settings, session.functional() != nullptr)};
+}
+
 RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::ostream& log) {
   config::StudyConfig studyConfig = config::loadStudyConfig(request.study);
   keepViews(studyConfig, request.onlyViews, request.study);
@@ -216,7 +218,6 @@ RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::
   render::VolumeRenderer renderer(*context, session.anatomical(),
                                   render::parseGradientSource(request.gradient));
   session.attach(renderer);
-  const auto [lo, hi] = renderer.valueRange();
   std::vector<Output> outputs;
   // Made at the first file, beside the output folder: a run that fails before it writes touches
   // nothing (checkOutputFolder has made sure the nearest folder that exists is writable).
@@ -224,15 +225,10 @@ RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::
   std::vector<std::string> orbits;  // views whose frames and movie wait in staging
   int dicomObjects = 0;
   for (const study::PlannedView& v : session.views(renderer)) {
-    const WindowLevel shown = windowOrFullRange(v.settings.window, v.settings.level, lo, hi);
-    const ViewPainter paint{renderer,
-                            session,
-                            v,
-                            shown,
-                            study::viewCaption(v, shown),
-                            render::showsFunctional(v.settings, session.functional() != nullptr)};
+    const ViewPainter paint = viewPainter(renderer, session, v);
     render::RenderedFrame frame = paint(v.settings);
-    nlohmann::json record = viewRecord(v, session, renderer, shown, paint.overlayShown, frame, log);
+    nlohmann::json record =
+        viewRecord(v, session, renderer, paint.shown, paint.overlayShown, frame, log);
     std::vector<Image> orbitFrames;
     if (v.config.orbit > 0) {
       record["orbit"] = renderOrbit(paint, frame, staging, identity ? &orbitFrames : nullptr);

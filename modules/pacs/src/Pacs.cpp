@@ -168,6 +168,19 @@ std::vector<Match> findSeries(const Server& server, const std::string& studyUid,
   return series;
 }
 
+std::vector<Match> findStudySeries(const Server& server, const std::string& studyUid,
+                                   const Options& options) {
+  std::vector<Match> series = findSeries(server, studyUid, options);
+  if (series.empty()) {
+    // An unknown study and a study without series read alike: say which.
+    StudyQuery q;
+    q.studyUid = studyUid;
+    if (findStudies(server, q, options).empty())
+      throw InputError(server.text, "has no study " + studyUid);
+  }
+  return series;
+}
+
 std::vector<Match> findInstances(const Server& server, const std::string& studyUid,
                                  const std::string& seriesUid, const Options& options) {
   requireUid(studyUid, "--study");

@@ -13,6 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "PyErrors.h"
+#include "PyPacs.h"
+#include "PyRegistration.h"
+#include "PyStudy.h"
 #include "PyVolume.h"
 #include "mvw/core/Error.h"
 #include "mvw/pacs/Pacs.h"
@@ -124,18 +127,24 @@ py::object statsOf(const VolumePtr& volume, const std::optional<std::vector<doub
 PYBIND11_MODULE(mvw, m) {
   using namespace mvw::python;
   m.doc() = R"doc(mvw from Python: read DICOM, NIfTI and MetaImage volumes into NumPy with mvw's
-geometry and units, and measure them as `mvw stats` does (docs/python.md).
+geometry and units, measure them as `mvw stats` does, register them as `mvw register` does,
+render a study's views as `mvw render` does, and query a PACS (docs/python.md).
 
     import mvw
     ct = mvw.read("data/cranium/dicom")         # a DICOM folder, file, NIfTI, MetaImage
     ct.array                                    # NumPy view [i, j, k], in ct.unit (HU)
     ct.affine_ras                               # 4 x 4, voxel index -> RAS mm
     mvw.stats(ct, sphere=(0, 0, 0, 20))         # dict: the fields of `mvw stats --json`
+    reg = mvw.register(ct, pet)                 # reg.fixed_from_moving, reg.resample()
+    mvw.Study("study.json").render("bone")      # (H, W, 4) uint8: bone.png's pixels
 
 Errors: mvw.InputError (a ValueError naming the file), mvw.ServiceError (a ConnectionError
 naming the server), TypeError for an argument of the wrong type.)doc";
   bindErrors(m);
   bindVolume(m);
+  bindRegistration(m);
+  bindStudy(m);
+  bindPacs(m);
   m.def("read", &readPath, py::arg("path"), py::arg("series") = py::none(),
         py::arg("frame") = py::none(), py::arg("suv") = true, py::kw_only(),
         py::arg("volume") = py::none(), R"doc(

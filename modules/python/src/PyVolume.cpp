@@ -18,10 +18,10 @@ namespace mvw::python {
 
 namespace {
 
-using Matrix = py::array_t<double, py::array::c_style>;
-
 // LPS -> RAS: x and y change sign (nibabel's and NIfTI's world is RAS).
 constexpr std::array<double, 4> kLpsToRas{-1.0, -1.0, 1.0, 1.0};
+
+}  // namespace
 
 Matrix matrixOf(const glm::dmat4& m, bool ras) {
   Matrix out({4, 4});
@@ -32,6 +32,8 @@ Matrix matrixOf(const glm::dmat4& m, bool ras) {
                     0.0;  // + 0.0: no -0 where a zero changed sign
   return out;
 }
+
+namespace {
 
 glm::dmat4 glmOf(const py::handle& affine, bool ras, const char* name) {
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(affine);

@@ -77,6 +77,16 @@ std::vector<PlannedView> Session::views(std::pair<double, double> functionalRang
   return views;
 }
 
+std::vector<PlannedView> Session::views(std::vector<config::ViewConfig> views,
+                                        const ViewOverrides& overrides,
+                                        std::pair<double, double> functionalRange) const {
+  config::StudyConfig study = study_;
+  study.render.views = std::move(views);
+  std::vector<PlannedView> planned = planViews(study, overrides);
+  prepareViews(planned, study, anatomical(), functional(), functionalRange);
+  return planned;
+}
+
 void prepareViews(std::vector<PlannedView>& views, const config::StudyConfig& study,
                   const Volume& anatomical, const Volume* functional,
                   std::pair<double, double> functionalRange) {

@@ -248,6 +248,9 @@ struct StudyConfig {
 };
 
 StudyConfig loadStudyConfig(const std::filesystem::path& file);
+// The same from a JSON object already parsed (mvw.Study of a Python dict): `file` names it in
+// messages, and its folder is where relative paths start.
+StudyConfig studyConfigFromJson(const nlohmann::json& j, const std::filesystem::path& file);
 
 // What a 4D functional volume contributes when the study does not say: the mean over the
 // frames (a time series' frames are repeated measurements: the mean is the reference image

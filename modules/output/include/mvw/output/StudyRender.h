@@ -6,8 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "mvw/core/WindowLevel.h"
 #include "mvw/dicomout/DicomIdentity.h"
 #include "mvw/pacs/Pacs.h"
+#include "mvw/render/VolumeRenderer.h"
+#include "mvw/study/Session.h"
 #include "mvw/study/ViewPlan.h"
 
 namespace mvw::output {
@@ -41,5 +44,21 @@ struct RenderedStudy {
 // InputError before any render where it can be known then. Says each view rendered and each
 // note on `log`, what it wrote on `out`.
 RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::ostream& log);
+
+// A planned view's image as `mvw render` writes it: the render and, where the view annotates,
+// its annotations (ViewAnnotations.h). renderStudy paints its stills and orbit frames with it,
+// mvw.Study.render (modules/python) its images.
+struct ViewPainter {
+  render::VolumeRenderer& renderer;
+  const study::Session& session;
+  const study::PlannedView& view;
+  WindowLevel shown;    // the window the view shows (its own, else the full range)
+  std::string caption;  // study::viewCaption
+  bool overlayShown;    // it shows the functional volume
+  render::RenderedFrame operator()(const render::RenderSettings& settings) const;
+};
+// The painter of `view`, the session attached to `renderer` (study::Session::attach).
+ViewPainter viewPainter(render::VolumeRenderer& renderer, const study::Session& session,
+                        const study::PlannedView& view);
 
 }  // namespace mvw::output

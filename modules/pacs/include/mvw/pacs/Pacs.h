@@ -92,6 +92,10 @@ std::vector<Match> findStudies(const Server& server, const StudyQuery& query,
                                const Options& options);
 std::vector<Match> findSeries(const Server& server, const std::string& studyUid,
                               const Options& options);
+// findSeries, and where the server lists none, whether it has the study at all: InputError
+// naming the server when it has no such study (`mvw pacs find --study`, mvw.pacs.find).
+std::vector<Match> findStudySeries(const Server& server, const std::string& studyUid,
+                                   const Options& options);
 std::vector<Match> findInstances(const Server& server, const std::string& studyUid,
                                  const std::string& seriesUid, const Options& options);
 

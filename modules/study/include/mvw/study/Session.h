@@ -61,6 +61,12 @@ class Session {
   std::vector<PlannedView> views(const render::VolumeRenderer& renderer) const {
     return views(renderer.functionalRange());
   }
+  // Step 7 for other views over the same volumes (mvw.Study.render: a view given as a dict, a
+  // size): `views` in place of the config's, planned with `overrides` as the constructor plans
+  // the config's, then given their defaults. Throws InputError as steps 1 and 3 do.
+  std::vector<PlannedView> views(std::vector<config::ViewConfig> views,
+                                 const ViewOverrides& overrides,
+                                 std::pair<double, double> functionalRange) const;
 
  private:
   config::StudyConfig study_;

@@ -1,0 +1,92 @@
+#include "PyPacs.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "mvw/config/ServerList.h"
+#include "mvw/pacs/Pacs.h"
+
+namespace py = pybind11;
+
+namespace mvw::python {
+
+namespace {
+
+// The command line's connection options (--calling-aet, --connect-timeout, --read-timeout,
+// main's --cache), and no progress line: a notebook is no terminal.
+pacs::Options optionsOf(const std::string& callingAet, double connectTimeout, double readTimeout,
+                        const std::optional<std::filesystem::path>& cache) {
+  if (!pacs::isAeTitle(callingAet))
+    throw py::value_error("mvw.pacs: calling_aet is 1 to 16 characters, not '" + callingAet + "'");
+  if (!(connectTimeout > 0.0) || !(readTimeout > 0.0))
+    throw py::value_error("mvw.pacs: connect_timeout and read_timeout are seconds above 0");
+  pacs::Options options;
+  options.callingAet = callingAet;
+  options.connectTimeoutS = connectTimeout;
+  options.readTimeoutS = readTimeout;
+  options.progress = false;
+  if (cache) options.cacheDir = *cache;
+  return options;
+}
+
+std::vector<pacs::Match> find(const std::string& server, const std::string& patientId,
+                              const std::string& patientName, const std::string& studyDate,
+                              const std::string& modality, const std::string& accession,
+                              const std::optional<std::string>& study,
+                              const std::string& callingAet, double connectTimeout,
+                              double readTimeout) {
+  const pacs::Options options = optionsOf(callingAet, connectTimeout, readTimeout, std::nullopt);
+  py::gil_scoped_release released;
+  const pacs::Server resolved = config::resolveServer(server);
+  if (study) return pacs::findStudySeries(resolved, *study, options);
+  pacs::StudyQuery query;
+  query.patientId = patientId;
+  query.patientName = patientName;
+  query.studyDate = studyDate;
+  query.modality = modality;
+  query.accession = accession;
+  return pacs::findStudies(resolved, query, options);
+}
+
+std::filesystem::path get(const std::string& server, const std::string& study,
+                          const std::string& series,
+                          const std::optional<std::filesystem::path>& cache,
+                          const std::string& callingAet, double connectTimeout,
+                          double readTimeout) {
+  const pacs::Options options = optionsOf(callingAet, connectTimeout, readTimeout, cache);
+  py::gil_scoped_release released;
+  return pacs::cachedSeries(config::resolveServer(server), study, series, options);
+}
+
+}  // namespace
+
+void bindPacs(py::module_& m) {
+  py::module_ pacs = m.def_submodule("pacs", R"doc(
+Query and retrieve from a PACS, as `mvw pacs find` and a study config's PACS series do:
+DICOMweb (http(s)://host:port/ROOT) or DIMSE (dicom://AET@host:port), or a server's name saved
+in servers.json; credentials from MVW_PACS_USER / MVW_PACS_PASSWORD or MVW_PACS_CREDENTIALS.
+A server that cannot be reached, refuses or breaks off raises mvw.ServiceError naming it.)doc");
+  pacs.def("find", &find, py::arg("server"), py::kw_only(), py::arg("patient_id") = "",
+           py::arg("patient_name") = "", py::arg("study_date") = "", py::arg("modality") = "",
+           py::arg("accession") = "", py::arg("study") = py::none(), py::arg("calling_aet") = "MVW",
+           py::arg("connect_timeout") = 10.0, py::arg("read_timeout") = 60.0, R"doc(
+The studies matching the keys, or with study=UID that study's series: a list of dicts keyed by
+DICOM keyword (StudyInstanceUID, PatientID, SeriesInstanceUID, Modality, ...), as
+`mvw pacs find --json` prints them. patient_name takes the wildcards * and ?; study_date is
+YYYYMMDD or YYYYMMDD-YYYYMMDD. A study the server does not have raises mvw.InputError.)doc");
+  pacs.def("get", &get, py::arg("server"), py::arg("study"), py::arg("series"),
+           py::arg("cache") = py::none(), py::kw_only(), py::arg("calling_aet") = "MVW",
+           py::arg("connect_timeout") = 10.0, py::arg("read_timeout") = 60.0, R"doc(
+The folder of the verified cache that holds the series `series` (its UID, number, modality or
+part of its description) of study `study`, retrieved first unless it is there complete and
+verified, as a study config's PACS series is read: mvw.read(path) reads it. cache: the cache
+folder (None: $XDG_CACHE_HOME/mvw/dicom or ~/.cache/mvw/dicom, as the command line's --cache).
+Returns a pathlib.Path.)doc");
+}
+
+}  // namespace mvw::python
