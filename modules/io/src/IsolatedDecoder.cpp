@@ -82,7 +82,6 @@ std::string signalName(int signal) {
          (what ? std::string(", ") + what : "");
 }
 
-
 #if defined(__SANITIZE_ADDRESS__)
 constexpr std::uint64_t kSanitizerSlack = std::uint64_t(2) << 30;  // ASan's quarantine, redzones
 #elif defined(__has_feature)
