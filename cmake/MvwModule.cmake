@@ -67,4 +67,9 @@ function(mvw_module_link target)
   target_link_libraries(${target}
     PUBLIC ${module_DEPENDS} ${arg_PUBLIC}
     PRIVATE ${module_PRIVATE_DEPENDS} mvw::warnings mvw::sanitizers ${arg_PRIVATE})
+  # What links mvw_io runs its decoder helper (modules/io/CMakeLists.txt): building it builds
+  # the helper.
+  if(TARGET mvw_decoder AND ("mvw::io" IN_LIST module_DEPENDS OR "mvw::io" IN_LIST module_PRIVATE_DEPENDS))
+    add_dependencies(${target} mvw_decoder)
+  endif()
 endfunction()

@@ -81,3 +81,16 @@ def test_an_empty_axis_is_a_value_error_not_an_abort():
         mvw.Volume.from_array(np.zeros((0, 4, 4), np.int16), affine_lps=np.eye(4))
     with pytest.raises(ValueError, match="axis 3 of the array has 0 elements"):
         mvw.Volume.from_array(np.zeros((2, 2, 2, 0), np.float32), affine_lps=np.eye(4))
+
+
+def test_a_failing_decoder_is_an_input_error_and_the_session_goes_on(data, monkeypatch):
+    # Compressed pixel data is decoded by the child mvw-decoder; a child that fails (here
+    # /bin/false in its place: it ends before answering) is the file's error, not the
+    # interpreter's, and the next read decodes with the real helper.
+    jpeg = data / "pydicom" / "test_files" / "SC_rgb_jpeg_dcmtk.dcm"
+    expected = mvw.read(jpeg).array.copy()
+    monkeypatch.setenv("MVW_DECODER", "/bin/false")
+    with pytest.raises(mvw.InputError, match="the DICOM decoder failed on this file"):
+        mvw.read(jpeg)
+    monkeypatch.delenv("MVW_DECODER")
+    assert np.array_equal(mvw.read(jpeg).array, expected)

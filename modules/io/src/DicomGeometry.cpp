@@ -153,6 +153,11 @@ glm::dmat4 patientWorldFromIndex(vtkDICOMReader* reader, vtkImageData* image) {
   double origin[3], spacing[3];
   image->GetOrigin(origin);
   image->GetSpacing(spacing);
+  return patientWorldFromIndex(reader, origin, spacing);
+}
+
+glm::dmat4 patientWorldFromIndex(vtkDICOMReader* reader, const double origin[3],
+                                 const double spacing[3]) {
   glm::dmat4 patientFromData(1.0);
   if (vtkMatrix4x4* p = reader->GetPatientMatrix()) {
     for (int r = 0; r < 4; ++r)

@@ -32,6 +32,9 @@ std::optional<std::pair<glm::dvec3, glm::dvec3>> orientationAxes(const vtkDICOMV
 // The reader's patient matrix (LPS) times the data's origin and spacing: worldFromIndex of
 // the stack as vtk-dicom decoded it.
 glm::dmat4 patientWorldFromIndex(vtkDICOMReader* reader, vtkImageData* image);
+// The same from the data's origin and spacing (the reader's output information).
+glm::dmat4 patientWorldFromIndex(vtkDICOMReader* reader, const double origin[3],
+                                 const double spacing[3]);
 
 // The decoded stack with every slice where its header puts it: the frames of a single
 // (`singleFile`) multi-frame file without per-frame positions stacked along the slice normal,

@@ -19,6 +19,7 @@
 #include <vtkDICOMReader.h>
 #include <vtkDICOMValue.h>
 #include <vtkDataArray.h>
+#include <vtkDataObject.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkNew.h>
@@ -34,6 +35,7 @@
 #include "DicomUnits.h"
 #include "FileChecks.h"
 #include "Formats.h"
+#include "IsolatedDecoder.h"
 #include "VtkBridge.h"
 #include "VtkMessages.h"
 #include "mvw/core/Error.h"
@@ -86,9 +88,10 @@ void checkHeaderRead(const VtkMessageScope& messages, const fs::path& first) {
 
 // The reader's output as a volume in the patient frame, after its size is held to
 // options.maxBytes. `rescaleHere` (rescaleMayClip): the stored values were read and are
-// rescaled here, to float32.
-Volume readVoxels(vtkDICOMReader* reader, const VtkMessageScope& messages, const fs::path& first,
-                  const ReadOptions& options, bool& rescaleHere) {
+// rescaled here, to float32. Compressed pixel data is decoded by a child process
+// (IsolatedDecoder.h) unless options.isolateDecoder is off; `input` is what the user named.
+Volume readVoxels(vtkDICOMReader* reader, const VtkMessageScope& messages, const fs::path& input,
+                  const fs::path& first, const ReadOptions& options, bool& rescaleHere) {
   vtkInformation* info = reader->GetOutputInformation(0);
   int extent[6];
   info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
@@ -103,19 +106,31 @@ Volume readVoxels(vtkDICOMReader* reader, const VtkMessageScope& messages, const
                      options.maxBytes);
 
   if (rescaleHere) reader->AutoRescaleOff();  // the stored values; rescaled below, to float32
-  reader->Update();
-  if (!messages.firstError().empty() || reader->GetErrorCode() != 0) {
-    std::string why = messages.firstError();
-    if (why.empty()) why = "error code " + std::to_string(reader->GetErrorCode());
-    throw InputError(first, "cannot read the DICOM pixel data: " + why);
+  Volume volume;
+  glm::dmat4 worldFromIndex(1.0);
+  if (options.isolateDecoder && hasCompressedPixelData(reader->GetMetaData())) {
+    if (rescaleHere) reader->UpdateInformation();  // the stored values' type
+    volume = decodeInChild(reader, input, first);
+    double origin[3], spacing[3];
+    info->Get(vtkDataObject::ORIGIN(), origin);
+    info->Get(vtkDataObject::SPACING(), spacing);
+    worldFromIndex = patientWorldFromIndex(reader, origin, spacing);
+  } else {
+    reader->Update();
+    if (!messages.firstError().empty() || reader->GetErrorCode() != 0) {
+      std::string why = messages.firstError();
+      if (why.empty()) why = "error code " + std::to_string(reader->GetErrorCode());
+      throw InputError(first, "cannot read the DICOM pixel data: " + why);
+    }
+    vtkImageData* image = reader->GetOutput();
+    volume = volumeFromImage(image, first);
+    worldFromIndex = patientWorldFromIndex(reader, image);
   }
-  vtkImageData* image = reader->GetOutput();
-  Volume volume = volumeFromImage(image, first);
   if (rescaleHere)
     volume = rescaleSlices(volume, reader->GetMetaData(), reader->GetFileIndexArray(),
                            reader->GetFrameIndexArray(),
                            std::max(1, reader->GetMetaData()->Get(0, DC::SamplesPerPixel).AsInt()));
-  volume.setWorldFromIndex(patientWorldFromIndex(reader, image));
+  volume.setWorldFromIndex(worldFromIndex);
   return volume;
 }
 
@@ -145,7 +160,7 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   checkSliceGeometry(reader, files, path);
 
   bool rescaleHere = false;
-  Volume volume = readVoxels(reader, messages, first, options, rescaleHere);
+  Volume volume = readVoxels(reader, messages, path, first, options, rescaleHere);
   volume =
       arrangeSlices(std::move(volume), reader, files->GetNumberOfValues() == 1, options, first);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "HelperFiles.h"
 #include "movie/MoviePlugin.h"
 #include "mvw/core/Error.h"
 
@@ -18,24 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Where libmvw-movie.so is looked for, in order: $MVW_MOVIE_PLUGIN (the file itself), beside
-// the running executable's prefix (<bin>/../<libdir>/mvw: an installed or relocated mvw, and
-// this build tree's app/ and tests/), then the build tree and the install prefix this copy of
-// mvw_io was built for (a program embedding the installed libraries). $MVW_MOVIE_PLUGIN, when
-// set, is the only place tried.
+// Where libmvw-movie.so is looked for: HelperFiles.h, with $MVW_MOVIE_PLUGIN.
 std::vector<fs::path> pluginCandidates() {
-  std::vector<fs::path> candidates;
-  if (const char* env = std::getenv("MVW_MOVIE_PLUGIN"); env && *env) candidates.emplace_back(env);
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    candidates.push_back(exe.parent_path().parent_path() / MVW_INSTALL_LIBDIR / "mvw" /
-                         MVW_MOVIE_PLUGIN_FILE);
-    candidates.push_back(exe.parent_path().parent_path() / "lib" / "mvw" / MVW_MOVIE_PLUGIN_FILE);
-  }
-  candidates.emplace_back(MVW_MOVIE_PLUGIN_BUILD_PATH);
-  candidates.emplace_back(MVW_MOVIE_PLUGIN_INSTALL_PATH);
-  return candidates;
+  return detail::helperFileCandidates("MVW_MOVIE_PLUGIN", MVW_MOVIE_PLUGIN_FILE,
+                                      MVW_MOVIE_PLUGIN_BUILD_PATH, MVW_MOVIE_PLUGIN_INSTALL_PATH);
 }
 
 // The plugin, loaded once per process and never unloaded; throws mvw::InputError naming `file`

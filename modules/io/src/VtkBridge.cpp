@@ -71,17 +71,24 @@ int vtkTypeFromScalar(ScalarType type) {
 
 }  // namespace
 
+Volume volumeOfVtkType(glm::ivec3 dims, int components, int vtkType,
+                       const std::filesystem::path& file) {
+  ScalarType type;
+  if (!scalarTypeFromVtk(vtkType, &type))
+    throw InputError(file,
+                     std::string("unsupported voxel type ") + vtkImageScalarTypeNameMacro(vtkType));
+  if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0 || components <= 0)
+    throw InputError(file, "no voxel data could be read");
+  return Volume(dims, components, type, glm::dmat4(1.0));
+}
+
 Volume volumeFromImage(vtkImageData* image, const std::filesystem::path& file) {
   int dims[3];
   image->GetDimensions(dims);
-  ScalarType type;
-  if (!scalarTypeFromVtk(image->GetScalarType(), &type))
-    throw InputError(file, std::string("unsupported voxel type ") + image->GetScalarTypeAsString());
-  const int components = image->GetNumberOfScalarComponents();
-  if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0 || components <= 0 ||
-      image->GetPointData()->GetScalars() == nullptr)
+  if (image->GetPointData()->GetScalars() == nullptr)
     throw InputError(file, "no voxel data could be read");
-  Volume volume({dims[0], dims[1], dims[2]}, components, type, glm::dmat4(1.0));
+  Volume volume = volumeOfVtkType({dims[0], dims[1], dims[2]}, image->GetNumberOfScalarComponents(),
+                                  image->GetScalarType(), file);
   std::memcpy(volume.data(), image->GetScalarPointer(), volume.byteSize());
   return volume;
 }

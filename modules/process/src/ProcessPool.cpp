@@ -19,6 +19,7 @@
 
 #include "mvw/core/Error.h"
 #include "mvw/core/ExitCode.h"
+#include "mvw/process/Wire.h"
 
 namespace mvw::process {
 
@@ -50,60 +51,6 @@ void flushBeforeFork() {
 
 // ---------------------------------------------------------------------------------------
 // The socket between the pool and its launcher: the jobs of a run out, their results back.
-
-bool sendAll(int fd, const void* data, std::size_t size) {
-  const char* p = static_cast<const char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::send(fd, p, size, MSG_NOSIGNAL);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    p += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
-// False at the end of the stream (the other side is gone).
-bool receiveAll(int fd, void* data, std::size_t size) {
-  char* p = static_cast<char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::recv(fd, p, size, 0);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    p += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
-class Message {
- public:
-  template <class T>
-  void put(const T& value) {
-    const char* p = reinterpret_cast<const char*>(&value);
-    bytes_.insert(bytes_.end(), p, p + sizeof value);
-  }
-  void put(const std::string& text) {
-    put(static_cast<std::uint64_t>(text.size()));
-    bytes_.insert(bytes_.end(), text.begin(), text.end());
-  }
-  bool send(int fd) const { return sendAll(fd, bytes_.data(), bytes_.size()); }
-
- private:
-  std::vector<char> bytes_;
-};
-
-template <class T>
-bool receive(int fd, T& value) {
-  return receiveAll(fd, &value, sizeof value);
-}
-
-bool receive(int fd, std::string& text) {
-  std::uint64_t size = 0;
-  if (!receive(fd, size)) return false;
-  text.resize(size);
-  return size == 0 || receiveAll(fd, text.data(), size);
-}
 
 struct Batch {
   int parallel = 1;

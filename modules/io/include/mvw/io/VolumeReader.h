@@ -24,6 +24,11 @@ struct ReadOptions {
   // or gantry tilt, are resampled onto; 0: automatic (the smallest distance that occurs, not
   // below a quarter of the median, at most eight grid planes per acquired slice).
   double sliceSpacing = 0.0;
+  // Compressed DICOM pixel data (JPEG, JPEG-LS, JPEG 2000, RLE) is decoded by a child process,
+  // mvw-decoder, with memory and time limits: a decoder fault is the file's error, never this
+  // process's (docs/design.md#isolated-decoder). false decodes in this process: for the fuzz
+  // harness, whose findings must happen where libFuzzer sees them.
+  bool isolateDecoder = true;
 };
 
 std::size_t defaultMaxBytes();
