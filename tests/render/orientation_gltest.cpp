@@ -124,12 +124,12 @@ TEST(Raycast, CropBoxIsInPatientTermsForAnyStorageOrder) {
   ASSERT_EQ(orientationCode(slicesReversed.direction()), "LPI");
 
   auto ctx = createHeadlessContext({16, 16});
-  struct Case {
+  struct StorageCase {
     RenderMode mode;
     StandardView view;
   };
-  for (const Case c : {Case{RenderMode::Composite, StandardView::Superior},
-                       Case{RenderMode::Mip, StandardView::Anterior}}) {
+  for (const StorageCase c : {StorageCase{RenderMode::Composite, StandardView::Superior},
+                              StorageCase{RenderMode::Mip, StandardView::Anterior}}) {
     RenderSettings s;
     s.mode = c.mode;
     s.camera.view = c.view;

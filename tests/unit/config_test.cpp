@@ -316,8 +316,8 @@ TEST(StudyConfig, FullySetStudyLoadsBackFieldByField) {
   defaults.segmentation = VolumeSource{dir / "seg.nii"};
   const fs::path writtenDefaults = dir / "defaults.json";
   writeStudyConfig(defaults, writtenDefaults);
-  auto json = [](const fs::path& f) { return nlohmann::json::parse(std::ifstream(f)); };
-  const nlohmann::json full = json(written), def = json(writtenDefaults);
+  auto parse = [](const fs::path& f) { return nlohmann::json::parse(std::ifstream(f)); };
+  const nlohmann::json full = parse(written), def = parse(writtenDefaults);
   for (const auto& [key, value] : full.items()) {
     if (key == "render") continue;  // the views: config_fields_test, from the view table
     if (!value.is_object()) {

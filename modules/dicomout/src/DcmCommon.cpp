@@ -110,4 +110,10 @@ void save(DcmFileFormat& ff, const std::filesystem::path& file) {
   });
 }
 
+std::string text(DcmItem& item, const DcmTagKey& tag) {
+  OFString s;
+  if (item.findAndGetOFStringArray(tag, s).good()) return s.c_str();
+  return {};
+}
+
 }  // namespace mvw::dicomout::detail

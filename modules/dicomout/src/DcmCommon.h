@@ -21,6 +21,9 @@ void quietDcmtk();
 // Throws mvw::Error with `what` and DCMTK's reason when `c` is not good.
 void check(const OFCondition& c, const std::string& what);
 
+// The value of `tag` in `item` as text (all values, backslash-separated); empty when absent.
+std::string text(DcmItem& item, const DcmTagKey& tag);
+
 void putString(DcmItem& item, const DcmTagKey& tag, const std::string& value);
 
 // Patient, General Study, Patient Study (where the source gives weight and size), General

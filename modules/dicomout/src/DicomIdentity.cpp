@@ -14,6 +14,7 @@
 namespace mvw::dicomout {
 
 namespace fs = std::filesystem;
+using detail::text;
 
 namespace {
 
@@ -38,12 +39,6 @@ std::string decimal(std::array<std::uint32_t, 4> limbs) {
   if (digits.empty()) digits.assign(1, '0');
   std::reverse(digits.begin(), digits.end());
   return digits;
-}
-
-std::string text(DcmItem& item, const DcmTagKey& tag) {
-  OFString s;
-  if (item.findAndGetOFStringArray(tag, s).good()) return s.c_str();
-  return {};
 }
 
 }  // namespace

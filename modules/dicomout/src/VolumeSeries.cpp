@@ -67,12 +67,6 @@ const std::vector<DcmTagKey> kCommonTags = {
     DCM_PatientPosition, DCM_ProtocolName,    DCM_AcquisitionDate, DCM_AcquisitionTime,
     DCM_Manufacturer,    DCM_InstitutionName, DCM_StationName,     DCM_Laterality};
 
-std::string text(DcmItem& item, const DcmTagKey& tag) {
-  OFString s;
-  if (item.findAndGetOFStringArray(tag, s).good()) return s.c_str();
-  return {};
-}
-
 // Private tags and group lengths (retired), recursively: a source's private sequences and the
 // group lengths inside copied sequence items.
 void removePrivate(DcmItem& item) {

@@ -180,12 +180,6 @@ std::size_t writeBody(char* data, std::size_t size, std::size_t n, void* user) {
   return bytes;
 }
 
-std::string printable(const std::string& text, std::size_t max) {
-  std::string out;
-  for (char c : text.substr(0, max)) out += (c >= 32 && c < 127) ? c : ' ';
-  return out;
-}
-
 std::string reason(long status) {
   switch (status) {
     case 400:

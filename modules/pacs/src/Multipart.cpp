@@ -5,13 +5,13 @@
 
 namespace mvw::pacs::detail {
 
-namespace {
-
 std::string printable(std::string_view text, std::size_t max) {
   std::string out;
   for (char c : text.substr(0, max)) out += (c >= 32 && c < 127) ? c : ' ';
   return out;
 }
+
+namespace {
 
 std::string lower(std::string_view text) {
   std::string out(text);

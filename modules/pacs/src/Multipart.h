@@ -40,6 +40,11 @@ class MultipartSink {
 // or a boundary that is missing, unquoted badly, or not 1 .. 70 characters.
 std::string multipartBoundary(const std::string& contentType);
 
+// At most `max` bytes of what a server sent, each byte outside printable ASCII as a space: the
+// quote of a server's answer in a message (stricter than core's printable, which keeps UTF-8:
+// a server's bytes are not a name the user typed).
+std::string printable(std::string_view text, std::size_t max);
+
 class MultipartParser {
  public:
   MultipartParser(const std::string& boundary, MultipartSink& sink, MultipartLimits limits = {});

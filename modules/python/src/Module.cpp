@@ -100,9 +100,9 @@ py::object statsOf(const VolumePtr& volume, const std::optional<std::vector<doub
   const std::string kRoiChoice = "mvw.stats: " + study::roiChoice(names);
   // Without an ROI, as mvw stats: the one DICOM SEG beside the series the volume was read from.
   if (rois == 0) {
-    const auto labels = study::defaultLabels(*volume, {}, {});
-    if (!labels) throw py::value_error(kRoiChoice);
-    roi.labels = labels->path;
+    const auto found = study::defaultLabels(*volume, {}, {});
+    if (!found) throw py::value_error(kRoiChoice);
+    roi.labels = found->path;
   }
   if (roi.label != 0 && roi.labels.empty()) throw py::value_error("mvw.stats: label needs labels");
 
