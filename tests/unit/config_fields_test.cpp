@@ -45,6 +45,7 @@ ViewConfig fullySet() {
   v.glyphMapSize = 96;
   v.glyphMapDiameter = 20;
   v.glyphSeed = 3;
+  v.glyphOnSurface = true;
   v.functionalWindow = std::array<double, 2>{0.3, 1.5};
   v.functionalClasses = 4;
   v.window = 900;
@@ -110,6 +111,7 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.glyphMinSize, a.glyphMinSize);
   EXPECT_EQ(b.glyphDvrOpacity, a.glyphDvrOpacity);
   EXPECT_EQ(b.glyphDiameterMm, a.glyphDiameterMm);
+  EXPECT_EQ(b.glyphOnSurface, a.glyphOnSurface);
   EXPECT_EQ(b.glyphCount, a.glyphCount);
   EXPECT_EQ(b.glyphMapSize, a.glyphMapSize);
   EXPECT_EQ(b.glyphMapDiameter, a.glyphMapDiameter);
