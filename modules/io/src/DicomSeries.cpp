@@ -24,7 +24,6 @@
 #include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
 #include "DecoderGuard.h"
@@ -93,12 +92,7 @@ void checkHeaderRead(const VtkMessageScope& messages, const fs::path& first) {
 Volume readVoxels(vtkDICOMReader* reader, const VtkMessageScope& messages, const fs::path& input,
                   const fs::path& first, const ReadOptions& options, bool& rescaleHere) {
   vtkInformation* info = reader->GetOutputInformation(0);
-  int extent[6];
-  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  const glm::ivec3 dims{extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
-                        extent[5] - extent[4] + 1};
-  const int components = std::max(1, vtkImageData::GetNumberOfScalarComponents(info));
-  const int vtkType = vtkImageData::GetScalarType(info);
+  const auto [dims, components, vtkType] = voxelLayout(info);
   rescaleHere = rescaleMayClip(reader->GetMetaData(), reader->GetFileIndexArray(),
                                reader->GetFrameIndexArray(), vtkType);
   const int typeSize = rescaleHere ? 4 : vtkDataArray::GetDataTypeSize(vtkType);

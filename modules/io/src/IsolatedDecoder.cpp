@@ -18,7 +18,6 @@
 #include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
 #include "HelperFiles.h"
@@ -107,12 +106,7 @@ Volume decodeInChild(vtkDICOMReader* reader, const fs::path& input, const fs::pa
   const vtkIdType fileCount = files ? files->GetNumberOfValues() : 0;
   // What the headers read here say the voxels are: the child must send exactly this.
   vtkInformation* info = reader->GetOutputInformation(0);
-  int extent[6];
-  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  const glm::ivec3 dims{extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
-                        extent[5] - extent[4] + 1};
-  const int components = std::max(1, vtkImageData::GetNumberOfScalarComponents(info));
-  const int vtkType = vtkImageData::GetScalarType(info);
+  const auto [dims, components, vtkType] = voxelLayout(info);
   Volume volume = volumeOfVtkType(dims, components, vtkType, first);
 
   // Decoder faults are said of the file, or of the series when it has several files.

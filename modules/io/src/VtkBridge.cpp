@@ -2,11 +2,14 @@
 
 #include "mvw/io/VtkImageView.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkType.h>
 
 #include "mvw/core/Error.h"
@@ -70,6 +73,14 @@ int vtkTypeFromScalar(ScalarType type) {
 }
 
 }  // namespace
+
+VoxelLayout voxelLayout(vtkInformation* info) {
+  int extent[6];
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  return {{extent[1] - extent[0] + 1, extent[3] - extent[2] + 1, extent[5] - extent[4] + 1},
+          std::max(1, vtkImageData::GetNumberOfScalarComponents(info)),
+          vtkImageData::GetScalarType(info)};
+}
 
 Volume volumeOfVtkType(glm::ivec3 dims, int components, int vtkType,
                        const std::filesystem::path& file) {

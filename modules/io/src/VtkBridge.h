@@ -7,8 +7,18 @@
 #include "mvw/core/Volume.h"
 
 class vtkImageData;
+class vtkInformation;
 
 namespace mvw::io::detail {
+
+// What a reader's output information (after UpdateInformation) says its voxels are: the
+// dimensions of its whole extent, the components (at least 1) and the VTK scalar type.
+struct VoxelLayout {
+  glm::ivec3 dims;
+  int components;
+  int vtkType;
+};
+VoxelLayout voxelLayout(vtkInformation* info);
 
 // A volume of `dims`, `components` and the VTK scalar type `vtkType`, its voxels zero, for a
 // caller to fill. Throws InputError naming `file` for a type mvw does not handle or no voxels.
