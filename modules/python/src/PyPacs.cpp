@@ -66,6 +66,7 @@ std::filesystem::path get(const std::string& server, const std::string& study,
 }  // namespace
 
 void bindPacs(py::module_& m) {
+  const pacs::Options defaults;  // the command line's defaults: one home, pacs::Options
   py::module_ pacs = m.def_submodule("pacs", R"doc(
 Query and retrieve from a PACS, as `mvw pacs find` and a study config's PACS series do:
 DICOMweb (http(s)://host:port/ROOT) or DIMSE (dicom://AET@host:port), or a server's name saved
@@ -73,15 +74,19 @@ in servers.json; credentials from MVW_PACS_USER / MVW_PACS_PASSWORD or MVW_PACS_
 A server that cannot be reached, refuses or breaks off raises mvw.ServiceError naming it.)doc");
   pacs.def("find", &find, py::arg("server"), py::kw_only(), py::arg("patient_id") = "",
            py::arg("patient_name") = "", py::arg("study_date") = "", py::arg("modality") = "",
-           py::arg("accession") = "", py::arg("study") = py::none(), py::arg("calling_aet") = "MVW",
-           py::arg("connect_timeout") = 10.0, py::arg("read_timeout") = 60.0, R"doc(
+           py::arg("accession") = "", py::arg("study") = py::none(),
+           py::arg("calling_aet") = defaults.callingAet,
+           py::arg("connect_timeout") = defaults.connectTimeoutS,
+           py::arg("read_timeout") = defaults.readTimeoutS, R"doc(
 The studies matching the keys, or with study=UID that study's series: a list of dicts keyed by
 DICOM keyword (StudyInstanceUID, PatientID, SeriesInstanceUID, Modality, ...), as
 `mvw pacs find --json` prints them. patient_name takes the wildcards * and ?; study_date is
 YYYYMMDD or YYYYMMDD-YYYYMMDD. A study the server does not have raises mvw.InputError.)doc");
   pacs.def("get", &get, py::arg("server"), py::arg("study"), py::arg("series"),
-           py::arg("cache") = py::none(), py::kw_only(), py::arg("calling_aet") = "MVW",
-           py::arg("connect_timeout") = 10.0, py::arg("read_timeout") = 60.0, R"doc(
+           py::arg("cache") = py::none(), py::kw_only(),
+           py::arg("calling_aet") = defaults.callingAet,
+           py::arg("connect_timeout") = defaults.connectTimeoutS,
+           py::arg("read_timeout") = defaults.readTimeoutS, R"doc(
 The folder of the verified cache that holds the series `series` (its UID, number, modality or
 part of its description) of study `study`, retrieved first unless it is there complete and
 verified, as a study config's PACS series is read: mvw.read(path) reads it. cache: the cache
