@@ -11,8 +11,9 @@ namespace mvw::render {
 
 namespace {
 
-GLuint compile(GLenum stage, std::string_view path, const std::vector<std::string>& defines) {
-  const ResolvedShader src = resolveShader(path, defines);
+GLuint compile(GLenum stage, std::string_view path, const std::vector<std::string>& defines,
+               const std::vector<std::string>& includes = {}) {
+  const ResolvedShader src = resolveShader(path, defines, includes);
   const GLuint shader = glCreateShader(stage);
   const char* text = src.text.c_str();
   glShaderSource(shader, 1, &text, nullptr);
@@ -32,11 +33,12 @@ GLuint compile(GLenum stage, std::string_view path, const std::vector<std::strin
 }  // namespace
 
 ShaderProgram::ShaderProgram(std::string_view vertexPath, std::string_view fragmentPath,
-                             const std::vector<std::string>& defines) {
+                             const std::vector<std::string>& defines,
+                             const std::vector<std::string>& fragmentIncludes) {
   const GLuint vs = compile(GL_VERTEX_SHADER, vertexPath, defines);
   GLuint fs = 0;
   try {
-    fs = compile(GL_FRAGMENT_SHADER, fragmentPath, defines);
+    fs = compile(GL_FRAGMENT_SHADER, fragmentPath, defines, fragmentIncludes);
   } catch (...) {
     glDeleteShader(vs);
     throw;

@@ -44,11 +44,14 @@ std::string_view shaderFile(std::string_view path) {
   return it->second;
 }
 
-ResolvedShader resolveShader(std::string_view path, const std::vector<std::string>& defines) {
+ResolvedShader resolveShader(std::string_view path, const std::vector<std::string>& defines,
+                             const std::vector<std::string>& includes) {
   ResolvedShader out;
   out.text = "#version 450 core\n";
   for (const auto& d : defines) out.text += "#define " + d + "\n";
   std::set<std::string> seen;
+  for (const auto& include : includes)
+    if (!seen.count(include)) append(include, out, seen);
   append(path, out, seen);
   return out;
 }

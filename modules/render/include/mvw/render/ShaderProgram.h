@@ -1,5 +1,7 @@
 #pragma once
-// A linked GL program from two shaders/ files. Move-only: the GL object is deleted with it.
+// A linked GL program from two shaders/ files, the defines prepended to both and
+// `fragmentIncludes` pasted before the fragment shader's own text (resolveShader). Move-only:
+// the GL object is deleted with it.
 // Compile and link errors throw mvw::Error with locations mapped to shaders/<file>:<line>.
 #include <string>
 #include <string_view>
@@ -10,7 +12,8 @@ namespace mvw::render {
 class ShaderProgram {
  public:
   ShaderProgram(std::string_view vertexPath, std::string_view fragmentPath,
-                const std::vector<std::string>& defines = {});
+                const std::vector<std::string>& defines = {},
+                const std::vector<std::string>& fragmentIncludes = {});
   ~ShaderProgram();
   ShaderProgram(const ShaderProgram&) = delete;
   ShaderProgram& operator=(const ShaderProgram&) = delete;

@@ -14,8 +14,11 @@ struct ResolvedShader {
   std::vector<std::string> files;  // source-string number F of `#line L F` -> path
 };
 
+// `path` after the defines and `includes`: each of those pasted first, in order, as if the file
+// began with `#include` lines for them (what a program's variant chooses: RaycastPrograms).
 // Throws mvw::Error for an unknown file or include, naming the including file and line.
-ResolvedShader resolveShader(std::string_view path, const std::vector<std::string>& defines = {});
+ResolvedShader resolveShader(std::string_view path, const std::vector<std::string>& defines = {},
+                             const std::vector<std::string>& includes = {});
 
 // Rewrites "F:L(C)" (Mesa) and "F(L)" (NVIDIA) locations in a compiler log as
 // "shaders/<file>:L:C" / "shaders/<file>:L".
