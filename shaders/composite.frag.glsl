@@ -2,12 +2,10 @@
 // (2D), its opacity already corrected for the step on the CPU; front-to-back compositing
 // with associated (opacity-weighted) colours, early ray termination at 0.99, optional
 // Phong shading from the precomputed gradient.
+// With glyphs, common/glyphs.glsl and with the cut face raycast/cutface.glsl come first
+// (RaycastFeatures.cpp).
 #include "raycast/common.glsl"
 #include "common/functional.glsl"
-#include "common/glyphs.glsl"
-#if defined(MVW_CUT_FACE)
-#include "raycast/cutface.glsl"
-#endif
 
 uniform sampler2D uTransfer;   // RGBA over (value, |gradient| * uGradientScale); alpha per step
 uniform vec2 uTransferRange;   // (scale, offset): value * scale + offset is the table's column, 0..1
@@ -36,9 +34,9 @@ void setupHook(inout RayState s, Ray ray) {
 
 bool skipHook(RayState s, float t, vec3 tex) { return !blockVisible(tex); }
 
-// One sample: 0 the ray goes on, 1 it ends (early termination), 2 (only with glyphs = false)
-// this sample needs the glyph code: nothing is composited, and the ray goes on from this
-// sample in the full loop, which runs it (RAY_MIDDLE_LOOP below).
+// One sample: kRayGoOn, kRayEnd (early termination), or kRayHandOver (only with glyphs =
+// false): this sample needs the glyph code, nothing is composited, and the ray goes on from
+// this sample in the full loop, which runs it (RAY_MIDDLE_LOOP below).
 int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, const bool glyphs) {
   float u = clamp(value * uTransferRange.x + uTransferRange.y, 0.0, 1.0);
   vec4 g = vec4(0.0);
@@ -52,7 +50,7 @@ int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, c
 #else
   c = textureLod(uTransfer, vec2(u, 0.5), 0.0);
 #endif
-  if (c.a <= 0.0) return 0;
+  if (c.a <= 0.0) return kRayGoOn;
   float alpha = c.a;
   vec3 rgb = c.rgb;
 #if defined(MVW_FUSION)
@@ -79,7 +77,7 @@ int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, c
       const float glyphAlpha = uGlyphAlpha;
 #endif
       if (g.a > 0.0 && (1.0 - s.color.a) * max(alpha, glyphAlpha) > 1.0 / 255.0) {
-        if (!glyphs) return 2;
+        if (!glyphs) return kRayHandOver;
 #if defined(MVW_GLYPH_KINDS)
         if (uGlyphLayerMm > 0.0) {
           if (s.glyphStart < 0.0) s.glyphStart = t;
@@ -97,11 +95,11 @@ int compositeSample(inout RayState s, float t, vec3 tex, float value, Ray ray, c
   s.color.rgb += (1.0 - s.color.a) * alpha * rgb;
   s.color.a += (1.0 - s.color.a) * alpha;
   if (s.depth < 0.0 && s.color.a >= 0.5) s.depth = t;
-  return s.color.a < 0.99 ? 0 : 1;
+  return s.color.a < 0.99 ? kRayGoOn : kRayEnd;
 }
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
-  return compositeSample(s, t, tex, value, ray, true) == 0;
+  return compositeSample(s, t, tex, value, ray, true) == kRayGoOn;
 }
 
 #if defined(MVW_GLYPHS)
@@ -142,7 +140,7 @@ float leanSampleValue(vec3 tex) {
   return textureLod(uIntensity, storedTexture(tex), 0.0).r * uValueMapping.x + uValueMapping.y;
 }
 int leanSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
-  return value >= uVisibleValues.x && value <= uVisibleValues.y ? 2 : 0;
+  return value >= uVisibleValues.x && value <= uVisibleValues.y ? kRayHandOver : kRayGoOn;
 }
 
 #if defined(MVW_CUT_FACE)

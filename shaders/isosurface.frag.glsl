@@ -1,11 +1,9 @@
 // Isosurface ray casting: the first step that crosses uIsoValue is refined by bisection
 // (8 halvings: 1/256 of a step), then shaded with Phong from the gradient at the hit.
+// With glyphs, common/glyphs.glsl and with the cut face raycast/cutface.glsl come first
+// (RaycastFeatures.cpp).
 #include "raycast/common.glsl"
 #include "common/functional.glsl"
-#include "common/glyphs.glsl"
-#if defined(MVW_CUT_FACE)
-#include "raycast/cutface.glsl"
-#endif
 
 uniform float uIsoValue;
 uniform vec4 uIsoColor;

@@ -1,8 +1,11 @@
 // Volumetric normal glyphs (Seipel 2007): the shading normal of the anatomy is perturbed by
 // spherical normal glyphs from a periodic normal map, weighted by the functional attribute
 // beta at the sample, so bumps (or dimples) appear where the attribute is.
+// Pasted before composite's or isosurface's own file where glyphs are on (the glyphs feature,
+// RaycastFeatures.cpp).
 #ifndef MVW_COMMON_GLYPHS
 #define MVW_COMMON_GLYPHS
+#include "raycast/common.glsl"
 
 // The normal map in its compact form (modules/render GlyphMap): the map cut into cells, each
 // naming the one glyph that reaches into it (0: none), and the glyph centres. N_G and A are
@@ -23,12 +26,16 @@ uniform float uGlyphRadius;       // map voxels
 uniform float uGlyphMinSize;
 // Composite DVR: the least opacity per step of a sample a bump tilts (beyond the paper).
 uniform float uGlyphAlpha;
-// Method and convexity are compile-time variants, like every feature switch in the ray loop:
+// Method and shading are compile-time variants, like every feature switch in the ray loop:
 // MVW_GLYPH_SIMPLE: simple blending, eq. (1) (default: size and convexity control, eqs. 2-3);
-// MVW_GLYPH_CONCAVE: dimples; MVW_GLYPH_BOTH: dimples below the middle of the attribute's
-// range, bumps above (default: convex bumps); MVW_GLYPH_PAPER (the paper's placement): the
+// the shading (GlyphShading, one of them at most): MVW_GLYPH_CONCAVE: dimples; MVW_GLYPH_BOTH:
+// dimples below the middle of the attribute's range, bumps above; MVW_GLYPH_KINDS: each
+// glyph's kind (below); none: convex bumps. MVW_GLYPH_PAPER (the paper's placement): the
 // paper's own size rule and shading, so its figures can be reproduced (otherwise: the
 // extensions below, marked "beyond the paper").
+#if (defined(MVW_GLYPH_CONCAVE) && (defined(MVW_GLYPH_BOTH) || defined(MVW_GLYPH_KINDS))) || (defined(MVW_GLYPH_BOTH) && defined(MVW_GLYPH_KINDS))
+#error "one glyph shading at most: MVW_GLYPH_CONCAVE, MVW_GLYPH_BOTH or MVW_GLYPH_KINDS (GlyphShading)"
+#endif
 
 #if defined(MVW_GLYPH_KINDS)
 // Glyph kinds (issue 40, beyond the paper: "more complexly shaped volumetric normal glyphs"):

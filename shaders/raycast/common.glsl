@@ -43,6 +43,11 @@ uniform vec3 uBackground;
 
 float gRayEntry;  // where the current ray enters the box (mm), set by the template
 
+// What a lean or middle loop's sample hook tells the loop (raycast/template.glsl).
+const int kRayGoOn = 0;      // the next sample
+const int kRayEnd = 1;       // the ray ends here
+const int kRayHandOver = 2;  // this sample and the rest of the ray go to the next loop
+
 struct Ray {
   vec3 origin;  // world mm
   vec3 dir;     // unit, world

@@ -2,9 +2,12 @@
 // isosurface or a composite rendering, the opaque face shows the anatomy's grey value under
 // the window, as an MPR on that plane shows it, the functional colour fused over it and the
 // glyphs drawn on it, so a reader sees which tissue carries the attribute.
-// After raycast/common.glsl, common/functional.glsl and common/glyphs.glsl.
+// Pasted before composite's or isosurface's own file (RaycastFeatures.cpp), after
+// common/glyphs.glsl where glyphs are on.
 #ifndef MVW_RAYCAST_CUT_FACE
 #define MVW_RAYCAST_CUT_FACE
+#include "raycast/common.glsl"
+#include "common/functional.glsl"
 
 uniform vec2 uWindowLevel;  // window width, centre (the anatomy's unit): the MPR's
 

@@ -18,11 +18,12 @@
 //                          read less than sampleValue: one channel, not the packed texel)
 //   int leanSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray)
 //                          with RAY_LEAN_LOOP; the lean loop's sample, sampleHook without its
-//                          costly part: 0 go on, 1 end the ray, 2 hand this sample and the rest
-//                          of the ray over (to the middle loop, else the full loop)
+//                          costly part: kRayGoOn, kRayEnd (end the ray), kRayHandOver (hand
+//                          this sample and the rest of the ray over: to the middle loop, else
+//                          the full loop); the constants: raycast/common.glsl
 //   int middleSampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray)
-//                          with RAY_MIDDLE_LOOP; the middle loop's sample: 0 go on, 1 end the
-//                          ray, 2 hand this sample and the rest of the ray over to the full loop
+//                          with RAY_MIDDLE_LOOP; the middle loop's sample: kRayGoOn, kRayEnd,
+//                          kRayHandOver (this sample and the rest of the ray to the full loop)
 //   bool handBackHook(float value)  with RAY_HAND_BACK or RAY_MIDDLE_LOOP; true: a sample of
 //                          this value leaves the ray state as it is (sampleHook would do
 //                          nothing), so the loop passes it and hands the ray back to the lean loop
@@ -35,14 +36,14 @@
 // Without RAY_LEAN_LOOP the full loop alone runs the whole ray. With it, in rounds ([...]:
 // only with its macro):
 //
-//   setupHook -> [prepassHook] -> lean loop --2--> [middle loop] --2--> full loop
+//   setupHook -> [prepassHook] -> lean loop --H--> [middle loop] --H--> full loop
 //                                   ^                   |                  |
 //                                   |   handBackHook    |                  | handBackHook
 //                                   +-------------------+------------------+ [RAY_HAND_BACK]
 //   [entryHook] runs between prepassHook and the first loop; false: no loop runs.
-//   Any loop ends the ray (-> finishHook) at 1 or false from its hook, the box's exit or
-//   uMaxSteps; a sample handed over (2) is sampled again by the next loop, one handed back
-//   is passed, so every round advances by a sample at least.
+//   (H: kRayHandOver.) Any loop ends the ray (-> finishHook) at kRayEnd or false from its
+//   hook, the box's exit or uMaxSteps; a sample handed over is sampled again by the next loop,
+//   one handed back is passed, so every round advances by a sample at least.
 //
 // RayState is declared by the mode. fragDepth is the ray distance (mm) of the sample the
 // mode reports (first hit, maximum, ...), or -1 where the ray reports none.
@@ -54,11 +55,6 @@
 #endif
 #if defined(RAY_MIDDLE_LOOP) && !defined(RAY_LEAN_LOOP)
 #error "RAY_MIDDLE_LOOP runs between the lean loop and the full loop: define RAY_LEAN_LOOP (and leanSampleValue, leanSampleHook) too"
-#endif
-// The loop macros' names before they got their own prefix: a mode file still using them
-// would otherwise compile, and its rays run in the full loop alone (the same pixels, slower).
-#if defined(MVW_SPLIT_LOOP) || defined(MVW_HAND_BACK) || defined(MVW_MIDDLE_LOOP) || defined(MVW_PREPASS)
-#error "the loop macros are RAY_LEAN_LOOP, RAY_HAND_BACK, RAY_MIDDLE_LOOP and RAY_PREPASS (and plainSampleHook, plainSampleValue are leanSampleHook, leanSampleValue)"
 #endif
 void main() {
   Ray ray = makeRay();
@@ -103,8 +99,8 @@ void main() {
           continue;
         }
         int next = leanSampleHook(s, t, tex, leanSampleValue(tex), ray);
-        if (next == 1) rest = false;
-        if (next != 0) {
+        if (next == kRayEnd) rest = false;
+        if (next != kRayGoOn) {
           handed = true;
           break;
         }
@@ -113,7 +109,7 @@ void main() {
 #if defined(RAY_MIDDLE_LOOP)
       // The middle loop, from the sample the lean loop handed over: it hands the ray back to
       // the lean loop at the next sample that changes nothing, passing it, and on to the full
-      // loop at a sample middleSampleHook leaves to sampleHook (2), not passing it.
+      // loop at a sample middleSampleHook leaves to sampleHook (kRayHandOver), not passing it.
       bool toFull = false;
       for (; rest && i < uMaxSteps; ++i, n += 1.0) {
         float t = sampleDistance(t0, n);
@@ -133,9 +129,9 @@ void main() {
           break;
         }
         int next = middleSampleHook(s, t, tex, value, ray);
-        if (next == 1) rest = false;
-        if (next != 0) {
-          toFull = next == 2;
+        if (next == kRayEnd) rest = false;
+        if (next != kRayGoOn) {
+          toFull = next == kRayHandOver;
           break;
         }
       }

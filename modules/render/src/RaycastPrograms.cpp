@@ -7,11 +7,49 @@ namespace mvw::render::detail {
 
 namespace {
 
-bool has(RaycastVariants variants, RaycastVariant v) {
-  return variants.test(static_cast<std::size_t>(v));
+RaycastSource betaSource() { return {"fullscreen.vert.glsl", "beta.frag.glsl", {}, {}}; }
+
+// A projection's accumulator: what its samples make of the ray (raycast/accumulate-*.glsl).
+const char* accumulatorOf(RenderMode mode) {
+  switch (mode) {
+    case RenderMode::Mip:
+      return "raycast/accumulate-mip.glsl";
+    case RenderMode::MinIp:
+      return "raycast/accumulate-minip.glsl";
+    case RenderMode::Average:
+      return "raycast/accumulate-average.glsl";
+    default:
+      return nullptr;
+  }
 }
 
-RaycastSource betaSource() { return {"fullscreen.vert.glsl", "beta.frag.glsl", {}}; }
+const char* fragmentOf(RenderMode mode) {
+  switch (mode) {
+    case RenderMode::Composite:
+      return "composite.frag.glsl";
+    case RenderMode::Isosurface:
+      return "isosurface.frag.glsl";
+    case RenderMode::Mpr:
+      return "mpr.frag.glsl";
+    default:
+      return "projection.frag.glsl";  // the shell modes are drawn by detail::ShellRenderer
+  }
+}
+
+// How the layout (VolumeLayout) reaches the shaders (raycast/common.glsl).
+void addLayoutDefines(RenderMode mode, VolumeLayout layout, const RaycastVariants& v,
+                      std::vector<std::string>& defines) {
+  const bool shaded = hasCutFace(mode);  // composite and isosurface read the gradient
+  if (layout == VolumeLayout::FoldedOnTheFly) defines.push_back("MVW_FOLDED 1");
+  if (shaded && (layout == VolumeLayout::OnTheFly || layout == VolumeLayout::FoldedOnTheFly))
+    defines.push_back("MVW_GRADIENT_ON_THE_FLY 1");
+  if (shaded && layout == VolumeLayout::PackedGradient) {
+    defines.push_back("MVW_PACKED_GRADIENT 1");
+    // The packed texture is always trilinear: nearest-neighbour values keep the intensity's.
+    if (mode == RenderMode::Composite && !v.on(RaycastFeature::Nearest))
+      defines.push_back("MVW_PACKED_VALUE 1");
+  }
+}
 
 }  // namespace
 
@@ -29,91 +67,24 @@ bool RaycastPrograms::usesBoxProxy(RenderMode mode) { return mode != RenderMode:
 
 RaycastVariants RaycastPrograms::variants(const RenderSettings& s, bool fusion) {
   RaycastVariants v;
-  auto set = [&v](RaycastVariant which, bool on) { v.set(static_cast<std::size_t>(which), on); };
-  set(RaycastVariant::DepthCue, s.depthCue);
-  set(RaycastVariant::Nearest, !s.linear);
-  set(RaycastVariant::Tf2d, s.gradientOpacityHigh > 0.0);
-  set(RaycastVariant::Fusion, fusion);
-  set(RaycastVariant::FusionMean, s.fusionProjection == FusionProjection::Mean);
-  set(RaycastVariant::Glyphs, s.glyphs);
-  set(RaycastVariant::GlyphSimple, !s.glyphSizeControl);
-  // Chosen labels carry their own kind (bump or dimple) through the "both" shading.
-  // Other kinds (issue 40): the kinds' shading, each glyph's kind read at its foot.
-  const bool kinds = usesGlyphKinds(s);
-  const bool both = !kinds && (s.glyphConvexity == GlyphConvexity::Both || !s.glyphLabels.empty());
-  set(RaycastVariant::GlyphConcave, !kinds && !both && s.glyphConvexity == GlyphConvexity::Dimples);
-  set(RaycastVariant::GlyphBoth, both);
-  set(RaycastVariant::GlyphKinds, kinds);
-  set(RaycastVariant::GlyphPaper, s.glyphMap.placement == GlyphPlacement::Paper);
-  set(RaycastVariant::ImageColormap, s.imageColors.has_value());
-  set(RaycastVariant::CutFace, showsAnatomyOnCutFace(s));
+  for (const RaycastFeatureSpec& f : raycastFeatures()) v.set(f.id, f.valueFor(s, fusion));
   return v;
 }
 
-RaycastSource RaycastPrograms::source(RenderMode mode, VolumeLayout layout, RaycastVariants v) {
+RaycastSource RaycastPrograms::source(RenderMode mode, VolumeLayout layout,
+                                      const RaycastVariants& v) {
   RaycastSource out;
   out.vertex = usesBoxProxy(mode) ? "box.vert.glsl" : "fullscreen.vert.glsl";
-  out.fragment = "projection.frag.glsl";
-  std::vector<std::string>& defines = out.defines;
-  const bool shaded = mode == RenderMode::Composite || mode == RenderMode::Isosurface;
-  if (mode == RenderMode::Mip && has(v, RaycastVariant::DepthCue))
-    defines.push_back("MVW_DEPTH_CUE 1");
-  if (mode == RenderMode::Mip && has(v, RaycastVariant::Nearest))
-    defines.push_back("MVW_NEAREST 1");
-  if (mode == RenderMode::Composite) {
-    if (has(v, RaycastVariant::Tf2d)) defines.push_back("MVW_TF2D 1");
-    if (has(v, RaycastVariant::Fusion)) defines.push_back("MVW_FUSION 1");
+  out.fragment = fragmentOf(mode);
+  if (const char* accumulator = accumulatorOf(mode)) out.includes.push_back(accumulator);
+  for (const RaycastFeatureSpec& f : raycastFeatures()) {
+    if (!featureCounts(f, mode, v)) continue;
+    if (const char* define = f.defines[static_cast<std::size_t>(v[f.id])])
+      out.defines.push_back(define);
+    if (f.includes)
+      for (const char* include : f.includes(mode)) out.includes.push_back(include);
   }
-  // The fused projections: a program of their own, so that the plain ones keep their skipping.
-  if (isProjectionMode(mode) && has(v, RaycastVariant::Fusion)) {
-    defines.push_back("MVW_FUSION 1");
-    if (takesFusionMean(mode) && has(v, RaycastVariant::FusionMean))
-      defines.push_back("MVW_FUSION_MEAN 1");
-  }
-  if (shaded && has(v, RaycastVariant::Glyphs)) {
-    defines.push_back("MVW_GLYPHS 1");
-    if (has(v, RaycastVariant::GlyphSimple)) defines.push_back("MVW_GLYPH_SIMPLE 1");
-    if (has(v, RaycastVariant::GlyphConcave)) defines.push_back("MVW_GLYPH_CONCAVE 1");
-    if (has(v, RaycastVariant::GlyphBoth)) defines.push_back("MVW_GLYPH_BOTH 1");
-    if (has(v, RaycastVariant::GlyphPaper)) defines.push_back("MVW_GLYPH_PAPER 1");
-    if (has(v, RaycastVariant::GlyphKinds)) defines.push_back("MVW_GLYPH_KINDS 1");
-  }
-  if (shaded && has(v, RaycastVariant::CutFace)) defines.push_back("MVW_CUT_FACE 1");
-  switch (mode) {
-    case RenderMode::Composite:
-      out.fragment = "composite.frag.glsl";
-      break;
-    case RenderMode::Isosurface:
-      out.fragment = "isosurface.frag.glsl";
-      break;
-    case RenderMode::Mip:
-      defines.push_back("MVW_MIP 1");
-      break;
-    case RenderMode::MinIp:
-      defines.push_back("MVW_MINIP 1");
-      break;
-    case RenderMode::Average:
-      defines.push_back("MVW_AVERAGE 1");
-      break;
-    case RenderMode::Mpr:
-      out.fragment = "mpr.frag.glsl";
-      break;
-    case RenderMode::ShellMip:
-    case RenderMode::ShellSum:
-    case RenderMode::ShellLit:
-      break;  // drawn by detail::ShellRenderer
-  }
-  if (has(v, RaycastVariant::ImageColormap) && takesImageColors(mode))
-    defines.push_back("MVW_IMAGE_COLORMAP 1");
-  if (layout == VolumeLayout::FoldedOnTheFly) defines.push_back("MVW_FOLDED 1");
-  if (shaded && (layout == VolumeLayout::OnTheFly || layout == VolumeLayout::FoldedOnTheFly))
-    defines.push_back("MVW_GRADIENT_ON_THE_FLY 1");
-  if (shaded && layout == VolumeLayout::PackedGradient) {
-    defines.push_back("MVW_PACKED_GRADIENT 1");
-    // The packed texture is always trilinear: nearest-neighbour values keep the intensity's.
-    if (mode == RenderMode::Composite && !has(v, RaycastVariant::Nearest))
-      defines.push_back("MVW_PACKED_VALUE 1");
-  }
+  addLayoutDefines(mode, layout, v, out.defines);
   return out;
 }
 
@@ -122,17 +93,30 @@ std::vector<RaycastSource> RaycastPrograms::every() {
   std::set<std::vector<std::string>> seen;
   auto add = [&](RaycastSource s) {
     std::vector<std::string> key = s.defines;
+    key.insert(key.end(), s.includes.begin(), s.includes.end());
     key.push_back(s.vertex);
     key.push_back(s.fragment);
     if (seen.insert(std::move(key)).second) out.push_back(std::move(s));
   };
+  const auto& features = raycastFeatures();
   // Through the modes' names, so that a mode added later is among them too.
   for (const std::string& name : renderModeNames()) {
     const RenderMode mode = *parseRenderMode(name);
     if (isShellMode(mode)) continue;
-    for (int layout = 0; layout < static_cast<int>(VolumeLayout::Count); ++layout)
-      for (unsigned long long bits = 0; bits < (1ull << RaycastVariants().size()); ++bits)
-        add(source(mode, static_cast<VolumeLayout>(layout), RaycastVariants(bits)));
+    for (int layout = 0; layout < static_cast<int>(VolumeLayout::Count); ++layout) {
+      // Each feature's values in turn, the first feature counting fastest.
+      RaycastVariants v;
+      for (;;) {
+        add(source(mode, static_cast<VolumeLayout>(layout), v));
+        std::size_t f = 0;
+        for (; f < features.size(); ++f) {
+          const int next = v[features[f].id] + 1;
+          v.set(features[f].id, next < features[f].values ? next : 0);
+          if (next < features[f].values) break;
+        }
+        if (f == features.size()) break;  // every combination made
+      }
+    }
   }
   add(betaSource());
   return out;
@@ -141,8 +125,10 @@ std::vector<RaycastSource> RaycastPrograms::every() {
 const ShaderProgram& RaycastPrograms::cached(const std::string& key, const RaycastSource& source) {
   auto it = programs_.find(key);
   if (it == programs_.end())
-    it =
-        programs_.emplace(key, ShaderProgram(source.vertex, source.fragment, source.defines)).first;
+    it = programs_
+             .emplace(key, ShaderProgram(source.vertex, source.fragment, source.defines,
+                                         source.includes))
+             .first;
   return it->second;
 }
 

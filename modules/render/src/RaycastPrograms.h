@@ -1,12 +1,12 @@
 #pragma once
 // The ray caster's GL programs (internal to mvw_render), compiled on first use and kept: one
 // per mode and compile-time variant, so a feature that is off costs nothing in the ray loop.
-#include <bitset>
 #include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "RaycastFeatures.h"
 #include "mvw/render/ShaderProgram.h"
 #include "mvw/render/VolumeRenderer.h"
 
@@ -20,31 +20,13 @@ namespace mvw::render::detail {
 // which never has a gradient texture. Count: how many there are.
 enum class VolumeLayout { Gradient, PackedGradient, OnTheFly, FoldedOnTheFly, Count };
 
-// A program's compile-time variants (#define MVW_... 1 from C++), one bit each; a mode ignores
-// the ones it has no use for. Count: how many there are.
-enum class RaycastVariant {
-  DepthCue,    // MIP
-  Nearest,     // nearest-neighbour samples: MIP, and composite with the packed gradient
-  Tf2d,        // composite
-  Fusion,      // composite: the functional colour blended in; mip, minip, average: its projection
-  FusionMean,  // minip, average with Fusion: the functional projection is the mean, not the max
-  Glyphs,      // composite and isosurface, and the four below only with it
-  GlyphSimple,
-  GlyphConcave,
-  GlyphBoth,
-  GlyphPaper,
-  GlyphKinds,     // issue 40: glyph kinds other than bumps and dimples
-  ImageColormap,  // MIP, MinIP, average, MPR
-  CutFace,        // composite and isosurface: the anatomy on the crop's cut face (issue 36)
-  Count
-};
-using RaycastVariants = std::bitset<static_cast<std::size_t>(RaycastVariant::Count)>;
-
-// What a program is compiled from: shader paths under shaders/ and the defines ("NAME VALUE")
-// prepended to both, in that order.
+// What a program is compiled from: shader paths under shaders/, the defines ("NAME VALUE")
+// prepended to both, in that order, and the files pasted before the fragment shader's own
+// (the features' includes and a projection's accumulator, each with what it includes).
 struct RaycastSource {
   std::string vertex, fragment;
   std::vector<std::string> defines;
+  std::vector<std::string> includes;
 };
 
 class RaycastPrograms {
@@ -59,13 +41,15 @@ class RaycastPrograms {
   // vertices; otherwise (MPR) a triangle over the viewport, 3 vertices.
   static bool usesBoxProxy(RenderMode mode);
 
-  // The variants `settings` and `fusion` ask for, whatever the mode.
+  // The variants `settings` and `fusion` ask for, whatever the mode: each feature's valueFor
+  // (RaycastFeatures.h).
   static RaycastVariants variants(const RenderSettings& settings, bool fusion);
   // forMode's program, from the mode, the layout and the variants alone: no setting reaches
-  // a define but through a variant, so every() cannot miss one.
-  static RaycastSource source(RenderMode mode, VolumeLayout layout, RaycastVariants variants);
+  // a define but through a feature, so every() cannot miss one.
+  static RaycastSource source(RenderMode mode, VolumeLayout layout,
+                              const RaycastVariants& variants);
   // Every distinct program forMode and beta can make: each ray-cast mode under each layout
-  // with each combination of variants, each set of defines once.
+  // with each combination of the features' values, each program once.
   static std::vector<RaycastSource> every();
 
  private:
