@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "../unit/TestUtil.h"
+#include "../support/TestUtil.h"
 #include "RenderTestUtil.h"
 #include "mvw/io/VolumeReader.h"
 #include "mvw/render/VolumeRenderer.h"

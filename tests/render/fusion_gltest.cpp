@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "../unit/TestUtil.h"
+#include "../support/TestUtil.h"
 #include "RenderTestUtil.h"
 #include "Trilinear.h"
 #include "mvw/io/ColorPalettes.h"

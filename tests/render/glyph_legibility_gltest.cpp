@@ -18,7 +18,7 @@
 
 #include <gtest/gtest.h>
 
-#include "../unit/TestUtil.h"
+#include "../support/TestUtil.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/io/Png.h"
 #include "mvw/io/VolumeReader.h"

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "../unit/TestUtil.h"
+#include "../support/TestUtil.h"
 #include "RenderTestUtil.h"
 #include "Trilinear.h"
 #include "mvw/io/VolumeReader.h"

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
-#include "../unit/TestUtil.h"
+#include "../support/TestUtil.h"
 #include "mvw/io/ColorPalettes.h"
 #include "mvw/io/MovieWriter.h"
 #include "mvw/io/Png.h"

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "../unit/TestUtil.h"
+#include "../support/TestUtil.h"
 #include "RenderTestUtil.h"
 #include "mvw/core/Orientation.h"
 #include "mvw/io/Png.h"

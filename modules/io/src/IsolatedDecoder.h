@@ -34,7 +34,7 @@ int decoderMain(int argc, char** argv);
 
 // Answers one request on `fd` and ends the process: exit 0 after sending the voxels or the
 // reader's error, 4 when an allocation failed (its memory limit). `beforeDecoding`, run after
-// the request is read, is the tests' way in: a helper of their own (tests/unit/
+// the request is read, is the tests' way in: a helper of their own (tests/io/
 // decoder_faults_main.cpp) makes a real child crash, hang, blow its memory or lie there.
 [[noreturn]] void serveDecoder(int fd, const std::function<void(int fd)>& beforeDecoding = {});
 

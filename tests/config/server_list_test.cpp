@@ -25,7 +25,7 @@ std::filesystem::path write(const std::filesystem::path& dir, const std::string&
 }
 
 // readServerList's problem for `text`, with the file named; "" when it reads.
-std::string problemOf(const std::string& text) {
+std::string problemIn(const std::string& text) {
   const std::filesystem::path file = write(test::scratchDir(), "servers.json", text);
   try {
     readServerList(file);
@@ -51,23 +51,23 @@ TEST(ServerList, ReadsEachKeyAndTheDefaultCallingAet) {
 }
 
 TEST(ServerList, RefusesABadListNamingTheKey) {
-  EXPECT_NE(problemOf(R"({})").find("missing key 'servers'"), std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": 1})").find("'servers' must be an array"), std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"name": "a", "url": "http://h:1/x", "aet": "X"}]})")
+  EXPECT_NE(problemIn(R"({})").find("missing key 'servers'"), std::string::npos);
+  EXPECT_NE(problemIn(R"({"servers": 1})").find("'servers' must be an array"), std::string::npos);
+  EXPECT_NE(problemIn(R"({"servers": [{"name": "a", "url": "http://h:1/x", "aet": "X"}]})")
                 .find("unknown key 'servers[0].aet' (known here: calling_aet, name, url)"),
             std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"name": "a@b", "url": "http://h:1/x"}]})")
+  EXPECT_NE(problemIn(R"({"servers": [{"name": "a@b", "url": "http://h:1/x"}]})")
                 .find("'servers[0].name' must not hold"),
             std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"name": "a"}]})").find("'servers[0]' has no \"url\""),
+  EXPECT_NE(problemIn(R"({"servers": [{"name": "a"}]})").find("'servers[0]' has no \"url\""),
             std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"name": "a", "url": "ftp://h/x"}]})")
+  EXPECT_NE(problemIn(R"({"servers": [{"name": "a", "url": "ftp://h/x"}]})")
                 .find("'servers[0].url' is not a server"),
             std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"name": "a", "url": "http://h:1/x", "token": "t"}]})")
+  EXPECT_NE(problemIn(R"({"servers": [{"name": "a", "url": "http://h:1/x", "token": "t"}]})")
                 .find("'servers[0].token' is not accepted: credentials do not belong"),
             std::string::npos);
-  EXPECT_NE(problemOf(R"({"servers": [{"name": "a", "url": "http://h:1/x"},
+  EXPECT_NE(problemIn(R"({"servers": [{"name": "a", "url": "http://h:1/x"},
                                       {"name": "a", "url": "http://h:2/x"}]})")
                 .find("'servers[1]' repeats the name 'a'"),
             std::string::npos);

@@ -2,7 +2,7 @@
 // the child's voxels are this process's, byte for byte; native pixel data needs no child; and a
 // real child that crashes, hangs, blows its memory limit, lies about its size or writes past a
 // heap buffer inside GDCM is the file's error (InputError), after which this process reads on.
-// The failing children are tests/unit/decoder_faults_main.cpp, named by MVW_DECODER.
+// The failing children are tests/io/decoder_faults_main.cpp, named by MVW_DECODER.
 #include <gtest/gtest.h>
 
 #include <chrono>
