@@ -149,4 +149,22 @@ TEST(IsolatedDecoder, AHeapOverflowInGdcmStaysInTheChild) {
 #endif
 }
 
+// tests/fuzz/regressions' JPEG whose frame GDCM cannot decode ("Impossible length": longer than
+// 256 x 256 x 3 allows). vtk-dicom ignores GDCM's answer and hands back the buffer GDCM never
+// wrote (valgrind: uses of uninitialised values), so the file used to load as an image of
+// uninitialised bytes; mvw's reader checks the answer (CheckedDicomReader.h). The file's error,
+// with GDCM's reason, in the child and in this process alike.
+TEST(IsolatedDecoder, AFrameGdcmCannotDecodeIsTheFilesError) {
+  const fs::path file =
+      fs::path(MVW_SOURCE_DIR) / "tests/fuzz/regressions/bad-dicom-jpeg-gdcm-decode-fails.dcm";
+  const std::string reason = "could not decode the compressed pixel data";
+  EXPECT_NE(errorReading(file).find(reason), std::string::npos) << errorReading(file);
+  try {
+    (void)readInThisProcess(file);
+    ADD_FAILURE() << file << " read in this process without an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace

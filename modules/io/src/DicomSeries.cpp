@@ -26,6 +26,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 
+#include "CheckedDicomReader.h"
 #include "DecoderGuard.h"
 #include "DeflatedDicom.h"
 #include "DicomFile.h"
@@ -133,7 +134,7 @@ Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& 
   fs::path first(files->GetValue(0).c_str());
   DecoderGuard guard(path);
   VtkMessageScope messages;
-  vtkNew<vtkDICOMReader> reader;
+  vtkNew<CheckedDicomReader> reader;
   reader->SetFileNames(files);
   reader->SetMemoryRowOrderToFileNative();  // voxel (0,0) is the first pixel of the file
   reader->TimeAsVectorOn();                 // time frames become components, as for NIfTI

@@ -20,6 +20,7 @@
 #include <vtkPointData.h>
 #include <vtkStringArray.h>
 
+#include "CheckedDicomReader.h"
 #include "HelperFiles.h"
 #include "VtkBridge.h"
 #include "VtkMessages.h"
@@ -253,7 +254,7 @@ void serveDecoder(int fd, const std::function<void(int fd)>& beforeDecoding) {
     }
     if (beforeDecoding) beforeDecoding(fd);
     VtkMessageScope messages;
-    vtkNew<vtkDICOMReader> reader;
+    vtkNew<CheckedDicomReader> reader;
     // As DicomSeries.cpp's readSeries configures its reader.
     reader->SetFileNames(files);
     reader->SetMemoryRowOrderToFileNative();
