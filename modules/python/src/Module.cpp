@@ -137,6 +137,7 @@ render a study's views as `mvw render` does, and query a PACS (docs/python.md).
     mvw.stats(ct, sphere=(0, 0, 0, 20))         # dict: the fields of `mvw stats --json`
     reg = mvw.register(ct, pet)                 # reg.fixed_from_moving, reg.resample()
     mvw.Study("study.json").render("bone")      # (H, W, 4) uint8: bone.png's pixels
+    mvw.pacs.get(server, study, series, read=True)  # a PACS series, as a study reads it
 
 Errors: mvw.InputError (a ValueError naming the file), mvw.ServiceError (a ConnectionError
 naming the server), TypeError for an argument of the wrong type.)doc";
