@@ -58,8 +58,6 @@ void runStats(StatsOptions opt) {
   const int rois = (!opt.roi.sphere.empty()) + (!opt.roi.box.empty()) + (!opt.roi.labels.empty());
   if (const auto problem = study::roiOptionsProblem(opt.roi))
     throw CLI::ValidationError(problem->option, problem->problem);
-  if (opt.roi.label != 0 && opt.roi.labels.empty() && rois != 0)
-    throw CLI::ValidationError("--label", "needs --labels FILE");
   checkDicomOutput(opt.dicom, !opt.seg.empty(), {});
   if (!opt.seg.empty()) {
     std::error_code ec;
@@ -85,8 +83,6 @@ void runStats(StatsOptions opt) {
     opt.roi.labels = labels->path;
     std::cerr << "mvw stats: note: " << labels->note << "\n";
   }
-  if (opt.roi.label != 0 && opt.roi.labels.empty())
-    throw CLI::ValidationError("--label", "needs --labels FILE");
 
   const study::RoiReport report = study::roiReport(
       volume, study::roiRequestOf(opt.roi), source,

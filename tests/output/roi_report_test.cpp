@@ -108,6 +108,18 @@ TEST(RoiReport, OptionsProblemsAreSaidInTheCallersNames) {
     EXPECT_EQ(p->option, "--threshold-fraction");
     EXPECT_EQ(p->problem, "must lie in (0, 1], e.g. 0.41");
   }
+  // A label is of labels: given with a sphere or a box, a problem; with no ROI at all, the
+  // default label map's (defaultLabels), so none yet.
+  o.thresholdFraction = std::numeric_limits<double>::quiet_NaN();
+  o.label = 2;
+  p = roiOptionsProblem(o);
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->option, "--label");
+  EXPECT_EQ(p->problem, "needs --labels FILE");
+  o.sphere.clear();
+  EXPECT_FALSE(roiOptionsProblem(o));
+  o.labels = "seg.dcm";
+  EXPECT_FALSE(roiOptionsProblem(o));
 }
 
 TEST(RoiReport, BoxWithAThresholdAsText) {

@@ -38,3 +38,40 @@ def mvw_cli():
         return json.loads(done.stdout)
 
     return run
+
+
+@pytest.fixture(scope="session")
+def releases_gil():
+    """Runs `call` on a thread of its own while this thread wakes every millisecond, and fails
+    unless this thread ran throughout: its longest wait between two wakings is under a quarter
+    of the call's time. A call that holds the GIL keeps this thread asleep until it returns, its
+    longest wait then the whole call. Returns the call's result, or raises its exception."""
+    import threading
+    import time
+
+    def check(call, what):
+        result, error = [], []
+
+        def run():
+            try:
+                result.append(call())
+            except BaseException as e:  # noqa: B036  reraised below, on the caller's thread
+                error.append(e)
+
+        thread = threading.Thread(target=run)
+        start = time.perf_counter()
+        thread.start()
+        last, longest = start, 0.0
+        while thread.is_alive():
+            time.sleep(0.001)  # sleeps without the GIL, wakes only when it can take it again
+            now = time.perf_counter()
+            longest, last = max(longest, now - last), now
+        took = time.perf_counter() - start
+        assert took > 0.05, f"{what}: {took:.3f} s, too quick to tell whether it holds the GIL"
+        assert longest < 0.25 * took, (f"{what} held the GIL: the other thread waited "
+                                       f"{longest:.3f} s of its {took:.3f} s")
+        if error:
+            raise error[0]
+        return result[0]
+
+    return check

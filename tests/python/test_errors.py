@@ -1,6 +1,10 @@
 """Every error type: mvw.InputError (a ValueError naming the file), mvw.ServiceError (a
 ConnectionError naming the server), TypeError for a bad argument type; nothing aborts."""
+import os
+import shutil
 import socket
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -94,3 +98,25 @@ def test_a_failing_decoder_is_an_input_error_and_the_session_goes_on(data, monke
         mvw.read(jpeg)
     monkeypatch.delenv("MVW_DECODER")
     assert np.array_equal(mvw.read(jpeg).array, expected)
+
+
+def test_an_installed_module_finds_the_decoder_of_its_own_prefix(data, tmp_path):
+    # The module installed into another prefix (<prefix>/lib/python3.11/dist-packages) runs the
+    # helper of that prefix (<prefix>/lib/mvw/mvw-decoder) before this build tree's: here a
+    # stand-in that leaves a mark and fails, so the read is the file's InputError.
+    site = tmp_path / "prefix" / "lib" / "python3.11" / "dist-packages"
+    site.mkdir(parents=True)
+    shutil.copy(mvw.__file__, site)
+    helper = tmp_path / "prefix" / "lib" / "mvw" / "mvw-decoder"
+    helper.parent.mkdir()
+    mark = tmp_path / "ran"
+    helper.write_text(f"#!/bin/sh\ntouch '{mark}'\nexit 1\n")
+    helper.chmod(0o755)
+    jpeg = data / "pydicom" / "test_files" / "SC_rgb_jpeg_dcmtk.dcm"
+    env = {k: v for k, v in os.environ.items() if k != "MVW_DECODER"}
+    done = subprocess.run(
+        [sys.executable, "-c", f"import mvw; assert mvw.__file__.startswith({str(site)!r}); "
+                               f"mvw.read({str(jpeg)!r})"],
+        env=dict(env, PYTHONPATH=str(site)), capture_output=True, text=True)
+    assert "mvw.InputError" in done.stderr and "the DICOM decoder failed" in done.stderr, done.stderr
+    assert mark.exists()

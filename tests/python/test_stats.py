@@ -51,3 +51,5 @@ def test_roi_choice_is_checked(data):
         mvw.stats(volume, sphere=(0, 0, 5))
     with pytest.raises(ValueError, match="threshold_fraction"):
         mvw.stats(volume, sphere=(0, 0, 0, 5), threshold_fraction=1.5)
+    with pytest.raises(ValueError, match="^mvw.stats: label needs labels$"):
+        mvw.stats(volume, sphere=(0, 0, 0, 5), label=2)

@@ -15,7 +15,7 @@ class GlThread {
   GlThread() : thread_([this] { run(); }) { thread_.detach(); }
 
   void call(const std::function<void()>& work) {
-    Job job{&work};
+    Job job{&work, {}, false};
     {
       std::lock_guard lock(mutex_);
       queue_.push_back(&job);

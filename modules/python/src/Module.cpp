@@ -91,11 +91,13 @@ py::object statsOf(const VolumePtr& volume, const std::optional<std::vector<doub
   }
   if (thresholdFraction) roi.thresholdFraction = *thresholdFraction;
   // The command line's checks (mvw stats), said with the arguments' Python names.
-  const study::RoiOptionNames names{"sphere", "box", "labels", "threshold", "threshold_fraction"};
-  if (const auto problem = study::roiOptionsProblem(roi, names))
-    throw py::value_error(
-        "mvw.stats: " + (problem->problem.rfind("must", 0) == 0 ? problem->option + " " : "") +
-        problem->problem);
+  const study::RoiOptionNames names{"sphere", "box", "labels", "threshold", "threshold_fraction",
+                                    "label"};
+  if (const auto problem = study::roiOptionsProblem(roi, names)) {
+    const bool named =
+        problem->problem.rfind("must", 0) == 0 || problem->problem.rfind("needs", 0) == 0;
+    throw py::value_error("mvw.stats: " + (named ? problem->option + " " : "") + problem->problem);
+  }
   const int rois = !roi.sphere.empty() + !roi.box.empty() + !roi.labels.empty();
   const std::string kRoiChoice = "mvw.stats: " + study::roiChoice(names);
   // Without an ROI, as mvw stats: the one DICOM SEG beside the series the volume was read from.
@@ -104,7 +106,6 @@ py::object statsOf(const VolumePtr& volume, const std::optional<std::vector<doub
     if (!found) throw py::value_error(kRoiChoice);
     roi.labels = found->path;
   }
-  if (roi.label != 0 && roi.labels.empty()) throw py::value_error("mvw.stats: label needs labels");
 
   const py::object warn = py::module_::import("warnings").attr("warn");
   const std::filesystem::path source = volume->metadata().sourcePath.empty()
@@ -137,6 +138,7 @@ render a study's views as `mvw render` does, and query a PACS (docs/python.md).
     mvw.stats(ct, sphere=(0, 0, 0, 20))         # dict: the fields of `mvw stats --json`
     reg = mvw.register(ct, pet)                 # reg.fixed_from_moving, reg.resample()
     mvw.Study("study.json").render("bone")      # (H, W, 4) uint8: bone.png's pixels
+    mvw.pacs.get(server, study, series, read=True)  # a PACS series, as a study reads it
 
 Errors: mvw.InputError (a ValueError naming the file), mvw.ServiceError (a ConnectionError
 naming the server), TypeError for an argument of the wrong type.)doc";

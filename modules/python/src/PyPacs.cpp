@@ -8,8 +8,12 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "PyVolume.h"
 #include "mvw/config/ServerList.h"
+#include "mvw/config/StudyConfig.h"
+#include "mvw/io/VolumeReader.h"
 #include "mvw/pacs/Pacs.h"
+#include "mvw/study/StudyLoader.h"
 
 namespace py = pybind11;
 
@@ -53,14 +57,36 @@ std::vector<pacs::Match> find(const std::string& server, const std::string& pati
   return pacs::findStudies(resolved, query, options);
 }
 
-std::filesystem::path get(const std::string& server, const std::string& study,
-                          const std::string& series,
-                          const std::optional<std::filesystem::path>& cache,
-                          const std::string& callingAet, double connectTimeout,
-                          double readTimeout) {
+// A study config's PACS series ("pacs", "study", "series"): its verified cache folder
+// (study::localPath), or with `read` the volume read from it as a study reads it
+// (study::readLocal: a cached file that fails to read moves the series into the quarantine).
+py::object get(const std::string& server, const std::string& study, const std::string& series,
+               const std::optional<std::filesystem::path>& cache, bool read, bool suv,
+               const std::string& callingAet, double connectTimeout, double readTimeout) {
   const pacs::Options options = optionsOf(callingAet, connectTimeout, readTimeout, cache);
-  py::gil_scoped_release released;
-  return pacs::cachedSeries(config::resolveServer(server), study, series, options);
+  config::VolumeSource source;
+  source.pacs = server;
+  source.study = study;
+  source.series = series;
+  if (!read) {
+    std::filesystem::path folder;
+    {
+      py::gil_scoped_release released;
+      folder = study::localPath(source, options);
+    }
+    return py::cast(folder);
+  }
+  io::ReadOptions readOptions;
+  readOptions.suv = suv;
+  VolumePtr volume;
+  {
+    py::gil_scoped_release released;
+    volume = std::make_shared<Volume>(
+        study::readLocal(source, options, [&readOptions](const std::filesystem::path& folder) {
+          return io::readVolume(folder, readOptions);
+        }));
+  }
+  return py::cast(volume);
 }
 
 }  // namespace
@@ -83,15 +109,21 @@ DICOM keyword (StudyInstanceUID, PatientID, SeriesInstanceUID, Modality, ...), a
 `mvw pacs find --json` prints them. patient_name takes the wildcards * and ?; study_date is
 YYYYMMDD or YYYYMMDD-YYYYMMDD. A study the server does not have raises mvw.InputError.)doc");
   pacs.def("get", &get, py::arg("server"), py::arg("study"), py::arg("series"),
-           py::arg("cache") = py::none(), py::kw_only(),
-           py::arg("calling_aet") = defaults.callingAet,
+           py::arg("cache") = py::none(), py::kw_only(), py::arg("read") = false,
+           py::arg("suv") = true, py::arg("calling_aet") = defaults.callingAet,
            py::arg("connect_timeout") = defaults.connectTimeoutS,
            py::arg("read_timeout") = defaults.readTimeoutS, R"doc(
-The folder of the verified cache that holds the series `series` (its UID, number, modality or
-part of its description) of study `study`, retrieved first unless it is there complete and
-verified, as a study config's PACS series is read: mvw.read(path) reads it. cache: the cache
-folder (None: $XDG_CACHE_HOME/mvw/dicom or ~/.cache/mvw/dicom, as the command line's --cache).
-Returns a pathlib.Path.)doc");
+The series `series` (its UID, number, modality or part of its description) of study `study`,
+from the verified cache, retrieved first unless it is there complete and verified: as a study
+config's PACS series ("pacs", "study", "series") is read.
+
+Returns the cache folder that holds the series, a pathlib.Path (mvw.read(path) reads it), or
+with read=True the series read into an mvw.Volume (suv as mvw.read's). With read=True a cached
+file that fails to read moves the series into the cache's quarantine, so the next call
+retrieves it again; the mvw.InputError names the file where it now lies.
+
+cache: the cache folder (None: $XDG_CACHE_HOME/mvw/dicom or ~/.cache/mvw/dicom, as the command
+line's --cache). The interpreter's other threads run while it retrieves and reads.)doc");
 }
 
 }  // namespace mvw::python

@@ -51,13 +51,13 @@ struct RoiOptions {
 struct RoiOptionNames {
   std::string sphere = "--sphere X Y Z R", box = "--box X0 Y0 Z0 X1 Y1 Z1",
               labels = "--labels FILE", threshold = "--threshold",
-              thresholdFraction = "--threshold-fraction";
+              thresholdFraction = "--threshold-fraction", label = "--label";
 };
 
 // What is wrong with ROI options as given, the one home of these rules for `mvw stats` and
 // mvw.stats: at most one of sphere, box and labels; a threshold or a fraction of the maximum, not
-// both; a fraction in (0, 1]. The option it concerns ("ROI" for the choice) and the problem, in
-// `names`; nothing when they hold.
+// both; a fraction in (0, 1]; a label only of labels (given, or none: the default label map). The
+// option it concerns ("ROI" for the choice) and the problem, in `names`; nothing when they hold.
 struct RoiOptionProblem {
   std::string option, problem;
 };
