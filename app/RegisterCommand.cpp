@@ -104,11 +104,11 @@ void addRegisterCommand(CLI::App& app, const pacs::Options& pacs) {
       ->check(nonEmpty());
   cmd->add_option("--interpolation", opt->interpolation,
                   "Resampling: auto (nearest for label maps, else linear), linear, nearest, cubic")
-      ->check(CLI::IsMember({"auto", "linear", "nearest", "cubic"}));
+      ->check(CLI::IsMember(output::interpolationNames()));
   cmd->add_option("--init", opt->initialisation,
                   "Initialisation: auto, world (headers as they are), centre (bounding boxes), "
                   "mass (centroids)")
-      ->check(CLI::IsMember({"auto", "world", "centre", "mass"}));
+      ->check(CLI::IsMember(output::initialisationNames()));
   cmd->add_option("--seed", opt->seed, "Seed of the sample points (same seed, same result)")
       ->check(nonNegative());  // CLI11 would wrap -3 into an unsigned seed
   cmd->add_flag(

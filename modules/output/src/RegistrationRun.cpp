@@ -34,15 +34,32 @@ using resampling::RegistrationResult;
 // T1 / fMRI pair at 0.22.
 constexpr double kWeakMutualInformation = 0.01;
 
-const std::map<std::string, Interpolation> kInterpolations = {{"auto", Interpolation::Automatic},
-                                                              {"linear", Interpolation::Linear},
-                                                              {"nearest", Interpolation::Nearest},
-                                                              {"cubic", Interpolation::Cubic}};
-const std::map<std::string, Initialisation> kInitialisations = {
+// In the order the help and the messages list them.
+const std::vector<std::pair<std::string, Interpolation>> kInterpolations = {
+    {"auto", Interpolation::Automatic},
+    {"linear", Interpolation::Linear},
+    {"nearest", Interpolation::Nearest},
+    {"cubic", Interpolation::Cubic}};
+const std::vector<std::pair<std::string, Initialisation>> kInitialisations = {
     {"auto", Initialisation::Automatic},
     {"world", Initialisation::WorldCoordinates},
     {"centre", Initialisation::GeometricCentre},
     {"mass", Initialisation::CentreOfMass}};
+
+template <typename T>
+std::optional<T> lookUp(const std::vector<std::pair<std::string, T>>& table,
+                        const std::string& name) {
+  for (const auto& [k, v] : table)
+    if (k == name) return v;
+  return std::nullopt;
+}
+
+template <typename T>
+std::vector<std::string> namesOf(const std::vector<std::pair<std::string, T>>& table) {
+  std::vector<std::string> out;
+  for (const auto& entry : table) out.push_back(entry.first);
+  return out;
+}
 
 nlohmann::json rows(const glm::dmat4& m) {
   auto j = nlohmann::json::array();
@@ -166,9 +183,7 @@ void sayWritten(const RegistrationRequest& request, const RegistrationInputs& in
 }  // namespace
 
 std::optional<Interpolation> parseInterpolation(const std::string& name) {
-  const auto it = kInterpolations.find(name);
-  if (it == kInterpolations.end()) return std::nullopt;
-  return it->second;
+  return lookUp(kInterpolations, name);
 }
 
 std::string interpolationName(Interpolation interpolation) {
@@ -177,11 +192,13 @@ std::string interpolationName(Interpolation interpolation) {
   return "?";
 }
 
+std::vector<std::string> interpolationNames() { return namesOf(kInterpolations); }
+
 std::optional<Initialisation> parseInitialisation(const std::string& name) {
-  const auto it = kInitialisations.find(name);
-  if (it == kInitialisations.end()) return std::nullopt;
-  return it->second;
+  return lookUp(kInitialisations, name);
 }
+
+std::vector<std::string> initialisationNames() { return namesOf(kInitialisations); }
 
 config::StudyConfig loadRegistrationStudy(const std::string& path, bool affine, std::ostream& err) {
   config::StudyConfig study = config::loadStudyConfig(path);

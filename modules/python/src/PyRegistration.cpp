@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "PyVolume.h"
+#include "mvw/core/Format.h"
 #include "mvw/output/RegistrationRun.h"
 #include "mvw/resampling/Resample.h"
 #include "mvw/resampling/RigidRegistration.h"
@@ -50,10 +51,8 @@ std::string nameOf(const Volume& v) {
 resampling::Interpolation interpolationArg(const std::string& name) {
   const auto parsed = output::parseInterpolation(name);
   if (!parsed)
-    throw py::value_error(
-        "mvw.register: interpolation is one of auto, linear, nearest, cubic, "
-        "not '" +
-        name + "'");
+    throw py::value_error("mvw.register: interpolation is one of " +
+                          mvw::joined(output::interpolationNames(), ", ") + ", not '" + name + "'");
   return *parsed;
 }
 
@@ -68,10 +67,9 @@ std::shared_ptr<Registration> registerVolumes(const py::object& fixedArg,
         "mvw.register: method is 'rigid' or 'affine' (rigid, then affine), not '" + method + "'");
   const auto init = output::parseInitialisation(initialisation);
   if (!init)
-    throw py::value_error(
-        "mvw.register: initialisation is one of auto, world, centre, mass, "
-        "not '" +
-        initialisation + "'");
+    throw py::value_error("mvw.register: initialisation is one of " +
+                          mvw::joined(output::initialisationNames(), ", ") + ", not '" +
+                          initialisation + "'");
   if (!(rotationSearch >= 0.0 && rotationSearch <= 180.0))
     throw py::value_error("mvw.register: rotation_search is 0 to 180 degrees");
   auto reg = std::make_shared<Registration>();

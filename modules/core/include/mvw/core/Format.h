@@ -2,6 +2,7 @@
 // Numbers and quoted text as messages and notes show them.
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace mvw {
 
@@ -49,6 +50,13 @@ inline std::string printable(const std::string& text) {
 inline std::string clipped(const std::string& text, std::size_t width) {
   if (text.size() <= width) return text;
   return width <= 3 ? text.substr(0, width) : text.substr(0, width - 3) + "...";
+}
+
+// The items with `separator` between them: "auto, linear, nearest" from a list of choices.
+inline std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : separator) + item;
+  return out;
 }
 
 }  // namespace mvw

@@ -32,6 +32,9 @@ std::optional<resampling::Interpolation> parseInterpolation(const std::string& n
 std::string interpolationName(resampling::Interpolation interpolation);
 // --init's names: auto, world, centre, mass.
 std::optional<resampling::Initialisation> parseInitialisation(const std::string& name);
+// The names above, in that order: what the command line accepts and what messages list.
+std::vector<std::string> interpolationNames();
+std::vector<std::string> initialisationNames();
 
 // What to register and where the results go.
 struct RegistrationRequest {
