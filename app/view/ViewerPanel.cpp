@@ -313,12 +313,13 @@ void ViewerPanel::drawDepthCue() {
   render::RenderSettings& v = state_.view3d();
   ImGui::Separator();
   ImGui::Text("depth-cued MIP (Heidrich 1995)");
-  bool cue = v.depthCue;
-  if (ImGui::Checkbox("depth cue", &cue)) v.depthCue = cue, state_.markDirty(k3d);
-  float b0 = float(v.cueBrightness), a = float(v.cueAmount), b = float(v.cueContrast);
+  bool cue = v.depthCue.on;
+  if (ImGui::Checkbox("depth cue", &cue)) v.depthCue.on = cue, state_.markDirty(k3d);
+  float b0 = float(v.depthCue.brightness), a = float(v.depthCue.amount),
+        b = float(v.depthCue.contrast);
   if (ImGui::SliderFloat("brightness", &b0, 0, 1) | ImGui::SliderFloat("depth cue", &a, 0, 1) |
       ImGui::SliderFloat("contrast", &b, 0, 1)) {
-    v.cueBrightness = b0, v.cueAmount = a, v.cueContrast = b;
+    v.depthCue.brightness = b0, v.depthCue.amount = a, v.depthCue.contrast = b;
     state_.markDirty(k3d);
   }
 }

@@ -196,9 +196,9 @@ TEST(FusedProjection, NothingAboveTheThresholdLeavesThePlainProjection) {
       s.camera.elevationDeg = 12;
       s.window = 1500;
       s.level = 300;
-      s.depthCue = cue;
-      s.cueAmount = cue ? 0.66 : 0.0;
-      s.cueContrast = cue ? 0.33 : 1.0;
+      s.depthCue.on = cue;
+      s.depthCue.amount = cue ? 0.66 : 0.0;
+      s.depthCue.contrast = cue ? 0.33 : 1.0;
       s.functionalLow = 0.0;
       s.functionalHigh = 1.0;
       s.overlayThreshold = 1.0f;  // the uptake is 1 at most: no sample lies above it
@@ -255,15 +255,15 @@ TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
   for (StandardView view : {StandardView::Anterior, StandardView::Posterior}) {
     const std::string side = view == StandardView::Anterior ? "front" : "behind";
     s.camera.view = view;
-    s.depthCue = false;
+    s.depthCue.on = false;
     const RenderedFrame plain = renderer.render(s);
     const int plainFront = entryAt(plain, front), plainBack = entryAt(plain, back);
     EXPECT_NEAR(plainFront, plainBack, 2) << "equal lesions, no cue";
     EXPECT_GT(plainFront, 200);  // peak 8 of 8: the top of the map
-    s.depthCue = true;
-    s.cueBrightness = 0.0;
-    s.cueAmount = 0.66;
-    s.cueContrast = 0.33;
+    s.depthCue.on = true;
+    s.depthCue.brightness = 0.0;
+    s.depthCue.amount = 0.66;
+    s.depthCue.contrast = 0.33;
     const RenderedFrame cued = renderer.render(s);
     io::writePng(plain.image, out / ("fused-mip-from-" + side + ".png"));
     io::writePng(cued.image, out / ("fused-mip-depth-cued-from-" + side + ".png"));
@@ -272,7 +272,7 @@ TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
     pet.overlayColors = io::standardColorTable(ColorMap::Pet);
     io::writePng(renderer.render(pet).image,
                  out / ("fused-mip-depth-cued-pet-from-" + side + ".png"));
-    pet.depthCue = false;
+    pet.depthCue.on = false;
     io::writePng(renderer.render(pet).image, out / ("fused-mip-pet-from-" + side + ".png"));
     const int nearer = entryAt(cued, view == StandardView::Anterior ? front : back);
     const int farther = entryAt(cued, view == StandardView::Anterior ? back : front);

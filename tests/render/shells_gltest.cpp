@@ -31,9 +31,9 @@ TEST(Shells, DiscreteMaximumConvergesToTheRayCastAsShellsAreAdded) {
   s.level = 500;
   s.jitter = false;
   s.stepMm = 0.25;
-  s.depthCue = true;
-  s.cueAmount = 0.66;
-  s.cueContrast = 0.33;
+  s.depthCue.on = true;
+  s.depthCue.amount = 0.66;
+  s.depthCue.contrast = 0.33;
   s.camera.azimuthDeg = 30;
   s.mode = RenderMode::Mip;
   const RenderedFrame reference = renderer.render(s);

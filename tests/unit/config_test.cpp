@@ -253,8 +253,8 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_TRUE(a.fusion);
   EXPECT_EQ(a.overlayOpacity, 0.7);
   const ViewConfig& b = d.render.views[1];
-  EXPECT_TRUE(b.depthCue);
-  EXPECT_EQ(b.cueAmount, 0.66);
+  EXPECT_TRUE(b.depthCue.on);
+  EXPECT_EQ(b.depthCue.amount, 0.66);
   ASSERT_TRUE(b.window.has_value());
   EXPECT_EQ(*b.level, 500.0);
   EXPECT_EQ(d.render.views[2].shellsDisabled, (std::vector<int>{1, 2}));

@@ -15,7 +15,7 @@ TEST(RenderBench, PlainViewHasNoFeature) {
 
 TEST(RenderBench, FeaturesAreNamedInOrder) {
   render::RenderSettings s;
-  s.depthCue = true;
+  s.depthCue.on = true;
   EXPECT_TRUE(hasBenchFeature(s));
   EXPECT_EQ(benchFeatureName(s), "depth cue");
   s.glyphs = true;
@@ -39,7 +39,7 @@ TEST(RenderBench, AnatomyOnACutFaceCountsOnlyWhenCropped) {
 
 TEST(RenderBench, WithoutFeaturesKeepsTheRest) {
   render::RenderSettings s;
-  s.glyphs = s.fusion = s.depthCue = true;
+  s.glyphs = s.fusion = s.depthCue.on = true;
   s.cutFace = render::CutFace::Anatomy;
   s.cropMin = glm::dvec3(0.25, 0.0, 0.0);
   s.size = {64, 48};

@@ -70,8 +70,8 @@ std::string dumpSettings(const render::RenderSettings& s) {
   vec("gradient_opacity", {s.gradientOpacityLow, s.gradientOpacityHigh});
   vec("window_level", {s.window, s.level});
   num("iso", s.isoValue);
-  num("depth_cue", s.depthCue);
-  vec("depth_cue.values", {s.cueBrightness, s.cueAmount, s.cueContrast});
+  num("depth_cue", s.depthCue.on);
+  vec("depth_cue.values", {s.depthCue.brightness, s.depthCue.amount, s.depthCue.contrast});
   num("shells", s.shellCount);
   std::string enabled;
   for (bool e : s.shellEnabled) enabled += e ? '1' : '0';

@@ -166,13 +166,13 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   state.key('5', false);
   EXPECT_EQ(state.view3d().mode, RenderMode::Average);
   state.key('D', false);
-  EXPECT_TRUE(state.view3d().depthCue);
-  EXPECT_DOUBLE_EQ(state.view3d().cueAmount, 0.66);
-  EXPECT_DOUBLE_EQ(state.view3d().cueContrast, 0.33);
+  EXPECT_TRUE(state.view3d().depthCue.on);
+  EXPECT_DOUBLE_EQ(state.view3d().depthCue.amount, 0.66);
+  EXPECT_DOUBLE_EQ(state.view3d().depthCue.contrast, 0.33);
   state.key('D', false);
-  EXPECT_FALSE(state.view3d().depthCue);
-  EXPECT_DOUBLE_EQ(state.view3d().cueAmount, 0.0);
-  EXPECT_DOUBLE_EQ(state.view3d().cueContrast, 1.0);
+  EXPECT_FALSE(state.view3d().depthCue.on);
+  EXPECT_DOUBLE_EQ(state.view3d().depthCue.amount, 0.0);
+  EXPECT_DOUBLE_EQ(state.view3d().depthCue.contrast, 1.0);
   state.key('G', false);
   state.key('F', false);
   EXPECT_TRUE(state.view3d().glyphs);
@@ -428,7 +428,7 @@ TEST_F(ViewerStateTest, SavedStateReopensAsTheSameViews) {
   EXPECT_EQ(saved.render.views[1].name, "view-axial");
   ViewerState reopened(saved, ct, nullptr, sceneOf(ct));
   EXPECT_EQ(reopened.view3d().mode, RenderMode::Mip);
-  EXPECT_TRUE(reopened.view3d().depthCue);
+  EXPECT_TRUE(reopened.view3d().depthCue.on);
   EXPECT_NEAR(reopened.view3d().camera.azimuthDeg, 18.0, 1e-9);
   EXPECT_NEAR(reopened.view3d().camera.elevationDeg, 9.0, 1e-9);
   EXPECT_NEAR(reopened.mprWindow(), state.mprWindow(), 1e-6);

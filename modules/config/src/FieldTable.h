@@ -218,6 +218,40 @@ class FieldTable {
         });
   }
 
+  // A value type's own table (one concept shared with the renderer, mvw/core: the crop, ...)
+  // whose keys sit in this object beside its own: each is read into, and written from, the
+  // member `value`, in the table's order, at this place in the reference.
+  template <class M>
+  FieldTable& inlined(M T::*value, const FieldTable<M>& table) {
+    for (const auto& f : table.fields_)
+      fields_.push_back({f.key, f.doc,
+                         [value, read = f.read](const json& v, T& out, const Where& w) {
+                           read(v, out.*value, w);
+                         },
+                         [value, write = f.write](const T& in, json& j, const char* k) {
+                           write(in.*value, j, k);
+                         },
+                         f.range, f.shape});
+    return *this;
+  }
+
+  // A value type's own table as a nested object whose presence switches it on ("depth_cue":
+  // {...} sets `enabled` of the member `value`); written only while it is on.
+  template <class M>
+  FieldTable& section(const char* key, Doc doc, M T::*value, bool M::*enabled,
+                      const FieldTable<M>& table) {
+    return add(
+        key, doc,
+        {"object", "", "off", [table](const std::string& path) { return table.describe(path); }},
+        [value, enabled, table](const json& v, T& out, const Where& w) {
+          (out.*value).*enabled = true;
+          table.read(v, out.*value, Where{w.file, w.key + "."});
+        },
+        [value, enabled, table](const T& in, json& j, const char* k) {
+          if ((in.*value).*enabled) j[k] = table.write(in.*value);
+        });
+  }
+
   // `object`'s keys into `out` (keys not in the object keep out's values: the defaults).
   // where.key is the prefix of every key ("render.views[0]." or "" at the top).
   void read(const json& object, T& out, const Where& where) const {
@@ -292,6 +326,8 @@ class FieldTable {
   }
 
  private:
+  template <class>
+  friend class FieldTable;
   struct Field {
     const char* key;
     const char* doc;

@@ -214,12 +214,13 @@ const FieldTable<ViewConfig>& glyphTable() {
   return t;
 }
 
-const FieldTable<ViewConfig>& depthCueTable() {
-  static const FieldTable<ViewConfig> t = [] {
-    FieldTable<ViewConfig> c;
-    c.number("brightness", "Brightness beta0.", &ViewConfig::cueBrightness, 0.0, 10.0)
-        .number("amount", "Amount a (0: no cueing).", &ViewConfig::cueAmount, -10.0, 10.0)
-        .number("contrast", "Contrast b (1: plain MIP).", &ViewConfig::cueContrast, 0.0, 10.0);
+// The depth cue (mvw/core/DepthCue.h), the renderer's value too.
+const FieldTable<DepthCue>& depthCueTable() {
+  static const FieldTable<DepthCue> t = [] {
+    FieldTable<DepthCue> c;
+    c.number("brightness", "Brightness beta0.", &DepthCue::brightness, 0.0, 10.0)
+        .number("amount", "Amount a (0: no cueing).", &DepthCue::amount, -10.0, 10.0)
+        .number("contrast", "Contrast b (1: plain MIP).", &DepthCue::contrast, 0.0, 10.0);
     return c;
   }();
   return t;
@@ -334,7 +335,7 @@ const FieldTable<ViewConfig>& viewTable() {
               if (in.functionalWindow) j[k] = *in.functionalWindow;
             })
         .section("depth_cue", "MIP depth cueing (Heidrich 1995): on where present.", &V::depthCue,
-                 depthCueTable())
+                 &DepthCue::on, depthCueTable())
         .add(
             "gradient_opacity",
             "2D transfer function: opacity times smoothstep(low, high, |gradient|), in the "

@@ -101,10 +101,10 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
     r["shells"] = v.settings.shellCount;
     r["shells_disabled"] = v.config.shellsDisabled;
   }
-  if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue)
-    r["depth_cue"] = {{"brightness", v.settings.cueBrightness},
-                      {"amount", v.settings.cueAmount},
-                      {"contrast", v.settings.cueContrast}};
+  if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue.on)
+    r["depth_cue"] = {{"brightness", v.settings.depthCue.brightness},
+                      {"amount", v.settings.depthCue.amount},
+                      {"contrast", v.settings.depthCue.contrast}};
   r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : render::defaultStepMm(anatomy);
   r["sampling"] = config::toString(v.config.sampling);
   r["shading"] = v.settings.shading;

@@ -30,7 +30,7 @@ bool RaycastPrograms::usesBoxProxy(RenderMode mode) { return mode != RenderMode:
 RaycastVariants RaycastPrograms::variants(const RenderSettings& s, bool fusion) {
   RaycastVariants v;
   auto set = [&v](RaycastVariant which, bool on) { v.set(static_cast<std::size_t>(which), on); };
-  set(RaycastVariant::DepthCue, s.depthCue);
+  set(RaycastVariant::DepthCue, s.depthCue.on);
   set(RaycastVariant::Nearest, !s.linear);
   set(RaycastVariant::Tf2d, s.gradientOpacityHigh > 0.0);
   set(RaycastVariant::Fusion, fusion);

@@ -128,11 +128,7 @@ Image VolumeRenderer::Impl::drawShells(const RenderSettings& s, const Camera& ca
   d.windowWidth = wl.window;
   d.count = s.shellCount;
   d.enabled = s.shellEnabled;
-  if (s.depthCue) {
-    d.cueBrightness = s.cueBrightness;
-    d.cueAmount = s.cueAmount;
-    d.cueContrast = s.cueContrast;
-  }
+  if (s.depthCue.on) d.depthCue = s.depthCue;
   d.light = s.light;
   return shells->draw(d);
 }
@@ -305,7 +301,8 @@ void VolumeRenderer::Impl::setShadingUniforms(const ShaderProgram& p, const Rend
   const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
   glUniform2f(p.uniform("uWindowLevel"), float(wl.window), float(wl.level));
   glUniform1f(p.uniform("uIsoValue"), float(s.isoValue));
-  glUniform3f(p.uniform("uCue"), float(s.cueBrightness), float(s.cueAmount), float(s.cueContrast));
+  glUniform3f(p.uniform("uCue"), float(s.depthCue.brightness), float(s.depthCue.amount),
+              float(s.depthCue.contrast));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
 }
 

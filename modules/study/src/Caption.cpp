@@ -73,10 +73,10 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   }
   const bool shells = isShellMode(s.mode);
   if (shells) caption += "  " + std::to_string(s.shellCount) + " shells";
-  if ((s.mode == render::RenderMode::Mip || shells) && s.depthCue) {
+  if ((s.mode == render::RenderMode::Mip || shells) && s.depthCue.on) {
     char cue[96];
-    std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", s.cueBrightness,
-                  s.cueAmount, s.cueContrast);
+    std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", s.depthCue.brightness,
+                  s.depthCue.amount, s.depthCue.contrast);
     caption += cue;
   }
   return caption;

@@ -271,10 +271,10 @@ void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedO
   if (o.level) v.level = *o.level;
   if (o.iso) v.iso = *o.iso;
   if (o.noAnnotate) v.annotate = false;
-  if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue = true;
-  if (o.cueBrightness) v.cueBrightness = *o.cueBrightness;
-  if (o.cueAmount) v.cueAmount = *o.cueAmount;
-  if (o.cueContrast) v.cueContrast = *o.cueContrast;
+  if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue.on = true;
+  if (o.cueBrightness) v.depthCue.brightness = *o.cueBrightness;
+  if (o.cueAmount) v.depthCue.amount = *o.cueAmount;
+  if (o.cueContrast) v.depthCue.contrast = *o.cueContrast;
   if (o.perspective) v.perspective = true;
   // A mode overridden to one without an image colour map drops the view's.
   if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
@@ -384,9 +384,6 @@ void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
     for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
   }
   s.depthCue = v.depthCue;
-  s.cueBrightness = v.cueBrightness;
-  s.cueAmount = v.cueAmount;
-  s.cueContrast = v.cueContrast;
   s.gradientOpacityLow = v.gradientOpacity[0];
   s.gradientOpacityHigh = v.gradientOpacity[1];
   s.planeOffsetMm = v.planeOffsetMm;
@@ -583,9 +580,6 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   for (std::size_t k = 0; k < s.shellEnabled.size(); ++k)
     if (!s.shellEnabled[k]) v.shellsDisabled.push_back(static_cast<int>(k) + 1);
   v.depthCue = s.depthCue;
-  v.cueBrightness = s.cueBrightness;
-  v.cueAmount = s.cueAmount;
-  v.cueContrast = s.cueContrast;
   v.gradientOpacity = {s.gradientOpacityLow, s.gradientOpacityHigh};
   v.planeOffsetMm = s.planeOffsetMm;
   v.slabMm = s.slabMm;

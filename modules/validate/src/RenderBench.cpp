@@ -94,20 +94,20 @@ void runRenderBench(const RenderBenchOptions& o) {
 }
 
 bool hasBenchFeature(const render::RenderSettings& s) {
-  return s.glyphs || s.fusion || s.depthCue || render::showsAnatomyOnCutFace(s);
+  return s.glyphs || s.fusion || s.depthCue.on || render::showsAnatomyOnCutFace(s);
 }
 
 std::string benchFeatureName(const render::RenderSettings& s) {
   std::string name;
   if (s.glyphs) name += "glyphs";
   if (s.fusion) name += name.empty() ? "fusion" : "+fusion";
-  if (s.depthCue) name += name.empty() ? "depth cue" : "+depth cue";
+  if (s.depthCue.on) name += name.empty() ? "depth cue" : "+depth cue";
   if (render::showsAnatomyOnCutFace(s)) name += name.empty() ? "cut face" : "+cut face";
   return name;
 }
 
 render::RenderSettings withoutBenchFeatures(render::RenderSettings s) {
-  s.glyphs = s.fusion = s.depthCue = false;
+  s.glyphs = s.fusion = s.depthCue.on = false;
   s.cutFace = render::CutFace::Plain;
   return s;
 }

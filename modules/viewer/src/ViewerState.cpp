@@ -382,9 +382,9 @@ void ViewerState::key(char key, bool ctrl) {
   if (key >= '1' && key <= '5') {
     view3d_.mode = k3dModes[key - '1'];
   } else if (key == 'D') {
-    view3d_.depthCue = !view3d_.depthCue;
-    view3d_.cueAmount = view3d_.depthCue ? 0.66 : 0.0;
-    view3d_.cueContrast = view3d_.depthCue ? 0.33 : 1.0;
+    view3d_.depthCue.on = !view3d_.depthCue.on;
+    view3d_.depthCue.amount = view3d_.depthCue.on ? 0.66 : 0.0;
+    view3d_.depthCue.contrast = view3d_.depthCue.on ? 0.33 : 1.0;
   } else if (key == 'G' && functional_) {
     view3d_.glyphs = !view3d_.glyphs;
   } else if (key == 'F') {

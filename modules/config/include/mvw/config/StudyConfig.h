@@ -23,6 +23,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "mvw/core/ColorMap.h"
+#include "mvw/core/DepthCue.h"
 #include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/RenderMode.h"
@@ -147,8 +148,7 @@ struct ViewConfig {
   std::optional<double> window, level;
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.
-  bool depthCue = false;
-  double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
+  DepthCue depthCue;
   // shells-mip | shells-sum | shells-lit: number of isosurface shells, and ones switched off.
   int shells = 8;
   std::vector<int> shellsDisabled;

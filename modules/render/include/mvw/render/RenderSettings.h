@@ -12,6 +12,7 @@
 #include <glm/vec4.hpp>
 
 #include "mvw/core/ColorMap.h"
+#include "mvw/core/DepthCue.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/RenderMode.h"
 #include "mvw/render/Camera.h"
@@ -55,10 +56,8 @@ struct RenderSettings {
   double window = 0.0;
   double level = 0.0;  // window centre
   double isoValue = 300.0;
-  // MIP with depth cueing (Heidrich et al. 1995, eq. 3 and section 2.3): brightness beta0,
-  // depth cue amount a, contrast b. Off, or a = 0, b = 1, beta0 = 0: plain MIP.
-  bool depthCue = false;
-  double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
+  // MIP and the shell modes with depth cueing (mvw/core/DepthCue.h).
+  DepthCue depthCue;
   // Shell modes: n shells at emissions i/n of the window; shells can be disabled one by one.
   int shellCount = 8;
   std::vector<bool> shellEnabled;  // empty: all
