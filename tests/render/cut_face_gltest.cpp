@@ -45,7 +45,7 @@ struct CutScene {
     s.jitter = false;
     s.camera.view = StandardView::Superior;
     s.camera.zoom = 1.3;
-    s.cropMax = {1.0, 1.0, 0.5};  // the superior half cut away: the face at z = 0
+    s.crop.max = {1.0, 1.0, 0.5};  // the superior half cut away: the face at z = 0
     s.cutFace = CutFace::Anatomy;
     s.window = kWindow;
     s.level = kLevel;
@@ -154,7 +154,7 @@ TEST(CutFace, ShowsTheAnatomyUnderTheWindowInIsosurfaceAndComposite) {
   EXPECT_NEAR(g.rightMean, g.leftMean, 0.5) << "plain cut face";
   // Uncropped, the variant is not compiled in: the same program and pixels as plain.
   RenderSettings whole = CutScene::settings(RenderMode::Isosurface);
-  whole.cropMax = glm::dvec3(1.0);
+  whole.crop.max = glm::dvec3(1.0);
   const Image anatomy = renderer.render(whole).image;
   whole.cutFace = CutFace::Plain;
   EXPECT_EQ(anatomy.rgba, renderer.render(whole).image.rgba);

@@ -221,7 +221,7 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
     s.size = {360, 360};
     s.isoValue = -300;
     s.jitter = false;
-    if (crop) s.cropMax = {1.0, 1.0, kCutFraction};
+    if (crop) s.crop.max = {1.0, 1.0, kCutFraction};
     s.lightOffset = {-0.8, 0.8};
     s.functionalLow = kWindowLow;
     s.functionalHigh = kWindowHigh;

@@ -86,8 +86,8 @@ TEST(Raycast, OnlyPixelsWhoseRayMissesTheBoxAreLeftToTheClearedBackground) {
     s.isoValue = 50.0;
     s.size = {160, 128};
     s.camera = c.camera;
-    s.cropMin = c.cropMin;
-    s.cropMax = c.cropMax;
+    s.crop.min = c.cropMin;
+    s.crop.max = c.cropMax;
     s.background = background;
     s.stepMm = 0.25;
     s.jitter = false;
@@ -156,8 +156,8 @@ TEST(Raycast, NominalSamplesAreEveryRaysChordThroughTheBoxOverTheStep) {
     s.mode = RenderMode::Mip;
     s.size = {96, 80};
     s.camera = c.camera;
-    s.cropMin = c.cropMin;
-    s.cropMax = c.cropMax;
+    s.crop.min = c.cropMin;
+    s.crop.max = c.cropMax;
     s.stepMm = 0.4;
     const Camera camera = renderer.render(s).camera;
     const glm::dvec3 lo = c.cropMin * glm::dvec3(dims) - 0.5;

@@ -85,10 +85,10 @@ std::string dumpSettings(const render::RenderSettings& s) {
   vec("iso_color", {s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a});
   vec("light", {s.light.x, s.light.y, s.light.z, s.light.w});
   vec("light_offset", {s.lightOffset.x, s.lightOffset.y});
-  vec("crop.min", {s.cropMin.x, s.cropMin.y, s.cropMin.z});
-  vec("crop.max", {s.cropMax.x, s.cropMax.y, s.cropMax.z});
-  if (s.cropMinMm) vec("crop.min_mm", {s.cropMinMm->x, s.cropMinMm->y, s.cropMinMm->z});
-  if (s.cropMaxMm) vec("crop.max_mm", {s.cropMaxMm->x, s.cropMaxMm->y, s.cropMaxMm->z});
+  vec("crop.min", {s.crop.min.x, s.crop.min.y, s.crop.min.z});
+  vec("crop.max", {s.crop.max.x, s.crop.max.y, s.crop.max.z});
+  if (s.crop.minMm) vec("crop.min_mm", {s.crop.minMm->x, s.crop.minMm->y, s.crop.minMm->z});
+  if (s.crop.maxMm) vec("crop.max_mm", {s.crop.maxMm->x, s.crop.maxMm->y, s.crop.maxMm->z});
   num("cut_face", double(static_cast<int>(s.cutFace)));
   num("plane_offset_mm", s.planeOffsetMm);
   num("slab_mm", s.slabMm);

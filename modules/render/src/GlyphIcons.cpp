@@ -49,8 +49,7 @@ void GlyphIcons::fill(GlContext& context, const RenderSettings& view, GlyphLegen
   s.camera.view = StandardView::Anterior;
   s.camera.zoom = std::sqrt(3.0) * 0.95;
   s.size = {pixels, pixels};
-  s.cropMin = glm::dvec3(0.0), s.cropMax = glm::dvec3(1.0);
-  s.cropMinMm.reset(), s.cropMaxMm.reset();
+  s.crop = Crop{};
   s.fusion = false;
   s.jitter = false;
   s.stepMm = 0.0;

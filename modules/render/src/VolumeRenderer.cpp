@@ -246,8 +246,8 @@ void VolumeRenderer::Impl::setVolumeUniforms(const ShaderProgram& p) const {
 // The crop as fractions of the patient axes' extent (PatientCrop).
 std::pair<glm::dvec3, glm::dvec3> VolumeRenderer::Impl::cropFractions(
     const RenderSettings& s) const {
-  if (s.cropMinMm && s.cropMaxMm) return crop.fractionsFromMm(*s.cropMinMm, *s.cropMaxMm);
-  return {s.cropMin, s.cropMax};
+  if (s.crop.minMm && s.crop.maxMm) return crop.fractionsFromMm(*s.crop.minMm, *s.crop.maxMm);
+  return {s.crop.min, s.crop.max};
 }
 
 // The box the rays sample, in texture coordinates: along the patient axes the crop; an oblique
@@ -348,8 +348,8 @@ bool usesGlyphKinds(const RenderSettings& s) {
 }
 
 bool cropsVolume(const RenderSettings& s) {
-  if (s.cropMinMm && s.cropMaxMm) return true;
-  return s.cropMin != glm::dvec3(0.0) || s.cropMax != glm::dvec3(1.0);
+  if (s.crop.minMm && s.crop.maxMm) return true;
+  return s.crop.min != glm::dvec3(0.0) || s.crop.max != glm::dvec3(1.0);
 }
 
 bool showsAnatomyOnCutFace(const RenderSettings& s) {

@@ -322,12 +322,7 @@ void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, con
   s.jitter = v.jitter;
   s.seed = v.seed;
   s.background = {v.background[0], v.background[1], v.background[2]};
-  s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
-  s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
-  if (v.cropMinMm && v.cropMaxMm) {
-    s.cropMinMm = glm::dvec3((*v.cropMinMm)[0], (*v.cropMinMm)[1], (*v.cropMinMm)[2]);
-    s.cropMaxMm = glm::dvec3((*v.cropMaxMm)[0], (*v.cropMaxMm)[1], (*v.cropMaxMm)[2]);
-  }
+  s.crop = v.crop;
   s.cutFace = v.cutFace;
 }
 
@@ -464,12 +459,12 @@ void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volum
                                  " is below 1/100 of the smallest voxel spacing (" +
                                  shortNumber(100.0 * finest) +
                                  " mm): no ray can take so many samples (0: half the spacing)");
-    if (s.cropMinMm && s.cropMaxMm)
+    if (s.crop.minMm && s.crop.maxMm)
       for (int a = 0; a < 3; ++a)
-        if ((*s.cropMaxMm)[a] < lo[a] || (*s.cropMinMm)[a] > hi[a])
+        if ((*s.crop.maxMm)[a] < lo[a] || (*s.crop.minMm)[a] > hi[a])
           throw InputError(file, view + "crop_mm misses the volume along " + "LPS"[a] + " (" +
-                                     shortNumber((*s.cropMinMm)[a]) + " .. " +
-                                     shortNumber((*s.cropMaxMm)[a]) + " mm; the volume spans " +
+                                     shortNumber((*s.crop.minMm)[a]) + " .. " +
+                                     shortNumber((*s.crop.maxMm)[a]) + " mm; the volume spans " +
                                      shortNumber(lo[a]) + " .. " + shortNumber(hi[a]) + " mm)");
     if (s.mode == render::RenderMode::Mpr && std::abs(s.planeOffsetMm) > radius)
       throw InputError(file, view + "plane_offset_mm " + shortNumber(s.planeOffsetMm) +
@@ -544,12 +539,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.seed = s.seed;
   v.background = {s.background.r, s.background.g, s.background.b};
   v.cutFace = s.cutFace;
-  v.cropMin = {s.cropMin.x, s.cropMin.y, s.cropMin.z};
-  v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
-  if (s.cropMinMm && s.cropMaxMm) {
-    v.cropMinMm = std::array<double, 3>{s.cropMinMm->x, s.cropMinMm->y, s.cropMinMm->z};
-    v.cropMaxMm = std::array<double, 3>{s.cropMaxMm->x, s.cropMaxMm->y, s.cropMaxMm->z};
-  }
+  v.crop = s.crop;
   // Glyphs only where they show (a viewer may leave them on while it shows a MIP): a saved MIP
   // with glyphs would not load.
   v.glyphs = s.glyphs && (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface);

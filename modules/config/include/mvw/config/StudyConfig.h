@@ -23,6 +23,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "mvw/core/ColorMap.h"
+#include "mvw/core/Crop.h"
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
@@ -158,11 +159,9 @@ struct ViewConfig {
   bool jitter = true;
   unsigned seed = 1;
   std::array<double, 3> background{0.0, 0.0, 0.0};
-  // Crop box in patient terms, the same for any storage order: fractions of the volume's
-  // world-aligned box along L, P, S (0 = most right / anterior / inferior, 1 = most left /
-  // posterior / superior); or "crop_mm": {"min": [...], "max": [...]} in LPS mm, which wins.
-  std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};
-  std::optional<std::array<double, 3>> cropMinMm, cropMaxMm;
+  // Crop box in patient terms (mvw/core/Crop.h): "crop_min" and "crop_max" as fractions of the
+  // volume's box along L, P, S, or "crop_mm": {"min": [...], "max": [...]} in LPS mm, which wins.
+  Crop crop;
   // composite / isosurface with a crop: the cut face shows the anatomy under the MPR's window
   // (anatomy) or the isosurface colour / transfer function (plain).
   CutFace cutFace = CutFace::Anatomy;

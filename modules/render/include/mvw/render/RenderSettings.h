@@ -12,6 +12,7 @@
 #include <glm/vec4.hpp>
 
 #include "mvw/core/ColorMap.h"
+#include "mvw/core/Crop.h"
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/RenderMode.h"
@@ -72,11 +73,8 @@ struct RenderSettings {
   // Where the light comes from, in screen terms: (0, 0) is a headlight; (-1, 1) from the
   // upper left at 45 degrees off the line of sight.
   glm::dvec2 lightOffset{0.0};
-  // Crop box in patient terms (PatientCrop, Framing.h): fractions of the volume's world-aligned
-  // box along L, P, S, whatever the storage order; or, when set, LPS millimetres (these win).
-  glm::dvec3 cropMin{0.0};
-  glm::dvec3 cropMax{1.0};
-  std::optional<glm::dvec3> cropMinMm, cropMaxMm;
+  // Crop box in patient terms (mvw/core/Crop.h; PatientCrop, Framing.h, turns it into boxes).
+  Crop crop;
   // Composite and isosurface with a crop: the opaque cut face shows the anatomy's grey values
   // under window / level, glyphs and fusion on it (MVW_CUT_FACE), or the isosurface colour and
   // the transfer function (plain). Plain here, so that settings made by hand keep the look
