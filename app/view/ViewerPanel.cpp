@@ -330,9 +330,12 @@ void ViewerPanel::drawFunctionalControls() {
   ImGui::Separator();
   ImGui::Text("functional volume");
   colormapCombo(state_, "overlay colours", ColorTarget::Overlay);
-  if (ImGui::SliderFloat("overlay opacity", &v.overlayOpacity, 0, 1) |
-      ImGui::SliderFloat("threshold", &v.overlayThreshold, 0, 1))
+  float opacity = float(v.overlay.opacity), threshold = float(v.overlay.threshold);
+  if (ImGui::SliderFloat("overlay opacity", &opacity, 0, 1) |
+      ImGui::SliderFloat("threshold", &threshold, 0, 1)) {
+    v.overlay.opacity = opacity, v.overlay.threshold = threshold;
     state_.markAllDirty();
+  }
   drawFunctionalWindow();
   drawGlyphControls();
   drawRegistration();
@@ -365,16 +368,17 @@ void ViewerPanel::drawFunctionalWindow() {
 // Glyphs and colour fusion: their switches, spacing and size, the legend, method and kinds.
 void ViewerPanel::drawGlyphControls() {
   render::RenderSettings& v = state_.view3d();
-  bool glyphs = v.glyphs, fusion = v.fusion;
+  bool glyphs = v.glyphs, fusion = v.overlay.fusion;
   if (ImGui::Checkbox("glyphs (G)", &glyphs)) v.glyphs = glyphs, state_.markDirty(k3d);
   ImGui::SameLine();
-  if (ImGui::Checkbox("colour fusion (F)", &fusion)) v.fusion = fusion, state_.markDirty(k3d);
+  if (ImGui::Checkbox("colour fusion (F)", &fusion))
+    v.overlay.fusion = fusion, state_.markDirty(k3d);
   // A fused minip or average: the functional maximum along the ray, or its mean.
-  if (v.fusion && takesFusionMean(v.mode)) {
+  if (v.overlay.fusion && takesFusionMean(v.mode)) {
     ImGui::SameLine();
-    bool mean = v.fusionProjection == render::FusionProjection::Mean;
+    bool mean = v.overlay.projection == render::FusionProjection::Mean;
     if (ImGui::Checkbox("functional mean", &mean)) {
-      v.fusionProjection = mean ? render::FusionProjection::Mean : render::FusionProjection::Max;
+      v.overlay.projection = mean ? render::FusionProjection::Mean : render::FusionProjection::Max;
       state_.markDirty(k3d);
     }
   }

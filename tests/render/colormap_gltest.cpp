@@ -126,8 +126,8 @@ TEST(ColorMaps, OverlayUsesItsOwnColourMap) {
   s.camera.view = StandardView::Inferior;
   s.functionalLow = 0.0;
   s.functionalHigh = 10.0;
-  s.overlayOpacity = 1.0f;
-  s.overlayThreshold = 0.0f;
+  s.overlay.opacity = 1.0f;
+  s.overlay.threshold = 0.0f;
   for (ColorMap map : {ColorMap::HotIron, ColorMap::Pet, ColorMap::HotMetalBlue,
                        ColorMap::Pet20Step, ColorMap::GreyInverted}) {
     s.overlayColors = io::standardColorTable(map);

@@ -209,9 +209,9 @@ TEST(CutFace, GlyphsOfEveryKindAndFusionStayOnTheFace) {
   }
   // Fusion: the overlay colour over the face's grey where the attribute is, the grey elsewhere.
   RenderSettings s = CutScene::settings(RenderMode::Isosurface);
-  s.fusion = true;
-  s.overlayOpacity = 0.6f;
-  s.overlayThreshold = 0.25f;
+  s.overlay.fusion = true;
+  s.overlay.opacity = 0.6f;
+  s.overlay.threshold = 0.25f;
   const RenderedFrame fused = renderer.render(s);
   expectTwoGreys(fused, "isosurface fusion");
   int coloured = 0, onAttribute = 0;

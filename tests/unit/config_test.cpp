@@ -250,8 +250,8 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(a.background[2], 0.3);
   EXPECT_TRUE(a.perspective);
   EXPECT_EQ(a.gradientOpacity[1], 40.0);
-  EXPECT_TRUE(a.fusion);
-  EXPECT_EQ(a.overlayOpacity, 0.7);
+  EXPECT_TRUE(a.overlay.fusion);
+  EXPECT_EQ(a.overlay.opacity, 0.7);
   const ViewConfig& b = d.render.views[1];
   EXPECT_TRUE(b.depthCue.on);
   EXPECT_EQ(b.depthCue.amount, 0.66);
@@ -259,7 +259,7 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(*b.level, 500.0);
   EXPECT_EQ(d.render.views[2].shellsDisabled, (std::vector<int>{1, 2}));
   EXPECT_EQ(d.render.views[3].slabMm, 5.0);
-  EXPECT_FALSE(d.render.views[3].overlay);
+  EXPECT_FALSE(d.render.views[3].overlay.mpr);
 }
 
 // Every study-level field away from its default, written, loaded back and compared field by

@@ -19,7 +19,7 @@ TEST(RenderBench, FeaturesAreNamedInOrder) {
   EXPECT_TRUE(hasBenchFeature(s));
   EXPECT_EQ(benchFeatureName(s), "depth cue");
   s.glyphs = true;
-  s.fusion = true;
+  s.overlay.fusion = true;
   EXPECT_EQ(benchFeatureName(s), "glyphs+fusion+depth cue");
   s.glyphs = false;
   EXPECT_EQ(benchFeatureName(s), "fusion+depth cue");
@@ -39,7 +39,7 @@ TEST(RenderBench, AnatomyOnACutFaceCountsOnlyWhenCropped) {
 
 TEST(RenderBench, WithoutFeaturesKeepsTheRest) {
   render::RenderSettings s;
-  s.glyphs = s.fusion = s.depthCue.on = true;
+  s.glyphs = s.overlay.fusion = s.depthCue.on = true;
   s.cutFace = render::CutFace::Anatomy;
   s.crop.min = glm::dvec3(0.25, 0.0, 0.0);
   s.size = {64, 48};

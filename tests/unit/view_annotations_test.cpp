@@ -68,7 +68,7 @@ TEST(ViewAnnotations, AnOverlayShowsTheFunctionalWindowInTheFunctionalUnit) {
   ASSERT_TRUE(bar->colors);
   EXPECT_EQ(bar->colors->map, ColorMap::Pet);
   // The overlay switched off: the image's own map again.
-  s.overlay = false;
+  s.overlay.mpr = false;
   bar = colourBarOf(s, ct, &pet, {0.5, 12.0}, {400.0, 40.0});
   ASSERT_TRUE(bar);
   EXPECT_EQ(bar->unit, "HU");

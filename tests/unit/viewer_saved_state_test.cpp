@@ -112,11 +112,11 @@ std::string dumpSettings(const render::RenderSettings& s) {
   line("glyphs.class_kinds", kinds);
   vec("functional_window", {s.functionalLow, s.functionalHigh});
   num("functional_classes", s.functionalClasses);
-  num("overlay", s.overlay);
-  num("fusion", s.fusion);
-  num("fusion.projection", double(static_cast<int>(s.fusionProjection)));
-  num("overlay.opacity", s.overlayOpacity);
-  num("overlay.threshold", s.overlayThreshold);
+  num("overlay", s.overlay.mpr);
+  num("fusion", s.overlay.fusion);
+  num("fusion.projection", double(static_cast<int>(s.overlay.projection)));
+  num("overlay.opacity", s.overlay.opacity);
+  num("overlay.threshold", s.overlay.threshold);
   num("segment_outlines", s.segmentOutlines);
   line("image_colors", s.imageColors ? toString(s.imageColors->map) : "none");
   line("overlay_colors", s.overlayColors ? toString(s.overlayColors->map) : "none");

@@ -176,7 +176,7 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   state.key('G', false);
   state.key('F', false);
   EXPECT_TRUE(state.view3d().glyphs);
-  EXPECT_TRUE(state.view3d().fusion);
+  EXPECT_TRUE(state.view3d().overlay.fusion);
   const std::string preset = state.presetName();
   state.key('P', false);
   EXPECT_NE(state.presetName(), preset);
@@ -199,15 +199,15 @@ TEST_F(ViewerStateTest, FusionKeyFusesTheProjections) {
     renderAll(state);
     state.key(mode, false);
     state.key('F', false);
-    EXPECT_TRUE(state.view3d().fusion) << mode;
+    EXPECT_TRUE(state.view3d().overlay.fusion) << mode;
     EXPECT_TRUE(state.needsRender(k3d));
     const std::string caption = state.caption(k3d, state.renderSettings(k3d));
     EXPECT_NE(caption.find("+ colour fusion (functional max)"), std::string::npos) << caption;
     state.key('O', false);  // spin: the fused settings turn
-    EXPECT_TRUE(state.renderSettings(k3d).fusion);
+    EXPECT_TRUE(state.renderSettings(k3d).overlay.fusion);
     state.key('O', false);
     state.key('F', false);
-    EXPECT_FALSE(state.view3d().fusion) << mode;
+    EXPECT_FALSE(state.view3d().overlay.fusion) << mode;
     EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)).find("fusion"), std::string::npos);
   }
 }
@@ -218,7 +218,7 @@ TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
   state.key('G', false);
   state.key('F', false);
   EXPECT_FALSE(state.view3d().glyphs);
-  EXPECT_FALSE(state.view3d().fusion);
+  EXPECT_FALSE(state.view3d().overlay.fusion);
   EXPECT_FALSE(state.anyDirty());
   EXPECT_EQ(state.requests().status(), "colour fusion needs a functional volume");
   state.registration().start();  // nothing to register
@@ -230,12 +230,12 @@ TEST_F(ViewerStateTest, MprPanesShareTheFunctionalWindowOfTheThreeDPane) {
   state.view3d().functionalLow = 2.0;
   state.view3d().functionalHigh = 7.0;
   state.view3d().functionalClasses = 5;
-  state.view3d().overlayOpacity = 0.75f;
+  state.view3d().overlay.opacity = 0.75f;
   const render::RenderSettings s = state.renderSettings(kCoronal);
   EXPECT_DOUBLE_EQ(s.functionalLow, 2.0);
   EXPECT_DOUBLE_EQ(s.functionalHigh, 7.0);
   EXPECT_EQ(s.functionalClasses, 5);
-  EXPECT_FLOAT_EQ(s.overlayOpacity, 0.75f);
+  EXPECT_FLOAT_EQ(s.overlay.opacity, 0.75f);
   EXPECT_EQ(s.camera.view, render::StandardView::Anterior);
   EXPECT_EQ(state.renderSettings(kAxial).camera.view, render::StandardView::Inferior);
   EXPECT_EQ(state.renderSettings(kSagittal).camera.view, render::StandardView::Left);
@@ -255,11 +255,11 @@ TEST_F(ViewerStateTest, PetCtLayoutShowsOnePlaneInStepAndTheFunctionalMip) {
   const render::RenderSettings anatomy = state.renderSettings(kAxial);
   const render::RenderSettings functional = state.renderSettings(kCoronal);
   const render::RenderSettings fused = state.renderSettings(kSagittal);
-  EXPECT_FALSE(anatomy.overlay);
-  EXPECT_TRUE(fused.overlay);
-  EXPECT_FLOAT_EQ(fused.overlayOpacity, 0.5f);
-  EXPECT_FLOAT_EQ(functional.overlayOpacity, 1.0f);
-  EXPECT_LT(functional.overlayThreshold, 0.0f);
+  EXPECT_FALSE(anatomy.overlay.mpr);
+  EXPECT_TRUE(fused.overlay.mpr);
+  EXPECT_FLOAT_EQ(fused.overlay.opacity, 0.5f);
+  EXPECT_FLOAT_EQ(functional.overlay.opacity, 1.0f);
+  EXPECT_LT(functional.overlay.threshold, 0.0f);
   ASSERT_TRUE(functional.imageColors);
   for (const auto& rgb : functional.imageColors->rgb) EXPECT_EQ(rgb[0] + rgb[1] + rgb[2], 0);
   ASSERT_TRUE(functional.overlayColors);
@@ -297,7 +297,7 @@ TEST_F(ViewerStateTest, PetCtLayoutShowsOnePlaneInStepAndTheFunctionalMip) {
   EXPECT_EQ(state.layout(), config::ViewerLayout::Standard);
   EXPECT_TRUE(state.orbit().mode() == Orbit::Off);
   EXPECT_FALSE(state.paneShowsFunctional(k3d));
-  EXPECT_EQ(state.renderSettings(kCoronal).overlayOpacity, 0.5f);
+  EXPECT_EQ(state.renderSettings(kCoronal).overlay.opacity, 0.5f);
   EXPECT_EQ(state.paneCell(k3d), 0);
 }
 

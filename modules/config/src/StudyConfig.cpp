@@ -272,6 +272,31 @@ const FieldTable<Crop>& cropTable() {
   return t;
 }
 
+// The functional overlay and fusion (mvw/core/Overlay.h), the renderer's value too; its keys
+// sit in the view object.
+const FieldTable<Overlay>& overlayTable() {
+  static const FieldTable<Overlay> t = [] {
+    FieldTable<Overlay> o;
+    o.boolean("overlay", "MPR: show the functional volume, where the study has one.", &Overlay::mpr)
+        .boolean("fusion",
+                 "Composite and isosurface: blend the functional colour in; mip, minip and "
+                 "average: the functional volume's projection along each ray in the overlay "
+                 "colour map over the anatomy's.",
+                 &Overlay::fusion)
+        .enumeration("fusion_projection",
+                     "Fused minip and average views: the functional projection along each ray, "
+                     "the maximum of its samples or their mean (a fused mip takes the maximum).",
+                     &Overlay::projection, kFusionProjections)
+        .number("overlay_opacity", "Opacity of the functional overlay.", &Overlay::opacity, 0.0,
+                1.0)
+        .number("overlay_threshold",
+                "Functional values below this fraction of their range are not overlaid.",
+                &Overlay::threshold, 0.0, 1.0);
+    return o;
+  }();
+  return t;
+}
+
 const FieldTable<ViewConfig>& viewTable() {
   static const FieldTable<ViewConfig> t = [] {
     using V = ViewConfig;
@@ -365,19 +390,9 @@ const FieldTable<ViewConfig>& viewTable() {
                 &V::planeOffsetMm, -1e4, 1e4)
         .number("slab_mm", "MPR: thick-slab MIP thickness in mm (0: a single plane).", &V::slabMm,
                 0.0, 1e4)
-        .boolean("overlay", "MPR: show the functional volume, where the study has one.",
-                 &V::overlay)
+        .inlined(&V::overlay, overlayTable())
         .boolean("segmentation_outlines", "MPR: outline the segments of the study's segmentation.",
                  &V::segmentationOutlines)
-        .boolean("fusion",
-                 "Composite and isosurface: blend the functional colour in; mip, minip and "
-                 "average: the functional volume's projection along each ray in the overlay "
-                 "colour map over the anatomy's.",
-                 &V::fusion)
-        .enumeration("fusion_projection",
-                     "Fused minip and average views: the functional projection along each ray, "
-                     "the maximum of its samples or their mean (a fused mip takes the maximum).",
-                     &V::fusionProjection, kFusionProjections)
         .number("shells", "shells-mip, shells-sum, shells-lit: the number of isosurface shells.",
                 &V::shells, 1, 256)
         .add(
@@ -396,11 +411,6 @@ const FieldTable<ViewConfig>& viewTable() {
         .number("functional_classes",
                 "Label maps: K > 0 gives label L the glyph size (L mod K + 1) / K (0: off).",
                 &V::functionalClasses, 0, 64)
-        .number("overlay_opacity", "Opacity of the functional overlay.", &V::overlayOpacity, 0.0,
-                1.0)
-        .number("overlay_threshold",
-                "Functional values below this fraction of their range are not overlaid.",
-                &V::overlayThreshold, 0.0, 1.0)
         .enumeration("colormap",
                      "Colour map of mip, minip, average and mpr images (grey-inverted also turns "
                      "the black background white).",

@@ -50,7 +50,7 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
   }
   // Fusion asked of a mode that cannot show it: drawn without, and said (the caption and the
   // colour bar name no fusion either).
-  if (v.settings.fusion && !takesFusion(v.settings.mode)) {
+  if (v.settings.overlay.fusion && !takesFusion(v.settings.mode)) {
     const std::string text =
         v.settings.mode == render::RenderMode::Mpr
             ? "fusion is for composite, isosurface, mip, minip and average views: an mpr view "
@@ -120,8 +120,9 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
   if (session.segments() && v.settings.mode == render::RenderMode::Mpr)
     r["segment_outlines"] = session.segments()->names;
   if (overlayShown) {
-    r["overlay_opacity"] = v.settings.overlayOpacity;
-    r["overlay_threshold"] = v.settings.overlayThreshold;
+    // As single precision, as the shader takes them (and as render.json has always said).
+    r["overlay_opacity"] = static_cast<float>(v.settings.overlay.opacity);
+    r["overlay_threshold"] = static_cast<float>(v.settings.overlay.threshold);
     r["overlay_colormap"] = toString(v.config.overlayColormap);
     r["functional_placement"] =
         session.placement() ? session.placement()->report["method"] : nlohmann::json("none");

@@ -50,7 +50,7 @@ void GlyphIcons::fill(GlContext& context, const RenderSettings& view, GlyphLegen
   s.camera.zoom = std::sqrt(3.0) * 0.95;
   s.size = {pixels, pixels};
   s.crop = Crop{};
-  s.fusion = false;
+  s.overlay.fusion = false;
   s.jitter = false;
   s.stepMm = 0.0;
   if (legend.high > legend.low) s.functionalLow = legend.low, s.functionalHigh = legend.high;

@@ -34,7 +34,7 @@ RaycastVariants RaycastPrograms::variants(const RenderSettings& s, bool fusion) 
   set(RaycastVariant::Nearest, !s.linear);
   set(RaycastVariant::Tf2d, s.gradientOpacityHigh > 0.0);
   set(RaycastVariant::Fusion, fusion);
-  set(RaycastVariant::FusionMean, s.fusionProjection == FusionProjection::Mean);
+  set(RaycastVariant::FusionMean, s.overlay.projection == FusionProjection::Mean);
   set(RaycastVariant::Glyphs, s.glyphs);
   set(RaycastVariant::GlyphSimple, !s.glyphSizeControl);
   // Chosen labels carry their own kind (bump or dimple) through the "both" shading.

@@ -310,8 +310,8 @@ void VolumeRenderer::Impl::setFunctionalUniforms(const ShaderProgram& p, const R
                                                  bool fusion, glm::vec2 window) const {
   functional.setUniforms(p, window, s.functionalClasses);
   glUniform1i(p.uniform("uHasFunctional"), fusion ? 1 : 0);
-  glUniform1f(p.uniform("uOverlayOpacity"), s.overlayOpacity);
-  glUniform1f(p.uniform("uOverlayThreshold"), s.overlayThreshold);
+  glUniform1f(p.uniform("uOverlayOpacity"), float(s.overlay.opacity));
+  glUniform1f(p.uniform("uOverlayThreshold"), float(s.overlay.threshold));
 }
 
 // Every sampler on its own unit, also those the program does not use (uniform -1 is ignored).
@@ -359,11 +359,11 @@ bool showsAnatomyOnCutFace(const RenderSettings& s) {
 bool showsImageColors(const RenderSettings& s) { return s.imageColors && takesImageColors(s.mode); }
 
 bool showsFusion(const RenderSettings& s, bool hasFunctional) {
-  return hasFunctional && s.fusion && takesFusion(s.mode);
+  return hasFunctional && s.overlay.fusion && takesFusion(s.mode);
 }
 
 bool showsFunctional(const RenderSettings& s, bool hasFunctional) {
-  return s.mode == RenderMode::Mpr ? hasFunctional && s.overlay : showsFusion(s, hasFunctional);
+  return s.mode == RenderMode::Mpr ? hasFunctional && s.overlay.mpr : showsFusion(s, hasFunctional);
 }
 
 VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume, GradientSource gradient)

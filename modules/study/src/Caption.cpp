@@ -67,7 +67,7 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   if (render::showsFusion(s, true)) {
     caption += "  + colour fusion";
     if (isProjectionMode(s.mode))
-      caption += takesFusionMean(s.mode) && s.fusionProjection == FusionProjection::Mean
+      caption += takesFusionMean(s.mode) && s.overlay.projection == FusionProjection::Mean
                      ? " (functional mean)"
                      : " (functional max)";
   }

@@ -280,7 +280,7 @@ void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedO
   if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
   if (parsed.colormap && takesImageColors(v.mode)) v.colormap = *parsed.colormap;
   // And one whose fused projection is always the maximum drops the view's functional mean.
-  if (o.mode && !takesFusionMean(v.mode)) v.fusionProjection = FusionProjection::Max;
+  if (o.mode && !takesFusionMean(v.mode)) v.overlay.projection = FusionProjection::Max;
   if (parsed.overlayColormap) v.overlayColormap = *parsed.overlayColormap;
   // --orbit turns the views that can turn about the long axis (not those looking along it).
   const render::StandardView sight = standardView(v.view);
@@ -385,20 +385,16 @@ void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
   s.slabMm = v.slabMm;
   s.overlay = v.overlay;
   s.segmentOutlines = v.segmentationOutlines;
-  s.fusion = v.fusion;
   s.functionalClasses = v.functionalClasses;
   s.glyphClassKinds = v.glyphClassKinds;
   if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
-  if (v.fusion && !study.functional)
+  if (v.overlay.fusion && !study.functional)
     throw InputError(study.file,
                      "view '" + v.name + "': fusion needs a functional volume in the study");
-  s.fusionProjection = v.fusionProjection;
-  if (v.fusionProjection == FusionProjection::Mean && !takesFusionMean(s.mode))
+  if (v.overlay.projection == FusionProjection::Mean && !takesFusionMean(s.mode))
     throw InputError(study.file, "view '" + v.name +
                                      "': fusion_projection mean is for minip and average views "
                                      "(a fused mip shows the functional maximum)");
-  s.overlayOpacity = static_cast<float>(v.overlayOpacity);
-  s.overlayThreshold = static_cast<float>(v.overlayThreshold);
 }
 
 // One view of the study, its overrides applied: its render settings, checked.
@@ -575,13 +571,10 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.slabMm = s.slabMm;
   v.overlay = s.overlay;
   v.segmentationOutlines = s.segmentOutlines;
-  v.fusion = s.fusion;
-  // Only where the mode takes it, as the colour map below.
-  if (takesFusionMean(s.mode)) v.fusionProjection = s.fusionProjection;
+  // The functional mean only where the mode takes it, as the colour map below.
+  if (!takesFusionMean(s.mode)) v.overlay.projection = FusionProjection::Max;
   v.functionalClasses = s.functionalClasses;
   v.glyphClassKinds = s.glyphClassKinds;
-  v.overlayOpacity = s.overlayOpacity;
-  v.overlayThreshold = s.overlayThreshold;
   // Only where the mode shows it: a saved composite view with a colormap would not load.
   v.colormap = render::showsImageColors(s) ? s.imageColors->map : ColorMap::Grey;
   v.overlayColormap = s.overlayColors ? s.overlayColors->map : ColorMap::HotMetal;

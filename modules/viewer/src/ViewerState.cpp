@@ -394,7 +394,7 @@ void ViewerState::key(char key, bool ctrl) {
       return requests_.setStatus(toString(view3d_.mode) +
                                  " cannot fuse the functional volume: colour fusion is for "
                                  "composite, isosurface, mip, minip and average");
-    view3d_.fusion = !view3d_.fusion;
+    view3d_.overlay.fusion = !view3d_.overlay.fusion;
   } else if (key == 'P') {
     const auto names = mvw::study::presetsFor(anatomical_);
     auto it = std::find(names.begin(), names.end(), presetName_);
@@ -532,7 +532,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
     s.camera.rollDeg = 0.0;
     s.camera.perspective = false;
     s.imageColors = functionalColors_;
-    s.overlay = false;
+    s.overlay.mpr = false;
     if (functional_)
       s.window = fhi - flo, s.level = 0.5 * (flo + fhi);
     else
@@ -546,8 +546,8 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
     s.camera.view = mprViewIn(layout, pane);
     s.window = mprWindow_;
     s.level = mprLevel_;
-    s.overlayOpacity = view3d_.overlayOpacity;
-    s.overlayThreshold = view3d_.overlayThreshold;
+    s.overlay.opacity = view3d_.overlay.opacity;
+    s.overlay.threshold = view3d_.overlay.threshold;
     s.functionalLow = view3d_.functionalLow;
     s.functionalHigh = view3d_.functionalHigh;
     s.functionalClasses = view3d_.functionalClasses;
@@ -559,7 +559,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
         render::makeCamera(s.camera, scene_.centre, scene_.radius, glm::max(image.size, 1));
     s.camera.panMm = {glm::dot(mprPan_, plane.right), glm::dot(mprPan_, plane.up)};
     s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, plane.forward);
-    if (petCt && pane == kAxial) s.overlay = false;  // the anatomy alone
+    if (petCt && pane == kAxial) s.overlay.mpr = false;  // the anatomy alone
     if (petCt && pane == kCoronal && functional_) {
       // The functional volume alone: every value inside its box in the functional colour map
       // at full opacity (the threshold below the window), over an anatomy drawn black.
@@ -567,8 +567,8 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
       black.rgb.fill({0, 0, 0});
       s.imageColors = black;
       s.overlayColors = functionalColors_;
-      s.overlayOpacity = 1.0f;
-      s.overlayThreshold = -1.0f;
+      s.overlay.opacity = 1.0f;
+      s.overlay.threshold = -1.0f;
       s.functionalLow = flo;
       s.functionalHigh = fhi;
     } else if (petCt && pane == kCoronal) {

@@ -27,6 +27,7 @@
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
 
 namespace mvw::config {
@@ -169,14 +170,10 @@ struct ViewConfig {
   std::array<double, 2> light{0.0, 0.0};  // light offset in screen terms; 0, 0: headlight
   double planeOffsetMm = 0.0;             // mpr: plane moved along the line of sight
   double slabMm = 0.0;                    // mpr: thick-slab MIP thickness, 0 = single plane
-  bool overlay = true;                    // mpr: show the functional volume when there is one
   bool segmentationOutlines = true;       // mpr: outline the study's segmentation's segments
-  // composite / isosurface: blend the functional colour in; mip / minip / average: lay the
-  // functional volume's projection over the anatomy's (minip / average: its max or mean).
-  bool fusion = false;
-  FusionProjection fusionProjection = FusionProjection::Max;
-  double overlayOpacity = 0.5;
-  double overlayThreshold = 0.25;  // fraction of the functional value range
+  // The functional overlay (mpr) and fusion (composite, isosurface, mip, minip, average):
+  // mvw/core/Overlay.h.
+  Overlay overlay;
   // Colour maps: the image of mip / minip / average / mpr views ("colormap"; grey-inverted also
   // turns the black background white), and the functional overlay or fusion
   // ("overlay_colormap").

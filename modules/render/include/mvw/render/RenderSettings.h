@@ -15,6 +15,7 @@
 #include "mvw/core/Crop.h"
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/GlyphMap.h"
@@ -124,17 +125,9 @@ struct RenderSettings {
   // glyphClassKinds.size() equal ranges, range c of kind c (an ordinal attribute in classes).
   // Empty: bumps (and the convexity) as before.
   std::vector<GlyphKind> glyphClassKinds;
-  // Functional colour overlay, when the renderer holds a functional volume: on MPR by
-  // default (overlay), on composite and isosurface renders when asked (fusion: the colour
-  // map blended into the anatomy's colour before shading), and on mip, minip and average ones
-  // (fusion: the functional volume's own projection along each ray, in the colour map over the
-  // anatomy's projection; takesFusion in mvw/core/RenderMode.h).
-  bool overlay = true;
-  bool fusion = false;
-  // Fused minip and average: the functional projection (its maximum or mean along the ray).
-  FusionProjection fusionProjection = FusionProjection::Max;
-  float overlayOpacity = 0.5f;
-  float overlayThreshold = 0.25f;  // fraction of the functional range
+  // Functional colour overlay and fusion, when the renderer holds a functional volume
+  // (mvw/core/Overlay.h).
+  Overlay overlay;
   // MPR: outline the segments of a segmentation set with setSegmentation, in their colours.
   bool segmentOutlines = true;
   // Colour maps (mvw/core/ColorMap.h; io::standardColorTable fills the DICOM palettes): the
