@@ -85,9 +85,9 @@ TEST(ViewAnnotations, OnlyOutliningMprViewsListTheSegments) {
   ASSERT_EQ(legend.size(), 2u);
   EXPECT_EQ(legend[1].name, "spleen");
   EXPECT_EQ(legend[1].colour, glm::vec3(0.0f, 1.0f, 0.0f));
-  s.segmentOutlines = false;
+  s.segmentationOutlines = false;
   EXPECT_TRUE(segmentLegendOf(s, &segments).empty());
-  s.segmentOutlines = true;
+  s.segmentationOutlines = true;
   s.mode = RenderMode::Composite;
   EXPECT_TRUE(segmentLegendOf(s, &segments).empty());
 }

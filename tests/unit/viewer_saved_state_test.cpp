@@ -117,7 +117,7 @@ std::string dumpSettings(const render::RenderSettings& s) {
   num("fusion.projection", double(static_cast<int>(s.overlay.projection)));
   num("overlay.opacity", s.overlay.opacity);
   num("overlay.threshold", s.overlay.threshold);
-  num("segment_outlines", s.segmentOutlines);
+  num("segment_outlines", s.segmentationOutlines);
   line("image_colors", s.imageColors ? toString(s.imageColors->map) : "none");
   line("overlay_colors", s.overlayColors ? toString(s.overlayColors->map) : "none");
   return o.str();

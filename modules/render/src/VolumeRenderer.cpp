@@ -174,7 +174,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
     glUniform3fv(p.uniform("uGlyphScreenUp"), 1, glm::value_ptr(glm::vec3(camera.up)));
   }
   setFunctionalUniforms(p, s, fusion, functionalWindow);
-  segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentOutlines);
+  segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentationOutlines);
   if (showsImageColors(s)) updateImageColormap(s.imageColors);
   // The fused projections skip by both volumes' block ranges (BlockGrid::setFunctional).
   bindTextures(p, functional.colormap(s.overlayColors), fusion && isProjectionMode(s.mode));

@@ -384,7 +384,7 @@ void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
   s.planeOffsetMm = v.planeOffsetMm;
   s.slabMm = v.slabMm;
   s.overlay = v.overlay;
-  s.segmentOutlines = v.segmentationOutlines;
+  s.segmentationOutlines = v.segmentationOutlines;
   s.functionalClasses = v.functionalClasses;
   s.glyphClassKinds = v.glyphClassKinds;
   if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
@@ -570,7 +570,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.planeOffsetMm = s.planeOffsetMm;
   v.slabMm = s.slabMm;
   v.overlay = s.overlay;
-  v.segmentationOutlines = s.segmentOutlines;
+  v.segmentationOutlines = s.segmentationOutlines;
   // The functional mean only where the mode takes it, as the colour map below.
   if (!takesFusionMean(s.mode)) v.overlay.projection = FusionProjection::Max;
   v.functionalClasses = s.functionalClasses;

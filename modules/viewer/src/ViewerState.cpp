@@ -135,7 +135,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
         functionalDisplay_ = {(*v.config.functionalWindow)[0], (*v.config.functionalWindow)[1]};
       if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
       mprColors_ = v.settings.imageColors;
-      segmentOutlines_ = v.settings.segmentOutlines;
+      segmentOutlines_ = v.settings.segmentationOutlines;
       break;
     }
   // A saved state's MPR panes (views named view-axial, ...): their zoom, and the linked pan
@@ -553,7 +553,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
     s.functionalClasses = view3d_.functionalClasses;
     s.imageColors = mprColors_;
     s.overlayColors = view3d_.overlayColors;
-    s.segmentOutlines = segmentOutlines_;
+    s.segmentationOutlines = segmentOutlines_;
     s.camera.zoom = mprZoom_;
     const render::Camera plane =
         render::makeCamera(s.camera, scene_.centre, scene_.radius, glm::max(image.size, 1));

@@ -129,7 +129,7 @@ struct RenderSettings {
   // (mvw/core/Overlay.h).
   Overlay overlay;
   // MPR: outline the segments of a segmentation set with setSegmentation, in their colours.
-  bool segmentOutlines = true;
+  bool segmentationOutlines = true;
   // Colour maps (mvw/core/ColorMap.h; io::standardColorTable fills the DICOM palettes): the
   // image of MIP, MinIP, average and MPR views (none: grey), looked up by the grey byte, the
   // background shown through it as the grey it is; and the functional overlay and fusion
