@@ -284,10 +284,10 @@ void ViewerPanel::drawViewControls() {
   float step = static_cast<float>(v.stepMm);
   if (ImGui::SliderFloat("step mm (0 auto)", &step, 0.0f, 4.0f))
     v.stepMm = step, state_.markDirty(k3d);
-  float iso = static_cast<float>(v.isoValue);
+  float iso = static_cast<float>(v.iso);
   const auto [lo, hi] = state_.scene().valueRange;
   if (ImGui::SliderFloat("iso value", &iso, float(lo), float(hi)))
-    v.isoValue = iso, state_.markDirty(k3d);
+    v.iso = iso, state_.markDirty(k3d);
   float w = static_cast<float>(state_.mprWindow()), l = static_cast<float>(state_.mprLevel());
   // `|`, not `||`: both widgets are drawn every frame.
   if (ImGui::DragFloat("MPR window", &w, 2.0f, 1.0f, float(hi - lo) * 2) |

@@ -39,7 +39,7 @@ struct CutScene {
   static RenderSettings settings(RenderMode mode) {
     RenderSettings s;
     s.mode = mode;
-    s.isoValue = 50.0;
+    s.iso = 50.0;
     s.transfer = transferPreset("mr-default");  // visible from 15 % of the range (30) on
     s.size = {121, 121};
     s.jitter = false;

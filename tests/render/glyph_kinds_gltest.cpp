@@ -86,7 +86,7 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
     s.mode = views[v].mode;
     s.camera = views[v].camera;
     s.size = {kImage, kImage};
-    s.isoValue = 0.0;
+    s.iso = 0.0;
     s.jitter = false;
     s.lightOffset = light;
     s.overlay.mpr = false;

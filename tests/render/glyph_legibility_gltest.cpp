@@ -219,7 +219,7 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
     s.camera.view = view;
     s.camera.zoom = crop ? 1.4 : 1.6;
     s.size = {360, 360};
-    s.isoValue = -300;
+    s.iso = -300;
     s.jitter = false;
     if (crop) s.crop.max = {1.0, 1.0, kCutFraction};
     s.lightOffset = {-0.8, 0.8};

@@ -83,7 +83,7 @@ TEST(Raycast, OnlyPixelsWhoseRayMissesTheBoxAreLeftToTheClearedBackground) {
     VolumeRenderer renderer(*ctx, v);
     RenderSettings s;
     s.mode = RenderMode::Isosurface;
-    s.isoValue = 50.0;
+    s.iso = 50.0;
     s.size = {160, 128};
     s.camera = c.camera;
     s.crop.min = c.cropMin;
@@ -190,7 +190,7 @@ TEST(Raycast, TheClearedBackgroundEqualsWhatARayThatMeetsNothingWrites) {
     SCOPED_TRACE(toString(mode));
     RenderSettings s;
     s.mode = mode;
-    s.isoValue = 50.0;
+    s.iso = 50.0;
     s.transfer.points = {{40.0, {1.0f, 0.8f, 0.6f, 0.0f}}, {60.0, {1.0f, 0.8f, 0.6f, 0.5f}}};
     s.size = {128, 128};
     s.camera.zoom = 0.7;  // the box well inside the image

@@ -69,10 +69,10 @@ std::string dumpSettings(const render::RenderSettings& s) {
   num("transfer.points", double(s.transfer.points.size()));
   vec("gradient_opacity", {s.gradientOpacityLow, s.gradientOpacityHigh});
   vec("window_level", {s.window, s.level});
-  num("iso", s.isoValue);
+  num("iso", s.iso);
   num("depth_cue", s.depthCue.on);
   vec("depth_cue.values", {s.depthCue.brightness, s.depthCue.amount, s.depthCue.contrast});
-  num("shells", s.shellCount);
+  num("shells", s.shells);
   std::string enabled;
   for (bool e : s.shellEnabled) enabled += e ? '1' : '0';
   line("shells.enabled", enabled);

@@ -28,7 +28,7 @@ TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
   EXPECT_EQ(state.presetName(), "ct-bone");
   EXPECT_EQ(state.view3d().mode, RenderMode::Composite);
-  EXPECT_DOUBLE_EQ(state.view3d().isoValue, 300.0);
+  EXPECT_DOUBLE_EQ(state.view3d().iso, 300.0);
   EXPECT_DOUBLE_EQ(state.mprWindow(), 400.0);
   EXPECT_DOUBLE_EQ(state.mprLevel(), 40.0);
   EXPECT_EQ(state.crosshair(), state.scene().centre);
@@ -37,7 +37,7 @@ TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
   Volume mr = makeVolume("MR", 0.0, 500.0);
   ViewerState mrState(study, mr, nullptr, sceneOf(mr));
   EXPECT_EQ(mrState.presetName(), "mr-default");
-  EXPECT_DOUBLE_EQ(mrState.view3d().isoValue, 200.0);
+  EXPECT_DOUBLE_EQ(mrState.view3d().iso, 200.0);
   EXPECT_DOUBLE_EQ(mrState.mprWindow(), 500.0);
   EXPECT_DOUBLE_EQ(mrState.mprLevel(), 250.0);
 }
@@ -500,14 +500,14 @@ TEST_F(ViewerStateTest, NoSilentEmptyPanes) {
   Volume suv = makeVolume("PT", 0.0, 19.0);  // int16 voxels
   suv.metadata().unit = "SUVbw";
   ViewerState state(study, suv, nullptr, sceneOf(suv));
-  EXPECT_DOUBLE_EQ(state.view3d().isoValue, 2.5);
+  EXPECT_DOUBLE_EQ(state.view3d().iso, 2.5);
   EXPECT_EQ(state.presetName(), "pet-hot-metal");
   for (int i = 0; i < 6; ++i) {
     state.key('P', false);
     EXPECT_EQ(state.presetName().rfind("ct-", 0), std::string::npos) << state.presetName();
   }
   state.key('2', false);
-  state.view3d().isoValue = 300.0;
+  state.view3d().iso = 300.0;
   for (int p = 0; p < kPaneCount; ++p) state.setPaneSize(p, {64, 48});
   const render::RenderSettings s = state.renderSettings(k3d);
   const render::Camera cam =

@@ -38,13 +38,13 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
     r["gradient_opacity"] = {v.settings.gradientOpacityLow, v.settings.gradientOpacityHigh};
   r["window"] = shown.window;
   r["level"] = shown.level;
-  r["iso"] = v.settings.isoValue;
+  r["iso"] = v.settings.iso;
   // An isovalue no voxel reaches draws an empty image: legitimate to ask, but said.
-  if (v.settings.mode == render::RenderMode::Isosurface && v.settings.isoValue > hi) {
+  if (v.settings.mode == render::RenderMode::Isosurface && v.settings.iso > hi) {
     char text[200];
     std::snprintf(text, sizeof text,
                   "iso %g lies above the volume's maximum %g: the isosurface is empty",
-                  v.settings.isoValue, hi);
+                  v.settings.iso, hi);
     r["notes"].push_back(text);
     log << "mvw render: note: view '" << v.config.name << "': " << text << "\n";
   }
@@ -98,7 +98,7 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
     r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
   const bool shellMode = isShellMode(v.settings.mode);
   if (shellMode) {
-    r["shells"] = v.settings.shellCount;
+    r["shells"] = v.settings.shells;
     r["shells_disabled"] = v.config.shellsDisabled;
   }
   if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue.on)

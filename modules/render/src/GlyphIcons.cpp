@@ -44,7 +44,7 @@ void GlyphIcons::fill(GlContext& context, const RenderSettings& view, GlyphLegen
   }
   RenderSettings s = view;
   s.mode = RenderMode::Isosurface;
-  s.isoValue = 0.5;
+  s.iso = 0.5;
   s.camera = CameraSettings{};
   s.camera.view = StandardView::Anterior;
   s.camera.zoom = std::sqrt(3.0) * 0.95;

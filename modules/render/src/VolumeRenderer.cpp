@@ -126,7 +126,7 @@ Image VolumeRenderer::Impl::drawShells(const RenderSettings& s, const Camera& ca
   const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
   d.windowLow = wl.level - 0.5 * wl.window;
   d.windowWidth = wl.window;
-  d.count = s.shellCount;
+  d.count = s.shells;
   d.enabled = s.shellEnabled;
   if (s.depthCue.on) d.depthCue = s.depthCue;
   d.light = s.light;
@@ -300,7 +300,7 @@ void VolumeRenderer::Impl::setShadingUniforms(const ShaderProgram& p, const Rend
   const auto [lo, hi] = volume.transferRange();
   const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
   glUniform2f(p.uniform("uWindowLevel"), float(wl.window), float(wl.level));
-  glUniform1f(p.uniform("uIsoValue"), float(s.isoValue));
+  glUniform1f(p.uniform("uIsoValue"), float(s.iso));
   glUniform3f(p.uniform("uCue"), float(s.depthCue.brightness), float(s.depthCue.amount),
               float(s.depthCue.contrast));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);

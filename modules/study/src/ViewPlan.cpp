@@ -315,7 +315,7 @@ void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, con
   s.camera.perspective = v.perspective;
   s.window = v.window.value_or(0.0);
   s.level = v.level.value_or(0.0);
-  s.isoValue = v.iso;
+  s.iso = v.iso;
   s.stepMm = v.stepMm;
   s.shading = v.shading;
   s.linear = v.sampling == config::Sampling::Linear;
@@ -373,7 +373,7 @@ void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
     s.functionalHigh = (*v.functionalWindow)[1];
   }
   s.lightOffset = {v.light[0], v.light[1]};
-  s.shellCount = v.shells;
+  s.shells = v.shells;
   if (!v.shellsDisabled.empty()) {
     s.shellEnabled.assign(static_cast<std::size_t>(v.shells), true);
     for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
@@ -527,7 +527,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.height = s.size.y;
   v.preset = preset;
   if (s.window > 0) v.window = s.window, v.level = s.level;
-  v.iso = s.isoValue;
+  v.iso = s.iso;
   v.stepMm = s.stepMm;
   v.shading = s.shading;
   v.sampling = s.linear ? config::Sampling::Linear : config::Sampling::Nearest;
@@ -562,7 +562,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   if (s.functionalHigh > s.functionalLow)
     v.functionalWindow = std::array<double, 2>{s.functionalLow, s.functionalHigh};
   v.light = {s.lightOffset.x, s.lightOffset.y};
-  v.shells = s.shellCount;
+  v.shells = s.shells;
   for (std::size_t k = 0; k < s.shellEnabled.size(); ++k)
     if (!s.shellEnabled[k]) v.shellsDisabled.push_back(static_cast<int>(k) + 1);
   v.depthCue = s.depthCue;

@@ -93,7 +93,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   presetName_ = defaults.preset;
   view3d_.transfer = render::transferPreset(presetName_);
   view3d_.camera.view = StandardView::Anterior;
-  view3d_.isoValue = defaults.isoValue;
+  view3d_.iso = defaults.iso;
   view3d_.cutFace = CutFace::Anatomy;  // as a planned view has it by default (cut_face)
   if (defaults.mode3d != RenderMode::Composite) {
     // A PET read alone (study::modalityDefaults): its MIP under its own window, as the implied
@@ -120,9 +120,8 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     // A view in another mode carries the config's default isovalue (300, for HU): key 2 would
     // show nothing on a volume that does not reach it (a PET in SUV), so the volume's own.
     const auto [lo, hi] = scene_.valueRange;
-    if (v.settings.mode != RenderMode::Isosurface &&
-        !(view3d_.isoValue > lo && view3d_.isoValue < hi))
-      view3d_.isoValue = defaults.isoValue;
+    if (v.settings.mode != RenderMode::Isosurface && !(view3d_.iso > lo && view3d_.iso < hi))
+      view3d_.iso = defaults.iso;
     break;
   }
   if (functional_) {
@@ -642,9 +641,9 @@ std::string ViewerState::emptyPaneMessage(int pane) const {
   std::snprintf(buf, sizeof buf, "%.4g .. %.4g", lo, hi);
   const std::string range = buf + (unit.empty() ? std::string(", no unit") : " " + unit);
   if (pane == k3d && view3d_.mode == RenderMode::Isosurface &&
-      !(view3d_.isoValue > lo && view3d_.isoValue < hi)) {
+      !(view3d_.iso > lo && view3d_.iso < hi)) {
     char iso[32];
-    std::snprintf(iso, sizeof iso, "%g", view3d_.isoValue);
+    std::snprintf(iso, sizeof iso, "%g", view3d_.iso);
     return std::string("Nothing to show: the isovalue ") + iso +
            " lies outside the volume's values (" + range + "); set the iso value in the panel";
   }

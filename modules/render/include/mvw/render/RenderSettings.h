@@ -57,11 +57,11 @@ struct RenderSettings {
   // full value range.
   double window = 0.0;
   double level = 0.0;  // window centre
-  double isoValue = 300.0;
+  double iso = 300.0;
   // MIP and the shell modes with depth cueing (mvw/core/DepthCue.h).
   DepthCue depthCue;
   // Shell modes: n shells at emissions i/n of the window; shells can be disabled one by one.
-  int shellCount = 8;
+  int shells = 8;
   std::vector<bool> shellEnabled;  // empty: all
   double stepMm = 0.0;             // <= 0: half the smallest voxel spacing
   bool shading = true;
