@@ -284,10 +284,10 @@ void ViewerPanel::drawViewControls() {
   float step = static_cast<float>(v.stepMm);
   if (ImGui::SliderFloat("step mm (0 auto)", &step, 0.0f, 4.0f))
     v.stepMm = step, state_.markDirty(k3d);
-  float iso = static_cast<float>(v.isoValue);
+  float iso = static_cast<float>(v.iso);
   const auto [lo, hi] = state_.scene().valueRange;
   if (ImGui::SliderFloat("iso value", &iso, float(lo), float(hi)))
-    v.isoValue = iso, state_.markDirty(k3d);
+    v.iso = iso, state_.markDirty(k3d);
   float w = static_cast<float>(state_.mprWindow()), l = static_cast<float>(state_.mprLevel());
   // `|`, not `||`: both widgets are drawn every frame.
   if (ImGui::DragFloat("MPR window", &w, 2.0f, 1.0f, float(hi - lo) * 2) |
@@ -313,12 +313,13 @@ void ViewerPanel::drawDepthCue() {
   render::RenderSettings& v = state_.view3d();
   ImGui::Separator();
   ImGui::Text("depth-cued MIP (Heidrich 1995)");
-  bool cue = v.depthCue;
-  if (ImGui::Checkbox("depth cue", &cue)) v.depthCue = cue, state_.markDirty(k3d);
-  float b0 = float(v.cueBrightness), a = float(v.cueAmount), b = float(v.cueContrast);
+  bool cue = v.depthCue.on;
+  if (ImGui::Checkbox("depth cue", &cue)) v.depthCue.on = cue, state_.markDirty(k3d);
+  float b0 = float(v.depthCue.brightness), a = float(v.depthCue.amount),
+        b = float(v.depthCue.contrast);
   if (ImGui::SliderFloat("brightness", &b0, 0, 1) | ImGui::SliderFloat("depth cue", &a, 0, 1) |
       ImGui::SliderFloat("contrast", &b, 0, 1)) {
-    v.cueBrightness = b0, v.cueAmount = a, v.cueContrast = b;
+    v.depthCue.brightness = b0, v.depthCue.amount = a, v.depthCue.contrast = b;
     state_.markDirty(k3d);
   }
 }
@@ -329,9 +330,12 @@ void ViewerPanel::drawFunctionalControls() {
   ImGui::Separator();
   ImGui::Text("functional volume");
   colormapCombo(state_, "overlay colours", ColorTarget::Overlay);
-  if (ImGui::SliderFloat("overlay opacity", &v.overlayOpacity, 0, 1) |
-      ImGui::SliderFloat("threshold", &v.overlayThreshold, 0, 1))
+  float opacity = float(v.overlay.opacity), threshold = float(v.overlay.threshold);
+  if (ImGui::SliderFloat("overlay opacity", &opacity, 0, 1) |
+      ImGui::SliderFloat("threshold", &threshold, 0, 1)) {
+    v.overlay.opacity = opacity, v.overlay.threshold = threshold;
     state_.markAllDirty();
+  }
   drawFunctionalWindow();
   drawGlyphControls();
   drawRegistration();
@@ -364,16 +368,17 @@ void ViewerPanel::drawFunctionalWindow() {
 // Glyphs and colour fusion: their switches, spacing and size, the legend, method and kinds.
 void ViewerPanel::drawGlyphControls() {
   render::RenderSettings& v = state_.view3d();
-  bool glyphs = v.glyphs, fusion = v.fusion;
+  bool glyphs = v.glyphs, fusion = v.overlay.fusion;
   if (ImGui::Checkbox("glyphs (G)", &glyphs)) v.glyphs = glyphs, state_.markDirty(k3d);
   ImGui::SameLine();
-  if (ImGui::Checkbox("colour fusion (F)", &fusion)) v.fusion = fusion, state_.markDirty(k3d);
+  if (ImGui::Checkbox("colour fusion (F)", &fusion))
+    v.overlay.fusion = fusion, state_.markDirty(k3d);
   // A fused minip or average: the functional maximum along the ray, or its mean.
-  if (v.fusion && takesFusionMean(v.mode)) {
+  if (v.overlay.fusion && takesFusionMean(v.mode)) {
     ImGui::SameLine();
-    bool mean = v.fusionProjection == render::FusionProjection::Mean;
+    bool mean = v.overlay.projection == render::FusionProjection::Mean;
     if (ImGui::Checkbox("functional mean", &mean)) {
-      v.fusionProjection = mean ? render::FusionProjection::Mean : render::FusionProjection::Max;
+      v.overlay.projection = mean ? render::FusionProjection::Mean : render::FusionProjection::Max;
       state_.markDirty(k3d);
     }
   }

@@ -128,13 +128,13 @@ TEST(StudyConfig, FrameChoosesWhatA4DVolumeGivesAndCropMmIsABoxInLpsMm) {
   EXPECT_EQ(c.anatomical.frame->index, 2);
   EXPECT_EQ(c.functional->frame->index, 7);
   EXPECT_FALSE(c.functional->frame->mean);
-  ASSERT_TRUE(c.render.views[0].cropMaxMm.has_value());
-  EXPECT_EQ((*c.render.views[0].cropMaxMm)[2], 30.5);
-  EXPECT_EQ((*c.render.views[0].cropMinMm)[1], -60);
+  ASSERT_TRUE(c.render.views[0].crop.maxMm.has_value());
+  EXPECT_EQ((*c.render.views[0].crop.maxMm)[2], 30.5);
+  EXPECT_EQ((*c.render.views[0].crop.minMm)[1], -60);
   writeStudyConfig(c, dir / "written.json");
   const StudyConfig d = loadStudyConfig(dir / "written.json");
   EXPECT_EQ(d.functional->frame->index, 7);
-  EXPECT_EQ(d.render.views[0].cropMaxMm, c.render.views[0].cropMaxMm);
+  EXPECT_EQ(d.render.views[0].crop.maxMm, c.render.views[0].crop.maxMm);
   for (const char* bad : {R"("frame": -1)", R"("frame": "last")", R"("frame": 1.5)",
                           R"("frame": "3")", R"("frame": true)"}) {
     const std::string text = std::string(R"({"anatomical": {"path": "anat.nii"},
@@ -243,23 +243,23 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   ASSERT_TRUE(a.functionalWindow.has_value());
   EXPECT_EQ((*a.functionalWindow)[1], 1.5);
   EXPECT_EQ(a.functionalClasses, 4);
-  EXPECT_EQ(a.cropMax[2], 0.55);
+  EXPECT_EQ(a.crop.max[2], 0.55);
   EXPECT_EQ(a.light[0], -0.8);
   EXPECT_FALSE(a.shading);
   EXPECT_EQ(a.sampling, Sampling::Nearest);
   EXPECT_EQ(a.background[2], 0.3);
   EXPECT_TRUE(a.perspective);
   EXPECT_EQ(a.gradientOpacity[1], 40.0);
-  EXPECT_TRUE(a.fusion);
-  EXPECT_EQ(a.overlayOpacity, 0.7);
+  EXPECT_TRUE(a.overlay.fusion);
+  EXPECT_EQ(a.overlay.opacity, 0.7);
   const ViewConfig& b = d.render.views[1];
-  EXPECT_TRUE(b.depthCue);
-  EXPECT_EQ(b.cueAmount, 0.66);
+  EXPECT_TRUE(b.depthCue.on);
+  EXPECT_EQ(b.depthCue.amount, 0.66);
   ASSERT_TRUE(b.window.has_value());
   EXPECT_EQ(*b.level, 500.0);
   EXPECT_EQ(d.render.views[2].shellsDisabled, (std::vector<int>{1, 2}));
   EXPECT_EQ(d.render.views[3].slabMm, 5.0);
-  EXPECT_FALSE(d.render.views[3].overlay);
+  EXPECT_FALSE(d.render.views[3].overlay.mpr);
 }
 
 // Every study-level field away from its default, written, loaded back and compared field by

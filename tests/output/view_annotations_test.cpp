@@ -68,7 +68,7 @@ TEST(ViewAnnotations, AnOverlayShowsTheFunctionalWindowInTheFunctionalUnit) {
   ASSERT_TRUE(bar->colors);
   EXPECT_EQ(bar->colors->map, ColorMap::Pet);
   // The overlay switched off: the image's own map again.
-  s.overlay = false;
+  s.overlay.mpr = false;
   bar = colourBarOf(s, ct, &pet, {0.5, 12.0}, {400.0, 40.0});
   ASSERT_TRUE(bar);
   EXPECT_EQ(bar->unit, "HU");
@@ -85,9 +85,9 @@ TEST(ViewAnnotations, OnlyOutliningMprViewsListTheSegments) {
   ASSERT_EQ(legend.size(), 2u);
   EXPECT_EQ(legend[1].name, "spleen");
   EXPECT_EQ(legend[1].colour, glm::vec3(0.0f, 1.0f, 0.0f));
-  s.segmentOutlines = false;
+  s.segmentationOutlines = false;
   EXPECT_TRUE(segmentLegendOf(s, &segments).empty());
-  s.segmentOutlines = true;
+  s.segmentationOutlines = true;
   s.mode = RenderMode::Composite;
   EXPECT_TRUE(segmentLegendOf(s, &segments).empty());
 }

@@ -103,9 +103,9 @@ TEST(ColorMaps, GreyInvertedShowsAWhiteBackgroundAndBlackHotSpot) {
     EXPECT_EQ(img.pixel(30, 30)[c], 0) << "hottest";
   }
   // Depth-cued MIP keeps the background term of eq. (3) on the black (emission) background.
-  s.depthCue = true;
-  s.cueAmount = 0.5;
-  s.cueContrast = 0.5;
+  s.depthCue.on = true;
+  s.depthCue.amount = 0.5;
+  s.depthCue.contrast = 0.5;
   const Image cued = renderer.render(s).image;
   EXPECT_EQ(cued.pixel(0, 0)[0], 255);
   RenderSettings greyCue = s;
@@ -126,8 +126,8 @@ TEST(ColorMaps, OverlayUsesItsOwnColourMap) {
   s.camera.view = StandardView::Inferior;
   s.functionalLow = 0.0;
   s.functionalHigh = 10.0;
-  s.overlayOpacity = 1.0f;
-  s.overlayThreshold = 0.0f;
+  s.overlay.opacity = 1.0f;
+  s.overlay.threshold = 0.0f;
   for (ColorMap map : {ColorMap::HotIron, ColorMap::Pet, ColorMap::HotMetalBlue,
                        ColorMap::Pet20Step, ColorMap::GreyInverted}) {
     s.overlayColors = io::standardColorTable(map);

@@ -39,13 +39,13 @@ struct CutScene {
   static RenderSettings settings(RenderMode mode) {
     RenderSettings s;
     s.mode = mode;
-    s.isoValue = 50.0;
+    s.iso = 50.0;
     s.transfer = transferPreset("mr-default");  // visible from 15 % of the range (30) on
     s.size = {121, 121};
     s.jitter = false;
     s.camera.view = StandardView::Superior;
     s.camera.zoom = 1.3;
-    s.cropMax = {1.0, 1.0, 0.5};  // the superior half cut away: the face at z = 0
+    s.crop.max = {1.0, 1.0, 0.5};  // the superior half cut away: the face at z = 0
     s.cutFace = CutFace::Anatomy;
     s.window = kWindow;
     s.level = kLevel;
@@ -154,7 +154,7 @@ TEST(CutFace, ShowsTheAnatomyUnderTheWindowInIsosurfaceAndComposite) {
   EXPECT_NEAR(g.rightMean, g.leftMean, 0.5) << "plain cut face";
   // Uncropped, the variant is not compiled in: the same program and pixels as plain.
   RenderSettings whole = CutScene::settings(RenderMode::Isosurface);
-  whole.cropMax = glm::dvec3(1.0);
+  whole.crop.max = glm::dvec3(1.0);
   const Image anatomy = renderer.render(whole).image;
   whole.cutFace = CutFace::Plain;
   EXPECT_EQ(anatomy.rgba, renderer.render(whole).image.rgba);
@@ -209,9 +209,9 @@ TEST(CutFace, GlyphsOfEveryKindAndFusionStayOnTheFace) {
   }
   // Fusion: the overlay colour over the face's grey where the attribute is, the grey elsewhere.
   RenderSettings s = CutScene::settings(RenderMode::Isosurface);
-  s.fusion = true;
-  s.overlayOpacity = 0.6f;
-  s.overlayThreshold = 0.25f;
+  s.overlay.fusion = true;
+  s.overlay.opacity = 0.6f;
+  s.overlay.threshold = 0.25f;
   const RenderedFrame fused = renderer.render(s);
   expectTwoGreys(fused, "isosurface fusion");
   int coloured = 0, onAttribute = 0;

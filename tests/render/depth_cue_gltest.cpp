@@ -41,7 +41,7 @@ TEST(DepthCuedMip, NeutralSettingsReproducePlainMipExactly) {
   s.level = 400;
   s.camera.azimuthDeg = 20;
   const RenderedFrame plain = renderer.render(s);
-  s.depthCue = true;  // contrast 100 %, depth cue 0, brightness 0
+  s.depthCue.on = true;  // contrast 100 %, depth cue 0, brightness 0
   const RenderedFrame neutral = renderer.render(s);
   EXPECT_EQ(plain.image.rgba, neutral.image.rgba);
 }
@@ -62,10 +62,10 @@ TEST(DepthCuedMip, TheRampIsAppliedBeforeTheMaximum) {
   s.camera.view = StandardView::Anterior;
   const RenderedFrame plain = renderer.render(s);
   EXPECT_NEAR(plain.image.pixel(20, 20)[0], 0.8 * 255, 1.0);  // the bright far sphere wins
-  s.depthCue = true;
-  s.cueBrightness = 0.0;
-  s.cueAmount = 1.0;  // beta = z: 1 at the image side of the bounding sphere, 0 behind it
-  s.cueContrast = 0.0;
+  s.depthCue.on = true;
+  s.depthCue.brightness = 0.0;
+  s.depthCue.amount = 1.0;  // beta = z: 1 at the image side of the bounding sphere, 0 behind it
+  s.depthCue.contrast = 0.0;
   const RenderedFrame cued = renderer.render(s);
   // Along the middle ray z = 1 - (t - tFront) / 2R with R the bounding sphere's radius; the
   // spheres' front surfaces lie at y = -28 and y = 12, i.e. R - 28 and R + 12 mm behind tFront.
@@ -97,9 +97,9 @@ TEST(DepthCuedMip, IdenticalBlobsAreDimmedByTheRampRatio) {
   s.level = 500;
   s.jitter = false;
   s.linear = false;
-  s.depthCue = true;
-  s.cueAmount = 1.0;
-  s.cueContrast = 0.0;
+  s.depthCue.on = true;
+  s.depthCue.amount = 1.0;
+  s.depthCue.contrast = 0.0;
   const RenderedFrame f = renderer.render(s);
   // The brightest pixel of each blob: its front point, 5 mm before the centre.
   auto brightest = [&](int x0, int x1) {
@@ -139,9 +139,9 @@ TEST(DepthCuedMip, OverlappingVesselsShowTheNearerOne) {
   s.window = 1000;
   s.level = 500;
   s.jitter = false;
-  s.depthCue = true;
-  s.cueAmount = 1.0;
-  s.cueContrast = 0.0;
+  s.depthCue.on = true;
+  s.depthCue.amount = 1.0;
+  s.depthCue.contrast = 0.0;
   int overlaps = 0, nearest = 0;
   for (StandardView view : {StandardView::Anterior, StandardView::Left, StandardView::Superior}) {
     s.camera.view = view;

@@ -106,7 +106,7 @@ std::vector<RenderSettings> views(double unit) {
     out.push_back(base(RenderMode::MinIp, view));
     out.push_back(base(RenderMode::Average, view));
     RenderSettings iso = base(RenderMode::Isosurface, view);
-    iso.isoValue = 0.0;
+    iso.iso = 0.0;
     out.push_back(iso);
     RenderSettings composite = base(RenderMode::Composite, view);
     composite.transfer = TransferFunction{
@@ -179,7 +179,7 @@ TEST(FoldedVolume, GlyphsAndShellsAsUnfolded) {
 
   RenderSettings s;
   s.mode = RenderMode::Isosurface;
-  s.isoValue = -2.0;  // the tube 6 mm and the ball 9 mm in radius
+  s.iso = -2.0;  // the tube 6 mm and the ball 9 mm in radius
   s.camera.view = StandardView::Anterior;
   s.camera.zoom = 2.5;  // z from about -31 to 31 mm: both seams, glyphs below -10 mm only
   s.size = {192, 320};
@@ -203,7 +203,7 @@ TEST(FoldedVolume, GlyphsAndShellsAsUnfolded) {
     shells.mode = mode;
     shells.camera.view = StandardView::Left;
     shells.size = {96, 160};
-    shells.shellCount = 4;
+    shells.shells = 4;
     const Image a = unfolded.render(shells).image;
     EXPECT_GT(shown(a), 500) << toString(mode);
     const Difference e = compare(a, folded.render(shells).image);

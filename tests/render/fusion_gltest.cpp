@@ -71,11 +71,11 @@ RenderSettings alongTheSliceAxis(const Volume& ct, RenderMode mode) {
   s.camera.zoom = framingSphere(ct).radius / (0.5 * d.y * ct.spacing().y);
   s.jitter = false;
   s.stepMm = ct.spacing().z;
-  s.fusion = true;
+  s.overlay.fusion = true;
   s.functionalLow = 0.0;
   s.functionalHigh = 8.0;
-  s.overlayOpacity = 0.6f;
-  s.overlayThreshold = 0.2f;
+  s.overlay.opacity = 0.6f;
+  s.overlay.threshold = 0.2f;
   s.overlayColors = io::standardColorTable(ColorMap::HotIron);  // nearest: entries as they are
   return s;
 }
@@ -105,10 +105,10 @@ TEST(FusedProjection, AlongTheSliceAxisEqualsBothProjectionsThroughTheColourMaps
                         Case{RenderMode::Average, FusionProjection::Max},
                         Case{RenderMode::Average, FusionProjection::Mean}}) {
     RenderSettings s = alongTheSliceAxis(ct, k.mode);
-    s.fusionProjection = k.projection;
+    s.overlay.projection = k.projection;
     // The mean along a ray is the head's uptake (1 of 8) times the part of the ray inside it,
     // and a lesion's share: a lower threshold, so that the head's middle shows.
-    if (k.projection == FusionProjection::Mean) s.overlayThreshold = 0.06f;
+    if (k.projection == FusionProjection::Mean) s.overlay.threshold = 0.06f;
     const RenderedFrame f = renderer.render(s);
     const ColorTable& table = *s.overlayColors;
     double mse = 0.0;
@@ -128,13 +128,13 @@ TEST(FusedProjection, AlongTheSliceAxisEqualsBothProjectionsThroughTheColourMaps
           const double u = resampling::detail::trilinear(petValues.data(), pet.dimensions(), at) /
                            (s.functionalHigh - s.functionalLow);
           fSum += u;
-          if (u > s.overlayThreshold) fMax = std::max(fMax, std::clamp(u, 0.0, 1.0));
+          if (u > s.overlay.threshold) fMax = std::max(fMax, std::clamp(u, 0.0, 1.0));
         }
         if (k.mode == RenderMode::Average) anatomy /= d.z;
         const double grey = std::clamp((anatomy - lo) / (hi - lo), 0.0, 1.0);
         const double u = k.projection == FusionProjection::Mean ? fSum / d.z : fMax;
         const bool shown =
-            k.projection == FusionProjection::Mean ? u > s.overlayThreshold : fMax >= 0.0;
+            k.projection == FusionProjection::Mean ? u > s.overlay.threshold : fMax >= 0.0;
         // The table's entry at u; where u lies within float rounding of an entry boundary
         // (1e-4 of the range: the GPU sums a mean of some 100 samples in float), the entry on
         // the boundary's other side is as right, and the nearer of the two colours counts.
@@ -142,7 +142,7 @@ TEST(FusedProjection, AlongTheSliceAxisEqualsBothProjectionsThroughTheColourMaps
           if (!shown) return glm::dvec3(grey);
           const auto& e = table.rgb[static_cast<std::size_t>(std::clamp(entry, 0, 255))];
           return glm::mix(glm::dvec3(grey), glm::dvec3(e[0], e[1], e[2]) / 255.0,
-                          double(s.overlayOpacity));
+                          double(s.overlay.opacity));
         };
         if (shown) ++fused;
         const auto* px = f.image.pixel(col, r);
@@ -196,17 +196,17 @@ TEST(FusedProjection, NothingAboveTheThresholdLeavesThePlainProjection) {
       s.camera.elevationDeg = 12;
       s.window = 1500;
       s.level = 300;
-      s.depthCue = cue;
-      s.cueAmount = cue ? 0.66 : 0.0;
-      s.cueContrast = cue ? 0.33 : 1.0;
+      s.depthCue.on = cue;
+      s.depthCue.amount = cue ? 0.66 : 0.0;
+      s.depthCue.contrast = cue ? 0.33 : 1.0;
       s.functionalLow = 0.0;
       s.functionalHigh = 1.0;
-      s.overlayThreshold = 1.0f;  // the uptake is 1 at most: no sample lies above it
+      s.overlay.threshold = 1.0f;  // the uptake is 1 at most: no sample lies above it
       const RenderedFrame plain = renderer.render(s);
-      s.fusion = true;
+      s.overlay.fusion = true;
       const RenderedFrame fused = renderer.render(s);
       EXPECT_EQ(plain.image.rgba, fused.image.rgba) << toString(mode) << (cue ? " cued" : "");
-      s.overlayThreshold = 0.5f;  // the head's uptake now shows
+      s.overlay.threshold = 0.5f;  // the head's uptake now shows
       EXPECT_NE(renderer.render(s).image.rgba, plain.image.rgba) << toString(mode);
     }
 }
@@ -243,11 +243,11 @@ TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
   s.mode = RenderMode::Mip;
   s.size = {321, 321};
   s.jitter = false;
-  s.fusion = true;
+  s.overlay.fusion = true;
   s.functionalLow = 0.0;
   s.functionalHigh = 8.0;
-  s.overlayOpacity = 1.0f;
-  s.overlayThreshold = 0.3f;
+  s.overlay.opacity = 1.0f;
+  s.overlay.threshold = 0.3f;
   s.overlayColors = table;
   // The renders, to look at (docs/user-guide/depth-cue.md shows them).
   const std::filesystem::path out = std::filesystem::path(MVW_TEST_OUTPUT_DIR) / "fused-projection";
@@ -255,15 +255,15 @@ TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
   for (StandardView view : {StandardView::Anterior, StandardView::Posterior}) {
     const std::string side = view == StandardView::Anterior ? "front" : "behind";
     s.camera.view = view;
-    s.depthCue = false;
+    s.depthCue.on = false;
     const RenderedFrame plain = renderer.render(s);
     const int plainFront = entryAt(plain, front), plainBack = entryAt(plain, back);
     EXPECT_NEAR(plainFront, plainBack, 2) << "equal lesions, no cue";
     EXPECT_GT(plainFront, 200);  // peak 8 of 8: the top of the map
-    s.depthCue = true;
-    s.cueBrightness = 0.0;
-    s.cueAmount = 0.66;
-    s.cueContrast = 0.33;
+    s.depthCue.on = true;
+    s.depthCue.brightness = 0.0;
+    s.depthCue.amount = 0.66;
+    s.depthCue.contrast = 0.33;
     const RenderedFrame cued = renderer.render(s);
     io::writePng(plain.image, out / ("fused-mip-from-" + side + ".png"));
     io::writePng(cued.image, out / ("fused-mip-depth-cued-from-" + side + ".png"));
@@ -272,7 +272,7 @@ TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
     pet.overlayColors = io::standardColorTable(ColorMap::Pet);
     io::writePng(renderer.render(pet).image,
                  out / ("fused-mip-depth-cued-pet-from-" + side + ".png"));
-    pet.depthCue = false;
+    pet.depthCue.on = false;
     io::writePng(renderer.render(pet).image, out / ("fused-mip-pet-from-" + side + ".png"));
     const int nearer = entryAt(cued, view == StandardView::Anterior ? front : back);
     const int farther = entryAt(cued, view == StandardView::Anterior ? back : front);

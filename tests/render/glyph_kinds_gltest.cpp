@@ -86,10 +86,10 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
     s.mode = views[v].mode;
     s.camera = views[v].camera;
     s.size = {kImage, kImage};
-    s.isoValue = 0.0;
+    s.iso = 0.0;
     s.jitter = false;
     s.lightOffset = light;
-    s.overlay = false;
+    s.overlay.mpr = false;
     // Low-opacity DVR: 0.1 per step inside the sphere.
     const glm::vec4 c(0.9f, 0.85f, 0.8f, 0.0f);
     s.transfer = {"step", false, {{-0.5, c}, {0.5, glm::vec4(glm::vec3(c), 0.1f)}}};

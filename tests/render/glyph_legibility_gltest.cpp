@@ -219,13 +219,13 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
     s.camera.view = view;
     s.camera.zoom = crop ? 1.4 : 1.6;
     s.size = {360, 360};
-    s.isoValue = -300;
+    s.iso = -300;
     s.jitter = false;
-    if (crop) s.cropMax = {1.0, 1.0, kCutFraction};
+    if (crop) s.crop.max = {1.0, 1.0, kCutFraction};
     s.lightOffset = {-0.8, 0.8};
     s.functionalLow = kWindowLow;
     s.functionalHigh = kWindowHigh;
-    s.overlay = false;
+    s.overlay.mpr = false;
     return s;
   };
   std::vector<View> views = {
@@ -258,10 +258,10 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
     for (std::size_t i = 0; i < lesions.size(); ++i) {
       renderer.setFunctional(makeMask(lesions[i]), glm::dmat4(1.0));
       RenderSettings f = plainS;
-      f.fusion = true;
+      f.overlay.fusion = true;
       f.functionalLow = 0.0, f.functionalHigh = 1.0;
-      f.overlayOpacity = 1.0f;
-      f.overlayThreshold = 0.5f;
+      f.overlay.opacity = 1.0f;
+      f.overlay.threshold = 0.5f;
       const Image fused = renderer.render(f).image;
       int foot = 0, shown = 0;
       const int margin = 12;  // pixels (~10 mm): the blurred uptake reaches past the mask

@@ -30,7 +30,7 @@ struct GlyphScene {
   static RenderSettings settings() {
     RenderSettings s;
     s.mode = RenderMode::Isosurface;
-    s.isoValue = 0.0;
+    s.iso = 0.0;
     s.size = {241, 241};
     s.jitter = false;
     s.camera.view = StandardView::Anterior;
@@ -130,7 +130,7 @@ TEST(Glyphs, ConvexAndConcaveFlipTheLitSide) {
   renderer.setFunctional(attribute, glm::dmat4(1.0));
   RenderSettings s;
   s.mode = RenderMode::Isosurface;
-  s.isoValue = 0.0;
+  s.iso = 0.0;
   s.size = {161, 161};
   s.jitter = false;
   s.camera.view = StandardView::Anterior;             // screen right = +x, up = +z

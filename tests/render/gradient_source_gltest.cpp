@@ -54,7 +54,7 @@ const Source kSources[] = {{"float texture", false, GradientSource::Texture},
 double worstLambertError(VolumeRenderer& renderer, double R, const glm::dvec3& centre) {
   RenderSettings s;
   s.mode = RenderMode::Isosurface;
-  s.isoValue = 0.0;
+  s.iso = 0.0;
   s.size = {65, 65};
   s.camera.zoom = 2.5;
   s.camera.azimuthDeg = 20;
@@ -183,7 +183,7 @@ TEST(GradientSource, GlyphsWorkWithEverySourceFromTheFirstFrame) {
       const std::string what = std::string(source.name) + ", " + toString(mode);
       RenderSettings s;
       s.mode = mode;
-      s.isoValue = 0.0;
+      s.iso = 0.0;
       s.transfer =
           TransferFunction{"shell",
                            false,

@@ -25,7 +25,7 @@ TEST(Raycast, IsosurfaceBisectionFindsTheSphereWithinATenthOfAVoxel) {
   VolumeRenderer renderer(*ctx, v);
   RenderSettings s;
   s.mode = RenderMode::Isosurface;
-  s.isoValue = 0.0;
+  s.iso = 0.0;
   s.size = {65, 65};    // odd: the middle pixel's ray passes through the centre
   s.camera.zoom = 2.5;  // about 0.7 mm per pixel
   s.jitter = false;

@@ -66,8 +66,8 @@ TEST(Mpr, FunctionalOverlayFollowsTheRegistrationTransform) {
   s.camera.zoom = framingSphere(anatomy).radius / 20.5;
   s.window = 100;
   s.level = 50;
-  s.overlayOpacity = 1.0f;
-  s.overlayThreshold = 0.5f;
+  s.overlay.opacity = 1.0f;
+  s.overlay.threshold = 0.5f;
   auto hotCentroid = [](const Image& img) { return centroidOf(img, 129, 255); };
   renderer.setFunctional(hot, glm::dmat4(1.0));
   const Centroid at = hotCentroid(renderer.render(s).image);

@@ -137,21 +137,21 @@ TEST(Raycast, CropBoxIsInPatientTermsForAnyStorageOrder) {
     s.transfer = transferPreset("ct-bone");
     s.window = 2000;
     s.level = 900;
-    s.cropMax = {1.0, 1.0, 0.55};  // the inferior 55 % of the head
+    s.crop.max = {1.0, 1.0, 0.55};  // the inferior 55 % of the head
     std::vector<Image> images;
     for (const Volume* v : {&ct, &slicesReversed, &written})
       images.push_back(VolumeRenderer(*ctx, *v).render(s).image);
     // The crop in the storage order of the reversed copy: what the old semantics showed.
     RenderSettings old = s;
-    old.cropMin = {0.0, 0.0, 0.45};
-    old.cropMax = {1.0, 1.0, 1.0};
+    old.crop.min = {0.0, 0.0, 0.45};
+    old.crop.max = {1.0, 1.0, 1.0};
     const Image superiorPart = VolumeRenderer(*ctx, ct).render(old).image;
     // The same box in LPS millimetres ("crop_mm"), on the copy written through NIfTI.
     RenderSettings mm = s;
     const PatientCrop box(written);
-    mm.cropMinMm = box.boxMin();
-    mm.cropMaxMm = box.boxMax() - glm::dvec3(0, 0, 0.45 * (box.boxMax().z - box.boxMin().z));
-    mm.cropMax = glm::dvec3(1.0);  // the millimetres win
+    mm.crop.minMm = box.boxMin();
+    mm.crop.maxMm = box.boxMax() - glm::dvec3(0, 0, 0.45 * (box.boxMax().z - box.boxMin().z));
+    mm.crop.max = glm::dvec3(1.0);  // the millimetres win
     images.push_back(VolumeRenderer(*ctx, written).render(mm).image);
     for (std::size_t i = 1; i < images.size(); ++i) {
       const Difference d = compare(images[0], images[i]);
@@ -191,7 +191,7 @@ TEST(Raycast, ObliqueVolumeIsCroppedAlongThePatientAxes) {
   s.level = 500;
   s.jitter = false;
   s.camera.view = StandardView::Anterior;
-  s.cropMax = {1.0, 1.0, 0.5};
+  s.crop.max = {1.0, 1.0, 0.5};
   const RenderedFrame f = renderer.render(s);
   // The cut's row: the world point on the cut plane at the centre, through the camera.
   const double zCut = 0.5 * (crop.boxMin().z + crop.boxMax().z);

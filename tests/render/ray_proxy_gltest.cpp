@@ -83,11 +83,11 @@ TEST(Raycast, OnlyPixelsWhoseRayMissesTheBoxAreLeftToTheClearedBackground) {
     VolumeRenderer renderer(*ctx, v);
     RenderSettings s;
     s.mode = RenderMode::Isosurface;
-    s.isoValue = 50.0;
+    s.iso = 50.0;
     s.size = {160, 128};
     s.camera = c.camera;
-    s.cropMin = c.cropMin;
-    s.cropMax = c.cropMax;
+    s.crop.min = c.cropMin;
+    s.crop.max = c.cropMax;
     s.background = background;
     s.stepMm = 0.25;
     s.jitter = false;
@@ -156,8 +156,8 @@ TEST(Raycast, NominalSamplesAreEveryRaysChordThroughTheBoxOverTheStep) {
     s.mode = RenderMode::Mip;
     s.size = {96, 80};
     s.camera = c.camera;
-    s.cropMin = c.cropMin;
-    s.cropMax = c.cropMax;
+    s.crop.min = c.cropMin;
+    s.crop.max = c.cropMax;
     s.stepMm = 0.4;
     const Camera camera = renderer.render(s).camera;
     const glm::dvec3 lo = c.cropMin * glm::dvec3(dims) - 0.5;
@@ -190,7 +190,7 @@ TEST(Raycast, TheClearedBackgroundEqualsWhatARayThatMeetsNothingWrites) {
     SCOPED_TRACE(toString(mode));
     RenderSettings s;
     s.mode = mode;
-    s.isoValue = 50.0;
+    s.iso = 50.0;
     s.transfer.points = {{40.0, {1.0f, 0.8f, 0.6f, 0.0f}}, {60.0, {1.0f, 0.8f, 0.6f, 0.5f}}};
     s.size = {128, 128};
     s.camera.zoom = 0.7;  // the box well inside the image

@@ -29,7 +29,7 @@ TEST(RenderTarget, FramesOfChangingSizesEqualThoseOfAFreshRenderer) {
   for (const auto& [size, mode] : frames) {
     s.size = size;
     s.mode = mode;
-    s.isoValue = 150;
+    s.iso = 150;
     const RenderedFrame a = reused.render(s);
     VolumeRenderer fresh(*ctx, v);
     const RenderedFrame b = fresh.render(s);

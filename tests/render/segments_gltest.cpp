@@ -64,7 +64,7 @@ TEST(SegmentOutlines, EdgesInTheSegmentColoursWherePlaced) {
   // its 5 pixels on segment 1's right edge.
   EXPECT_EQ(coloured, 40 + 16 - 5);
 
-  s.segmentOutlines = false;
+  s.segmentationOutlines = false;
   const Image off = renderer.render(s).image;
   for (int y = 0; y < 41; ++y)
     for (int x = 0; x < 41; ++x) ASSERT_EQ(off.pixel(x, y)[0], 0) << x << "," << y;

@@ -31,16 +31,16 @@ TEST(Shells, DiscreteMaximumConvergesToTheRayCastAsShellsAreAdded) {
   s.level = 500;
   s.jitter = false;
   s.stepMm = 0.25;
-  s.depthCue = true;
-  s.cueAmount = 0.66;
-  s.cueContrast = 0.33;
+  s.depthCue.on = true;
+  s.depthCue.amount = 0.66;
+  s.depthCue.contrast = 0.33;
   s.camera.azimuthDeg = 30;
   s.mode = RenderMode::Mip;
   const RenderedFrame reference = renderer.render(s);
   s.mode = RenderMode::ShellMip;
   double previous = 1e9;
   for (int n : {4, 8, 16, 32}) {
-    s.shellCount = n;
+    s.shells = n;
     const RenderedFrame f = renderer.render(s);
     double err = 0.0;
     for (std::size_t i = 0; i < f.image.rgba.size(); i += 4)
@@ -66,7 +66,7 @@ TEST(Shells, DisabledShellsAreNotDrawnAndLitShellsShowTheOutermost) {
   s.size = {41, 41};
   s.window = 1000;
   s.level = 500;
-  s.shellCount = 4;  // spheres at 250, 500, 750, 1000 -> radii 15, 10, 5, 0 mm
+  s.shells = 4;  // spheres at 250, 500, 750, 1000 -> radii 15, 10, 5, 0 mm
   const RenderedFrame all = renderer.render(s);
   EXPECT_NEAR(all.image.pixel(20, 20)[0], 0.75 * 255,
               1.0);  // without depth cue: the brightest shell drawn (1000 is a point)

@@ -24,12 +24,12 @@ Volume volumeOf(const std::string& modality, const std::string& unit) {
 TEST(ModalityDefaults, CtGetsBoneAndTheSoftTissueWindowMrTheRange) {
   const ModalityDefaults ct = modalityDefaults(volumeOf("CT", "HU"), {-1024, 3071});
   EXPECT_EQ(ct.preset, "ct-bone");
-  EXPECT_EQ(ct.isoValue, 300.0);
+  EXPECT_EQ(ct.iso, 300.0);
   EXPECT_EQ(ct.mpr.window, 400.0);
   EXPECT_EQ(ct.mpr.level, 40.0);
   const ModalityDefaults mr = modalityDefaults(volumeOf("MR", ""), {0, 1000});
   EXPECT_EQ(mr.preset, "mr-default");
-  EXPECT_EQ(mr.isoValue, 400.0);
+  EXPECT_EQ(mr.iso, 400.0);
   EXPECT_EQ(mr.mpr.window, 1000.0);
   EXPECT_EQ(mr.mpr.level, 500.0);
   EXPECT_EQ(defaultPreset(volumeOf("PT", "SUVbw")), "pet-hot-metal");
@@ -114,7 +114,7 @@ TEST(ModalityDefaults, APetAloneOpensAsAMipAtZeroToFiveSuv) {
   const Volume suv = wholeBody("SUVbw");
   const ModalityDefaults d = modalityDefaults(suv, suv.valueRange());
   EXPECT_EQ(d.preset, "pet-hot-metal");
-  EXPECT_EQ(d.isoValue, 2.5);
+  EXPECT_EQ(d.iso, 2.5);
   EXPECT_EQ(d.mpr.window, 5.0);
   EXPECT_EQ(d.mpr.level, 2.5);
   EXPECT_EQ(d.mode3d, RenderMode::Mip);

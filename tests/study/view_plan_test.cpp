@@ -120,8 +120,8 @@ TEST(ViewPlan, FusionProjectionIsForMinipAndAverage) {
     const config::StudyConfig study =
         studyWith({{"mode", mode}, {"fusion", true}, {"fusion_projection", "mean"}});
     const PlannedView p = planViews(study).at(0);
-    EXPECT_EQ(p.settings.fusionProjection, FusionProjection::Mean) << mode;
-    EXPECT_EQ(describeView(p.settings, "view", "").fusionProjection, FusionProjection::Mean)
+    EXPECT_EQ(p.settings.overlay.projection, FusionProjection::Mean) << mode;
+    EXPECT_EQ(describeView(p.settings, "view", "").overlay.projection, FusionProjection::Mean)
         << mode;
   }
   try {
@@ -140,7 +140,7 @@ TEST(ViewPlan, FusionProjectionIsForMinipAndAverage) {
                 o)
           .at(0);
   EXPECT_EQ(overridden.settings.mode, RenderMode::Mip);
-  EXPECT_EQ(overridden.settings.fusionProjection, FusionProjection::Max);
+  EXPECT_EQ(overridden.settings.overlay.projection, FusionProjection::Max);
   config::StudyConfig none = studyWith({{"mode", "mip"}, {"fusion", true}});
   none.functional.reset();
   EXPECT_THROW(planViews(none), InputError);

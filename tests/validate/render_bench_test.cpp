@@ -15,11 +15,11 @@ TEST(RenderBench, PlainViewHasNoFeature) {
 
 TEST(RenderBench, FeaturesAreNamedInOrder) {
   render::RenderSettings s;
-  s.depthCue = true;
+  s.depthCue.on = true;
   EXPECT_TRUE(hasBenchFeature(s));
   EXPECT_EQ(benchFeatureName(s), "depth cue");
   s.glyphs = true;
-  s.fusion = true;
+  s.overlay.fusion = true;
   EXPECT_EQ(benchFeatureName(s), "glyphs+fusion+depth cue");
   s.glyphs = false;
   EXPECT_EQ(benchFeatureName(s), "fusion+depth cue");
@@ -30,7 +30,7 @@ TEST(RenderBench, AnatomyOnACutFaceCountsOnlyWhenCropped) {
   s.mode = render::RenderMode::Composite;
   s.cutFace = render::CutFace::Anatomy;
   EXPECT_FALSE(hasBenchFeature(s));  // no crop: no cut face
-  s.cropMin = glm::dvec3(0.25, 0.0, 0.0);
+  s.crop.min = glm::dvec3(0.25, 0.0, 0.0);
   EXPECT_TRUE(hasBenchFeature(s));
   EXPECT_EQ(benchFeatureName(s), "cut face");
   s.glyphs = true;
@@ -39,15 +39,15 @@ TEST(RenderBench, AnatomyOnACutFaceCountsOnlyWhenCropped) {
 
 TEST(RenderBench, WithoutFeaturesKeepsTheRest) {
   render::RenderSettings s;
-  s.glyphs = s.fusion = s.depthCue = true;
+  s.glyphs = s.overlay.fusion = s.depthCue.on = true;
   s.cutFace = render::CutFace::Anatomy;
-  s.cropMin = glm::dvec3(0.25, 0.0, 0.0);
+  s.crop.min = glm::dvec3(0.25, 0.0, 0.0);
   s.size = {64, 48};
   const render::RenderSettings w = withoutBenchFeatures(s);
   EXPECT_FALSE(hasBenchFeature(w));
   EXPECT_EQ(w.cutFace, render::CutFace::Plain);
   EXPECT_EQ(w.size, s.size);
-  EXPECT_EQ(w.cropMin, s.cropMin);
+  EXPECT_EQ(w.crop.min, s.crop.min);
 }
 
 TEST(RenderBench, Median) {

@@ -143,7 +143,7 @@ TEST_F(ViewerMeasurementsTest, MeasurementsAndOutlinesAreSavedAndRestored) {
   state.measurements().addSphere({{0.5, 0.0, 0.0}, 2.5});
   state.measurements().addRuler({{-3.0, -2.0, 0.0}, {3.0, 2.0, 0.0}});
   state.setSegmentOutlines(false);
-  EXPECT_FALSE(state.renderSettings(kAxial).segmentOutlines);
+  EXPECT_FALSE(state.renderSettings(kAxial).segmentationOutlines);
   state.saveConfig(dir / "saved.json");
 
   const config::StudyConfig saved = config::loadStudyConfig(dir / "saved.json");
@@ -151,7 +151,7 @@ TEST_F(ViewerMeasurementsTest, MeasurementsAndOutlinesAreSavedAndRestored) {
   EXPECT_FALSE(saved.render.views[1].segmentationOutlines);
   ViewerState reopened(saved, ct, nullptr, sceneOf(ct));
   EXPECT_EQ(reopened.measurements().all(), state.measurements().all());
-  EXPECT_FALSE(reopened.renderSettings(kAxial).segmentOutlines);
+  EXPECT_FALSE(reopened.renderSettings(kAxial).segmentationOutlines);
   ASSERT_EQ(reopened.measurements().sphereStatistics().size(), 1u);
   ASSERT_TRUE(reopened.measurements().sphereStatistics()[0].anatomical.has_value());
   EXPECT_EQ(reopened.measurements().sphereStatistics()[0].anatomical->voxels,
@@ -163,7 +163,7 @@ TEST_F(ViewerMeasurementsTest, MeasurementsAndOutlinesAreSavedAndRestored) {
   EXPECT_TRUE(reopened.measurements().all().spheres.empty());
   EXPECT_TRUE(reopened.measurements().sphereStatistics().empty());
   ViewerState defaults(study, ct, nullptr, sceneOf(ct));
-  EXPECT_TRUE(defaults.renderSettings(kAxial).segmentOutlines);
+  EXPECT_TRUE(defaults.renderSettings(kAxial).segmentationOutlines);
 }
 
 }  // namespace

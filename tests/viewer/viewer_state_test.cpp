@@ -28,7 +28,7 @@ TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
   ViewerState state(study, ct, nullptr, sceneOf(ct));
   EXPECT_EQ(state.presetName(), "ct-bone");
   EXPECT_EQ(state.view3d().mode, RenderMode::Composite);
-  EXPECT_DOUBLE_EQ(state.view3d().isoValue, 300.0);
+  EXPECT_DOUBLE_EQ(state.view3d().iso, 300.0);
   EXPECT_DOUBLE_EQ(state.mprWindow(), 400.0);
   EXPECT_DOUBLE_EQ(state.mprLevel(), 40.0);
   EXPECT_EQ(state.crosshair(), state.scene().centre);
@@ -37,7 +37,7 @@ TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
   Volume mr = makeVolume("MR", 0.0, 500.0);
   ViewerState mrState(study, mr, nullptr, sceneOf(mr));
   EXPECT_EQ(mrState.presetName(), "mr-default");
-  EXPECT_DOUBLE_EQ(mrState.view3d().isoValue, 200.0);
+  EXPECT_DOUBLE_EQ(mrState.view3d().iso, 200.0);
   EXPECT_DOUBLE_EQ(mrState.mprWindow(), 500.0);
   EXPECT_DOUBLE_EQ(mrState.mprLevel(), 250.0);
 }
@@ -166,17 +166,17 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   state.key('5', false);
   EXPECT_EQ(state.view3d().mode, RenderMode::Average);
   state.key('D', false);
-  EXPECT_TRUE(state.view3d().depthCue);
-  EXPECT_DOUBLE_EQ(state.view3d().cueAmount, 0.66);
-  EXPECT_DOUBLE_EQ(state.view3d().cueContrast, 0.33);
+  EXPECT_TRUE(state.view3d().depthCue.on);
+  EXPECT_DOUBLE_EQ(state.view3d().depthCue.amount, 0.66);
+  EXPECT_DOUBLE_EQ(state.view3d().depthCue.contrast, 0.33);
   state.key('D', false);
-  EXPECT_FALSE(state.view3d().depthCue);
-  EXPECT_DOUBLE_EQ(state.view3d().cueAmount, 0.0);
-  EXPECT_DOUBLE_EQ(state.view3d().cueContrast, 1.0);
+  EXPECT_FALSE(state.view3d().depthCue.on);
+  EXPECT_DOUBLE_EQ(state.view3d().depthCue.amount, 0.0);
+  EXPECT_DOUBLE_EQ(state.view3d().depthCue.contrast, 1.0);
   state.key('G', false);
   state.key('F', false);
   EXPECT_TRUE(state.view3d().glyphs);
-  EXPECT_TRUE(state.view3d().fusion);
+  EXPECT_TRUE(state.view3d().overlay.fusion);
   const std::string preset = state.presetName();
   state.key('P', false);
   EXPECT_NE(state.presetName(), preset);
@@ -199,15 +199,15 @@ TEST_F(ViewerStateTest, FusionKeyFusesTheProjections) {
     renderAll(state);
     state.key(mode, false);
     state.key('F', false);
-    EXPECT_TRUE(state.view3d().fusion) << mode;
+    EXPECT_TRUE(state.view3d().overlay.fusion) << mode;
     EXPECT_TRUE(state.needsRender(k3d));
     const std::string caption = state.caption(k3d, state.renderSettings(k3d));
     EXPECT_NE(caption.find("+ colour fusion (functional max)"), std::string::npos) << caption;
     state.key('O', false);  // spin: the fused settings turn
-    EXPECT_TRUE(state.renderSettings(k3d).fusion);
+    EXPECT_TRUE(state.renderSettings(k3d).overlay.fusion);
     state.key('O', false);
     state.key('F', false);
-    EXPECT_FALSE(state.view3d().fusion) << mode;
+    EXPECT_FALSE(state.view3d().overlay.fusion) << mode;
     EXPECT_EQ(state.caption(k3d, state.renderSettings(k3d)).find("fusion"), std::string::npos);
   }
 }
@@ -218,7 +218,7 @@ TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
   state.key('G', false);
   state.key('F', false);
   EXPECT_FALSE(state.view3d().glyphs);
-  EXPECT_FALSE(state.view3d().fusion);
+  EXPECT_FALSE(state.view3d().overlay.fusion);
   EXPECT_FALSE(state.anyDirty());
   EXPECT_EQ(state.requests().status(), "colour fusion needs a functional volume");
   state.registration().start();  // nothing to register
@@ -230,12 +230,12 @@ TEST_F(ViewerStateTest, MprPanesShareTheFunctionalWindowOfTheThreeDPane) {
   state.view3d().functionalLow = 2.0;
   state.view3d().functionalHigh = 7.0;
   state.view3d().functionalClasses = 5;
-  state.view3d().overlayOpacity = 0.75f;
+  state.view3d().overlay.opacity = 0.75f;
   const render::RenderSettings s = state.renderSettings(kCoronal);
   EXPECT_DOUBLE_EQ(s.functionalLow, 2.0);
   EXPECT_DOUBLE_EQ(s.functionalHigh, 7.0);
   EXPECT_EQ(s.functionalClasses, 5);
-  EXPECT_FLOAT_EQ(s.overlayOpacity, 0.75f);
+  EXPECT_FLOAT_EQ(s.overlay.opacity, 0.75f);
   EXPECT_EQ(s.camera.view, render::StandardView::Anterior);
   EXPECT_EQ(state.renderSettings(kAxial).camera.view, render::StandardView::Inferior);
   EXPECT_EQ(state.renderSettings(kSagittal).camera.view, render::StandardView::Left);
@@ -255,11 +255,11 @@ TEST_F(ViewerStateTest, PetCtLayoutShowsOnePlaneInStepAndTheFunctionalMip) {
   const render::RenderSettings anatomy = state.renderSettings(kAxial);
   const render::RenderSettings functional = state.renderSettings(kCoronal);
   const render::RenderSettings fused = state.renderSettings(kSagittal);
-  EXPECT_FALSE(anatomy.overlay);
-  EXPECT_TRUE(fused.overlay);
-  EXPECT_FLOAT_EQ(fused.overlayOpacity, 0.5f);
-  EXPECT_FLOAT_EQ(functional.overlayOpacity, 1.0f);
-  EXPECT_LT(functional.overlayThreshold, 0.0f);
+  EXPECT_FALSE(anatomy.overlay.mpr);
+  EXPECT_TRUE(fused.overlay.mpr);
+  EXPECT_FLOAT_EQ(fused.overlay.opacity, 0.5f);
+  EXPECT_FLOAT_EQ(functional.overlay.opacity, 1.0f);
+  EXPECT_LT(functional.overlay.threshold, 0.0f);
   ASSERT_TRUE(functional.imageColors);
   for (const auto& rgb : functional.imageColors->rgb) EXPECT_EQ(rgb[0] + rgb[1] + rgb[2], 0);
   ASSERT_TRUE(functional.overlayColors);
@@ -297,7 +297,7 @@ TEST_F(ViewerStateTest, PetCtLayoutShowsOnePlaneInStepAndTheFunctionalMip) {
   EXPECT_EQ(state.layout(), config::ViewerLayout::Standard);
   EXPECT_TRUE(state.orbit().mode() == Orbit::Off);
   EXPECT_FALSE(state.paneShowsFunctional(k3d));
-  EXPECT_EQ(state.renderSettings(kCoronal).overlayOpacity, 0.5f);
+  EXPECT_EQ(state.renderSettings(kCoronal).overlay.opacity, 0.5f);
   EXPECT_EQ(state.paneCell(k3d), 0);
 }
 
@@ -428,7 +428,7 @@ TEST_F(ViewerStateTest, SavedStateReopensAsTheSameViews) {
   EXPECT_EQ(saved.render.views[1].name, "view-axial");
   ViewerState reopened(saved, ct, nullptr, sceneOf(ct));
   EXPECT_EQ(reopened.view3d().mode, RenderMode::Mip);
-  EXPECT_TRUE(reopened.view3d().depthCue);
+  EXPECT_TRUE(reopened.view3d().depthCue.on);
   EXPECT_NEAR(reopened.view3d().camera.azimuthDeg, 18.0, 1e-9);
   EXPECT_NEAR(reopened.view3d().camera.elevationDeg, 9.0, 1e-9);
   EXPECT_NEAR(reopened.mprWindow(), state.mprWindow(), 1e-6);
@@ -500,14 +500,14 @@ TEST_F(ViewerStateTest, NoSilentEmptyPanes) {
   Volume suv = makeVolume("PT", 0.0, 19.0);  // int16 voxels
   suv.metadata().unit = "SUVbw";
   ViewerState state(study, suv, nullptr, sceneOf(suv));
-  EXPECT_DOUBLE_EQ(state.view3d().isoValue, 2.5);
+  EXPECT_DOUBLE_EQ(state.view3d().iso, 2.5);
   EXPECT_EQ(state.presetName(), "pet-hot-metal");
   for (int i = 0; i < 6; ++i) {
     state.key('P', false);
     EXPECT_EQ(state.presetName().rfind("ct-", 0), std::string::npos) << state.presetName();
   }
   state.key('2', false);
-  state.view3d().isoValue = 300.0;
+  state.view3d().iso = 300.0;
   for (int p = 0; p < kPaneCount; ++p) state.setPaneSize(p, {64, 48});
   const render::RenderSettings s = state.renderSettings(k3d);
   const render::Camera cam =

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
 #include "mvw/config/ConfigReference.h"
@@ -186,21 +187,25 @@ class FieldTable {
   FieldTable& numbers(const char* key, Doc doc, std::array<double, N> T::*member, double lo,
                       double hi) {
     return add(
-        key, doc,
-        {"array of " + std::to_string(N) + " numbers", "each " + rangeText(lo, hi), "", {}},
+        key, doc, numbersShape(N, lo, hi),
         [member, lo, hi](const json& v, T& out, const Where& w) {
-          const std::string what = "must be an array of " + std::to_string(N) + " numbers";
-          if (!v.is_array() || v.size() != N) w.bad(what);
-          std::array<double, N> a{};
-          for (std::size_t i = 0; i < N; ++i) {
-            if (!v[i].is_number()) w.bad(what);
-            a[i] = v[i].get<double>();
-            if (!(a[i] >= lo && a[i] <= hi))
-              w.bad("values must lie in " + shortNumber(lo) + " .. " + shortNumber(hi));
-          }
-          out.*member = a;
+          out.*member = readNumbers<N>(v, w, lo, hi);
         },
         [member](const T& in, json& j, const char* k) { j[k] = in.*member; });
+  }
+
+  // The same for a point or box corner (three numbers, written as an array).
+  FieldTable& numbers(const char* key, Doc doc, glm::dvec3 T::*member, double lo, double hi) {
+    return add(
+        key, doc, numbersShape(3, lo, hi),
+        [member, lo, hi](const json& v, T& out, const Where& w) {
+          const std::array<double, 3> a = readNumbers<3>(v, w, lo, hi);
+          out.*member = {a[0], a[1], a[2]};
+        },
+        [member](const T& in, json& j, const char* k) {
+          const glm::dvec3& p = in.*member;
+          j[k] = std::array<double, 3>{p.x, p.y, p.z};
+        });
   }
 
   // A nested object whose presence switches a feature on ("glyphs": {...}); its keys are read
@@ -215,6 +220,40 @@ class FieldTable {
         },
         [enabled, table](const T& in, json& j, const char* k) {
           if (in.*enabled) j[k] = table.write(in);
+        });
+  }
+
+  // A value type's own table (one concept shared with the renderer, mvw/core: the crop, ...)
+  // whose keys sit in this object beside its own: each is read into, and written from, the
+  // member `value`, in the table's order, at this place in the reference.
+  template <class M>
+  FieldTable& inlined(M T::*value, const FieldTable<M>& table) {
+    for (const auto& f : table.fields_)
+      fields_.push_back({f.key, f.doc,
+                         [value, read = f.read](const json& v, T& out, const Where& w) {
+                           read(v, out.*value, w);
+                         },
+                         [value, write = f.write](const T& in, json& j, const char* k) {
+                           write(in.*value, j, k);
+                         },
+                         f.range, f.shape});
+    return *this;
+  }
+
+  // A value type's own table as a nested object whose presence switches it on ("depth_cue":
+  // {...} sets `enabled` of the member `value`); written only while it is on.
+  template <class M>
+  FieldTable& section(const char* key, Doc doc, M T::*value, bool M::*enabled,
+                      const FieldTable<M>& table) {
+    return add(
+        key, doc,
+        {"object", "", "off", [table](const std::string& path) { return table.describe(path); }},
+        [value, enabled, table](const json& v, T& out, const Where& w) {
+          (out.*value).*enabled = true;
+          table.read(v, out.*value, Where{w.file, w.key + "."});
+        },
+        [value, enabled, table](const T& in, json& j, const char* k) {
+          if ((in.*value).*enabled) j[k] = table.write(in.*value);
         });
   }
 
@@ -292,6 +331,8 @@ class FieldTable {
   }
 
  private:
+  template <class>
+  friend class FieldTable;
   struct Field {
     const char* key;
     const char* doc;
@@ -300,6 +341,22 @@ class FieldTable {
     std::optional<std::pair<double, double>> range;
     Shape shape;
   };
+  static Shape numbersShape(std::size_t n, double lo, double hi) {
+    return {"array of " + std::to_string(n) + " numbers", "each " + rangeText(lo, hi), "", {}};
+  }
+  template <std::size_t N>
+  static std::array<double, N> readNumbers(const json& v, const Where& w, double lo, double hi) {
+    const std::string what = "must be an array of " + std::to_string(N) + " numbers";
+    if (!v.is_array() || v.size() != N) w.bad(what);
+    std::array<double, N> a{};
+    for (std::size_t i = 0; i < N; ++i) {
+      if (!v[i].is_number()) w.bad(what);
+      a[i] = v[i].get<double>();
+      if (!(a[i] >= lo && a[i] <= hi))
+        w.bad("values must lie in " + shortNumber(lo) + " .. " + shortNumber(hi));
+    }
+    return a;
+  }
   static std::string rangeText(double lo, double hi) {
     return shortNumber(lo) + " .. " + shortNumber(hi);
   }

@@ -214,13 +214,85 @@ const FieldTable<ViewConfig>& glyphTable() {
   return t;
 }
 
-const FieldTable<ViewConfig>& depthCueTable() {
-  static const FieldTable<ViewConfig> t = [] {
-    FieldTable<ViewConfig> c;
-    c.number("brightness", "Brightness beta0.", &ViewConfig::cueBrightness, 0.0, 10.0)
-        .number("amount", "Amount a (0: no cueing).", &ViewConfig::cueAmount, -10.0, 10.0)
-        .number("contrast", "Contrast b (1: plain MIP).", &ViewConfig::cueContrast, 0.0, 10.0);
+// The depth cue (mvw/core/DepthCue.h), the renderer's value too.
+const FieldTable<DepthCue>& depthCueTable() {
+  static const FieldTable<DepthCue> t = [] {
+    FieldTable<DepthCue> c;
+    c.number("brightness", "Brightness beta0.", &DepthCue::brightness, 0.0, 10.0)
+        .number("amount", "Amount a (0: no cueing).", &DepthCue::amount, -10.0, 10.0)
+        .number("contrast", "Contrast b (1: plain MIP).", &DepthCue::contrast, 0.0, 10.0);
     return c;
+  }();
+  return t;
+}
+
+// A point in LPS mm as the config writes it.
+std::array<double, 3> lpsArray(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
+
+// The crop (mvw/core/Crop.h), the renderer's value too; its keys sit in the view object.
+const FieldTable<Crop>& cropTable() {
+  static const FieldTable<Crop> t = [] {
+    FieldTable<Crop> c;
+    c.numbers("crop_min",
+              "Crop box's low corner as fractions of the volume's box along L, P, S (0: most "
+              "right, anterior, inferior).",
+              &Crop::min, 0.0, 1.0)
+        .numbers("crop_max",
+                 "Crop box's high corner as fractions of the volume's box along L, P, S (1: most "
+                 "left, posterior, superior).",
+                 &Crop::max, 0.0, 1.0)
+        .add(
+            "crop_mm", "Crop box in LPS mm; wins over crop_min and crop_max.",
+            {"object", "{\"min\": [L, P, S], \"max\": [L, P, S]}, min < max, within +-1e6", "", {}},
+            [](const json& c, Crop& out, const Where& w) {
+              const std::string what =
+                  "must be {\"min\": [L, P, S], \"max\": [L, P, S]} in LPS mm, min < max";
+              if (!c.is_object() || c.size() != 2 || !c.contains("min") || !c.contains("max"))
+                w.bad(what);
+              std::array<std::array<double, 3>, 2> box{};
+              for (int m = 0; m < 2; ++m) {
+                const json& a = c[m == 0 ? "min" : "max"];
+                if (!a.is_array() || a.size() != 3) w.bad(what);
+                for (std::size_t i = 0; i < 3; ++i) {
+                  if (!a[i].is_number() || !(std::abs(a[i].get<double>()) <= 1e6)) w.bad(what);
+                  box[static_cast<std::size_t>(m)][i] = a[i].get<double>();
+                }
+              }
+              for (std::size_t i = 0; i < 3; ++i)
+                if (!(box[0][i] < box[1][i])) w.bad(what);
+              out.minMm = glm::dvec3(box[0][0], box[0][1], box[0][2]);
+              out.maxMm = glm::dvec3(box[1][0], box[1][1], box[1][2]);
+            },
+            [](const Crop& in, json& j, const char* k) {
+              if (in.minMm && in.maxMm)
+                j[k] = {{"min", lpsArray(*in.minMm)}, {"max", lpsArray(*in.maxMm)}};
+            });
+    return c;
+  }();
+  return t;
+}
+
+// The functional overlay and fusion (mvw/core/Overlay.h), the renderer's value too; its keys
+// sit in the view object.
+const FieldTable<Overlay>& overlayTable() {
+  static const FieldTable<Overlay> t = [] {
+    FieldTable<Overlay> o;
+    o.boolean("overlay", "MPR: show the functional volume, where the study has one.", &Overlay::mpr)
+        .boolean("fusion",
+                 "Composite and isosurface: blend the functional colour in; mip, minip and "
+                 "average: the functional volume's projection along each ray in the overlay "
+                 "colour map over the anatomy's.",
+                 &Overlay::fusion)
+        .enumeration("fusion_projection",
+                     "Fused minip and average views: the functional projection along each ray, "
+                     "the maximum of its samples or their mean (a fused mip takes the maximum).",
+                     &Overlay::projection, kFusionProjections)
+        .number("overlay_opacity", "Opacity of the functional overlay.", &Overlay::opacity, 0.0,
+                1.0)
+        .number("overlay_threshold",
+                "Functional values below this fraction of their range are not overlaid.",
+                &Overlay::threshold, 0.0, 1.0);
+    return o;
   }();
   return t;
 }
@@ -269,40 +341,7 @@ const FieldTable<ViewConfig>& viewTable() {
         .boolean("jitter", "Jitter each ray's first sample (no wood-grain rings).", &V::jitter)
         .number("seed", "Seed of the ray jitter.", &V::seed, 0, kMaxSeed)
         .numbers("background", "Background colour [red, green, blue].", &V::background, 0.0, 1.0)
-        .numbers("crop_min",
-                 "Crop box's low corner as fractions of the volume's box along L, P, S (0: most "
-                 "right, anterior, inferior).",
-                 &V::cropMin, 0.0, 1.0)
-        .numbers("crop_max",
-                 "Crop box's high corner as fractions of the volume's box along L, P, S (1: most "
-                 "left, posterior, superior).",
-                 &V::cropMax, 0.0, 1.0)
-        .add(
-            "crop_mm", "Crop box in LPS mm; wins over crop_min and crop_max.",
-            {"object", "{\"min\": [L, P, S], \"max\": [L, P, S]}, min < max, within +-1e6", "", {}},
-            [](const json& c, V& out, const Where& w) {
-              const std::string what =
-                  "must be {\"min\": [L, P, S], \"max\": [L, P, S]} in LPS mm, min < max";
-              if (!c.is_object() || c.size() != 2 || !c.contains("min") || !c.contains("max"))
-                w.bad(what);
-              std::array<std::array<double, 3>, 2> box{};
-              for (int m = 0; m < 2; ++m) {
-                const json& a = c[m == 0 ? "min" : "max"];
-                if (!a.is_array() || a.size() != 3) w.bad(what);
-                for (std::size_t i = 0; i < 3; ++i) {
-                  if (!a[i].is_number() || !(std::abs(a[i].get<double>()) <= 1e6)) w.bad(what);
-                  box[static_cast<std::size_t>(m)][i] = a[i].get<double>();
-                }
-              }
-              for (std::size_t i = 0; i < 3; ++i)
-                if (!(box[0][i] < box[1][i])) w.bad(what);
-              out.cropMinMm = box[0];
-              out.cropMaxMm = box[1];
-            },
-            [](const V& in, json& j, const char* k) {
-              if (in.cropMinMm && in.cropMaxMm)
-                j[k] = {{"min", *in.cropMinMm}, {"max", *in.cropMaxMm}};
-            })
+        .inlined(&V::crop, cropTable())
         .enumeration("cut_face",
                      "Composite and isosurface with a crop: the cut face shows the anatomy's grey "
                      "values under the MPR window (window / level), glyphs and fusion on it "
@@ -334,7 +373,7 @@ const FieldTable<ViewConfig>& viewTable() {
               if (in.functionalWindow) j[k] = *in.functionalWindow;
             })
         .section("depth_cue", "MIP depth cueing (Heidrich 1995): on where present.", &V::depthCue,
-                 depthCueTable())
+                 &DepthCue::on, depthCueTable())
         .add(
             "gradient_opacity",
             "2D transfer function: opacity times smoothstep(low, high, |gradient|), in the "
@@ -351,19 +390,9 @@ const FieldTable<ViewConfig>& viewTable() {
                 &V::planeOffsetMm, -1e4, 1e4)
         .number("slab_mm", "MPR: thick-slab MIP thickness in mm (0: a single plane).", &V::slabMm,
                 0.0, 1e4)
-        .boolean("overlay", "MPR: show the functional volume, where the study has one.",
-                 &V::overlay)
+        .inlined(&V::overlay, overlayTable())
         .boolean("segmentation_outlines", "MPR: outline the segments of the study's segmentation.",
                  &V::segmentationOutlines)
-        .boolean("fusion",
-                 "Composite and isosurface: blend the functional colour in; mip, minip and "
-                 "average: the functional volume's projection along each ray in the overlay "
-                 "colour map over the anatomy's.",
-                 &V::fusion)
-        .enumeration("fusion_projection",
-                     "Fused minip and average views: the functional projection along each ray, "
-                     "the maximum of its samples or their mean (a fused mip takes the maximum).",
-                     &V::fusionProjection, kFusionProjections)
         .number("shells", "shells-mip, shells-sum, shells-lit: the number of isosurface shells.",
                 &V::shells, 1, 256)
         .add(
@@ -382,11 +411,6 @@ const FieldTable<ViewConfig>& viewTable() {
         .number("functional_classes",
                 "Label maps: K > 0 gives label L the glyph size (L mod K + 1) / K (0: off).",
                 &V::functionalClasses, 0, 64)
-        .number("overlay_opacity", "Opacity of the functional overlay.", &V::overlayOpacity, 0.0,
-                1.0)
-        .number("overlay_threshold",
-                "Functional values below this fraction of their range are not overlaid.",
-                &V::overlayThreshold, 0.0, 1.0)
         .enumeration("colormap",
                      "Colour map of mip, minip, average and mpr images (grey-inverted also turns "
                      "the black background white).",
@@ -439,7 +463,7 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
   if (v.window.has_value() != v.level.has_value())
     throw InputError(file, "'" + w + "window' and '" + w + "level' go together");
   for (int a = 0; a < 3; ++a)
-    if (v.cropMin[a] >= v.cropMax[a])
+    if (v.crop.min[a] >= v.crop.max[a])
       throw InputError(file, "'" + w + "crop_min' must be below 'crop_max'");
   if (v.colormap != ColorMap::Grey && !takesImageColors(v.mode))
     throw InputError(

@@ -38,19 +38,19 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
     r["gradient_opacity"] = {v.settings.gradientOpacityLow, v.settings.gradientOpacityHigh};
   r["window"] = shown.window;
   r["level"] = shown.level;
-  r["iso"] = v.settings.isoValue;
+  r["iso"] = v.settings.iso;
   // An isovalue no voxel reaches draws an empty image: legitimate to ask, but said.
-  if (v.settings.mode == render::RenderMode::Isosurface && v.settings.isoValue > hi) {
+  if (v.settings.mode == render::RenderMode::Isosurface && v.settings.iso > hi) {
     char text[200];
     std::snprintf(text, sizeof text,
                   "iso %g lies above the volume's maximum %g: the isosurface is empty",
-                  v.settings.isoValue, hi);
+                  v.settings.iso, hi);
     r["notes"].push_back(text);
     log << "mvw render: note: view '" << v.config.name << "': " << text << "\n";
   }
   // Fusion asked of a mode that cannot show it: drawn without, and said (the caption and the
   // colour bar name no fusion either).
-  if (v.settings.fusion && !takesFusion(v.settings.mode)) {
+  if (v.settings.overlay.fusion && !takesFusion(v.settings.mode)) {
     const std::string text =
         v.settings.mode == render::RenderMode::Mpr
             ? "fusion is for composite, isosurface, mip, minip and average views: an mpr view "
@@ -98,13 +98,13 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
     r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
   const bool shellMode = isShellMode(v.settings.mode);
   if (shellMode) {
-    r["shells"] = v.settings.shellCount;
+    r["shells"] = v.settings.shells;
     r["shells_disabled"] = v.config.shellsDisabled;
   }
-  if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue)
-    r["depth_cue"] = {{"brightness", v.settings.cueBrightness},
-                      {"amount", v.settings.cueAmount},
-                      {"contrast", v.settings.cueContrast}};
+  if ((v.settings.mode == render::RenderMode::Mip || shellMode) && v.settings.depthCue.on)
+    r["depth_cue"] = {{"brightness", v.settings.depthCue.brightness},
+                      {"amount", v.settings.depthCue.amount},
+                      {"contrast", v.settings.depthCue.contrast}};
   r["step_mm"] = v.settings.stepMm > 0 ? v.settings.stepMm : render::defaultStepMm(anatomy);
   r["sampling"] = config::toString(v.config.sampling);
   r["shading"] = v.settings.shading;
@@ -120,8 +120,9 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
   if (session.segments() && v.settings.mode == render::RenderMode::Mpr)
     r["segment_outlines"] = session.segments()->names;
   if (overlayShown) {
-    r["overlay_opacity"] = v.settings.overlayOpacity;
-    r["overlay_threshold"] = v.settings.overlayThreshold;
+    // As single precision, as the shader takes them (and as render.json has always said).
+    r["overlay_opacity"] = static_cast<float>(v.settings.overlay.opacity);
+    r["overlay_threshold"] = static_cast<float>(v.settings.overlay.threshold);
     r["overlay_colormap"] = toString(v.config.overlayColormap);
     r["functional_placement"] =
         session.placement() ? session.placement()->report["method"] : nlohmann::json("none");

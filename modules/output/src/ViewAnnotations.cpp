@@ -24,7 +24,7 @@ std::optional<ColourBar> colourBarOf(const render::RenderSettings& s, const Volu
 std::vector<render::LegendEntry> segmentLegendOf(const render::RenderSettings& s,
                                                  const study::SegmentOverlay* segments) {
   std::vector<render::LegendEntry> legend;
-  if (!segments || s.mode != render::RenderMode::Mpr || !s.segmentOutlines) return legend;
+  if (!segments || s.mode != render::RenderMode::Mpr || !s.segmentationOutlines) return legend;
   for (std::size_t i = 0; i < segments->names.size(); ++i)
     legend.push_back({segments->names[i], segments->colours[i]});
   return legend;

@@ -44,14 +44,13 @@ void GlyphIcons::fill(GlContext& context, const RenderSettings& view, GlyphLegen
   }
   RenderSettings s = view;
   s.mode = RenderMode::Isosurface;
-  s.isoValue = 0.5;
+  s.iso = 0.5;
   s.camera = CameraSettings{};
   s.camera.view = StandardView::Anterior;
   s.camera.zoom = std::sqrt(3.0) * 0.95;
   s.size = {pixels, pixels};
-  s.cropMin = glm::dvec3(0.0), s.cropMax = glm::dvec3(1.0);
-  s.cropMinMm.reset(), s.cropMaxMm.reset();
-  s.fusion = false;
+  s.crop = Crop{};
+  s.overlay.fusion = false;
   s.jitter = false;
   s.stepMm = 0.0;
   if (legend.high > legend.low) s.functionalLow = legend.low, s.functionalHigh = legend.high;

@@ -44,7 +44,7 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .uniforms = {"uCue", "uBoundingSphere"},
        .appliesTo = onlyMip,
        .needs = kNone,
-       .valueFor = [](const RenderSettings& s, bool) { return int(s.depthCue); }},
+       .valueFor = [](const RenderSettings& s, bool) { return int(s.depthCue.on); }},
       // Nearest-neighbour samples: MIP drops its pre-pass (accumulate-mip.glsl); composite with
       // the packed gradient reads the value from the intensity, not the always trilinear packed
       // texture (RaycastPrograms::source's layout defines). The texture's filter:
@@ -90,7 +90,7 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .appliesTo = takesFusionMean,
        .needs = F::Fusion,
        .valueFor = [](const RenderSettings& s,
-                      bool) { return int(s.fusionProjection == FusionProjection::Mean); }},
+                      bool) { return int(s.overlay.projection == FusionProjection::Mean); }},
       // Volumetric normal glyphs (Seipel 2007).
       {.id = F::Glyphs,
        .name = "glyphs",

@@ -117,10 +117,11 @@ Image ShellRenderer::draw(const ShellDraw& d) {
               float(d.camera.forward.z));
   glUniform4f(program.uniform("uBoundingSphere"), float(d.centre.x), float(d.centre.y),
               float(d.centre.z), float(d.radius));
-  glUniform3f(program.uniform("uCue"), float(d.cueBrightness), float(d.cueAmount),
-              float(d.cueContrast));
+  const DepthCue& cue = d.depthCue;
+  glUniform3f(program.uniform("uCue"), float(cue.brightness), float(cue.amount),
+              float(cue.contrast));
   glUniform1f(program.uniform("uKeyMax"),
-              float(std::max(1e-6, d.cueBrightness + std::max(0.0, d.cueAmount) + d.cueContrast)));
+              float(std::max(1e-6, cue.brightness + std::max(0.0, cue.amount) + cue.contrast)));
   glUniform1f(program.uniform("uWeight"), float(1.0 / d.count));
   glUniform4f(program.uniform("uLight"), d.light.x, d.light.y, d.light.z, d.light.w);
   if (d.mode == ShellMode::Summation) {

@@ -10,6 +10,7 @@
 
 #include "GlObjects.h"
 #include "IsoShells.h"
+#include "mvw/core/DepthCue.h"
 #include "mvw/core/Image.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/ShaderProgram.h"
@@ -27,7 +28,7 @@ struct ShellDraw {
   double windowLow = 0.0, windowWidth = 1.0;  // values mapped to emission 0..1
   int count = 8;                              // shells at emission i / count, i = 1..count
   std::vector<bool> enabled;                  // per shell (empty: all)
-  double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
+  DepthCue depthCue;  // its values, whether or not it is on (off: the defaults, no cueing)
   glm::vec4 light{0.25f, 0.7f, 0.25f, 24.0f};
 };
 

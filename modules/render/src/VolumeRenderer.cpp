@@ -126,13 +126,9 @@ Image VolumeRenderer::Impl::drawShells(const RenderSettings& s, const Camera& ca
   const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
   d.windowLow = wl.level - 0.5 * wl.window;
   d.windowWidth = wl.window;
-  d.count = s.shellCount;
+  d.count = s.shells;
   d.enabled = s.shellEnabled;
-  if (s.depthCue) {
-    d.cueBrightness = s.cueBrightness;
-    d.cueAmount = s.cueAmount;
-    d.cueContrast = s.cueContrast;
-  }
+  if (s.depthCue.on) d.depthCue = s.depthCue;
   d.light = s.light;
   return shells->draw(d);
 }
@@ -178,7 +174,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
     glUniform3fv(p.uniform("uGlyphScreenUp"), 1, glm::value_ptr(glm::vec3(camera.up)));
   }
   setFunctionalUniforms(p, s, fusion, functionalWindow);
-  segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentOutlines);
+  segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentationOutlines);
   if (showsImageColors(s)) updateImageColormap(s.imageColors);
   // The fused projections skip by both volumes' block ranges (BlockGrid::setFunctional).
   bindTextures(p, functional.colormap(s.overlayColors), fusion && isProjectionMode(s.mode));
@@ -250,8 +246,8 @@ void VolumeRenderer::Impl::setVolumeUniforms(const ShaderProgram& p) const {
 // The crop as fractions of the patient axes' extent (PatientCrop).
 std::pair<glm::dvec3, glm::dvec3> VolumeRenderer::Impl::cropFractions(
     const RenderSettings& s) const {
-  if (s.cropMinMm && s.cropMaxMm) return crop.fractionsFromMm(*s.cropMinMm, *s.cropMaxMm);
-  return {s.cropMin, s.cropMax};
+  if (s.crop.minMm && s.crop.maxMm) return crop.fractionsFromMm(*s.crop.minMm, *s.crop.maxMm);
+  return {s.crop.min, s.crop.max};
 }
 
 // The box the rays sample, in texture coordinates: along the patient axes the crop; an oblique
@@ -304,8 +300,9 @@ void VolumeRenderer::Impl::setShadingUniforms(const ShaderProgram& p, const Rend
   const auto [lo, hi] = volume.transferRange();
   const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
   glUniform2f(p.uniform("uWindowLevel"), float(wl.window), float(wl.level));
-  glUniform1f(p.uniform("uIsoValue"), float(s.isoValue));
-  glUniform3f(p.uniform("uCue"), float(s.cueBrightness), float(s.cueAmount), float(s.cueContrast));
+  glUniform1f(p.uniform("uIsoValue"), float(s.iso));
+  glUniform3f(p.uniform("uCue"), float(s.depthCue.brightness), float(s.depthCue.amount),
+              float(s.depthCue.contrast));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
 }
 
@@ -313,8 +310,8 @@ void VolumeRenderer::Impl::setFunctionalUniforms(const ShaderProgram& p, const R
                                                  bool fusion, glm::vec2 window) const {
   functional.setUniforms(p, window, s.functionalClasses);
   glUniform1i(p.uniform("uHasFunctional"), fusion ? 1 : 0);
-  glUniform1f(p.uniform("uOverlayOpacity"), s.overlayOpacity);
-  glUniform1f(p.uniform("uOverlayThreshold"), s.overlayThreshold);
+  glUniform1f(p.uniform("uOverlayOpacity"), float(s.overlay.opacity));
+  glUniform1f(p.uniform("uOverlayThreshold"), float(s.overlay.threshold));
 }
 
 // Every sampler on its own unit, also those the program does not use (uniform -1 is ignored).
@@ -351,8 +348,8 @@ bool usesGlyphKinds(const RenderSettings& s) {
 }
 
 bool cropsVolume(const RenderSettings& s) {
-  if (s.cropMinMm && s.cropMaxMm) return true;
-  return s.cropMin != glm::dvec3(0.0) || s.cropMax != glm::dvec3(1.0);
+  if (s.crop.minMm && s.crop.maxMm) return true;
+  return s.crop.min != glm::dvec3(0.0) || s.crop.max != glm::dvec3(1.0);
 }
 
 bool showsAnatomyOnCutFace(const RenderSettings& s) {
@@ -362,11 +359,11 @@ bool showsAnatomyOnCutFace(const RenderSettings& s) {
 bool showsImageColors(const RenderSettings& s) { return s.imageColors && takesImageColors(s.mode); }
 
 bool showsFusion(const RenderSettings& s, bool hasFunctional) {
-  return hasFunctional && s.fusion && takesFusion(s.mode);
+  return hasFunctional && s.overlay.fusion && takesFusion(s.mode);
 }
 
 bool showsFunctional(const RenderSettings& s, bool hasFunctional) {
-  return s.mode == RenderMode::Mpr ? hasFunctional && s.overlay : showsFusion(s, hasFunctional);
+  return s.mode == RenderMode::Mpr ? hasFunctional && s.overlay.mpr : showsFusion(s, hasFunctional);
 }
 
 VolumeRenderer::VolumeRenderer(GlContext& context, const Volume& volume, GradientSource gradient)

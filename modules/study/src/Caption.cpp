@@ -52,7 +52,7 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   if (s.mode == render::RenderMode::Composite)
     caption += "  " + v.presetName;
   else if (s.mode == render::RenderMode::Isosurface)
-    caption += "  iso " + significant(s.isoValue, 4);
+    caption += "  iso " + significant(s.iso, 4);
   else
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));
@@ -67,16 +67,16 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
   if (render::showsFusion(s, true)) {
     caption += "  + colour fusion";
     if (isProjectionMode(s.mode))
-      caption += takesFusionMean(s.mode) && s.fusionProjection == FusionProjection::Mean
+      caption += takesFusionMean(s.mode) && s.overlay.projection == FusionProjection::Mean
                      ? " (functional mean)"
                      : " (functional max)";
   }
   const bool shells = isShellMode(s.mode);
-  if (shells) caption += "  " + std::to_string(s.shellCount) + " shells";
-  if ((s.mode == render::RenderMode::Mip || shells) && s.depthCue) {
+  if (shells) caption += "  " + std::to_string(s.shells) + " shells";
+  if ((s.mode == render::RenderMode::Mip || shells) && s.depthCue.on) {
     char cue[96];
-    std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", s.cueBrightness,
-                  s.cueAmount, s.cueContrast);
+    std::snprintf(cue, sizeof cue, "  depth cue b0 %.2f a %.2f b %.2f", s.depthCue.brightness,
+                  s.depthCue.amount, s.depthCue.contrast);
     caption += cue;
   }
   return caption;

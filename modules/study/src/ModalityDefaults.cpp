@@ -54,12 +54,12 @@ ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, doubl
   ModalityDefaults d;
   d.preset = defaultPreset(anatomy);
   if (isCt(anatomy)) {
-    d.isoValue = kCtBoneIsoHu;
+    d.iso = kCtBoneIsoHu;
     d.mpr = kCtSoftTissue;
   } else {
-    d.isoValue = lo + kIsoFractionOfRange * (hi - lo);
+    d.iso = lo + kIsoFractionOfRange * (hi - lo);
     if (inSuv(anatomy) && hi > kSuvLesionThreshold && lo < kSuvLesionThreshold)
-      d.isoValue = kSuvLesionThreshold;
+      d.iso = kSuvLesionThreshold;
     d.mpr = windowOrFullRange(0.0, 0.0, lo, hi);
   }
   if (isEmission(anatomy)) {

@@ -271,16 +271,16 @@ void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedO
   if (o.level) v.level = *o.level;
   if (o.iso) v.iso = *o.iso;
   if (o.noAnnotate) v.annotate = false;
-  if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue = true;
-  if (o.cueBrightness) v.cueBrightness = *o.cueBrightness;
-  if (o.cueAmount) v.cueAmount = *o.cueAmount;
-  if (o.cueContrast) v.cueContrast = *o.cueContrast;
+  if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue.on = true;
+  if (o.cueBrightness) v.depthCue.brightness = *o.cueBrightness;
+  if (o.cueAmount) v.depthCue.amount = *o.cueAmount;
+  if (o.cueContrast) v.depthCue.contrast = *o.cueContrast;
   if (o.perspective) v.perspective = true;
   // A mode overridden to one without an image colour map drops the view's.
   if (!takesImageColors(v.mode)) v.colormap = ColorMap::Grey;
   if (parsed.colormap && takesImageColors(v.mode)) v.colormap = *parsed.colormap;
   // And one whose fused projection is always the maximum drops the view's functional mean.
-  if (o.mode && !takesFusionMean(v.mode)) v.fusionProjection = FusionProjection::Max;
+  if (o.mode && !takesFusionMean(v.mode)) v.overlay.projection = FusionProjection::Max;
   if (parsed.overlayColormap) v.overlayColormap = *parsed.overlayColormap;
   // --orbit turns the views that can turn about the long axis (not those looking along it).
   const render::StandardView sight = standardView(v.view);
@@ -315,19 +315,14 @@ void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, con
   s.camera.perspective = v.perspective;
   s.window = v.window.value_or(0.0);
   s.level = v.level.value_or(0.0);
-  s.isoValue = v.iso;
+  s.iso = v.iso;
   s.stepMm = v.stepMm;
   s.shading = v.shading;
   s.linear = v.sampling == config::Sampling::Linear;
   s.jitter = v.jitter;
   s.seed = v.seed;
   s.background = {v.background[0], v.background[1], v.background[2]};
-  s.cropMin = {v.cropMin[0], v.cropMin[1], v.cropMin[2]};
-  s.cropMax = {v.cropMax[0], v.cropMax[1], v.cropMax[2]};
-  if (v.cropMinMm && v.cropMaxMm) {
-    s.cropMinMm = glm::dvec3((*v.cropMinMm)[0], (*v.cropMinMm)[1], (*v.cropMinMm)[2]);
-    s.cropMaxMm = glm::dvec3((*v.cropMaxMm)[0], (*v.cropMaxMm)[1], (*v.cropMaxMm)[2]);
-  }
+  s.crop = v.crop;
   s.cutFace = v.cutFace;
 }
 
@@ -378,35 +373,28 @@ void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
     s.functionalHigh = (*v.functionalWindow)[1];
   }
   s.lightOffset = {v.light[0], v.light[1]};
-  s.shellCount = v.shells;
+  s.shells = v.shells;
   if (!v.shellsDisabled.empty()) {
     s.shellEnabled.assign(static_cast<std::size_t>(v.shells), true);
     for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
   }
   s.depthCue = v.depthCue;
-  s.cueBrightness = v.cueBrightness;
-  s.cueAmount = v.cueAmount;
-  s.cueContrast = v.cueContrast;
   s.gradientOpacityLow = v.gradientOpacity[0];
   s.gradientOpacityHigh = v.gradientOpacity[1];
   s.planeOffsetMm = v.planeOffsetMm;
   s.slabMm = v.slabMm;
   s.overlay = v.overlay;
-  s.segmentOutlines = v.segmentationOutlines;
-  s.fusion = v.fusion;
+  s.segmentationOutlines = v.segmentationOutlines;
   s.functionalClasses = v.functionalClasses;
   s.glyphClassKinds = v.glyphClassKinds;
   if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
-  if (v.fusion && !study.functional)
+  if (v.overlay.fusion && !study.functional)
     throw InputError(study.file,
                      "view '" + v.name + "': fusion needs a functional volume in the study");
-  s.fusionProjection = v.fusionProjection;
-  if (v.fusionProjection == FusionProjection::Mean && !takesFusionMean(s.mode))
+  if (v.overlay.projection == FusionProjection::Mean && !takesFusionMean(s.mode))
     throw InputError(study.file, "view '" + v.name +
                                      "': fusion_projection mean is for minip and average views "
                                      "(a fused mip shows the functional maximum)");
-  s.overlayOpacity = static_cast<float>(v.overlayOpacity);
-  s.overlayThreshold = static_cast<float>(v.overlayThreshold);
 }
 
 // One view of the study, its overrides applied: its render settings, checked.
@@ -467,12 +455,12 @@ void checkViewsAgainstAnatomy(const std::vector<PlannedView>& views, const Volum
                                  " is below 1/100 of the smallest voxel spacing (" +
                                  shortNumber(100.0 * finest) +
                                  " mm): no ray can take so many samples (0: half the spacing)");
-    if (s.cropMinMm && s.cropMaxMm)
+    if (s.crop.minMm && s.crop.maxMm)
       for (int a = 0; a < 3; ++a)
-        if ((*s.cropMaxMm)[a] < lo[a] || (*s.cropMinMm)[a] > hi[a])
+        if ((*s.crop.maxMm)[a] < lo[a] || (*s.crop.minMm)[a] > hi[a])
           throw InputError(file, view + "crop_mm misses the volume along " + "LPS"[a] + " (" +
-                                     shortNumber((*s.cropMinMm)[a]) + " .. " +
-                                     shortNumber((*s.cropMaxMm)[a]) + " mm; the volume spans " +
+                                     shortNumber((*s.crop.minMm)[a]) + " .. " +
+                                     shortNumber((*s.crop.maxMm)[a]) + " mm; the volume spans " +
                                      shortNumber(lo[a]) + " .. " + shortNumber(hi[a]) + " mm)");
     if (s.mode == render::RenderMode::Mpr && std::abs(s.planeOffsetMm) > radius)
       throw InputError(file, view + "plane_offset_mm " + shortNumber(s.planeOffsetMm) +
@@ -539,7 +527,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.height = s.size.y;
   v.preset = preset;
   if (s.window > 0) v.window = s.window, v.level = s.level;
-  v.iso = s.isoValue;
+  v.iso = s.iso;
   v.stepMm = s.stepMm;
   v.shading = s.shading;
   v.sampling = s.linear ? config::Sampling::Linear : config::Sampling::Nearest;
@@ -547,12 +535,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.seed = s.seed;
   v.background = {s.background.r, s.background.g, s.background.b};
   v.cutFace = s.cutFace;
-  v.cropMin = {s.cropMin.x, s.cropMin.y, s.cropMin.z};
-  v.cropMax = {s.cropMax.x, s.cropMax.y, s.cropMax.z};
-  if (s.cropMinMm && s.cropMaxMm) {
-    v.cropMinMm = std::array<double, 3>{s.cropMinMm->x, s.cropMinMm->y, s.cropMinMm->z};
-    v.cropMaxMm = std::array<double, 3>{s.cropMaxMm->x, s.cropMaxMm->y, s.cropMaxMm->z};
-  }
+  v.crop = s.crop;
   // Glyphs only where they show (a viewer may leave them on while it shows a MIP): a saved MIP
   // with glyphs would not load.
   v.glyphs = s.glyphs && (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface);
@@ -579,25 +562,19 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   if (s.functionalHigh > s.functionalLow)
     v.functionalWindow = std::array<double, 2>{s.functionalLow, s.functionalHigh};
   v.light = {s.lightOffset.x, s.lightOffset.y};
-  v.shells = s.shellCount;
+  v.shells = s.shells;
   for (std::size_t k = 0; k < s.shellEnabled.size(); ++k)
     if (!s.shellEnabled[k]) v.shellsDisabled.push_back(static_cast<int>(k) + 1);
   v.depthCue = s.depthCue;
-  v.cueBrightness = s.cueBrightness;
-  v.cueAmount = s.cueAmount;
-  v.cueContrast = s.cueContrast;
   v.gradientOpacity = {s.gradientOpacityLow, s.gradientOpacityHigh};
   v.planeOffsetMm = s.planeOffsetMm;
   v.slabMm = s.slabMm;
   v.overlay = s.overlay;
-  v.segmentationOutlines = s.segmentOutlines;
-  v.fusion = s.fusion;
-  // Only where the mode takes it, as the colour map below.
-  if (takesFusionMean(s.mode)) v.fusionProjection = s.fusionProjection;
+  v.segmentationOutlines = s.segmentationOutlines;
+  // The functional mean only where the mode takes it, as the colour map below.
+  if (!takesFusionMean(s.mode)) v.overlay.projection = FusionProjection::Max;
   v.functionalClasses = s.functionalClasses;
   v.glyphClassKinds = s.glyphClassKinds;
-  v.overlayOpacity = s.overlayOpacity;
-  v.overlayThreshold = s.overlayThreshold;
   // Only where the mode shows it: a saved composite view with a colormap would not load.
   v.colormap = render::showsImageColors(s) ? s.imageColors->map : ColorMap::Grey;
   v.overlayColormap = s.overlayColors ? s.overlayColors->map : ColorMap::HotMetal;

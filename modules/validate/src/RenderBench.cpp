@@ -94,20 +94,20 @@ void runRenderBench(const RenderBenchOptions& o) {
 }
 
 bool hasBenchFeature(const render::RenderSettings& s) {
-  return s.glyphs || s.fusion || s.depthCue || render::showsAnatomyOnCutFace(s);
+  return s.glyphs || s.overlay.fusion || s.depthCue.on || render::showsAnatomyOnCutFace(s);
 }
 
 std::string benchFeatureName(const render::RenderSettings& s) {
   std::string name;
   if (s.glyphs) name += "glyphs";
-  if (s.fusion) name += name.empty() ? "fusion" : "+fusion";
-  if (s.depthCue) name += name.empty() ? "depth cue" : "+depth cue";
+  if (s.overlay.fusion) name += name.empty() ? "fusion" : "+fusion";
+  if (s.depthCue.on) name += name.empty() ? "depth cue" : "+depth cue";
   if (render::showsAnatomyOnCutFace(s)) name += name.empty() ? "cut face" : "+cut face";
   return name;
 }
 
 render::RenderSettings withoutBenchFeatures(render::RenderSettings s) {
-  s.glyphs = s.fusion = s.depthCue = false;
+  s.glyphs = s.overlay.fusion = s.depthCue.on = false;
   s.cutFace = render::CutFace::Plain;
   return s;
 }
@@ -163,8 +163,8 @@ void runFeatureBench(const FeatureBenchOptions& o) {
     // Fusion with another feature: also fusion alone, against the same view unfused (a fused
     // depth-cued MIP against the plain depth-cued one).
     render::RenderSettings unfused = v.settings;
-    unfused.fusion = false;
-    if (v.settings.fusion && hasBenchFeature(unfused))
+    unfused.overlay.fusion = false;
+    if (v.settings.overlay.fusion && hasBenchFeature(unfused))
       row(v.config.name, v.settings, unfused, "fusion alone");
   }
 }

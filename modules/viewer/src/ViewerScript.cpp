@@ -620,7 +620,7 @@ bool ViewerScript::step(ViewerState* statePointer, PacsBrowser* pacs) {
       state.jumpNext();
       break;
     case Kind::Iso:
-      state.view3d().isoValue = c.x;
+      state.view3d().iso = c.x;
       state.markAllDirty();
       break;
     case Kind::Zoom:

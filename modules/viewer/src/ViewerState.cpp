@@ -93,7 +93,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   presetName_ = defaults.preset;
   view3d_.transfer = render::transferPreset(presetName_);
   view3d_.camera.view = StandardView::Anterior;
-  view3d_.isoValue = defaults.isoValue;
+  view3d_.iso = defaults.iso;
   view3d_.cutFace = CutFace::Anatomy;  // as a planned view has it by default (cut_face)
   if (defaults.mode3d != RenderMode::Composite) {
     // A PET read alone (study::modalityDefaults): its MIP under its own window, as the implied
@@ -120,9 +120,8 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     // A view in another mode carries the config's default isovalue (300, for HU): key 2 would
     // show nothing on a volume that does not reach it (a PET in SUV), so the volume's own.
     const auto [lo, hi] = scene_.valueRange;
-    if (v.settings.mode != RenderMode::Isosurface &&
-        !(view3d_.isoValue > lo && view3d_.isoValue < hi))
-      view3d_.isoValue = defaults.isoValue;
+    if (v.settings.mode != RenderMode::Isosurface && !(view3d_.iso > lo && view3d_.iso < hi))
+      view3d_.iso = defaults.iso;
     break;
   }
   if (functional_) {
@@ -135,7 +134,7 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
         functionalDisplay_ = {(*v.config.functionalWindow)[0], (*v.config.functionalWindow)[1]};
       if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
       mprColors_ = v.settings.imageColors;
-      segmentOutlines_ = v.settings.segmentOutlines;
+      segmentOutlines_ = v.settings.segmentationOutlines;
       break;
     }
   // A saved state's MPR panes (views named view-axial, ...): their zoom, and the linked pan
@@ -382,9 +381,9 @@ void ViewerState::key(char key, bool ctrl) {
   if (key >= '1' && key <= '5') {
     view3d_.mode = k3dModes[key - '1'];
   } else if (key == 'D') {
-    view3d_.depthCue = !view3d_.depthCue;
-    view3d_.cueAmount = view3d_.depthCue ? 0.66 : 0.0;
-    view3d_.cueContrast = view3d_.depthCue ? 0.33 : 1.0;
+    view3d_.depthCue.on = !view3d_.depthCue.on;
+    view3d_.depthCue.amount = view3d_.depthCue.on ? 0.66 : 0.0;
+    view3d_.depthCue.contrast = view3d_.depthCue.on ? 0.33 : 1.0;
   } else if (key == 'G' && functional_) {
     view3d_.glyphs = !view3d_.glyphs;
   } else if (key == 'F') {
@@ -394,7 +393,7 @@ void ViewerState::key(char key, bool ctrl) {
       return requests_.setStatus(toString(view3d_.mode) +
                                  " cannot fuse the functional volume: colour fusion is for "
                                  "composite, isosurface, mip, minip and average");
-    view3d_.fusion = !view3d_.fusion;
+    view3d_.overlay.fusion = !view3d_.overlay.fusion;
   } else if (key == 'P') {
     const auto names = mvw::study::presetsFor(anatomical_);
     auto it = std::find(names.begin(), names.end(), presetName_);
@@ -532,7 +531,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
     s.camera.rollDeg = 0.0;
     s.camera.perspective = false;
     s.imageColors = functionalColors_;
-    s.overlay = false;
+    s.overlay.mpr = false;
     if (functional_)
       s.window = fhi - flo, s.level = 0.5 * (flo + fhi);
     else
@@ -546,20 +545,20 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
     s.camera.view = mprViewIn(layout, pane);
     s.window = mprWindow_;
     s.level = mprLevel_;
-    s.overlayOpacity = view3d_.overlayOpacity;
-    s.overlayThreshold = view3d_.overlayThreshold;
+    s.overlay.opacity = view3d_.overlay.opacity;
+    s.overlay.threshold = view3d_.overlay.threshold;
     s.functionalLow = view3d_.functionalLow;
     s.functionalHigh = view3d_.functionalHigh;
     s.functionalClasses = view3d_.functionalClasses;
     s.imageColors = mprColors_;
     s.overlayColors = view3d_.overlayColors;
-    s.segmentOutlines = segmentOutlines_;
+    s.segmentationOutlines = segmentOutlines_;
     s.camera.zoom = mprZoom_;
     const render::Camera plane =
         render::makeCamera(s.camera, scene_.centre, scene_.radius, glm::max(image.size, 1));
     s.camera.panMm = {glm::dot(mprPan_, plane.right), glm::dot(mprPan_, plane.up)};
     s.planeOffsetMm = glm::dot(crosshair_ - scene_.centre, plane.forward);
-    if (petCt && pane == kAxial) s.overlay = false;  // the anatomy alone
+    if (petCt && pane == kAxial) s.overlay.mpr = false;  // the anatomy alone
     if (petCt && pane == kCoronal && functional_) {
       // The functional volume alone: every value inside its box in the functional colour map
       // at full opacity (the threshold below the window), over an anatomy drawn black.
@@ -567,8 +566,8 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
       black.rgb.fill({0, 0, 0});
       s.imageColors = black;
       s.overlayColors = functionalColors_;
-      s.overlayOpacity = 1.0f;
-      s.overlayThreshold = -1.0f;
+      s.overlay.opacity = 1.0f;
+      s.overlay.threshold = -1.0f;
       s.functionalLow = flo;
       s.functionalHigh = fhi;
     } else if (petCt && pane == kCoronal) {
@@ -642,9 +641,9 @@ std::string ViewerState::emptyPaneMessage(int pane) const {
   std::snprintf(buf, sizeof buf, "%.4g .. %.4g", lo, hi);
   const std::string range = buf + (unit.empty() ? std::string(", no unit") : " " + unit);
   if (pane == k3d && view3d_.mode == RenderMode::Isosurface &&
-      !(view3d_.isoValue > lo && view3d_.isoValue < hi)) {
+      !(view3d_.iso > lo && view3d_.iso < hi)) {
     char iso[32];
-    std::snprintf(iso, sizeof iso, "%g", view3d_.isoValue);
+    std::snprintf(iso, sizeof iso, "%g", view3d_.iso);
     return std::string("Nothing to show: the isovalue ") + iso +
            " lies outside the volume's values (" + range + "); set the iso value in the panel";
   }

@@ -23,8 +23,11 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "mvw/core/ColorMap.h"
+#include "mvw/core/Crop.h"
+#include "mvw/core/DepthCue.h"
 #include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
 
 namespace mvw::config {
@@ -147,8 +150,7 @@ struct ViewConfig {
   std::optional<double> window, level;
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.
-  bool depthCue = false;
-  double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
+  DepthCue depthCue;
   // shells-mip | shells-sum | shells-lit: number of isosurface shells, and ones switched off.
   int shells = 8;
   std::vector<int> shellsDisabled;
@@ -158,11 +160,9 @@ struct ViewConfig {
   bool jitter = true;
   unsigned seed = 1;
   std::array<double, 3> background{0.0, 0.0, 0.0};
-  // Crop box in patient terms, the same for any storage order: fractions of the volume's
-  // world-aligned box along L, P, S (0 = most right / anterior / inferior, 1 = most left /
-  // posterior / superior); or "crop_mm": {"min": [...], "max": [...]} in LPS mm, which wins.
-  std::array<double, 3> cropMin{0.0, 0.0, 0.0}, cropMax{1.0, 1.0, 1.0};
-  std::optional<std::array<double, 3>> cropMinMm, cropMaxMm;
+  // Crop box in patient terms (mvw/core/Crop.h): "crop_min" and "crop_max" as fractions of the
+  // volume's box along L, P, S, or "crop_mm": {"min": [...], "max": [...]} in LPS mm, which wins.
+  Crop crop;
   // composite / isosurface with a crop: the cut face shows the anatomy under the MPR's window
   // (anatomy) or the isosurface colour / transfer function (plain).
   CutFace cutFace = CutFace::Anatomy;
@@ -170,14 +170,10 @@ struct ViewConfig {
   std::array<double, 2> light{0.0, 0.0};  // light offset in screen terms; 0, 0: headlight
   double planeOffsetMm = 0.0;             // mpr: plane moved along the line of sight
   double slabMm = 0.0;                    // mpr: thick-slab MIP thickness, 0 = single plane
-  bool overlay = true;                    // mpr: show the functional volume when there is one
   bool segmentationOutlines = true;       // mpr: outline the study's segmentation's segments
-  // composite / isosurface: blend the functional colour in; mip / minip / average: lay the
-  // functional volume's projection over the anatomy's (minip / average: its max or mean).
-  bool fusion = false;
-  FusionProjection fusionProjection = FusionProjection::Max;
-  double overlayOpacity = 0.5;
-  double overlayThreshold = 0.25;  // fraction of the functional value range
+  // The functional overlay (mpr) and fusion (composite, isosurface, mip, minip, average):
+  // mvw/core/Overlay.h.
+  Overlay overlay;
   // Colour maps: the image of mip / minip / average / mpr views ("colormap"; grey-inverted also
   // turns the black background white), and the functional overlay or fusion
   // ("overlay_colormap").

@@ -12,7 +12,10 @@
 #include <glm/vec4.hpp>
 
 #include "mvw/core/ColorMap.h"
+#include "mvw/core/Crop.h"
+#include "mvw/core/DepthCue.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/GlyphMap.h"
@@ -54,13 +57,11 @@ struct RenderSettings {
   // full value range.
   double window = 0.0;
   double level = 0.0;  // window centre
-  double isoValue = 300.0;
-  // MIP with depth cueing (Heidrich et al. 1995, eq. 3 and section 2.3): brightness beta0,
-  // depth cue amount a, contrast b. Off, or a = 0, b = 1, beta0 = 0: plain MIP.
-  bool depthCue = false;
-  double cueBrightness = 0.0, cueAmount = 0.0, cueContrast = 1.0;
+  double iso = 300.0;
+  // MIP and the shell modes with depth cueing (mvw/core/DepthCue.h).
+  DepthCue depthCue;
   // Shell modes: n shells at emissions i/n of the window; shells can be disabled one by one.
-  int shellCount = 8;
+  int shells = 8;
   std::vector<bool> shellEnabled;  // empty: all
   double stepMm = 0.0;             // <= 0: half the smallest voxel spacing
   bool shading = true;
@@ -73,11 +74,8 @@ struct RenderSettings {
   // Where the light comes from, in screen terms: (0, 0) is a headlight; (-1, 1) from the
   // upper left at 45 degrees off the line of sight.
   glm::dvec2 lightOffset{0.0};
-  // Crop box in patient terms (PatientCrop, Framing.h): fractions of the volume's world-aligned
-  // box along L, P, S, whatever the storage order; or, when set, LPS millimetres (these win).
-  glm::dvec3 cropMin{0.0};
-  glm::dvec3 cropMax{1.0};
-  std::optional<glm::dvec3> cropMinMm, cropMaxMm;
+  // Crop box in patient terms (mvw/core/Crop.h; PatientCrop, Framing.h, turns it into boxes).
+  Crop crop;
   // Composite and isosurface with a crop: the opaque cut face shows the anatomy's grey values
   // under window / level, glyphs and fusion on it (MVW_CUT_FACE), or the isosurface colour and
   // the transfer function (plain). Plain here, so that settings made by hand keep the look
@@ -127,19 +125,11 @@ struct RenderSettings {
   // glyphClassKinds.size() equal ranges, range c of kind c (an ordinal attribute in classes).
   // Empty: bumps (and the convexity) as before.
   std::vector<GlyphKind> glyphClassKinds;
-  // Functional colour overlay, when the renderer holds a functional volume: on MPR by
-  // default (overlay), on composite and isosurface renders when asked (fusion: the colour
-  // map blended into the anatomy's colour before shading), and on mip, minip and average ones
-  // (fusion: the functional volume's own projection along each ray, in the colour map over the
-  // anatomy's projection; takesFusion in mvw/core/RenderMode.h).
-  bool overlay = true;
-  bool fusion = false;
-  // Fused minip and average: the functional projection (its maximum or mean along the ray).
-  FusionProjection fusionProjection = FusionProjection::Max;
-  float overlayOpacity = 0.5f;
-  float overlayThreshold = 0.25f;  // fraction of the functional range
+  // Functional colour overlay and fusion, when the renderer holds a functional volume
+  // (mvw/core/Overlay.h).
+  Overlay overlay;
   // MPR: outline the segments of a segmentation set with setSegmentation, in their colours.
-  bool segmentOutlines = true;
+  bool segmentationOutlines = true;
   // Colour maps (mvw/core/ColorMap.h; io::standardColorTable fills the DICOM palettes): the
   // image of MIP, MinIP, average and MPR views (none: grey), looked up by the grey byte, the
   // background shown through it as the grey it is; and the functional overlay and fusion

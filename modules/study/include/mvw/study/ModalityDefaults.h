@@ -18,9 +18,9 @@
 namespace mvw::study {
 
 struct ModalityDefaults {
-  std::string preset;     // transfer function preset name
-  double isoValue = 0.0;  // isosurface value in the volume's unit
-  WindowLevel mpr;        // the MPR panes' window (and an emission image's MIP's)
+  std::string preset;  // transfer function preset name
+  double iso = 0.0;    // isosurface value in the volume's unit
+  WindowLevel mpr;     // the MPR panes' window (and an emission image's MIP's)
   // The view a study gets where its config names none (config::ViewConfig::implied): the
   // viewer's 3D pane and `mvw render`'s one view. A composite with the preset; a PET or SPECT
   // read alone: its MIP in `mipColors` under the `mpr` window, as nuclear medicine reads it.
