@@ -20,7 +20,8 @@ class CheckedDicomReader : public vtkDICOMReader {
   static CheckedDicomReader* New();
   vtkTypeMacro(CheckedDicomReader, vtkDICOMReader)
 
-      protected : CheckedDicomReader() = default;
+ protected:
+  CheckedDicomReader() = default;
   ~CheckedDicomReader() override = default;
 
   bool ReadFileDelegated(const char* filename, int fileIdx, unsigned char* buffer,

@@ -32,9 +32,9 @@ class CapturingOutputWindow : public vtkOutputWindow {
  public:
   static CapturingOutputWindow* New();
   vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
-      // The raw error text, before VTK's logger decorates it. Warnings and other text are
-      // dropped: readers decide from errors alone.
-      void DisplayErrorText(const char* text) override {
+  // The raw error text, before VTK's logger decorates it. Warnings and other text are
+  // dropped: readers decide from errors alone.
+  void DisplayErrorText(const char* text) override {
     std::lock_guard<std::mutex> lock(gMutex);
     gErrors.push_back(stripVtkPrefix(text ? text : ""));
   }
