@@ -94,9 +94,8 @@ py::object statsOf(const VolumePtr& volume, const std::optional<std::vector<doub
   const study::RoiOptionNames names{"sphere", "box", "labels", "threshold", "threshold_fraction",
                                     "label"};
   if (const auto problem = study::roiOptionsProblem(roi, names)) {
-    const bool named =
-        problem->problem.rfind("must", 0) == 0 || problem->problem.rfind("needs", 0) == 0;
-    throw py::value_error("mvw.stats: " + (named ? problem->option + " " : "") + problem->problem);
+    throw py::value_error("mvw.stats: " + (problem->ofOption ? problem->option + " " : "") +
+                          problem->problem);
   }
   const int rois = !roi.sphere.empty() + !roi.box.empty() + !roi.labels.empty();
   const std::string kRoiChoice = "mvw.stats: " + study::roiChoice(names);

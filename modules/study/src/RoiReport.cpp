@@ -217,10 +217,10 @@ std::optional<RoiOptionProblem> roiOptionsProblem(const RoiOptions& o,
     return RoiOptionProblem{names.threshold, "give " + names.threshold + " or " +
                                                  names.thresholdFraction + ", not both"};
   if (!std::isnan(o.thresholdFraction) && !(o.thresholdFraction > 0 && o.thresholdFraction <= 1))
-    return RoiOptionProblem{names.thresholdFraction, "must lie in (0, 1], e.g. 0.41"};
+    return RoiOptionProblem{names.thresholdFraction, "must lie in (0, 1], e.g. 0.41", true};
   // With no ROI at all, the default label map (defaultLabels) is the labels the label is of.
   if (o.label != 0 && o.labels.empty() && rois != 0)
-    return RoiOptionProblem{names.label, "needs " + names.labels};
+    return RoiOptionProblem{names.label, "needs " + names.labels, true};
   return std::nullopt;
 }
 

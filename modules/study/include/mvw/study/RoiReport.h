@@ -58,8 +58,11 @@ struct RoiOptionNames {
 // mvw.stats: at most one of sphere, box and labels; a threshold or a fraction of the maximum, not
 // both; a fraction in (0, 1]; a label only of labels (given, or none: the default label map). The
 // option it concerns ("ROI" for the choice) and the problem, in `names`; nothing when they hold.
+// `ofOption`: the problem is said of the option ("must lie in ...", "needs ..."), so a sentence
+// puts the option's name before it; otherwise it is a whole sentence ("give exactly one of ...").
 struct RoiOptionProblem {
   std::string option, problem;
+  bool ofOption = false;
 };
 std::optional<RoiOptionProblem> roiOptionsProblem(const RoiOptions& o,
                                                   const RoiOptionNames& names = {});
