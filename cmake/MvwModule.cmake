@@ -9,8 +9,13 @@
 #     config
 #   PRIVATE_DEPENDS
 #     io                     private: only its .cpp files (and private headers) include these
+#   TEST_DEPENDS
+#     dicomout               its tests (tests/<name>/) only: what they check the module against
 #
-# Each name is a module folder (mvw::<name>). The lists are in link order. A module declares
+# Each name is a module folder (mvw::<name>). The lists are in link order. TEST_DEPENDS (as in
+# VTK's vtk.module) lets a test that needs a higher module to check a class (study's colour
+# tables for io's palettes) sit beside that class: mvw_module_tests (tests/CMakeLists.txt) links
+# them into the module's test executable; the library never sees them. A module declares
 # every module whose headers its code includes, directly, not through another's DEPENDS;
 # scripts/module-graph --check (CTest module_deps) checks that against the #includes, that the
 # declarations have no cycle and that docs/design.md's dependency picture is theirs.
@@ -24,14 +29,15 @@
 # (with cmake/mvwConfig.cmake.in) is where they are declared once.
 include_guard(GLOBAL)
 
-# Reads <folder>/mvw.module into <prefix>_NAME, <prefix>_DEPENDS and <prefix>_PRIVATE_DEPENDS.
+# Reads <folder>/mvw.module into <prefix>_NAME, <prefix>_DEPENDS, <prefix>_PRIVATE_DEPENDS and
+# <prefix>_TEST_DEPENDS.
 function(mvw_read_module_file file prefix)
   if(NOT EXISTS ${file})
     message(FATAL_ERROR "${file} is missing: every module folder declares its dependencies there (cmake/MvwModule.cmake)")
   endif()
   file(STRINGS ${file} lines)
   set(section "")
-  foreach(keyword NAME DEPENDS PRIVATE_DEPENDS)
+  foreach(keyword NAME DEPENDS PRIVATE_DEPENDS TEST_DEPENDS)
     set(${keyword} "")
   endforeach()
   foreach(line IN LISTS lines)
@@ -39,17 +45,18 @@ function(mvw_read_module_file file prefix)
     string(STRIP "${line}" word)
     if(word STREQUAL "")
       continue()
-    elseif(word MATCHES "^(NAME|DEPENDS|PRIVATE_DEPENDS)$")
+    elseif(word MATCHES "^(NAME|DEPENDS|PRIVATE_DEPENDS|TEST_DEPENDS)$")
       set(section ${word})
     elseif(word MATCHES "^[a-z][a-z0-9_]*$" AND section)
       list(APPEND ${section} ${word})
     else()
-      message(FATAL_ERROR "${file}: '${word}' is neither NAME, DEPENDS, PRIVATE_DEPENDS nor a module name under one of them")
+      message(FATAL_ERROR "${file}: '${word}' is neither NAME, DEPENDS, PRIVATE_DEPENDS, TEST_DEPENDS nor a module name under one of them")
     endif()
   endforeach()
   set(${prefix}_NAME "${NAME}" PARENT_SCOPE)
   set(${prefix}_DEPENDS "${DEPENDS}" PARENT_SCOPE)
   set(${prefix}_PRIVATE_DEPENDS "${PRIVATE_DEPENDS}" PARENT_SCOPE)
+  set(${prefix}_TEST_DEPENDS "${TEST_DEPENDS}" PARENT_SCOPE)
 endfunction()
 
 function(mvw_module_link target)

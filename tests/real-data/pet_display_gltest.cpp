@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../render/RenderTestUtil.h"
 #include "SharedData.h"
 #include "mvw/io/ColorPalettes.h"
 #include "mvw/io/VolumeReader.h"
@@ -38,16 +39,14 @@ TEST(RealPetDisplay, AxialMipIsTheCpuMaximumThroughTheColourMap) {
           static_cast<int>(std::lround(255.0 * std::clamp(m / 8.0, 0.0, 1.0)));
     }
 
-  auto ctx = render::createHeadlessContext({16, 16});
-  render::VolumeRenderer renderer(*ctx, pet);
-  render::RenderSettings s;
-  s.mode = RenderMode::Mip;
+  test::Renderer renderer(pet);
   // From the feet: screen right = +x (index i), screen down = +y (index j), one pixel a voxel.
-  s.camera.view = render::StandardView::Inferior;
-  s.size = {d.x, d.y};
+  render::RenderSettings s = test::settingsOf({.mode = RenderMode::Mip,
+                                               .size = {d.x, d.y},
+                                               .view = render::StandardView::Inferior,
+                                               .jitterOff = true});
   s.camera.zoom = render::framingSphere(pet).radius / (0.5 * d.y * pet.spacing().y);
   s.linear = false;  // nearest: the samples are the voxels' own values
-  s.jitter = false;
   s.window = 8.0;
   s.level = 4.0;
   for (ColorMap map : {ColorMap::GreyInverted, ColorMap::HotIron}) {
@@ -77,12 +76,9 @@ TEST(RealPetDisplay, InvertedAnteriorMipHasAWhiteBackgroundAndABlackHottestSpot)
   io::ReadOptions options;
   options.series = "PET WB";
   const Volume pet = io::readVolume(sharedPath, options);
-  auto ctx = render::createHeadlessContext({16, 16});
-  render::VolumeRenderer renderer(*ctx, pet);
-  render::RenderSettings s;
-  s.mode = RenderMode::Mip;
-  s.camera.view = render::StandardView::Anterior;
-  s.size = {101, 201};
+  test::Renderer renderer(pet);
+  render::RenderSettings s = test::settingsOf(
+      {.mode = RenderMode::Mip, .size = {101, 201}, .view = render::StandardView::Anterior});
   s.window = 8.0;
   s.level = 4.0;
   s.imageColors = io::standardColorTable(ColorMap::GreyInverted);

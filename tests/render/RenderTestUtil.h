@@ -1,29 +1,88 @@
 #pragma once
-// Shared helpers for the ray caster's GL tests: analytic volumes sampled at voxel centres, and
-// where a grey range lies on the screen.
+// Shared helpers for the ray caster's GL tests: how they build their volumes (analytic volumes
+// sampled at voxel centres, the sample cranium), their context and renderer, and their
+// settings; and where a grey range lies on the screen.
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <utility>
 
 #include <glm/glm.hpp>  // the tests use most of core GLM (length, dot, all, clamp)
 
+#include "../support/TestUtil.h"
 #include "mvw/core/Image.h"
 #include "mvw/core/Volume.h"
+#include "mvw/io/VolumeReader.h"
 #include "mvw/render/Camera.h"
+#include "mvw/render/GlContext.h"
+#include "mvw/render/RenderSettings.h"
+#include "mvw/render/VolumeRenderer.h"
 
 namespace mvw::test {
+
+// An axis-aligned grid: voxel (0, 0, 0)'s centre at `origin`, `spacing` mm apart.
+inline glm::dmat4 axisGrid(glm::dvec3 origin, glm::dvec3 spacing) {
+  return makeWorldFromIndex(origin, spacing, glm::dmat3(1.0));
+}
+
+// A one-component volume of type T holding static_cast<T>(f(world position of each voxel
+// centre)); f rounds where T is an integer type.
+template <class T, class F>
+Volume makeVolumeOf(glm::ivec3 dims, const glm::dmat4& worldFromIndex, const F& f) {
+  Volume v(dims, 1, scalarTypeOf<T>(), worldFromIndex);
+  T* p = v.dataAs<T>();
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i) *p++ = static_cast<T>(f(v.worldFromIndexPoint({i, j, k})));
+  return v;
+}
 
 // A float volume holding f(world position of each voxel centre).
 inline Volume makeVolume(glm::ivec3 dims, const glm::dmat4& worldFromIndex,
                          const std::function<float(glm::dvec3)>& f) {
-  Volume v(dims, 1, ScalarType::Float32, worldFromIndex);
-  float* p = v.dataAs<float>();
-  for (int k = 0; k < dims.z; ++k)
-    for (int j = 0; j < dims.y; ++j)
-      for (int i = 0; i < dims.x; ++i) *p++ = f(v.worldFromIndexPoint({i, j, k}));
-  return v;
+  return makeVolumeOf<float>(dims, worldFromIndex, f);
+}
+
+// The sample data's cranium CT, the GL tests' real volume.
+inline Volume sampleCranium() { return io::readVolume(sampleData("cranium/cranium.nii.gz")); }
+
+// The GL tests' headless context. Its own framebuffer's size never shows: a renderer draws
+// into its own target at the settings' size.
+inline std::unique_ptr<render::GlContext> headlessContext() {
+  return render::createHeadlessContext({16, 16});
+}
+
+// The context first, so that it is made before the renderer and outlives it (base-from-member).
+struct HeadlessContextHolder {
+  std::unique_ptr<render::GlContext> contextHolder = headlessContext();
+};
+
+// A renderer of one volume on a headless context of its own: what most GL tests start from. A
+// second renderer of the same test shares its context (`VolumeRenderer b(a.context(), v)`).
+class Renderer : private HeadlessContextHolder, public render::VolumeRenderer {
+ public:
+  explicit Renderer(const Volume& volume,
+                    render::GradientSource gradient = render::GradientSource::Auto)
+      : render::VolumeRenderer(*contextHolder, volume, gradient) {}
+  render::GlContext& context() { return *contextHolder; }
+};
+
+// What nearly every GL test sets first; everything else keeps RenderSettings' defaults.
+struct Shot {
+  render::RenderMode mode = render::RenderMode::Composite;
+  glm::ivec2 size{0};                                       // required
+  std::optional<render::StandardView> view = std::nullopt;  // unset: the camera's default
+  bool jitterOff = false;  // true: no jitter, for exact comparisons
+};
+inline render::RenderSettings settingsOf(const Shot& shot) {
+  render::RenderSettings s;
+  s.mode = shot.mode;
+  s.size = shot.size;
+  if (shot.view) s.camera.view = *shot.view;
+  if (shot.jitterOff) s.jitter = false;
+  return s;
 }
 
 // Where a ray enters and leaves the index box [lo, hi] (voxel edges: -0.5 .. dims - 0.5 for the

@@ -17,18 +17,13 @@ using test::makeVolume;
 
 // A bright ball (value 1000 at the centre falling to 0 at 12 mm) in a 41 mm box of zeros.
 Volume sphere() {
-  return makeVolume(
-      {41, 41, 41}, makeWorldFromIndex({-20, -20, -20}, {1, 1, 1}, glm::dmat3(1.0)),
-      [](glm::dvec3 p) {
-        return static_cast<float>(std::max(0.0, 1000.0 * (1.0 - glm::length(p) / 12.0)));
-      });
+  return makeVolume({41, 41, 41}, test::axisGrid({-20, -20, -20}, {1, 1, 1}), [](glm::dvec3 p) {
+    return static_cast<float>(std::max(0.0, 1000.0 * (1.0 - glm::length(p) / 12.0)));
+  });
 }
 
 RenderSettings mipOf(RenderMode mode) {
-  RenderSettings s;
-  s.mode = mode;
-  s.size = {61, 61};
-  s.jitter = false;
+  RenderSettings s = test::settingsOf({.mode = mode, .size = {61, 61}, .jitterOff = true});
   s.window = 1000;
   s.level = 500;
   return s;
@@ -54,8 +49,7 @@ const ColorMap kMaps[] = {ColorMap::GreyInverted, ColorMap::HotIron, ColorMap::P
 
 TEST(ColorMaps, MipPixelsAreThePalettesEntryAtTheGreyLevel) {
   const Volume v = sphere();
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
+  test::Renderer renderer(v);
   for (RenderMode mode :
        {RenderMode::Mip, RenderMode::MinIp, RenderMode::Average, RenderMode::Mpr}) {
     RenderSettings s = mipOf(mode);
@@ -70,8 +64,7 @@ TEST(ColorMaps, MipPixelsAreThePalettesEntryAtTheGreyLevel) {
 
 TEST(ColorMaps, HottestPixelOfASphereMipIsThePalettesTopColour) {
   const Volume v = sphere();
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
+  test::Renderer renderer(v);
   RenderSettings s = mipOf(RenderMode::Mip);
   s.window = 980;  // the centre (1000 at the ray through it) saturates: grey 255
   s.level = 490;
@@ -90,8 +83,7 @@ TEST(ColorMaps, HottestPixelOfASphereMipIsThePalettesTopColour) {
 
 TEST(ColorMaps, GreyInvertedShowsAWhiteBackgroundAndBlackHotSpot) {
   const Volume v = sphere();
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
+  test::Renderer renderer(v);
   RenderSettings s = mipOf(RenderMode::Mip);
   s.window = 980;
   s.level = 490;
@@ -114,13 +106,12 @@ TEST(ColorMaps, GreyInvertedShowsAWhiteBackgroundAndBlackHotSpot) {
 }
 
 TEST(ColorMaps, OverlayUsesItsOwnColourMap) {
-  const glm::dmat4 grid = makeWorldFromIndex({-20, -20, -10}, {1, 1, 1}, glm::dmat3(1.0));
+  const glm::dmat4 grid = test::axisGrid({-20, -20, -10}, {1, 1, 1});
   const Volume anatomy = makeVolume({41, 41, 21}, grid, [](glm::dvec3) { return 0.0f; });
   // A uniform attribute of 7 in the window 0 .. 10: u = 0.7 everywhere, palette entry
   // floor(0.7 * 256) = 179 (the overlay's table is sampled nearest).
   const Volume uptake = makeVolume({41, 41, 21}, grid, [](glm::dvec3) { return 7.0f; });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, anatomy);
+  test::Renderer renderer(anatomy);
   renderer.setFunctional(uptake, glm::dmat4(1.0));
   RenderSettings s = mipOf(RenderMode::Mpr);
   s.camera.view = StandardView::Inferior;

@@ -19,19 +19,16 @@ using test::makeVolume;
 
 TEST(Raycast, CompositeThroughAUniformSlabFollowsBeerLambert) {
   // 16 mm of a medium with opacity 0.1 per 1 mm reference step: T = 0.9^16.
-  const Volume v =
-      makeVolume({32, 32, 16}, makeWorldFromIndex({0, 0, 0}, {1, 1, 1}, glm::dmat3(1.0)),
-                 [](glm::dvec3) { return 100.0f; });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
-  s.mode = RenderMode::Composite;
+  const Volume v = makeVolume({32, 32, 16}, test::axisGrid({0, 0, 0}, {1, 1, 1}),
+                              [](glm::dvec3) { return 100.0f; });
+  test::Renderer renderer(v);
+  RenderSettings s = test::settingsOf({.mode = RenderMode::Composite,
+                                       .size = {33, 33},
+                                       .view = StandardView::Superior,
+                                       .jitterOff = true});
   s.transfer =
       TransferFunction{"flat", false, {TfPoint{0, {1, 1, 1, 0.1f}}, TfPoint{200, {1, 1, 1, 0.1f}}}};
   s.shading = false;
-  s.jitter = false;
-  s.camera.view = StandardView::Superior;
-  s.size = {33, 33};
   for (double step : {0.5, 0.25, 1.0 / 3.0}) {
     s.stepMm = step;
     const RenderedFrame f = renderer.render(s);
@@ -42,15 +39,13 @@ TEST(Raycast, CompositeThroughAUniformSlabFollowsBeerLambert) {
 
 TEST(Raycast, RenderingTwiceGivesIdenticalPixels) {
   const Volume v =
-      makeVolume({30, 20, 10}, makeWorldFromIndex({0, 0, 0}, {1, 1.5, 2}, glm::dmat3(1.0)),
+      makeVolume({30, 20, 10}, test::axisGrid({0, 0, 0}, {1, 1.5, 2}),
                  [](glm::dvec3 p) { return static_cast<float>(p.x * 10 + p.y * 3 + p.z); });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
+  test::Renderer renderer(v);
+  RenderSettings s = test::settingsOf({.mode = RenderMode::Composite, .size = {47, 31}});
   s.transfer = transferPreset("mr-default");
   s.camera.azimuthDeg = 30;
   s.camera.elevationDeg = 20;
-  s.size = {47, 31};
   const RenderedFrame a = renderer.render(s), b = renderer.render(s);
   EXPECT_EQ(a.image.rgba, b.image.rgba);
   s.seed = 2;
@@ -70,13 +65,10 @@ TEST(Raycast, RenderingTwiceGivesIdenticalPixels) {
 // (RAY_HAND_BACK) against rays that stay in the full loop (passing one more sample at each
 // hand-back: 3797 values differ, by up to 4).
 TEST(Raycast, EmptySpaceSkippingLeavesOutNoVisibleSample) {
-  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, ct);
-  RenderSettings s;
-  s.mode = RenderMode::Composite;
-  s.size = {160, 160};
-  s.jitter = false;
+  const Volume ct = test::sampleCranium();
+  test::Renderer renderer(ct);
+  RenderSettings s =
+      test::settingsOf({.mode = RenderMode::Composite, .size = {160, 160}, .jitterOff = true});
   std::size_t differing = 0, values = 0;
   int worst = 0;
   for (const char* preset : {"ct-bone", "ct-skin", "ct-muscle-bone"})

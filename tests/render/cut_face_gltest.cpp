@@ -26,24 +26,19 @@ constexpr double kWindow = 300.0, kLevel = 150.0;
 
 struct CutScene {
   Volume anatomy =
-      makeVolume({65, 65, 65}, makeWorldFromIndex({-32, -32, -32}, {1, 1, 1}, glm::dmat3(1.0)),
-                 [](glm::dvec3 p) {
-                   if (glm::length(p) > kRadius) return 0.0f;
-                   return static_cast<float>(p.x < 0.0 ? kRight : kLeft);
-                 });
+      makeVolume({65, 65, 65}, test::axisGrid({-32, -32, -32}, {1, 1, 1}), [](glm::dvec3 p) {
+        if (glm::length(p) > kRadius) return 0.0f;
+        return static_cast<float>(p.x < 0.0 ? kRight : kLeft);
+      });
   // The attribute: 0.7 where y > 0 (the posterior half of the face, both tissues), else 0.
-  Volume attribute =
-      makeVolume({17, 17, 17}, makeWorldFromIndex({-32, -32, -32}, {4, 4, 4}, glm::dmat3(1.0)),
-                 [](glm::dvec3 p) { return p.y > 0.0 ? 0.7f : 0.0f; });
+  Volume attribute = makeVolume({17, 17, 17}, test::axisGrid({-32, -32, -32}, {4, 4, 4}),
+                                [](glm::dvec3 p) { return p.y > 0.0 ? 0.7f : 0.0f; });
 
   static RenderSettings settings(RenderMode mode) {
-    RenderSettings s;
-    s.mode = mode;
+    RenderSettings s = test::settingsOf(
+        {.mode = mode, .size = {121, 121}, .view = StandardView::Superior, .jitterOff = true});
     s.iso = 50.0;
     s.transfer = transferPreset("mr-default");  // visible from 15 % of the range (30) on
-    s.size = {121, 121};
-    s.jitter = false;
-    s.camera.view = StandardView::Superior;
     s.camera.zoom = 1.3;
     s.crop.max = {1.0, 1.0, 0.5};  // the superior half cut away: the face at z = 0
     s.cutFace = CutFace::Anatomy;
@@ -140,8 +135,7 @@ void expectTwoGreys(const RenderedFrame& f, const std::string& what) {
 
 TEST(CutFace, ShowsTheAnatomyUnderTheWindowInIsosurfaceAndComposite) {
   CutScene scene;
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, scene.anatomy);
+  test::Renderer renderer(scene.anatomy);
   for (RenderMode mode : {RenderMode::Isosurface, RenderMode::Composite}) {
     const RenderSettings s = CutScene::settings(mode);
     expectTwoGreys(renderer.render(s), toString(mode));
@@ -162,8 +156,7 @@ TEST(CutFace, ShowsTheAnatomyUnderTheWindowInIsosurfaceAndComposite) {
 
 TEST(CutFace, GlyphsOfEveryKindAndFusionStayOnTheFace) {
   CutScene scene;
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, scene.anatomy);
+  test::Renderer renderer(scene.anatomy);
   renderer.setFunctional(scene.attribute, glm::dmat4(1.0));
   struct Case {
     RenderMode mode;

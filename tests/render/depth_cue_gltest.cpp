@@ -28,15 +28,11 @@ float nearDimFarBright(glm::dvec3 p) {
 
 TEST(DepthCuedMip, NeutralSettingsReproducePlainMipExactly) {
   const Volume v =
-      makeVolume({41, 51, 31}, makeWorldFromIndex({-20, -25, -15}, {1, 1, 1}, glm::dmat3(1.0)),
-                 [](glm::dvec3 p) {
-                   return static_cast<float>(nearDimFarBright(p) + 30 * std::sin(p.x * 0.3) + p.z);
-                 });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
-  s.mode = RenderMode::Mip;
-  s.size = {63, 47};
+      makeVolume({41, 51, 31}, test::axisGrid({-20, -25, -15}, {1, 1, 1}), [](glm::dvec3 p) {
+        return static_cast<float>(nearDimFarBright(p) + 30 * std::sin(p.x * 0.3) + p.z);
+      });
+  test::Renderer renderer(v);
+  RenderSettings s = test::settingsOf({.mode = RenderMode::Mip, .size = {63, 47}});
   s.window = 900;
   s.level = 400;
   s.camera.azimuthDeg = 20;
@@ -48,18 +44,17 @@ TEST(DepthCuedMip, NeutralSettingsReproducePlainMipExactly) {
 
 TEST(DepthCuedMip, TheRampIsAppliedBeforeTheMaximum) {
   const Volume v =
-      makeVolume({41, 61, 41}, makeWorldFromIndex({-20, -30, -20}, {1, 1, 1}, glm::dmat3(1.0)),
-                 nearDimFarBright);
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
-  s.mode = RenderMode::Mip;
-  s.size = {41, 41};  // odd: the middle ray passes through both centres
+      makeVolume({41, 61, 41}, test::axisGrid({-20, -30, -20}, {1, 1, 1}), nearDimFarBright);
+  test::Renderer renderer(v);
+  RenderSettings s = test::settingsOf({
+      .mode = RenderMode::Mip,
+      .size = {41, 41},  // odd: the middle ray passes through both centres
+      .view = StandardView::Anterior,
+      .jitterOff = true,
+  });
   s.window = 1000;
   s.level = 500;  // emission = value / 1000
-  s.jitter = false;
   s.linear = false;
-  s.camera.view = StandardView::Anterior;
   const RenderedFrame plain = renderer.render(s);
   EXPECT_NEAR(plain.image.pixel(20, 20)[0], 0.8 * 255, 1.0);  // the bright far sphere wins
   s.depthCue.on = true;
@@ -86,16 +81,12 @@ TEST(DepthCuedMip, IdenticalBlobsAreDimmedByTheRampRatio) {
     if (glm::length(p - glm::dvec3(12, 15, 0)) < 5.0) return 900.0f;    // far
     return 0.0f;
   };
-  const Volume v = makeVolume(
-      {61, 61, 41}, makeWorldFromIndex({-30, -30, -20}, {1, 1, 1}, glm::dmat3(1.0)), blobs);
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
-  s.mode = RenderMode::Mip;
-  s.size = {121, 121};
+  const Volume v = makeVolume({61, 61, 41}, test::axisGrid({-30, -30, -20}, {1, 1, 1}), blobs);
+  test::Renderer renderer(v);
+  RenderSettings s =
+      test::settingsOf({.mode = RenderMode::Mip, .size = {121, 121}, .jitterOff = true});
   s.window = 1000;
   s.level = 500;
-  s.jitter = false;
   s.linear = false;
   s.depthCue.on = true;
   s.depthCue.amount = 1.0;
@@ -131,14 +122,11 @@ TEST(DepthCuedMip, OverlappingVesselsShowTheNearerOne) {
   vs.rootLengthMm = 30.0;
   const VesselTree tree = makeVesselTree(vs);
   ASSERT_EQ(tree.segments.size(), 63u);  // 1 + 2 + 4 + 8 + 16 + 32
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, tree.volume);
-  RenderSettings s;
-  s.mode = RenderMode::Mip;
-  s.size = {128, 128};
+  test::Renderer renderer(tree.volume);
+  RenderSettings s =
+      test::settingsOf({.mode = RenderMode::Mip, .size = {128, 128}, .jitterOff = true});
   s.window = 1000;
   s.level = 500;
-  s.jitter = false;
   s.depthCue.on = true;
   s.depthCue.amount = 1.0;
   s.depthCue.contrast = 0.0;

@@ -33,9 +33,7 @@ class TextureLimit {
 // 20 x 40 x 150 voxels of 1.5 x 1 x 1 mm: a tube winding along the slices, a ball sitting on
 // a run's seam (slices 50 and 100 are shared by two runs with a limit of 64) and a soft
 // background, so every mode has edges, surfaces and maxima across the seams.
-glm::dmat4 tallGeometry() {
-  return makeWorldFromIndex({-14.25, -19.5, -74.5}, {1.5, 1.0, 1.0}, glm::dmat3(1.0));
-}
+glm::dmat4 tallGeometry() { return test::axisGrid({-14.25, -19.5, -74.5}, {1.5, 1.0, 1.0}); }
 float tallValue(glm::dvec3 p) {
   const glm::dvec2 axis(6.0 * std::sin(p.z / 12.0), 8.0 * std::cos(p.z / 15.0));
   const double tube = 4.0 - glm::length(glm::dvec2(p.x, p.y) - axis);
@@ -46,14 +44,9 @@ float tallValue(glm::dvec3 p) {
 Volume tallFloat() { return makeVolume({20, 40, 150}, tallGeometry(), tallValue); }
 
 Volume tallInt16() {
-  Volume v({20, 40, 150}, 1, ScalarType::Int16, tallGeometry());
-  auto* p = v.dataAs<std::int16_t>();
-  for (int k = 0; k < 150; ++k)
-    for (int j = 0; j < 40; ++j)
-      for (int i = 0; i < 20; ++i)
-        *p++ = static_cast<std::int16_t>(
-            std::lround(100.0 * tallValue(v.worldFromIndexPoint({i, j, k}))));
-  return v;
+  return test::makeVolumeOf<std::int16_t>({20, 40, 150}, tallGeometry(), [](glm::dvec3 p) {
+    return std::lround(100.0 * tallValue(p));
+  });
 }
 
 struct Difference {
@@ -90,13 +83,10 @@ int shown(const Image& image) {
 std::vector<RenderSettings> views(double unit) {
   std::vector<RenderSettings> out;
   auto base = [&](RenderMode mode, StandardView view) {
-    RenderSettings s;
-    s.mode = mode;
-    s.camera.view = view;
+    RenderSettings s =
+        test::settingsOf({.mode = mode, .size = {96, 160}, .view = view, .jitterOff = true});
     s.camera.azimuthDeg = view == StandardView::Superior ? 0.0 : 20.0;
     s.camera.elevationDeg = 10.0;
-    s.size = {96, 160};
-    s.jitter = false;
     s.window = 12.0 * unit;
     s.level = 0.0;
     return s;
@@ -129,10 +119,9 @@ std::vector<RenderSettings> views(double unit) {
 }
 
 void expectFoldedRendersAsUnfolded(const Volume& volume, double unit, bool linear) {
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer unfolded(*ctx, volume, GradientSource::OnTheFly);
+  test::Renderer unfolded(volume, GradientSource::OnTheFly);
   TextureLimit limit("64");  // 150 slices: 3 runs of 51 (50 + the shared one), 60 texels wide
-  VolumeRenderer folded(*ctx, volume);
+  VolumeRenderer folded(unfolded.context(), volume);
   EXPECT_EQ(folded.gradientSource(), GradientSource::OnTheFly);
   EXPECT_EQ(folded.valueRange(), unfolded.valueRange());
   for (RenderSettings s : views(unit)) {
@@ -167,23 +156,20 @@ TEST(FoldedVolume, NearestSamplingReadsTheSameVoxels) {
 // mesh the intensity read back from the folded texture.
 TEST(FoldedVolume, GlyphsAndShellsAsUnfolded) {
   const Volume volume = tallFloat();
-  const Volume attribute =
-      makeVolume({8, 12, 40}, makeWorldFromIndex({-15, -20, -76}, {4, 4, 4}, glm::dmat3(1.0)),
-                 [](glm::dvec3 p) { return p.z < -10.0 ? 0.9f : 0.0f; });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer unfolded(*ctx, volume, GradientSource::OnTheFly);
+  const Volume attribute = makeVolume({8, 12, 40}, test::axisGrid({-15, -20, -76}, {4, 4, 4}),
+                                      [](glm::dvec3 p) { return p.z < -10.0 ? 0.9f : 0.0f; });
+  test::Renderer unfolded(volume, GradientSource::OnTheFly);
   unfolded.setFunctional(attribute, glm::dmat4(1.0));
   TextureLimit limit("64");
-  VolumeRenderer folded(*ctx, volume);
+  VolumeRenderer folded(unfolded.context(), volume);
   folded.setFunctional(attribute, glm::dmat4(1.0));
 
-  RenderSettings s;
-  s.mode = RenderMode::Isosurface;
-  s.iso = -2.0;  // the tube 6 mm and the ball 9 mm in radius
-  s.camera.view = StandardView::Anterior;
+  RenderSettings s = test::settingsOf({.mode = RenderMode::Isosurface,
+                                       .size = {192, 320},
+                                       .view = StandardView::Anterior,
+                                       .jitterOff = true});
+  s.iso = -2.0;         // the tube 6 mm and the ball 9 mm in radius
   s.camera.zoom = 2.5;  // z from about -31 to 31 mm: both seams, glyphs below -10 mm only
-  s.size = {192, 320};
-  s.jitter = false;
   s.glyphs = true;
   s.glyphDiameterMm = 4.0;
   s.functionalLow = 0.0;
@@ -199,10 +185,8 @@ TEST(FoldedVolume, GlyphsAndShellsAsUnfolded) {
   EXPECT_LE(d.differing, bumps.width * bumps.height / 200);
 
   for (RenderMode mode : {RenderMode::ShellMip, RenderMode::ShellSum}) {
-    RenderSettings shells;
-    shells.mode = mode;
-    shells.camera.view = StandardView::Left;
-    shells.size = {96, 160};
+    RenderSettings shells =
+        test::settingsOf({.mode = mode, .size = {96, 160}, .view = StandardView::Left});
     shells.shells = 4;
     const Image a = unfolded.render(shells).image;
     EXPECT_GT(shown(a), 500) << toString(mode);
@@ -216,7 +200,7 @@ TEST(FoldedVolume, GlyphsAndShellsAsUnfolded) {
 // What cannot be folded, or asks for what a folded volume does not have, is refused naming the
 // volume's file.
 TEST(FoldedVolume, RefusesWhatCannotBeFoldedNamingTheFile) {
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   auto refusal = [&](const Volume& v, GradientSource gradient) -> std::string {
     try {
       VolumeRenderer renderer(*ctx, v, gradient);

@@ -43,20 +43,15 @@ Volume petLike(const Volume& ct, const std::vector<Lesion>& lesions) {
                                     ct.worldFromIndex() *
                                     glm::scale(glm::dmat4(1.0), glm::dvec3(2.0));
   const glm::dvec3 centre = framingSphere(ct).centre;
-  Volume f(fd, 1, ScalarType::Float32, worldFromIndex);
-  float* p = f.dataAs<float>();
-  for (int k = 0; k < fd.z; ++k)
-    for (int j = 0; j < fd.y; ++j)
-      for (int i = 0; i < fd.x; ++i) {
-        const glm::dvec3 at = f.worldFromIndexPoint({i, j, k}) - kMisplacement;
-        double v = glm::length(at - centre) < 85.0 ? 1.0 : 0.0;
-        for (const Lesion& l : lesions) {
-          const glm::dvec3 r = at - l.centre;
-          v += l.peak * std::exp(-glm::dot(r, r) / (2.0 * 6.0 * 6.0));
-        }
-        *p++ = static_cast<float>(v);
-      }
-  return f;
+  return test::makeVolume(fd, worldFromIndex, [&](glm::dvec3 p) {
+    const glm::dvec3 at = p - kMisplacement;
+    double v = glm::length(at - centre) < 85.0 ? 1.0 : 0.0;
+    for (const Lesion& l : lesions) {
+      const glm::dvec3 r = at - l.centre;
+      v += l.peak * std::exp(-glm::dot(r, r) / (2.0 * 6.0 * 6.0));
+    }
+    return static_cast<float>(v);
+  });
 }
 
 glm::dmat4 anatomicalFromFunctional() { return glm::translate(glm::dmat4(1.0), -kMisplacement); }
@@ -64,12 +59,9 @@ glm::dmat4 anatomicalFromFunctional() { return glm::translate(glm::dmat4(1.0), -
 // Superior view, one pixel per CT voxel, a sample at every CT voxel centre (mip_gltest.cpp).
 RenderSettings alongTheSliceAxis(const Volume& ct, RenderMode mode) {
   const glm::ivec3 d = ct.dimensions();
-  RenderSettings s;
-  s.mode = mode;
-  s.size = {d.x, d.y};
-  s.camera.view = StandardView::Superior;
+  RenderSettings s = test::settingsOf(
+      {.mode = mode, .size = {d.x, d.y}, .view = StandardView::Superior, .jitterOff = true});
   s.camera.zoom = framingSphere(ct).radius / (0.5 * d.y * ct.spacing().y);
-  s.jitter = false;
   s.stepMm = ct.spacing().z;
   s.overlay.fusion = true;
   s.functionalLow = 0.0;
@@ -84,14 +76,13 @@ RenderSettings alongTheSliceAxis(const Volume& ct, RenderMode mode) {
 int entryOf(double u) { return std::clamp(static_cast<int>(std::floor(u * 256.0)), 0, 255); }
 
 TEST(FusedProjection, AlongTheSliceAxisEqualsBothProjectionsThroughTheColourMaps) {
-  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
+  const Volume ct = test::sampleCranium();
   const glm::ivec3 d = ct.dimensions();
   const glm::dvec3 c = framingSphere(ct).centre;
   const Volume pet =
       petLike(ct, {{c + glm::dvec3(20, -55, 10), 7.0}, {c + glm::dvec3(-25, 40, -12), 5.0}});
   std::vector<float> petValues(pet.dataAs<float>(), pet.dataAs<float>() + pet.voxelCount());
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, ct);
+  test::Renderer renderer(ct);
   renderer.setFunctional(pet, anatomicalFromFunctional());
   const auto [lo, hi] = ct.valueRange();
   const glm::dmat4 petIndexFromAnatomical =
@@ -182,16 +173,13 @@ TEST(FusedProjection, AlongTheSliceAxisEqualsBothProjectionsThroughTheColourMaps
 // programs (which skip only where neither volume can change the projection, and read the
 // second volume in a loop of their own) show the very pixels of the plain ones.
 TEST(FusedProjection, NothingAboveTheThresholdLeavesThePlainProjection) {
-  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, ct);
+  const Volume ct = test::sampleCranium();
+  test::Renderer renderer(ct);
   renderer.setFunctional(petLike(ct, {}), anatomicalFromFunctional());
   for (RenderMode mode : {RenderMode::Mip, RenderMode::MinIp, RenderMode::Average})
     for (bool cue : {false, true}) {
       if (cue && mode != RenderMode::Mip) continue;
-      RenderSettings s;
-      s.mode = mode;
-      s.size = {97, 83};
+      RenderSettings s = test::settingsOf({.mode = mode, .size = {97, 83}});
       s.camera.azimuthDeg = 33;
       s.camera.elevationDeg = 12;
       s.window = 1500;
@@ -215,12 +203,11 @@ TEST(FusedProjection, NothingAboveTheThresholdLeavesThePlainProjection) {
 // without a depth cue their fused colours are the same; with it the front one takes a higher
 // (brighter) entry of the colour map than the back one, and seen from behind the order turns.
 TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
-  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
+  const Volume ct = test::sampleCranium();
   const glm::dvec3 c = framingSphere(ct).centre;
   // Anterior is -y in LPS; the two lie 50 mm apart side to side, so both show from the front.
   const glm::dvec3 front = c + glm::dvec3(25, -60, 15), back = c + glm::dvec3(-25, 60, 15);
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, ct);
+  test::Renderer renderer(ct);
   renderer.setFunctional(petLike(ct, {{front, 7.0}, {back, 7.0}}), anatomicalFromFunctional());
   const ColorTable table = io::standardColorTable(ColorMap::HotIron);
   // The entry of the table a pixel shows, from its colour and the anatomy's grey under it
@@ -239,10 +226,8 @@ TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
     EXPECT_LE(bestDistance, 3) << "not a colour of the table";
     return best;
   };
-  RenderSettings s;
-  s.mode = RenderMode::Mip;
-  s.size = {321, 321};
-  s.jitter = false;
+  RenderSettings s =
+      test::settingsOf({.mode = RenderMode::Mip, .size = {321, 321}, .jitterOff = true});
   s.overlay.fusion = true;
   s.functionalLow = 0.0;
   s.functionalHigh = 8.0;

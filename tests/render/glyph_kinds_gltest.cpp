@@ -53,12 +53,11 @@ int bandAt(double z, double margin) {
 }
 
 struct Scene {
-  Volume sphere = test::makeVolume({161, 161, 161},
-                                   makeWorldFromIndex({-80, -80, -80}, {1, 1, 1}, glm::dmat3(1.0)),
+  Volume sphere = test::makeVolume({161, 161, 161}, test::axisGrid({-80, -80, -80}, {1, 1, 1}),
                                    [](glm::dvec3 p) { return float(kSphereMm - glm::length(p)); });
-  Volume labels = test::makeVolume(
-      {41, 41, 41}, makeWorldFromIndex({-80, -80, -80}, glm::dvec3(kLabelVoxelMm), glm::dmat3(1.0)),
-      [](glm::dvec3 p) { return float(bandAt(p.z, 0.0) + 1); });
+  Volume labels =
+      test::makeVolume({41, 41, 41}, test::axisGrid({-80, -80, -80}, glm::dvec3(kLabelVoxelMm)),
+                       [](glm::dvec3 p) { return float(bandAt(p.z, 0.0) + 1); });
 };
 
 // Renders every view of `kinds` (kind per band) and returns the tiles; writes the renders.
@@ -82,12 +81,10 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
   std::filesystem::create_directories(out);
   std::vector<Tile> tiles;
   for (std::size_t v = 0; v < views.size(); ++v) {
-    RenderSettings s;
-    s.mode = views[v].mode;
+    RenderSettings s =
+        test::settingsOf({.mode = views[v].mode, .size = {kImage, kImage}, .jitterOff = true});
     s.camera = views[v].camera;
-    s.size = {kImage, kImage};
     s.iso = 0.0;
-    s.jitter = false;
     s.lightOffset = light;
     s.overlay.mpr = false;
     // Low-opacity DVR: 0.1 per step inside the sphere.
@@ -149,8 +146,7 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
 
 TEST(GlyphKinds, AReaderTellsTheKindsApartFromTheRenderAlone) {
   Scene scene;
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, scene.sphere);
+  test::Renderer renderer(scene.sphere);
   renderer.setFunctional(scene.labels, glm::dmat4(1.0));
   std::vector<std::string> names;
   for (int k = 0; k < kGlyphKindCount; ++k) names.push_back(glyphKindName(GlyphKind(k)));

@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/TestUtil.h"
+#include "RenderTestUtil.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/io/Png.h"
 #include "mvw/io/VolumeReader.h"
@@ -58,12 +59,9 @@ double blurredBall(double r, double R, double s) {
 // reads the lesion's SUV (the SUVmax a reader measures, partial volume included).
 Volume makePet(const glm::dvec3& lo, const glm::dvec3& hi, const std::vector<Lesion>& lesions) {
   const glm::ivec3 dims(glm::ceil((hi - lo) / kPetVoxelMm) + 1.0);
-  glm::dmat4 w(1.0);
-  for (int a = 0; a < 3; ++a) w[a][a] = kPetVoxelMm;
-  w[3] = glm::dvec4(lo, 1.0);
-  Volume pet(dims, 1, ScalarType::Float32, w);
+  Volume pet = test::makeVolume(dims, test::axisGrid(lo, glm::dvec3(kPetVoxelMm)),
+                                [](glm::dvec3) { return 1.0f; });
   float* p = pet.dataAs<float>();
-  std::fill(p, p + pet.voxelCount(), 1.0f);
   const double sigma = kFwhmMm / (2.0 * std::sqrt(2.0 * std::log(2.0)));
   for (const Lesion& l : lesions) {
     const double R = 0.5 * l.diameterMm, reach = R + 4.0 * sigma + kPetVoxelMm;
@@ -93,15 +91,9 @@ Volume makePet(const glm::dvec3& lo, const glm::dvec3& hi, const std::vector<Les
 Volume makeMask(const Lesion& l) {
   const double half = 0.5 * l.diameterMm + 4.0;
   const int n = int(std::ceil(2.0 * half)) + 1;
-  glm::dmat4 w(1.0);
-  w[3] = glm::dvec4(l.centre - half, 1.0);
-  Volume m({n, n, n}, 1, ScalarType::Float32, w);
-  float* p = m.dataAs<float>();
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        *p++ = glm::length(m.worldFromIndexPoint({i, j, k}) - l.centre) <= 0.5 * l.diameterMm;
-  return m;
+  return test::makeVolume(
+      {n, n, n}, test::axisGrid(l.centre - half, {1, 1, 1}),
+      [&](glm::dvec3 p) -> float { return glm::length(p - l.centre) <= 0.5 * l.diameterMm; });
 }
 
 int delta(const Image& a, const Image& b, int x, int y) {
@@ -123,8 +115,7 @@ struct World {
 };
 
 World loadCt() {
-  World w{io::readVolume(test::sampleData("cranium/cranium.nii.gz")), glm::dvec3(1e30),
-          glm::dvec3(-1e30)};
+  World w{test::sampleCranium(), glm::dvec3(1e30), glm::dvec3(-1e30)};
   const glm::ivec3 d = w.ct.dimensions() - 1;
   for (int c = 0; c < 8; ++c) {
     const glm::dvec3 p =
@@ -206,21 +197,17 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
   std::filesystem::create_directories(out);
   io::writeVolume(pet, out / "pet_lesions.nii.gz");
 
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, w.ct);
+  test::Renderer renderer(w.ct);
   struct View {
     std::string name;
     bool cutLesions;
     RenderSettings s;
   };
   auto base = [&](RenderMode mode, StandardView view, bool crop) {
-    RenderSettings s;
-    s.mode = mode;
-    s.camera.view = view;
+    RenderSettings s =
+        test::settingsOf({.mode = mode, .size = {360, 360}, .view = view, .jitterOff = true});
     s.camera.zoom = crop ? 1.4 : 1.6;
-    s.size = {360, 360};
     s.iso = -300;
-    s.jitter = false;
     if (crop) s.crop.max = {1.0, 1.0, kCutFraction};
     s.lightOffset = {-0.8, 0.8};
     s.functionalLow = kWindowLow;

@@ -23,17 +23,16 @@ using test::makeVolume;
 // on the patient's right (x < 0) and `level` on the left (x > 0).
 struct GlyphScene {
   Volume anatomy =
-      makeVolume({61, 61, 61}, makeWorldFromIndex({-30, -30, -30}, {1, 1, 1}, glm::dmat3(1.0)),
+      makeVolume({61, 61, 61}, test::axisGrid({-30, -30, -30}, {1, 1, 1}),
                  [](glm::dvec3 p) { return static_cast<float>(25.0 - glm::length(p)); });
   // An isosurface of the sphere, seen from the front (screen right = patient left = +x),
   // glyphs on, the attribute mapped 0..1, many glyphs (4 mm) over the 50 mm sphere.
   static RenderSettings settings() {
-    RenderSettings s;
-    s.mode = RenderMode::Isosurface;
+    RenderSettings s = test::settingsOf({.mode = RenderMode::Isosurface,
+                                         .size = {241, 241},
+                                         .view = StandardView::Anterior,
+                                         .jitterOff = true});
     s.iso = 0.0;
-    s.size = {241, 241};
-    s.jitter = false;
-    s.camera.view = StandardView::Anterior;
     s.glyphs = true;
     s.glyphDiameterMm = 4.0;
     s.functionalLow = 0.0;
@@ -41,7 +40,7 @@ struct GlyphScene {
     return s;
   }
   static Volume attribute(float level) {
-    return makeVolume({16, 16, 16}, makeWorldFromIndex({-30, -30, -30}, {4, 4, 4}, glm::dmat3(1.0)),
+    return makeVolume({16, 16, 16}, test::axisGrid({-30, -30, -30}, {4, 4, 4}),
                       [level](glm::dvec3 p) { return p.x > 2.0 ? level : 0.0f; });
   }
 };
@@ -63,8 +62,7 @@ int changedPixels(const Image& a, const Image& b, int* leftHalfChanges = nullptr
 
 TEST(Glyphs, NoAttributeGivesPlainShadingAndGlyphsStayWhereTheAttributeIs) {
   GlyphScene scene;
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, scene.anatomy);
+  test::Renderer renderer(scene.anatomy);
   RenderSettings s = GlyphScene::settings();
   s.glyphs = false;
   const RenderedFrame plain = renderer.render(s);
@@ -84,8 +82,7 @@ TEST(Glyphs, NoAttributeGivesPlainShadingAndGlyphsStayWhereTheAttributeIs) {
 
 TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
   GlyphScene scene;
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, scene.anatomy);
+  test::Renderer renderer(scene.anatomy);
   RenderSettings s = GlyphScene::settings();
   const RenderedFrame plain = [&] {
     RenderSettings p = s;
@@ -119,21 +116,19 @@ TEST(Glyphs, ConvexAndConcaveFlipTheLitSide) {
   const double face = c.y - 3.0;
   // Both volumes centred on the glyph, so its centre is the middle of the image.
   const glm::dvec3 origin = c - 40.0;
-  const Volume slab =
-      makeVolume({81, 81, 81}, makeWorldFromIndex(origin, {1, 1, 1}, glm::dmat3(1.0)),
-                 [face](glm::dvec3 p) { return static_cast<float>(p.y - face); });
+  const Volume slab = makeVolume({81, 81, 81}, test::axisGrid(origin, {1, 1, 1}),
+                                 [face](glm::dvec3 p) { return static_cast<float>(p.y - face); });
   const Volume attribute =
-      makeVolume({9, 9, 9}, makeWorldFromIndex(origin, {10, 10, 10}, glm::dmat3(1.0)),
-                 [](glm::dvec3) { return 1.0f; });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, slab);
+      makeVolume({9, 9, 9}, test::axisGrid(origin, {10, 10, 10}), [](glm::dvec3) { return 1.0f; });
+  test::Renderer renderer(slab);
   renderer.setFunctional(attribute, glm::dmat4(1.0));
-  RenderSettings s;
-  s.mode = RenderMode::Isosurface;
+  RenderSettings s = test::settingsOf({
+      .mode = RenderMode::Isosurface,
+      .size = {161, 161},
+      .view = StandardView::Anterior,  // screen right = +x, up = +z
+      .jitterOff = true,
+  });
   s.iso = 0.0;
-  s.size = {161, 161};
-  s.jitter = false;
-  s.camera.view = StandardView::Anterior;             // screen right = +x, up = +z
   s.camera.zoom = framingSphere(slab).radius / 40.5;  // 0.5 mm per pixel over the 80 mm slab
   s.glyphs = true;
   s.glyphMap = one;
@@ -170,8 +165,7 @@ TEST(Glyphs, ConvexAndConcaveFlipTheLitSide) {
 // glyphs change a similar share of the sphere's pixels, visibly, and never the left half.
 TEST(Glyphs, StayVisibleInCompositeDvrAsTheOpacityIsLowered) {
   GlyphScene scene;
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, scene.anatomy);
+  test::Renderer renderer(scene.anatomy);
   renderer.setFunctional(GlyphScene::attribute(0.8f), glm::dmat4(1.0));
   RenderSettings s = GlyphScene::settings();
   s.mode = RenderMode::Composite;

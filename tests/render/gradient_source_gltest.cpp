@@ -22,21 +22,16 @@ using test::makeVolume;
 
 // Value = R - distance to the centre: the 0-isosurface is a sphere of radius R around 0.
 Volume sphere(double R, glm::ivec3 dims, glm::dvec3 origin, glm::dvec3 spacing) {
-  return makeVolume(dims, makeWorldFromIndex(origin, spacing, glm::dmat3(1.0)),
+  return makeVolume(dims, test::axisGrid(origin, spacing),
                     [R](glm::dvec3 p) { return static_cast<float>(R - glm::length(p)); });
 }
 
 // The same in int16 hundredths of a mm: 16-bit intensities, so the gradient texture is packed
 // with them (RGBA16) instead of float (RGBA16F).
 Volume sphere16(double R, glm::ivec3 dims, glm::dvec3 origin, glm::dvec3 spacing) {
-  Volume v(dims, 1, ScalarType::Int16, makeWorldFromIndex(origin, spacing, glm::dmat3(1.0)));
-  auto* p = v.dataAs<std::int16_t>();
-  for (int k = 0; k < dims.z; ++k)
-    for (int j = 0; j < dims.y; ++j)
-      for (int i = 0; i < dims.x; ++i)
-        *p++ = static_cast<std::int16_t>(
-            std::lround(100.0 * (R - glm::length(v.worldFromIndexPoint({i, j, k})))));
-  return v;
+  return test::makeVolumeOf<std::int16_t>(dims, test::axisGrid(origin, spacing), [R](glm::dvec3 p) {
+    return std::lround(100.0 * (R - glm::length(p)));
+  });
 }
 
 struct Source {
@@ -52,14 +47,12 @@ const Source kSources[] = {{"float texture", false, GradientSource::Texture},
 // The worst |pixel - Lambert| (grey levels) over the rays that hit the sphere well inside its
 // outline, for an isosurface lit by a headlight with ambient 0.2 and diffuse 0.8.
 double worstLambertError(VolumeRenderer& renderer, double R, const glm::dvec3& centre) {
-  RenderSettings s;
-  s.mode = RenderMode::Isosurface;
+  RenderSettings s =
+      test::settingsOf({.mode = RenderMode::Isosurface, .size = {65, 65}, .jitterOff = true});
   s.iso = 0.0;
-  s.size = {65, 65};
   s.camera.zoom = 2.5;
   s.camera.azimuthDeg = 20;
   s.camera.elevationDeg = 15;
-  s.jitter = false;
   s.isoColor = {1.0f, 1.0f, 1.0f, 1.0f};
   s.light = {0.2f, 0.8f, 0.0f, 1.0f};
   const RenderedFrame f = renderer.render(s);
@@ -86,7 +79,7 @@ TEST(GradientSource, EverySourceLightsASphereAsLambertSays) {
   const double R = 20.0;
   const Volume v = sphere(R, {65, 65, 33}, {-32, -32, -24}, {1.0, 1.0, 1.5});
   const Volume v16 = sphere16(R, {65, 65, 33}, {-32, -32, -24}, {1.0, 1.0, 1.5});
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   for (const Source& source : kSources) {
     VolumeRenderer renderer(*ctx, source.int16 ? v16 : v, source.gradient);
     EXPECT_EQ(renderer.gradientSource(), source.gradient);
@@ -111,7 +104,7 @@ TEST(GradientSource, AShearedGridLightsTheSphereAsLambertSays) {
   w[3] = glm::dvec4(glm::dvec3(-32.0, -32.0, 0.0) - 20.0 * glm::dvec3(w[2]), 1.0);
   const Volume v = makeVolume({65, 65, 41}, w,
                               [R](glm::dvec3 p) { return static_cast<float>(R - glm::length(p)); });
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   for (GradientSource gradient : {GradientSource::Texture, GradientSource::OnTheFly}) {
     VolumeRenderer renderer(*ctx, v, gradient);
     const double worst = worstLambertError(renderer, R, glm::dvec3(0.0));
@@ -126,17 +119,15 @@ TEST(GradientSource, AShearedGridLightsTheSphereAsLambertSays) {
 // The same values and nearly the same normals must give the same image.
 TEST(GradientSource, PackedCompositeSeesTheIntensitysValues) {
   const Volume v16 = sphere16(20.0, {65, 65, 33}, {-32, -32, -24}, {1.0, 1.0, 1.5});
-  auto ctx = createHeadlessContext({16, 16});
-  RenderSettings s;
-  s.mode = RenderMode::Composite;
+  auto ctx = test::headlessContext();
+  RenderSettings s =
+      test::settingsOf({.mode = RenderMode::Composite, .size = {97, 97}, .jitterOff = true});
   // Values in hundredths of a mm: a 2 mm translucent rind over an opaque core.
   s.transfer = TransferFunction{
       "rind",
       false,
       {TfPoint{-100.0, {1, 0.8f, 0.6f, 0.0f}}, TfPoint{100.0, {1, 0.8f, 0.6f, 0.05f}},
        TfPoint{400.0, {0.6f, 0.7f, 1, 0.05f}}, TfPoint{500.0, {0.6f, 0.7f, 1, 1.0f}}}};
-  s.size = {97, 97};
-  s.jitter = false;
   s.camera.azimuthDeg = 20;
   s.camera.elevationDeg = 15;
   const Image packed = VolumeRenderer(*ctx, v16, GradientSource::Texture).render(s).image;
@@ -156,7 +147,7 @@ TEST(GradientSource, PackedCompositeSeesTheIntensitysValues) {
 
 TEST(GradientSource, AutoKeepsTheTextureForSmallVolumesAndNamesTheChoices) {
   const Volume v = sphere(10.0, {24, 24, 24}, {-12, -12, -12}, {1, 1, 1});
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   EXPECT_EQ(VolumeRenderer(*ctx, v).gradientSource(), GradientSource::Texture);
   EXPECT_EQ(parseGradientSource("shader"), GradientSource::OnTheFly);
   EXPECT_EQ(parseGradientSource("texture"), GradientSource::Texture);
@@ -172,26 +163,23 @@ TEST(GradientSource, GlyphsWorkWithEverySourceFromTheFirstFrame) {
   const Volume anatomy = sphere(25.0, {61, 61, 61}, {-30, -30, -30}, {1, 1, 1});
   const Volume anatomy16 = sphere16(25.0, {61, 61, 61}, {-30, -30, -30}, {1, 1, 1});
   auto attribute = [](float level) {
-    return makeVolume({16, 16, 16}, makeWorldFromIndex({-30, -30, -30}, {4, 4, 4}, glm::dmat3(1.0)),
+    return makeVolume({16, 16, 16}, test::axisGrid({-30, -30, -30}, {4, 4, 4}),
                       [level](glm::dvec3 p) { return p.x > 2.0 ? level : 0.0f; });
   };
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   for (const Source& source : kSources)
     for (RenderMode mode : {RenderMode::Isosurface, RenderMode::Composite}) {
       const Volume& volume = source.int16 ? anatomy16 : anatomy;
       const double unit = source.int16 ? 100.0 : 1.0;
       const std::string what = std::string(source.name) + ", " + toString(mode);
-      RenderSettings s;
-      s.mode = mode;
+      RenderSettings s = test::settingsOf(
+          {.mode = mode, .size = {241, 241}, .view = StandardView::Anterior, .jitterOff = true});
       s.iso = 0.0;
       s.transfer =
           TransferFunction{"shell",
                            false,
                            {TfPoint{-1.0 * unit, {1, 1, 1, 0.0f}}, TfPoint{0.0, {1, 1, 1, 1.0f}},
                             TfPoint{30.0 * unit, {1, 1, 1, 1.0f}}}};
-      s.size = {241, 241};
-      s.jitter = false;
-      s.camera.view = StandardView::Anterior;
       s.glyphDiameterMm = 4.0;
       s.functionalLow = 0.0;
       s.functionalHigh = 1.0;
@@ -222,20 +210,20 @@ TEST(GradientSource, GlyphsWorkWithEverySourceFromTheFirstFrame) {
 template <class T>
 void expectTypeEndsReachTheShader(double lo, double mid, double hi) {
   const glm::ivec3 dims(24, 24, 24);
-  Volume v(dims, 1, scalarTypeOf<T>(), makeWorldFromIndex({0, 0, 0}, {1, 1, 1}, glm::dmat3(1.0)));
-  T* p = v.dataAs<T>();
-  for (int k = 0; k < dims.z; ++k)
-    for (int j = 0; j < dims.y; ++j)
-      for (int i = 0; i < dims.x; ++i) *p++ = static_cast<T>(i < 8 ? lo : i < 16 ? mid : hi);
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
+  // On a 1 mm grid from 0, x is the voxel's index i.
+  const Volume v =
+      test::makeVolumeOf<T>(dims, test::axisGrid({0, 0, 0}, {1, 1, 1}), [&](glm::dvec3 p) {
+        return p.x < 8 ? lo : p.x < 16 ? mid : hi;
+      });
+  test::Renderer renderer(v);
   EXPECT_EQ(renderer.valueRange(), (std::pair{lo, hi}));
-  RenderSettings s;
-  s.mode = RenderMode::Mip;
+  RenderSettings s = test::settingsOf({
+      .mode = RenderMode::Mip,
+      .size = {48, 48},
+      .view = StandardView::Anterior,  // rays along +y: each pixel column sees one i
+      .jitterOff = true,
+  });
   s.linear = false;
-  s.jitter = false;
-  s.size = {48, 48};
-  s.camera.view = StandardView::Anterior;  // rays along +y: each pixel column sees one i
   s.window = hi - lo;
   s.level = (hi + lo) / 2;
   const Image image = renderer.render(s).image;

@@ -16,19 +16,19 @@ using test::makeVolume;
 TEST(Raycast, IsosurfaceBisectionFindsTheSphereWithinATenthOfAVoxel) {
   // Value = R - distance to the centre: the 0-isosurface is the sphere of radius R.
   const double R = 20.0;
-  const glm::dmat4 w = makeWorldFromIndex({-32, -32, -24}, {1.0, 1.0, 1.5}, glm::dmat3(1.0));
+  const glm::dmat4 w = test::axisGrid({-32, -32, -24}, {1.0, 1.0, 1.5});
   const glm::dvec3 centre(0.0, 0.0, 0.0);
   const Volume v = makeVolume({65, 65, 33}, w, [&](glm::dvec3 p) {
     return static_cast<float>(R - glm::length(p - centre));
   });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
-  s.mode = RenderMode::Isosurface;
+  test::Renderer renderer(v);
+  RenderSettings s = test::settingsOf({
+      .mode = RenderMode::Isosurface,
+      .size = {65, 65},  // odd: the middle pixel's ray passes through the centre
+      .jitterOff = true,
+  });
   s.iso = 0.0;
-  s.size = {65, 65};    // odd: the middle pixel's ray passes through the centre
   s.camera.zoom = 2.5;  // about 0.7 mm per pixel
-  s.jitter = false;
   const RenderedFrame f = renderer.render(s);
   double worstErr = 0.0;
   int checked = 0;

@@ -19,13 +19,10 @@ namespace mvw::render {
 namespace {
 
 TEST(Raycast, MipAlongTheSliceAxisEqualsTheCtMaximumProjection) {
-  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
+  const Volume ct = test::sampleCranium();
   const glm::ivec3 d = ct.dimensions();
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, ct);
-  RenderSettings s;
-  s.mode = RenderMode::Mip;
-  s.size = {d.x, d.y};
+  test::Renderer renderer(ct);
+  RenderSettings s = test::settingsOf({.mode = RenderMode::Mip, .size = {d.x, d.y}});
   // Superior view: screen right = patient right (-x, i decreasing), screen down = +y (j).
   s.camera.view = StandardView::Superior;
   s.camera.zoom = framingSphere(ct).radius / (0.5 * d.y * ct.spacing().y);  // one pixel per voxel
@@ -59,15 +56,14 @@ TEST(Raycast, MipAlongTheSliceAxisEqualsTheCtMaximumProjection) {
 // (every sample, no skipping), from oblique directions, with the full value range and a narrow
 // window. A skipped block that held a ray's extreme changes its pixel by many grey levels.
 TEST(Raycast, MipAndMinIpSkippingLosesNoRaysExtreme) {
-  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
+  const Volume ct = test::sampleCranium();
   const glm::ivec3 d = ct.dimensions();
   std::vector<double> values(static_cast<std::size_t>(d.x) * d.y * d.z);
   for (int k = 0, n = 0; k < d.z; ++k)
     for (int j = 0; j < d.y; ++j)
       for (int i = 0; i < d.x; ++i) values[n++] = ct.value(i, j, k);
   const glm::dmat4 indexFromWorld = glm::inverse(ct.worldFromIndex());
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, ct);
+  test::Renderer renderer(ct);
   const auto [lo, hi] = ct.valueRange();
   int worst = 0;
   std::size_t off = 0, pixels = 0, depths = 0, depthsOff = 0;
@@ -75,10 +71,7 @@ TEST(Raycast, MipAndMinIpSkippingLosesNoRaysExtreme) {
     for (const auto& [window, level] : {std::pair{hi - lo, 0.5 * (lo + hi)}, {400.0, 40.0}})
       for (const auto& [azimuth, elevation] :
            {std::pair{0.0, 0.0}, {37.0, 12.0}, {118.0, -35.0}, {250.0, 64.0}}) {
-        RenderSettings s;
-        s.mode = mode;
-        s.size = {96, 96};
-        s.jitter = false;
+        RenderSettings s = test::settingsOf({.mode = mode, .size = {96, 96}, .jitterOff = true});
         s.window = window;
         s.level = level;
         s.camera.azimuthDeg = azimuth;

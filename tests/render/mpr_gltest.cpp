@@ -19,17 +19,15 @@ TEST(Mpr, AxialPlaneShowsTheMiddleSliceVoxelForVoxel) {
   // value = 100 k + 3 j + i: every voxel distinct. Odd slice count: the plane through the
   // centre lies on slice 12's voxel centres.
   const glm::ivec3 d(40, 30, 25);
-  const Volume v =
-      makeVolume(d, makeWorldFromIndex({0, 0, 0}, {1, 1, 2}, glm::dmat3(1.0)), [](glm::dvec3 p) {
-        return static_cast<float>(100 * std::lround(p.z / 2) + 3 * std::lround(p.y) +
-                                  std::lround(p.x));
-      });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
-  s.mode = RenderMode::Mpr;
-  s.camera.view = *parseStandardView("axial");  // from the feet: screen right = +x, down = +y
-  s.size = {d.x, d.y};
+  const Volume v = makeVolume(d, test::axisGrid({0, 0, 0}, {1, 1, 2}), [](glm::dvec3 p) {
+    return static_cast<float>(100 * std::lround(p.z / 2) + 3 * std::lround(p.y) + std::lround(p.x));
+  });
+  test::Renderer renderer(v);
+  RenderSettings s = test::settingsOf({
+      .mode = RenderMode::Mpr,
+      .size = {d.x, d.y},
+      .view = *parseStandardView("axial"),  // from the feet: screen right = +x, down = +y
+  });
   s.camera.zoom = framingSphere(v).radius / (0.5 * d.y);  // one pixel per voxel
   s.window = 256;
   s.level = 1200 + 128;  // slice 12 holds 1200 .. 1200 + 3*29 + 39
@@ -48,21 +46,16 @@ TEST(Mpr, AxialPlaneShowsTheMiddleSliceVoxelForVoxel) {
 }
 
 TEST(Mpr, FunctionalOverlayFollowsTheRegistrationTransform) {
-  const Volume anatomy =
-      makeVolume({41, 41, 21}, makeWorldFromIndex({-20, -20, -10}, {1, 1, 1}, glm::dmat3(1.0)),
-                 [](glm::dvec3) { return 0.0f; });
+  const Volume anatomy = makeVolume({41, 41, 21}, test::axisGrid({-20, -20, -10}, {1, 1, 1}),
+                                    [](glm::dvec3) { return 0.0f; });
   // A hot 8 mm cube at the functional origin, on a coarse 4 mm grid.
   const Volume hot =
-      makeVolume({11, 11, 11}, makeWorldFromIndex({-20, -20, -20}, {4, 4, 4}, glm::dmat3(1.0)),
-                 [](glm::dvec3 p) {
-                   return glm::all(glm::lessThan(glm::abs(p), glm::dvec3(4.1))) ? 10.0f : 0.0f;
-                 });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, anatomy);
-  RenderSettings s;
-  s.mode = RenderMode::Mpr;
-  s.camera.view = StandardView::Inferior;
-  s.size = {41, 41};
+      makeVolume({11, 11, 11}, test::axisGrid({-20, -20, -20}, {4, 4, 4}), [](glm::dvec3 p) {
+        return glm::all(glm::lessThan(glm::abs(p), glm::dvec3(4.1))) ? 10.0f : 0.0f;
+      });
+  test::Renderer renderer(anatomy);
+  RenderSettings s =
+      test::settingsOf({.mode = RenderMode::Mpr, .size = {41, 41}, .view = StandardView::Inferior});
   s.camera.zoom = framingSphere(anatomy).radius / 20.5;
   s.window = 100;
   s.level = 50;

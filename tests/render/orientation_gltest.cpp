@@ -36,25 +36,25 @@ float markers(glm::dvec3 p) {
 TEST(Raycast, MarkersAppearWhereTheOrientationLabelsSayForAnyStorageOrder) {
   // The same world content stored in LPS order and in RAS order (flipped i and j).
   const glm::ivec3 d(41, 41, 41);
-  const Volume lps =
-      makeVolume(d, makeWorldFromIndex({-20, -20, -20}, {1, 1, 1}, glm::dmat3(1.0)), markers);
+  const Volume lps = makeVolume(d, test::axisGrid({-20, -20, -20}, {1, 1, 1}), markers);
   const Volume ras =
       makeVolume(d,
                  makeWorldFromIndex(
                      {20, 20, -20}, {1, 1, 1},
                      glm::dmat3(glm::dvec3(-1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1))),
                  markers);
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   for (const Volume* v : {&lps, &ras}) {
     VolumeRenderer renderer(*ctx, *v);
-    RenderSettings s;
-    s.mode = RenderMode::Mip;
-    s.size = {101, 101};
+    RenderSettings s = test::settingsOf({
+        .mode = RenderMode::Mip,
+        .size = {101, 101},
+        .view = StandardView::Anterior,  // screen right = patient left, up = superior
+        .jitterOff = true,
+    });
     s.window = 1000;
     s.level = 500;
-    s.jitter = false;
     s.linear = false;  // nearest: marker edges keep their exact grey (255, 153, 76)
-    s.camera.view = StandardView::Anterior;  // screen right = patient left, up = superior
     RenderedFrame f = renderer.render(s);
     const Centroid left = centroidOf(f.image, 250, 255), sup = centroidOf(f.image, 70, 82);
     ASSERT_GT(left.n, 10);
@@ -114,7 +114,7 @@ Difference compare(const Image& a, const Image& b) {
 }
 
 TEST(Raycast, CropBoxIsInPatientTermsForAnyStorageOrder) {
-  const Volume ct = io::readVolume(test::sampleData("cranium/cranium.nii.gz"));
+  const Volume ct = test::sampleCranium();
   ASSERT_EQ(orientationCode(ct.direction()), "LPS");
   const Volume slicesReversed = storedReversed(ct, {false, false, true});
   const auto dir = test::scratchDir();
@@ -123,17 +123,14 @@ TEST(Raycast, CropBoxIsInPatientTermsForAnyStorageOrder) {
   ASSERT_EQ(orientationCode(written.direction()), "RPI");
   ASSERT_EQ(orientationCode(slicesReversed.direction()), "LPI");
 
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   struct StorageCase {
     RenderMode mode;
     StandardView view;
   };
   for (const StorageCase c : {StorageCase{RenderMode::Composite, StandardView::Superior},
                               StorageCase{RenderMode::Mip, StandardView::Anterior}}) {
-    RenderSettings s;
-    s.mode = c.mode;
-    s.camera.view = c.view;
-    s.size = {121, 121};
+    RenderSettings s = test::settingsOf({.mode = c.mode, .size = {121, 121}, .view = c.view});
     s.transfer = transferPreset("ct-bone");
     s.window = 2000;
     s.level = 900;
@@ -182,15 +179,13 @@ TEST(Raycast, ObliqueVolumeIsCroppedAlongThePatientAxes) {
                               [](glm::dvec3) { return 1000.0f; });
   const PatientCrop crop(v);
   ASSERT_FALSE(crop.axisAligned());
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
-  s.mode = RenderMode::Mip;
-  s.size = {121, 121};
+  test::Renderer renderer(v);
+  RenderSettings s = test::settingsOf({.mode = RenderMode::Mip,
+                                       .size = {121, 121},
+                                       .view = StandardView::Anterior,
+                                       .jitterOff = true});
   s.window = 1000;
   s.level = 500;
-  s.jitter = false;
-  s.camera.view = StandardView::Anterior;
   s.crop.max = {1.0, 1.0, 0.5};
   const RenderedFrame f = renderer.render(s);
   // The cut's row: the world point on the cut plane at the centre, through the camera.

@@ -73,7 +73,7 @@ TEST(Raycast, OnlyPixelsWhoseRayMissesTheBoxAreLeftToTheClearedBackground) {
   };
   const glm::ivec3 dims(40, 32, 24);
   const glm::vec3 background(0.3f, 0.5f, 0.7f);
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     // Constant above the isovalue: a ray that enters the (cropped) box hits its face there.
@@ -81,16 +81,14 @@ TEST(Raycast, OnlyPixelsWhoseRayMissesTheBoxAreLeftToTheClearedBackground) {
         makeVolume(dims, makeWorldFromIndex({-20.0, -12.0, -18.0}, {1.0, 1.25, 1.5}, c.direction),
                    [](glm::dvec3) { return 100.0f; });
     VolumeRenderer renderer(*ctx, v);
-    RenderSettings s;
-    s.mode = RenderMode::Isosurface;
+    RenderSettings s =
+        test::settingsOf({.mode = RenderMode::Isosurface, .size = {160, 128}, .jitterOff = true});
     s.iso = 50.0;
-    s.size = {160, 128};
     s.camera = c.camera;
     s.crop.min = c.cropMin;
     s.crop.max = c.cropMax;
     s.background = background;
     s.stepMm = 0.25;
-    s.jitter = false;
     const RenderedFrame f = renderer.render(s);
     const glm::dvec3 lo = c.cropMin * glm::dvec3(dims) - 0.5;
     const glm::dvec3 hi = c.cropMax * glm::dvec3(dims) - 0.5;
@@ -145,16 +143,14 @@ TEST(Raycast, NominalSamplesAreEveryRaysChordThroughTheBoxOverTheStep) {
       {"cropped", glm::dmat3(1.0), oblique, {0.2, 0.1, 0.3}, {0.7, 0.9, 0.6}},
   };
   const glm::ivec3 dims(40, 32, 24);
-  auto ctx = createHeadlessContext({16, 16});
+  auto ctx = test::headlessContext();
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     const Volume v =
         makeVolume(dims, makeWorldFromIndex({-20.0, -12.0, -18.0}, {1.0, 1.25, 1.5}, c.direction),
                    [](glm::dvec3) { return 1.0f; });
     VolumeRenderer renderer(*ctx, v);
-    RenderSettings s;
-    s.mode = RenderMode::Mip;
-    s.size = {96, 80};
+    RenderSettings s = test::settingsOf({.mode = RenderMode::Mip, .size = {96, 80}});
     s.camera = c.camera;
     s.crop.min = c.cropMin;
     s.crop.max = c.cropMax;
@@ -181,22 +177,17 @@ TEST(Raycast, NominalSamplesAreEveryRaysChordThroughTheBoxOverTheStep) {
 // clear leaves where no ray runs: a sphere in a box, rays past the sphere inside the box and
 // rays outside it, for a background whose 8-bit values sit halfway between two levels.
 TEST(Raycast, TheClearedBackgroundEqualsWhatARayThatMeetsNothingWrites) {
-  const Volume v =
-      makeVolume({48, 48, 48}, makeWorldFromIndex({-24, -24, -24}, {1, 1, 1}, glm::dmat3(1.0)),
-                 [](glm::dvec3 p) { return glm::length(p) < 10.0 ? 100.0f : 0.0f; });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
+  const Volume v = makeVolume({48, 48, 48}, test::axisGrid({-24, -24, -24}, {1, 1, 1}),
+                              [](glm::dvec3 p) { return glm::length(p) < 10.0 ? 100.0f : 0.0f; });
+  test::Renderer renderer(v);
   for (RenderMode mode : {RenderMode::Isosurface, RenderMode::Composite}) {
     SCOPED_TRACE(toString(mode));
-    RenderSettings s;
-    s.mode = mode;
+    RenderSettings s = test::settingsOf({.mode = mode, .size = {128, 128}, .jitterOff = true});
     s.iso = 50.0;
     s.transfer.points = {{40.0, {1.0f, 0.8f, 0.6f, 0.0f}}, {60.0, {1.0f, 0.8f, 0.6f, 0.5f}}};
-    s.size = {128, 128};
     s.camera.zoom = 0.7;  // the box well inside the image
     s.camera.azimuthDeg = 20.0;
     s.background = glm::vec3(0.3f, 127.5f / 255.0f, 178.5f / 255.0f);
-    s.jitter = false;
     const RenderedFrame f = renderer.render(s);
     int outside = 0, insidePastTheSphere = 0, differing = 0;
     const auto* corner = f.image.pixel(0, 0);

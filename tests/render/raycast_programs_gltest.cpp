@@ -18,7 +18,9 @@
 namespace mvw::render {
 namespace {
 
+using detail::featureCounts;
 using detail::GlyphShading;
+using detail::kMaxFeatureValues;
 using detail::RaycastFeature;
 using detail::raycastFeatures;
 using detail::RaycastFeatureSpec;
@@ -108,17 +110,19 @@ TEST(RaycastPrograms, EveryFeatureValueAndLayoutChangesAProgram) {
         << "layout " << l;
 }
 
-// Each uniform a feature names is read by its program, in some mode it applies to, with the
-// feature at its last value and nothing else on but what it needs: the table cannot name a
-// uniform its shaders dropped.
+// Each uniform a feature names (its own and the shared ones) is read by its program, in some
+// mode it applies to, with the feature at its last value and nothing else on but what it needs:
+// the table cannot name a uniform its shaders dropped.
 TEST(RaycastPrograms, EachFeaturesUniformsAreItsProgramsOwn) {
   auto ctx = createHeadlessContext({1, 1});
   for (const RaycastFeatureSpec& f : raycastFeatures()) {
-    if (f.uniforms.empty()) continue;
+    EXPECT_EQ(f.uniforms.empty(), f.setUniforms == nullptr) << f.name << ": own uniforms, a setter";
+    std::vector<std::string> missing(f.uniforms.begin(), f.uniforms.end());
+    missing.insert(missing.end(), f.sharedUniforms.begin(), f.sharedUniforms.end());
+    if (missing.empty()) continue;
     RaycastVariants v;
     v.set(f.id, f.values - 1);
     if (f.needs != RaycastFeature::Count) v.set(f.needs, 1);
-    std::vector<std::string> missing(f.uniforms.begin(), f.uniforms.end());
     for (RenderMode mode : rayCastModes()) {
       if (!f.appliesTo(mode)) continue;
       const RaycastSource s = RaycastPrograms::source(mode, VolumeLayout::Gradient, v);
@@ -127,6 +131,38 @@ TEST(RaycastPrograms, EachFeaturesUniformsAreItsProgramsOwn) {
     }
     for (const std::string& u : missing) ADD_FAILURE() << f.name << ": no program reads " << u;
   }
+}
+
+// A feature's own uniforms (set by its setUniforms only where it counts) are read by no program
+// where it does not count: every other feature at its last value with this one off, this one
+// at its last value without the feature it needs, and in each mode it does not apply to. A
+// shader reading one of them elsewhere would see it unset.
+TEST(RaycastPrograms, AFeaturesOwnUniformsAreReadOnlyWhereItCounts) {
+  auto ctx = createHeadlessContext({1, 1});
+  int checked = 0;
+  for (const RaycastFeatureSpec& f : raycastFeatures()) {
+    if (f.uniforms.empty()) continue;
+    std::vector<RaycastVariants> without;
+    RaycastVariants others = everyFeatureAt(kMaxFeatureValues);
+    others.set(f.id, 0);
+    without.push_back(others);
+    RaycastVariants needsOff = everyFeatureAt(kMaxFeatureValues);
+    if (f.needs != RaycastFeature::Count) {
+      needsOff.set(f.needs, 0);
+      without.push_back(needsOff);
+    }
+    for (RenderMode mode : rayCastModes())
+      for (const RaycastVariants& v :
+           f.appliesTo(mode) ? without : std::vector{everyFeatureAt(kMaxFeatureValues)}) {
+        ASSERT_FALSE(featureCounts(f, mode, v));
+        const RaycastSource s = RaycastPrograms::source(mode, VolumeLayout::Gradient, v);
+        const ShaderProgram program(s.vertex, s.fragment, s.defines, s.includes);
+        for (const char* u : f.uniforms)
+          EXPECT_LT(program.uniform(u), 0) << f.name << ": " << describe(s) << " reads " << u;
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 0);
 }
 
 // The settings' glyph convexity, labels and kinds give one shading (GlyphShading), and the

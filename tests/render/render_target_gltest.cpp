@@ -14,9 +14,8 @@ using test::makeVolume;
 
 TEST(RenderTarget, FramesOfChangingSizesEqualThoseOfAFreshRenderer) {
   const Volume v =
-      makeVolume({30, 20, 10}, makeWorldFromIndex({0, 0, 0}, {1, 1.5, 2}, glm::dmat3(1.0)),
+      makeVolume({30, 20, 10}, test::axisGrid({0, 0, 0}, {1, 1.5, 2}),
                  [](glm::dvec3 p) { return static_cast<float>(p.x * 10 + p.y * 3 + p.z); });
-  auto ctx = createHeadlessContext({16, 16});
   RenderSettings s;
   s.transfer = transferPreset("mr-default");
   s.camera.azimuthDeg = 30;
@@ -25,13 +24,13 @@ TEST(RenderTarget, FramesOfChangingSizesEqualThoseOfAFreshRenderer) {
       {{47, 31}, RenderMode::Composite}, {{47, 31}, RenderMode::Mip},
       {{19, 53}, RenderMode::Composite}, {{47, 31}, RenderMode::Isosurface},
       {{1, 1}, RenderMode::Mpr},         {{19, 53}, RenderMode::Mip}};
-  VolumeRenderer reused(*ctx, v);
+  test::Renderer reused(v);
   for (const auto& [size, mode] : frames) {
     s.size = size;
     s.mode = mode;
     s.iso = 150;
     const RenderedFrame a = reused.render(s);
-    VolumeRenderer fresh(*ctx, v);
+    VolumeRenderer fresh(reused.context(), v);
     const RenderedFrame b = fresh.render(s);
     ASSERT_EQ(a.image.width, size.x);
     ASSERT_EQ(a.image.height, size.y);

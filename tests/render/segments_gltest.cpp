@@ -13,13 +13,11 @@ namespace {
 using test::makeVolume;
 
 TEST(SegmentOutlines, EdgesInTheSegmentColoursWherePlaced) {
-  const Volume anatomy =
-      makeVolume({41, 41, 21}, makeWorldFromIndex({-20, -20, -10}, {1, 1, 1}, glm::dmat3(1.0)),
-                 [](glm::dvec3) { return 0.0f; });
+  const Volume anatomy = makeVolume({41, 41, 21}, test::axisGrid({-20, -20, -10}, {1, 1, 1}),
+                                    [](glm::dvec3) { return 0.0f; });
   // Two segments on a 1 mm grid of their own: 1 = |x| <= 5, |y| <= 5; 2 = |x - 3| <= 2,
   // |y| <= 2 (inside 1, sharing its right edge), every slice.
-  Volume masks({41, 41, 21}, 2, ScalarType::UInt8,
-               makeWorldFromIndex({-20, -20, -10}, {1, 1, 1}, glm::dmat3(1.0)));
+  Volume masks({41, 41, 21}, 2, ScalarType::UInt8, test::axisGrid({-20, -20, -10}, {1, 1, 1}));
   for (int k = 0; k < 21; ++k)
     for (int j = 0; j < 41; ++j)
       for (int i = 0; i < 41; ++i) {
@@ -27,16 +25,16 @@ TEST(SegmentOutlines, EdgesInTheSegmentColoursWherePlaced) {
         masks.setValue(i, j, k, 0, std::abs(x) <= 5 && std::abs(y) <= 5);
         masks.setValue(i, j, k, 1, std::abs(x - 3) <= 2 && std::abs(y) <= 2);
       }
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, anatomy);
+  test::Renderer renderer(anatomy);
   // Placed 5 mm toward the patient's left (+x): segment 1 spans x 0 .. 10 on the anatomy.
   glm::dmat4 shift(1.0);
   shift[3] = glm::dvec4(5, 0, 0, 1);
   renderer.setSegmentation(masks, {{1.0f, 0.6f, 0.0f}, {0.0f, 1.0f, 1.0f}}, shift);
-  RenderSettings s;
-  s.mode = RenderMode::Mpr;
-  s.camera.view = StandardView::Inferior;  // screen right = +x, down = +y, 1 pixel per mm
-  s.size = {41, 41};
+  RenderSettings s = test::settingsOf({
+      .mode = RenderMode::Mpr,
+      .size = {41, 41},
+      .view = StandardView::Inferior,  // screen right = +x, down = +y, 1 pixel per mm
+  });
   s.camera.zoom = framingSphere(anatomy).radius / 20.5;
   s.window = 100;
   s.level = 50;

@@ -23,19 +23,16 @@ TEST(Shells, DiscreteMaximumConvergesToTheRayCastAsShellsAreAdded) {
   vs.noiseSigma = 0.0;
   vs.seed = 5;
   const VesselTree tree = makeVesselTree(vs);
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, tree.volume);
-  RenderSettings s;
-  s.size = {96, 96};
+  test::Renderer renderer(tree.volume);
+  RenderSettings s =
+      test::settingsOf({.mode = RenderMode::Mip, .size = {96, 96}, .jitterOff = true});
   s.window = 1000;
   s.level = 500;
-  s.jitter = false;
   s.stepMm = 0.25;
   s.depthCue.on = true;
   s.depthCue.amount = 0.66;
   s.depthCue.contrast = 0.33;
   s.camera.azimuthDeg = 30;
-  s.mode = RenderMode::Mip;
   const RenderedFrame reference = renderer.render(s);
   s.mode = RenderMode::ShellMip;
   double previous = 1e9;
@@ -55,15 +52,11 @@ TEST(Shells, DiscreteMaximumConvergesToTheRayCastAsShellsAreAdded) {
 
 TEST(Shells, DisabledShellsAreNotDrawnAndLitShellsShowTheOutermost) {
   const Volume v =
-      makeVolume({41, 41, 41}, makeWorldFromIndex({-20, -20, -20}, {1, 1, 1}, glm::dmat3(1.0)),
-                 [](glm::dvec3 p) {
-                   return static_cast<float>(std::max(0.0, 1000.0 - 50.0 * glm::length(p)));
-                 });
-  auto ctx = createHeadlessContext({16, 16});
-  VolumeRenderer renderer(*ctx, v);
-  RenderSettings s;
-  s.mode = RenderMode::ShellMip;
-  s.size = {41, 41};
+      makeVolume({41, 41, 41}, test::axisGrid({-20, -20, -20}, {1, 1, 1}), [](glm::dvec3 p) {
+        return static_cast<float>(std::max(0.0, 1000.0 - 50.0 * glm::length(p)));
+      });
+  test::Renderer renderer(v);
+  RenderSettings s = test::settingsOf({.mode = RenderMode::ShellMip, .size = {41, 41}});
   s.window = 1000;
   s.level = 500;
   s.shells = 4;  // spheres at 250, 500, 750, 1000 -> radii 15, 10, 5, 0 mm

@@ -133,12 +133,8 @@ void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm, doubl
     glUniformBlockBinding(p.id(), block, 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, centres_.id());
   }
-  const double voxelsPerMm = settings_.diameter / diameterMm;
-  const glm::mat3 glyphFromWorld(voxelsPerMm * glyphMapRotation(settings_.placement));
+  const glm::mat3 glyphFromWorld = this->glyphFromWorld(diameterMm);
   glUniformMatrix3fv(p.uniform("uGlyphFromWorld"), 1, GL_FALSE, glm::value_ptr(glyphFromWorld));
-  const glm::mat3 worldFromGlyph(glm::inverse(glm::dmat3(glyphFromWorld)));  // glyph kinds
-  glUniformMatrix3fv(p.uniform("uWorldFromGlyph"), 1, GL_FALSE, glm::value_ptr(worldFromGlyph));
-  glUniform1f(p.uniform("uGlyphRadiusMm"), float(radius_ / voxelsPerMm));
   glUniform1f(p.uniform("uGlyphMapSize"), float(settings_.size));
   glUniform1f(p.uniform("uGlyphInvMapSize"), float(1.0 / settings_.size));
   glUniform1f(p.uniform("uGlyphRadius"), float(radius_));
@@ -146,6 +142,17 @@ void GlyphTextures::setUniforms(const ShaderProgram& p, double diameterMm, doubl
   // Per mm to per step, as the transfer table's opacity: 1 - (1 - a)^(step / 1 mm).
   const double a = std::clamp(dvrOpacityPerMm, 0.0, 1.0);
   glUniform1f(p.uniform("uGlyphAlpha"), float(a >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - a, stepMm)));
+}
+
+void GlyphTextures::setKindsUniforms(const ShaderProgram& p, double diameterMm) const {
+  const glm::mat3 worldFromGlyph(glm::inverse(glm::dmat3(glyphFromWorld(diameterMm))));
+  glUniformMatrix3fv(p.uniform("uWorldFromGlyph"), 1, GL_FALSE, glm::value_ptr(worldFromGlyph));
+  glUniform1f(p.uniform("uGlyphRadiusMm"), float(radius_ / (settings_.diameter / diameterMm)));
+}
+
+glm::mat3 GlyphTextures::glyphFromWorld(double diameterMm) const {
+  const double voxelsPerMm = settings_.diameter / diameterMm;
+  return glm::mat3(voxelsPerMm * glyphMapRotation(settings_.placement));
 }
 
 }  // namespace mvw::render::detail

@@ -35,13 +35,19 @@ class GlyphTextures {
                   const ShaderProgram& betaProgram, GLuint vao);
 
   // The glyph centres' uniform block and the map's scale, for glyphs of diameterMm; the DVR
-  // opacity floor per mm turned into one per step of stepMm.
+  // opacity floor per mm turned into one per step of stepMm (the glyphs feature's uniforms,
+  // RaycastFeatures.cpp).
   void setUniforms(const ShaderProgram& program, double diameterMm, double minSize,
                    double dvrOpacityPerMm, double stepMm) const;
+  // The kinds' shading's way back from the map to world mm, for glyphs of diameterMm.
+  void setKindsUniforms(const ShaderProgram& program, double diameterMm) const;
 
   GLuint cells() const { return cells_.id(); }
 
  private:
+  // Map voxels per mm of glyphs of diameterMm, and the map's orientation.
+  glm::mat3 glyphFromWorld(double diameterMm) const;
+
   Texture cells_, labelTable_;
   Buffer centres_;
   GlyphMapSettings settings_{0, 0, 0.0, 0};

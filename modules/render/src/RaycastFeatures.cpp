@@ -1,5 +1,13 @@
 #include "RaycastFeatures.h"
 
+#include <algorithm>
+
+#include <glad/gl.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "GlyphTextures.h"
+#include "TransferTable.h"
+#include "mvw/core/GlyphDefaults.h"
 #include "mvw/render/GlyphMap.h"
 
 namespace mvw::render::detail {
@@ -30,6 +38,45 @@ std::vector<const char*> fusionIncludes(RenderMode m) {
 std::vector<const char*> glyphIncludes(RenderMode) { return {"common/glyphs.glsl"}; }
 std::vector<const char*> cutFaceIncludes(RenderMode) { return {"raycast/cutface.glsl"}; }
 
+// Depth cue: the ramp (beta0, a, b) over the framing sphere's depth.
+void setDepthCueUniforms(const ShaderProgram& p, const FeatureFrame& f) {
+  const DepthCue& cue = f.settings.depthCue;
+  glUniform3f(p.uniform("uCue"), float(cue.brightness), float(cue.amount), float(cue.contrast));
+  const glm::dvec3& c = f.framing.centre;
+  glUniform4f(p.uniform("uBoundingSphere"), float(c.x), float(c.y), float(c.z),
+              float(f.framing.radius));
+}
+
+// The 2D transfer function's rows over the gradient magnitude.
+void setTf2dUniforms(const ShaderProgram& p, const FeatureFrame& f) {
+  glUniform1f(p.uniform("uGradientScale"), float(f.transfer.gradientScale()));
+  const double rows = f.transfer.rows();
+  glUniform2f(p.uniform("uGradientRows"), float((rows - 1.0) / rows), float(0.5 / rows));
+}
+
+// The glyph map's scale and centres; the DVR opacity floor per step.
+void setGlyphUniforms(const ShaderProgram& p, const FeatureFrame& f) {
+  const RenderSettings& s = f.settings;
+  f.glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize, s.glyphDvrOpacity, f.stepMm);
+}
+
+// The kinds' shading: glyph space back to world mm, the surface layer, and glyphs on the
+// visible surface laid out in the image.
+void setGlyphKindsUniforms(const ShaderProgram& p, const FeatureFrame& f) {
+  const RenderSettings& s = f.settings;
+  const Camera& camera = f.camera;
+  f.glyphs.setKindsUniforms(p, s.glyphDiameterMm);
+  glUniform1f(p.uniform("uGlyphLayerMm"), float(std::max(s.glyphLayerMm, 0.0)));
+  // Glyphs on the visible surface: the glyph's radius in pixels (0: the 3D lattice).
+  const bool onSurface = s.glyphOnSurface && !camera.perspective && camera.halfHeightMm > 0;
+  const double radiusPx = 0.5 * s.glyphDiameterMm * s.size.y / (2.0 * camera.halfHeightMm);
+  glUniform1f(p.uniform("uGlyphScreenRadiusPx"), onSurface ? float(radiusPx) : 0.0f);
+  glUniform1f(p.uniform("uGlyphScreenSpacingPx"),
+              float(2.0 * radiusPx / kBlueNoiseDiameterFraction));
+  glUniform3fv(p.uniform("uGlyphScreenRight"), 1, glm::value_ptr(glm::vec3(camera.right)));
+  glUniform3fv(p.uniform("uGlyphScreenUp"), 1, glm::value_ptr(glm::vec3(camera.up)));
+}
+
 }  // namespace
 
 const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
@@ -42,6 +89,7 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .defines = {nullptr, "MVW_DEPTH_CUE 1"},
        .includes = nullptr,
        .uniforms = {"uCue", "uBoundingSphere"},
+       .setUniforms = setDepthCueUniforms,
        .appliesTo = onlyMip,
        .needs = kNone,
        .valueFor = [](const RenderSettings& s, bool) { return int(s.depthCue.on); }},
@@ -65,6 +113,7 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .defines = {nullptr, "MVW_TF2D 1"},
        .includes = nullptr,
        .uniforms = {"uGradientScale", "uGradientRows"},
+       .setUniforms = setTf2dUniforms,
        .appliesTo = onlyComposite,
        .needs = kNone,
        .valueFor = [](const RenderSettings& s, bool) { return int(s.gradientOpacityHigh > 0.0); }},
@@ -76,7 +125,9 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .values = 2,
        .defines = {nullptr, "MVW_FUSION 1"},
        .includes = fusionIncludes,
-       .uniforms = {"uFunctionalFromWorld", "uColormap", "uOverlayOpacity", "uOverlayThreshold"},
+       .uniforms = {},
+       .sharedUniforms = {"uFunctionalFromWorld", "uColormap", "uOverlayOpacity",
+                          "uOverlayThreshold"},
        .appliesTo = fusedModes,
        .needs = kNone,
        .valueFor = [](const RenderSettings&, bool fusion) { return int(fusion); }},
@@ -97,8 +148,10 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .values = 2,
        .defines = {nullptr, "MVW_GLYPHS 1"},
        .includes = glyphIncludes,
-       .uniforms = {"uGlyphCells", "uGlyphFromWorld", "uGlyphMapSize", "uGlyphInvMapSize",
-                    "uGlyphRadius", "uGlyphMinSize", "uGlyphAlpha"},
+       .uniforms = {"uGlyphFromWorld", "uGlyphMapSize", "uGlyphInvMapSize", "uGlyphRadius",
+                    "uGlyphMinSize", "uGlyphAlpha"},
+       .setUniforms = setGlyphUniforms,
+       .sharedUniforms = {"uGlyphCells"},
        .appliesTo = shadedModes,
        .needs = kNone,
        .valueFor = [](const RenderSettings& s, bool) { return int(s.glyphs); }},
@@ -120,6 +173,7 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .includes = nullptr,
        .uniforms = {"uWorldFromGlyph", "uGlyphRadiusMm", "uGlyphLayerMm", "uGlyphScreenRadiusPx",
                     "uGlyphScreenSpacingPx", "uGlyphScreenRight", "uGlyphScreenUp"},
+       .setUniforms = setGlyphKindsUniforms,
        .appliesTo = shadedModes,
        .needs = F::Glyphs,
        .valueFor = [](const RenderSettings& s,
@@ -141,7 +195,8 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .values = 2,
        .defines = {nullptr, "MVW_IMAGE_COLORMAP 1"},
        .includes = nullptr,
-       .uniforms = {"uImageColormap"},
+       .uniforms = {},
+       .sharedUniforms = {"uImageColormap"},
        .appliesTo = takesImageColors,
        .needs = kNone,
        .valueFor = [](const RenderSettings& s, bool) { return int(s.imageColors.has_value()); }},
@@ -151,7 +206,8 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .values = 2,
        .defines = {nullptr, "MVW_CUT_FACE 1"},
        .includes = cutFaceIncludes,
-       .uniforms = {"uWindowLevel"},
+       .uniforms = {},
+       .sharedUniforms = {"uWindowLevel"},
        .appliesTo = shadedModes,
        .needs = kNone,
        .valueFor = [](const RenderSettings& s, bool) { return int(showsAnatomyOnCutFace(s)); }},
@@ -161,6 +217,12 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
 
 bool featureCounts(const RaycastFeatureSpec& f, RenderMode mode, const RaycastVariants& v) {
   return v.on(f.id) && f.appliesTo(mode) && (f.needs == kNone || v.on(f.needs));
+}
+
+void setFeatureUniforms(const ShaderProgram& program, RenderMode mode, const RaycastVariants& v,
+                        const FeatureFrame& frame) {
+  for (const RaycastFeatureSpec& f : raycastFeatures())
+    if (f.setUniforms && featureCounts(f, mode, v)) f.setUniforms(program, frame);
 }
 
 }  // namespace mvw::render::detail

@@ -161,18 +161,8 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setVolumeUniforms(p);
   setRayUniforms(p, s, camera, step);
   setShadingUniforms(p, s, camera);
-  if (s.glyphs) glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize, s.glyphDvrOpacity, step);
-  if (s.glyphs) {
-    glUniform1f(p.uniform("uGlyphLayerMm"), float(std::max(s.glyphLayerMm, 0.0)));
-    // Glyphs on the visible surface: the glyph's radius in pixels (0: the 3D lattice).
-    const bool onSurface = s.glyphOnSurface && !camera.perspective && camera.halfHeightMm > 0;
-    const double radiusPx = 0.5 * s.glyphDiameterMm * s.size.y / (2.0 * camera.halfHeightMm);
-    glUniform1f(p.uniform("uGlyphScreenRadiusPx"), onSurface ? float(radiusPx) : 0.0f);
-    glUniform1f(p.uniform("uGlyphScreenSpacingPx"),
-                float(2.0 * radiusPx / kBlueNoiseDiameterFraction));
-    glUniform3fv(p.uniform("uGlyphScreenRight"), 1, glm::value_ptr(glm::vec3(camera.right)));
-    glUniform3fv(p.uniform("uGlyphScreenUp"), 1, glm::value_ptr(glm::vec3(camera.up)));
-  }
+  detail::setFeatureUniforms(p, s.mode, detail::RaycastPrograms::variants(s, fusion),
+                             {s, camera, step, framing, transfer, glyphs});
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentationOutlines);
   if (showsImageColors(s)) updateImageColormap(s.imageColors);
@@ -235,9 +225,6 @@ void VolumeRenderer::Impl::setVolumeUniforms(const ShaderProgram& p) const {
   const double n = detail::TransferTable::kEntries;
   glUniform2f(p.uniform("uTransferRange"), float((n - 1.0) / (n * (hi - lo))),
               float((0.5 - lo * (n - 1.0) / (hi - lo)) / n));
-  glUniform1f(p.uniform("uGradientScale"), float(transfer.gradientScale()));
-  const double rows = transfer.rows();
-  glUniform2f(p.uniform("uGradientRows"), float((rows - 1.0) / rows), float(0.5 / rows));
   const glm::vec2 visible = transfer.visibleValues();
   glUniform2f(p.uniform("uVisibleValues"), visible.x, visible.y);
   volume.setUniforms(p);
@@ -279,15 +266,13 @@ void VolumeRenderer::Impl::setRayUniforms(const ShaderProgram& p, const RenderSe
   glUniform3f(p.uniform("uBoxMax"), float(cmax.x), float(cmax.y), float(cmax.z));
   glUniform3f(p.uniform("uWorldBoxMin"), float(wmin.x), float(wmin.y), float(wmin.z));
   glUniform3f(p.uniform("uWorldBoxMax"), float(wmax.x), float(wmax.y), float(wmax.z));
-  const glm::dvec3& c = framing.centre;
-  glUniform4f(p.uniform("uBoundingSphere"), float(c.x), float(c.y), float(c.z),
-              float(framing.radius));
-  const glm::vec3 planeCentre(c + camera.forward * s.planeOffsetMm);
+  const glm::vec3 planeCentre(framing.centre + camera.forward * s.planeOffsetMm);
   glUniform3f(p.uniform("uPlaneCentre"), planeCentre.x, planeCentre.y, planeCentre.z);
   glUniform1f(p.uniform("uSlab"), float(std::max(0.0, s.slabMm)));
 }
 
-// What a sample looks like: light, window, isovalue, depth cue, background.
+// What a sample looks like: light, window, isovalue, background (the features' own uniforms:
+// RaycastFeatures.cpp).
 void VolumeRenderer::Impl::setShadingUniforms(const ShaderProgram& p, const RenderSettings& s,
                                               const Camera& camera) const {
   glUniform3f(p.uniform("uBackground"), s.background.r, s.background.g, s.background.b);
@@ -301,8 +286,6 @@ void VolumeRenderer::Impl::setShadingUniforms(const ShaderProgram& p, const Rend
   const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
   glUniform2f(p.uniform("uWindowLevel"), float(wl.window), float(wl.level));
   glUniform1f(p.uniform("uIsoValue"), float(s.iso));
-  glUniform3f(p.uniform("uCue"), float(s.depthCue.brightness), float(s.depthCue.amount),
-              float(s.depthCue.contrast));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);
 }
 
