@@ -288,11 +288,12 @@ void ViewerPanel::drawViewControls() {
   const auto [lo, hi] = state_.scene().valueRange;
   if (ImGui::SliderFloat("iso value", &iso, float(lo), float(hi)))
     v.iso = iso, state_.markDirty(k3d);
-  float w = static_cast<float>(state_.mprWindow()), l = static_cast<float>(state_.mprLevel());
+  float w = static_cast<float>(state_.mprWindow().window);
+  float l = static_cast<float>(state_.mprWindow().level);
   // `|`, not `||`: both widgets are drawn every frame.
   if (ImGui::DragFloat("MPR window", &w, 2.0f, 1.0f, float(hi - lo) * 2) |
       ImGui::DragFloat("MPR level", &l, 2.0f, float(lo), float(hi)))
-    state_.setMprWindow(w, l);
+    state_.setMprWindow({w, l});
   colormapCombo(state_, "MIP colours", ColorTarget::View3d);
   colormapCombo(state_, "MPR colours", ColorTarget::Mpr);
   if (!state_.study().segmentation) {

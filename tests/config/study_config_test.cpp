@@ -240,8 +240,8 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(a.glyphPlacement, GlyphPlacement::Paper);
   EXPECT_EQ(a.glyphSpacingMm, 7.0);
   EXPECT_EQ(a.glyphMinSize, 0.5);
-  ASSERT_TRUE(a.functionalWindow.has_value());
-  EXPECT_EQ((*a.functionalWindow)[1], 1.5);
+  ASSERT_TRUE(a.functionalWindow.set());
+  EXPECT_EQ(a.functionalWindow.high, 1.5);
   EXPECT_EQ(a.functionalClasses, 4);
   EXPECT_EQ(a.crop.max[2], 0.55);
   EXPECT_EQ(a.light[0], -0.8);
@@ -255,8 +255,8 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   const ViewConfig& b = d.render.views[1];
   EXPECT_TRUE(b.depthCue.on);
   EXPECT_EQ(b.depthCue.amount, 0.66);
-  ASSERT_TRUE(b.window.has_value());
-  EXPECT_EQ(*b.level, 500.0);
+  ASSERT_TRUE(b.window.set());
+  EXPECT_EQ(b.window.level, 500.0);
   EXPECT_EQ(d.render.views[2].shellsDisabled, (std::vector<int>{1, 2}));
   EXPECT_EQ(d.render.views[3].slabMm, 5.0);
   EXPECT_FALSE(d.render.views[3].overlay.mpr);

@@ -29,8 +29,7 @@ RenderSettings mipOf(RenderMode mode) {
   s.mode = mode;
   s.size = {61, 61};
   s.jitter = false;
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   return s;
 }
 
@@ -73,8 +72,7 @@ TEST(ColorMaps, HottestPixelOfASphereMipIsThePalettesTopColour) {
   auto ctx = createHeadlessContext({16, 16});
   VolumeRenderer renderer(*ctx, v);
   RenderSettings s = mipOf(RenderMode::Mip);
-  s.window = 980;  // the centre (1000 at the ray through it) saturates: grey 255
-  s.level = 490;
+  s.window = {980, 490};  // the centre (1000 at the ray through it) saturates: grey 255
   const Image grey = renderer.render(s).image;
   ASSERT_EQ(grey.pixel(30, 30)[0], 255);
   for (ColorMap map : kMaps) {
@@ -93,8 +91,7 @@ TEST(ColorMaps, GreyInvertedShowsAWhiteBackgroundAndBlackHotSpot) {
   auto ctx = createHeadlessContext({16, 16});
   VolumeRenderer renderer(*ctx, v);
   RenderSettings s = mipOf(RenderMode::Mip);
-  s.window = 980;
-  s.level = 490;
+  s.window = {980, 490};
   s.camera.zoom = 0.5;  // rays that miss the box: the background
   s.imageColors = io::standardColorTable(ColorMap::GreyInverted);
   const Image img = renderer.render(s).image;
@@ -124,8 +121,7 @@ TEST(ColorMaps, OverlayUsesItsOwnColourMap) {
   renderer.setFunctional(uptake, glm::dmat4(1.0));
   RenderSettings s = mipOf(RenderMode::Mpr);
   s.camera.view = StandardView::Inferior;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 10.0;
+  s.functionalWindow = {0.0, 10.0};
   s.overlay.opacity = 1.0f;
   s.overlay.threshold = 0.0f;
   for (ColorMap map : {ColorMap::HotIron, ColorMap::Pet, ColorMap::HotMetalBlue,

@@ -37,8 +37,7 @@ TEST(DepthCuedMip, NeutralSettingsReproducePlainMipExactly) {
   RenderSettings s;
   s.mode = RenderMode::Mip;
   s.size = {63, 47};
-  s.window = 900;
-  s.level = 400;
+  s.window = {900, 400};
   s.camera.azimuthDeg = 20;
   const RenderedFrame plain = renderer.render(s);
   s.depthCue.on = true;  // contrast 100 %, depth cue 0, brightness 0
@@ -54,9 +53,8 @@ TEST(DepthCuedMip, TheRampIsAppliedBeforeTheMaximum) {
   VolumeRenderer renderer(*ctx, v);
   RenderSettings s;
   s.mode = RenderMode::Mip;
-  s.size = {41, 41};  // odd: the middle ray passes through both centres
-  s.window = 1000;
-  s.level = 500;  // emission = value / 1000
+  s.size = {41, 41};       // odd: the middle ray passes through both centres
+  s.window = {1000, 500};  // emission = value / 1000
   s.jitter = false;
   s.linear = false;
   s.camera.view = StandardView::Anterior;
@@ -93,8 +91,7 @@ TEST(DepthCuedMip, IdenticalBlobsAreDimmedByTheRampRatio) {
   RenderSettings s;
   s.mode = RenderMode::Mip;
   s.size = {121, 121};
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.jitter = false;
   s.linear = false;
   s.depthCue.on = true;
@@ -136,8 +133,7 @@ TEST(DepthCuedMip, OverlappingVesselsShowTheNearerOne) {
   RenderSettings s;
   s.mode = RenderMode::Mip;
   s.size = {128, 128};
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.jitter = false;
   s.depthCue.on = true;
   s.depthCue.amount = 1.0;

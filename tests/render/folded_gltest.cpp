@@ -97,8 +97,7 @@ std::vector<RenderSettings> views(double unit) {
     s.camera.elevationDeg = 10.0;
     s.size = {96, 160};
     s.jitter = false;
-    s.window = 12.0 * unit;
-    s.level = 0.0;
+    s.window = {12.0 * unit, 0.0};
     return s;
   };
   for (StandardView view : {StandardView::Anterior, StandardView::Left, StandardView::Superior}) {
@@ -186,8 +185,7 @@ TEST(FoldedVolume, GlyphsAndShellsAsUnfolded) {
   s.jitter = false;
   s.glyphs = true;
   s.glyphDiameterMm = 4.0;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 1.0;
+  s.functionalWindow = {0.0, 1.0};
   RenderSettings plain = s;
   plain.glyphs = false;
   const Image bumps = unfolded.render(s).image;

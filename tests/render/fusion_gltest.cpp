@@ -72,8 +72,7 @@ RenderSettings alongTheSliceAxis(const Volume& ct, RenderMode mode) {
   s.jitter = false;
   s.stepMm = ct.spacing().z;
   s.overlay.fusion = true;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 8.0;
+  s.functionalWindow = {0.0, 8.0};
   s.overlay.opacity = 0.6f;
   s.overlay.threshold = 0.2f;
   s.overlayColors = io::standardColorTable(ColorMap::HotIron);  // nearest: entries as they are
@@ -126,7 +125,7 @@ TEST(FusedProjection, AlongTheSliceAxisEqualsBothProjectionsThroughTheColourMaps
           const glm::dvec3 at(petIndexFromAnatomical *
                               glm::dvec4(ct.worldFromIndexPoint({i, j, z}), 1.0));
           const double u = resampling::detail::trilinear(petValues.data(), pet.dimensions(), at) /
-                           (s.functionalHigh - s.functionalLow);
+                           (s.functionalWindow.high - s.functionalWindow.low);
           fSum += u;
           if (u > s.overlay.threshold) fMax = std::max(fMax, std::clamp(u, 0.0, 1.0));
         }
@@ -194,13 +193,11 @@ TEST(FusedProjection, NothingAboveTheThresholdLeavesThePlainProjection) {
       s.size = {97, 83};
       s.camera.azimuthDeg = 33;
       s.camera.elevationDeg = 12;
-      s.window = 1500;
-      s.level = 300;
+      s.window = {1500, 300};
       s.depthCue.on = cue;
       s.depthCue.amount = cue ? 0.66 : 0.0;
       s.depthCue.contrast = cue ? 0.33 : 1.0;
-      s.functionalLow = 0.0;
-      s.functionalHigh = 1.0;
+      s.functionalWindow = {0.0, 1.0};
       s.overlay.threshold = 1.0f;  // the uptake is 1 at most: no sample lies above it
       const RenderedFrame plain = renderer.render(s);
       s.overlay.fusion = true;
@@ -244,8 +241,7 @@ TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
   s.size = {321, 321};
   s.jitter = false;
   s.overlay.fusion = true;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 8.0;
+  s.functionalWindow = {0.0, 8.0};
   s.overlay.opacity = 1.0f;
   s.overlay.threshold = 0.3f;
   s.overlayColors = table;

@@ -193,8 +193,7 @@ TEST(GradientSource, GlyphsWorkWithEverySourceFromTheFirstFrame) {
       s.jitter = false;
       s.camera.view = StandardView::Anterior;
       s.glyphDiameterMm = 4.0;
-      s.functionalLow = 0.0;
-      s.functionalHigh = 1.0;
+      s.functionalWindow = {0.0, 1.0};
       VolumeRenderer renderer(*ctx, volume, source.gradient);
       const RenderedFrame plain = renderer.render(s);
       s.glyphs = true;
@@ -236,8 +235,7 @@ void expectTypeEndsReachTheShader(double lo, double mid, double hi) {
   s.jitter = false;
   s.size = {48, 48};
   s.camera.view = StandardView::Anterior;  // rays along +y: each pixel column sees one i
-  s.window = hi - lo;
-  s.level = (hi + lo) / 2;
+  s.window = {hi - lo, (hi + lo) / 2};
   const Image image = renderer.render(s).image;
   // Screen right is patient left (+x, high i); columns well inside each slab.
   const double expected[3] = {0.0, 255.0 * (mid - lo) / (hi - lo), 255.0};

@@ -79,8 +79,7 @@ TEST(Raycast, MipAndMinIpSkippingLosesNoRaysExtreme) {
         s.mode = mode;
         s.size = {96, 96};
         s.jitter = false;
-        s.window = window;
-        s.level = level;
+        s.window = {window, level};
         s.camera.azimuthDeg = azimuth;
         s.camera.elevationDeg = elevation;
         const RenderedFrame f = renderer.render(s);

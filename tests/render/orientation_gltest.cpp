@@ -50,8 +50,7 @@ TEST(Raycast, MarkersAppearWhereTheOrientationLabelsSayForAnyStorageOrder) {
     RenderSettings s;
     s.mode = RenderMode::Mip;
     s.size = {101, 101};
-    s.window = 1000;
-    s.level = 500;
+    s.window = {1000, 500};
     s.jitter = false;
     s.linear = false;  // nearest: marker edges keep their exact grey (255, 153, 76)
     s.camera.view = StandardView::Anterior;  // screen right = patient left, up = superior
@@ -135,8 +134,7 @@ TEST(Raycast, CropBoxIsInPatientTermsForAnyStorageOrder) {
     s.camera.view = c.view;
     s.size = {121, 121};
     s.transfer = transferPreset("ct-bone");
-    s.window = 2000;
-    s.level = 900;
+    s.window = {2000, 900};
     s.crop.max = {1.0, 1.0, 0.55};  // the inferior 55 % of the head
     std::vector<Image> images;
     for (const Volume* v : {&ct, &slicesReversed, &written})
@@ -187,8 +185,7 @@ TEST(Raycast, ObliqueVolumeIsCroppedAlongThePatientAxes) {
   RenderSettings s;
   s.mode = RenderMode::Mip;
   s.size = {121, 121};
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.jitter = false;
   s.camera.view = StandardView::Anterior;
   s.crop.max = {1.0, 1.0, 0.5};

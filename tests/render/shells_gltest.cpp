@@ -27,8 +27,7 @@ TEST(Shells, DiscreteMaximumConvergesToTheRayCastAsShellsAreAdded) {
   VolumeRenderer renderer(*ctx, tree.volume);
   RenderSettings s;
   s.size = {96, 96};
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.jitter = false;
   s.stepMm = 0.25;
   s.depthCue.on = true;
@@ -64,8 +63,7 @@ TEST(Shells, DisabledShellsAreNotDrawnAndLitShellsShowTheOutermost) {
   RenderSettings s;
   s.mode = RenderMode::ShellMip;
   s.size = {41, 41};
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.shells = 4;  // spheres at 250, 500, 750, 1000 -> radii 15, 10, 5, 0 mm
   const RenderedFrame all = renderer.render(s);
   EXPECT_NEAR(all.image.pixel(20, 20)[0], 0.75 * 255,

@@ -163,19 +163,18 @@ TEST(ModalityDefaults, ViewsWithoutAWindowOfAPetAloneGetThePets) {
   EXPECT_EQ(implied.config.mode, RenderMode::Mip);
   ASSERT_TRUE(implied.settings.imageColors.has_value());
   EXPECT_EQ(implied.settings.imageColors->map, ColorMap::GreyInverted);
-  EXPECT_EQ(implied.settings.window, 5.0);
-  EXPECT_EQ(implied.settings.level, 2.5);
+  EXPECT_EQ(implied.settings.window, (WindowLevel{5.0, 2.5}));
   PlannedView mpr = planViews(studyWith({{"mode", "mpr"}})).at(0);
   applyModalityView(mpr, suv, d);
-  EXPECT_EQ(mpr.settings.window, 5.0);
+  EXPECT_EQ(mpr.settings.window.window, 5.0);
   EXPECT_FALSE(mpr.settings.imageColors.has_value());  // a view's own colour map (grey) stays
   PlannedView own = planViews(studyWith({{"mode", "mip"}, {"window", 8}, {"level", 4}})).at(0);
   applyModalityView(own, suv, d);
-  EXPECT_EQ(own.settings.window, 8.0);
+  EXPECT_EQ(own.settings.window.window, 8.0);
   PlannedView composite = planViews(studyWith(nlohmann::json::object())).at(0);
   applyModalityView(composite, suv, d);
   EXPECT_EQ(composite.settings.mode, RenderMode::Composite);
-  EXPECT_EQ(composite.settings.window, 0.0);
+  EXPECT_FALSE(composite.settings.window.set());
   PlannedView ct = planViews(study).at(0);
   applyModalityView(ct, volumeOf("CT", "HU"), d);
   EXPECT_EQ(ct.settings.mode, RenderMode::Composite);
@@ -186,18 +185,18 @@ TEST(AttributeDefaults, AViewsOwnWindowOrClassesWin) {
   PlannedView own =
       planViews(studyWith({{"glyphs", glyphs}, {"functional_window", {1.0, 3.0}}})).at(0);
   applyAttributeDefaults(own, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
-  EXPECT_EQ(own.settings.functionalLow, 1.0);
+  EXPECT_EQ(own.settings.functionalWindow.low, 1.0);
   PlannedView classes = planViews(studyWith({{"glyphs", glyphs}, {"functional_classes", 4}})).at(0);
   applyAttributeDefaults(classes, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
-  EXPECT_EQ(classes.settings.functionalHigh, 0.0);
+  EXPECT_EQ(classes.settings.functionalWindow.high, 0.0);
   PlannedView none = planViews(studyWith({{"glyphs", glyphs}})).at(0);
   applyAttributeDefaults(none, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
-  EXPECT_EQ(none.settings.functionalLow, 2.5);
-  EXPECT_EQ(none.settings.functionalHigh, 10.0);
+  EXPECT_EQ(none.settings.functionalWindow.low, 2.5);
+  EXPECT_EQ(none.settings.functionalWindow.high, 10.0);
   // A colour overlay keeps the full range as its colour scale.
   PlannedView mpr = planViews(studyWith({{"mode", "mpr"}})).at(0);
   applyAttributeDefaults(mpr, config::FunctionalKind::Pet, volumeOf("PT", "SUVbw"), {0, 10});
-  EXPECT_EQ(mpr.settings.functionalHigh, 0.0);
+  EXPECT_EQ(mpr.settings.functionalWindow.high, 0.0);
 }
 
 }  // namespace

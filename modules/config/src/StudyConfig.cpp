@@ -297,6 +297,25 @@ const FieldTable<Overlay>& overlayTable() {
   return t;
 }
 
+// The anatomy's window (mvw/core/WindowLevel.h): both keys or neither (parseViewConfig), written
+// only while it is set.
+const FieldTable<WindowLevel>& windowLevelTable() {
+  static const FieldTable<WindowLevel> t = [] {
+    const auto set = [](const WindowLevel& w) { return w.set(); };
+    FieldTable<WindowLevel> w;
+    w.number("window", "Window width, in the anatomy's unit (goes with level).",
+             &WindowLevel::window, 1e-9, 1e12)
+        .writtenWhen(set)
+        .whenAbsent(kDefaultWindow)
+        .number("level", "Window centre, in the anatomy's unit (goes with window).",
+                &WindowLevel::level, -1e12, 1e12)
+        .writtenWhen(set)
+        .whenAbsent(kDefaultWindow);
+    return w;
+  }();
+  return t;
+}
+
 const FieldTable<ViewConfig>& viewTable() {
   static const FieldTable<ViewConfig> t = [] {
     using V = ViewConfig;
@@ -324,12 +343,7 @@ const FieldTable<ViewConfig>& viewTable() {
         .string("preset", "Transfer function preset by name (ct-bone, ct-skin, mr-default, ...).",
                 &V::preset)
         .whenAbsent("chosen by the anatomy's modality")
-        .optionalNumber("window", "Window width, in the anatomy's unit (goes with level).",
-                        &V::window, 1e-9, 1e12)
-        .whenAbsent(kDefaultWindow)
-        .optionalNumber("level", "Window centre, in the anatomy's unit (goes with window).",
-                        &V::level, -1e12, 1e12)
-        .whenAbsent(kDefaultWindow)
+        .inlined(&V::window, windowLevelTable())
         .number("iso", "Isosurface value, in the anatomy's unit.", &V::iso, -1e12, 1e12)
         .boolean("shading", "Gradient shading.", &V::shading)
         .enumeration("sampling", "How the volume is sampled between voxels.", &V::sampling,
@@ -366,11 +380,13 @@ const FieldTable<ViewConfig>& viewTable() {
             "Functional values mapped to 0 .. 1 (overlay, glyph size) [low, high].",
             {"array of 2 numbers", "low < high", "by the functional volume's kind", {}},
             [](const json& fw, V& out, const Where& w) {
-              out.functionalWindow = readOrderedPair(fw, w, -std::numeric_limits<double>::max(),
-                                                     "[low, high] with low < high");
+              const auto [low, high] = readOrderedPair(fw, w, -std::numeric_limits<double>::max(),
+                                                       "[low, high] with low < high");
+              out.functionalWindow = {low, high};
             },
             [](const V& in, json& j, const char* k) {
-              if (in.functionalWindow) j[k] = *in.functionalWindow;
+              if (in.functionalWindow.set())
+                j[k] = std::array<double, 2>{in.functionalWindow.low, in.functionalWindow.high};
             })
         .section("depth_cue", "MIP depth cueing (Heidrich 1995): on where present.", &V::depthCue,
                  &DepthCue::on, depthCueTable())
@@ -460,7 +476,7 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
         file, "'" + w + "name' is " + std::to_string(v.name.size()) + " characters; at most 120");
   for (unsigned char c : v.name)
     if (c < 0x20 || c == 0x7f) throw InputError(file, "'" + w + "name' holds a control character");
-  if (v.window.has_value() != v.level.has_value())
+  if (j.contains("window") != j.contains("level"))
     throw InputError(file, "'" + w + "window' and '" + w + "level' go together");
   for (int a = 0; a < 3; ++a)
     if (v.crop.min[a] >= v.crop.max[a])

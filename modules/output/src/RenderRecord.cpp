@@ -94,8 +94,8 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
     }
   }
   if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
-  if (v.settings.functionalHigh > v.settings.functionalLow)
-    r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
+  if (v.settings.functionalWindow.set())
+    r["functional_window"] = {v.settings.functionalWindow.low, v.settings.functionalWindow.high};
   const bool shellMode = isShellMode(v.settings.mode);
   if (shellMode) {
     r["shells"] = v.settings.shells;

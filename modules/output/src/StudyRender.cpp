@@ -195,7 +195,7 @@ render::RenderedFrame ViewPainter::operator()(const render::RenderSettings& sett
 ViewPainter viewPainter(render::VolumeRenderer& renderer, const study::Session& session,
                         const study::PlannedView& view) {
   const auto [lo, hi] = renderer.valueRange();
-  const WindowLevel shown = windowOrFullRange(view.settings.window, view.settings.level, lo, hi);
+  const WindowLevel shown = windowOrFullRange(view.settings.window, lo, hi);
   return ViewPainter{renderer,
                      session,
                      view,

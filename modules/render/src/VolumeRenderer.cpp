@@ -123,7 +123,7 @@ Image VolumeRenderer::Impl::drawShells(const RenderSettings& s, const Camera& ca
   d.centre = framing.centre;
   d.radius = framing.radius;
   const auto [lo, hi] = volume.range();
-  const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
+  const WindowLevel wl = windowOrFullRange(s.window, lo, hi);
   d.windowLow = wl.level - 0.5 * wl.window;
   d.windowWidth = wl.window;
   d.count = s.shells;
@@ -146,7 +146,7 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
                   s.gradientOpacityHigh);
   blocks.updateVisibility(transfer.lut(), lo, hi, s.mode == RenderMode::Composite);
   volume.setLinear(s.linear);
-  const glm::vec2 functionalWindow = functional.window(s.functionalLow, s.functionalHigh);
+  const glm::vec2 functionalWindow = functional.window(s.functionalWindow);
   if (s.glyphs) {
     glyphs.uploadMap(s.glyphMap);
     glyphs.updateBeta(volume, functional, functionalWindow, s.functionalClasses, s.glyphLabels,
@@ -298,7 +298,7 @@ void VolumeRenderer::Impl::setShadingUniforms(const ShaderProgram& p, const Rend
   glUniform1i(p.uniform("uHeadlight"), s.lightOffset == glm::dvec2(0.0) ? 1 : 0);
   glUniform1i(p.uniform("uShading"), s.shading ? 1 : 0);
   const auto [lo, hi] = volume.transferRange();
-  const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
+  const WindowLevel wl = windowOrFullRange(s.window, lo, hi);
   glUniform2f(p.uniform("uWindowLevel"), float(wl.window), float(wl.level));
   glUniform1f(p.uniform("uIsoValue"), float(s.iso));
   glUniform3f(p.uniform("uCue"), float(s.depthCue.brightness), float(s.depthCue.amount),

@@ -60,7 +60,7 @@ ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, doubl
     d.iso = lo + kIsoFractionOfRange * (hi - lo);
     if (inSuv(anatomy) && hi > kSuvLesionThreshold && lo < kSuvLesionThreshold)
       d.iso = kSuvLesionThreshold;
-    d.mpr = windowOrFullRange(0.0, 0.0, lo, hi);
+    d.mpr = windowOrFullRange(WindowLevel{}, lo, hi);
   }
   if (isEmission(anatomy)) {
     const auto [low, high] = defaultFunctionalDisplayWindow(anatomy, valueRange);

@@ -267,8 +267,8 @@ void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedO
   if (o.elevation) v.elevation = *o.elevation;
   if (o.roll) v.roll = *o.roll;
   if (o.zoom) v.zoom = *o.zoom;
-  if (o.window) v.window = *o.window;
-  if (o.level) v.level = *o.level;
+  if (o.window) v.window.window = *o.window;
+  if (o.level) v.window.level = *o.level;
   if (o.iso) v.iso = *o.iso;
   if (o.noAnnotate) v.annotate = false;
   if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue.on = true;
@@ -294,8 +294,6 @@ void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedO
 void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, const fs::path& file) {
   if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
     throw InputError(file, "view '" + v.name + "': size must be 1..8192");
-  if (v.window && !(*v.window > 0))
-    throw InputError(file, "view '" + v.name + "': window must be positive");
   if (!v.preset.empty()) {
     try {
       s.transfer = render::transferPreset(v.preset);
@@ -313,8 +311,7 @@ void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, con
   s.camera.fitAspect = v.fitAspect > 0.0 ? v.fitAspect : double(v.width) / v.height;
   s.camera.panMm = {v.pan[0], v.pan[1]};
   s.camera.perspective = v.perspective;
-  s.window = v.window.value_or(0.0);
-  s.level = v.level.value_or(0.0);
+  s.window = v.window;
   s.iso = v.iso;
   s.stepMm = v.stepMm;
   s.shading = v.shading;
@@ -368,10 +365,7 @@ void setGlyphs(render::RenderSettings& s, const config::ViewConfig& v,
 // glyph labels.
 void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
                    const config::StudyConfig& study) {
-  if (v.functionalWindow) {
-    s.functionalLow = (*v.functionalWindow)[0];
-    s.functionalHigh = (*v.functionalWindow)[1];
-  }
+  s.functionalWindow = v.functionalWindow;
   s.lightOffset = {v.light[0], v.light[1]};
   s.shells = v.shells;
   if (!v.shellsDisabled.empty()) {
@@ -481,11 +475,10 @@ void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
   // A colour overlay or fusion keeps the full range as its colour scale (its threshold is a
   // fraction of the window: a raised low end would hide moderate uptake twice over).
   if (!view.settings.glyphs) return;
-  if (view.config.functionalWindow || view.config.functionalClasses > 0) return;
+  if (view.config.functionalWindow.set() || view.config.functionalClasses > 0) return;
   const auto window = defaultAttributeWindow(kind, functional, range);
   if (!window) return;
-  view.settings.functionalLow = (*window)[0];
-  view.settings.functionalHigh = (*window)[1];
+  view.settings.functionalWindow = {(*window)[0], (*window)[1]};
 }
 
 void applyModalityView(PlannedView& view, const Volume& anatomy, const ModalityDefaults& defaults) {
@@ -498,17 +491,15 @@ void applyModalityView(PlannedView& view, const Volume& anatomy, const ModalityD
     if (view.config.colormap == ColorMap::Grey) view.config.colormap = defaults.mipColors;
     applyColorMaps(s, view.config.colormap, view.config.overlayColormap);
   }
-  if (view.config.window ||
+  if (view.config.window.set() ||
       (s.mode != render::RenderMode::Mip && s.mode != render::RenderMode::Mpr))
     return;
-  s.window = defaults.mpr.window;
-  s.level = defaults.mpr.level;
+  s.window = defaults.mpr;
 }
 
 void applyCutFaceWindow(PlannedView& view, const WindowLevel& mpr) {
-  if (view.config.window || !render::showsAnatomyOnCutFace(view.settings)) return;
-  view.settings.window = mpr.window;
-  view.settings.level = mpr.level;
+  if (view.config.window.set() || !render::showsAnatomyOnCutFace(view.settings)) return;
+  view.settings.window = mpr;
 }
 
 config::ViewConfig describeView(const render::RenderSettings& s, const std::string& name,
@@ -526,7 +517,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.width = s.size.x;
   v.height = s.size.y;
   v.preset = preset;
-  if (s.window > 0) v.window = s.window, v.level = s.level;
+  if (s.window.set()) v.window = s.window;
   v.iso = s.iso;
   v.stepMm = s.stepMm;
   v.shading = s.shading;
@@ -559,8 +550,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   if (blueNoise)  // the map's scale, back in mm
     v.glyphSpacingMm =
         render::blueNoiseSpacing(s.glyphMap.size) * s.glyphDiameterMm / s.glyphMap.diameter;
-  if (s.functionalHigh > s.functionalLow)
-    v.functionalWindow = std::array<double, 2>{s.functionalLow, s.functionalHigh};
+  if (s.functionalWindow.set()) v.functionalWindow = s.functionalWindow;
   v.light = {s.lightOffset.x, s.lightOffset.y};
   v.shells = s.shells;
   for (std::size_t k = 0; k < s.shellEnabled.size(); ++k)

@@ -29,6 +29,7 @@
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
+#include "mvw/core/WindowLevel.h"
 
 namespace mvw::config {
 
@@ -138,8 +139,8 @@ struct ViewConfig {
   int glyphCount = 16, glyphMapSize = 128;
   double glyphMapDiameter = 32.0;
   unsigned glyphSeed = 1;
-  std::optional<std::array<double, 2>> functionalWindow;  // values -> 0..1 (overlay, glyph beta)
-  int functionalClasses = 0;  // labels: K > 0 gives label L the glyph size (L mod K + 1) / K
+  ValueWindow functionalWindow;  // values -> 0..1 (overlay, glyph beta); unset: by kind
+  int functionalClasses = 0;     // labels: K > 0 gives label L the glyph size (L mod K + 1) / K
   // glyphs.labels {"Hippocampus_L": "bumps", "38": "dimples", ...}: only these labels get
   // glyphs ("bumps" | "dimples" | "none"); names come from the atlas's label table.
   std::vector<LabelChoice> glyphLabels;
@@ -147,7 +148,7 @@ struct ViewConfig {
   // (label L with L mod K = c) takes kind c of this list (the last one past its end), as well
   // as its size; without, the attribute window is cut into as many equal ranges as kinds.
   std::vector<GlyphKind> glyphClassKinds;
-  std::optional<double> window, level;
+  WindowLevel window;  // "window" and "level"; unset: by the modality (study::modalityDefaults)
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.
   DepthCue depthCue;
