@@ -249,7 +249,7 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(a.sampling, Sampling::Nearest);
   EXPECT_EQ(a.background[2], 0.3);
   EXPECT_TRUE(a.perspective);
-  EXPECT_EQ(a.gradientOpacity[1], 40.0);
+  EXPECT_EQ(a.gradientOpacity.high, 40.0);
   EXPECT_TRUE(a.overlay.fusion);
   EXPECT_EQ(a.overlay.opacity, 0.7);
   const ViewConfig& b = d.render.views[1];

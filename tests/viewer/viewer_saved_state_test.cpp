@@ -67,7 +67,7 @@ std::string dumpSettings(const render::RenderSettings& s) {
   line("transfer.name", s.transfer.name);
   num("transfer.relative", s.transfer.relative);
   num("transfer.points", double(s.transfer.points.size()));
-  vec("gradient_opacity", {s.gradientOpacityLow, s.gradientOpacityHigh});
+  vec("gradient_opacity", {s.gradientOpacity.low, s.gradientOpacity.high});
   vec("window_level", {s.window.window, s.window.level});
   num("iso", s.iso);
   num("depth_cue", s.depthCue.on);

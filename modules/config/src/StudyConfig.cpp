@@ -396,11 +396,13 @@ const FieldTable<ViewConfig>& viewTable() {
             "anatomy's unit per mm.",
             {"array of 2 numbers", "0 <= low < high", "off", {}},
             [](const json& g, V& out, const Where& w) {
-              out.gradientOpacity =
+              const auto [low, high] =
                   readOrderedPair(g, w, 0.0, "[low, high] with 0 <= low < high (unit/mm)");
+              out.gradientOpacity = {low, high};
             },
             [](const V& in, json& j, const char* k) {
-              if (in.gradientOpacity[1] > 0.0) j[k] = in.gradientOpacity;
+              if (in.gradientOpacity.on())
+                j[k] = std::array<double, 2>{in.gradientOpacity.low, in.gradientOpacity.high};
             })
         .number("plane_offset_mm", "MPR: the plane moved along the line of sight, in mm.",
                 &V::planeOffsetMm, -1e4, 1e4)

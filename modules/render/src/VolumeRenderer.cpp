@@ -142,8 +142,8 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   // What this frame's settings derive: the transfer table and the blocks it leaves visible,
   // and for glyphs the map and the attribute volume (both cached).
   const auto [lo, hi] = volume.transferRange();
-  transfer.update(s.transfer, lo, hi, step, volume.referenceStepMm(), s.gradientOpacityLow,
-                  s.gradientOpacityHigh);
+  transfer.update(s.transfer, lo, hi, step, volume.referenceStepMm(), s.gradientOpacity.low,
+                  s.gradientOpacity.high);
   blocks.updateVisibility(transfer.lut(), lo, hi, s.mode == RenderMode::Composite);
   volume.setLinear(s.linear);
   const glm::vec2 functionalWindow = functional.window(s.functionalWindow);

@@ -301,6 +301,7 @@ void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, con
       throw InputError(file, "view '" + v.name + "': " + e.what());
     }
   }
+  s.gradientOpacity = v.gradientOpacity;
   s.mode = v.mode;
   s.size = {v.width, v.height};
   s.camera.view = standardView(v.view);
@@ -373,8 +374,6 @@ void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
     for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
   }
   s.depthCue = v.depthCue;
-  s.gradientOpacityLow = v.gradientOpacity[0];
-  s.gradientOpacityHigh = v.gradientOpacity[1];
   s.planeOffsetMm = v.planeOffsetMm;
   s.slabMm = v.slabMm;
   s.overlay = v.overlay;
@@ -556,7 +555,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   for (std::size_t k = 0; k < s.shellEnabled.size(); ++k)
     if (!s.shellEnabled[k]) v.shellsDisabled.push_back(static_cast<int>(k) + 1);
   v.depthCue = s.depthCue;
-  v.gradientOpacity = {s.gradientOpacityLow, s.gradientOpacityHigh};
+  v.gradientOpacity = s.gradientOpacity;
   v.planeOffsetMm = s.planeOffsetMm;
   v.slabMm = s.slabMm;
   v.overlay = s.overlay;

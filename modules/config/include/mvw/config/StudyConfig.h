@@ -27,6 +27,7 @@
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/GradientOpacity.h"
 #include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
 #include "mvw/core/WindowLevel.h"
@@ -114,8 +115,8 @@ struct ViewConfig {
   // Not a key: the shape (width / height) the zoom was chosen for when a command-line --size
   // gave the image another (0: width / height); see render::CameraSettings::fitAspect.
   double fitAspect = 0.0;
-  std::string preset;                               // transfer function preset; "" = by modality
-  std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
+  std::string preset;               // transfer function preset; "" = by modality
+  GradientOpacity gradientOpacity;  // 2D TF (mvw/core/GradientOpacity.h)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
   // "convexity": "convex" | "concave" | "both", "placement": "blue-noise" | "paper",
   // "spacing_mm" (blue-noise: glyph centre spacing; default: the functional voxel, within what

@@ -15,6 +15,7 @@
 #include "mvw/core/Crop.h"
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/GradientOpacity.h"
 #include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
 #include "mvw/core/WindowLevel.h"
@@ -51,9 +52,8 @@ struct RenderSettings {
   glm::ivec2 size{512, 512};
   CameraSettings camera;
   TransferFunction transfer = transferPreset("ct-bone");
-  // 2D transfer function: opacity scaled by smoothstep(g0, g1, |gradient|) (unit/mm), which
-  // keeps boundaries and hides homogeneous regions (Levoy). g1 <= 0: 1D only.
-  double gradientOpacityLow = 0.0, gradientOpacityHigh = 0.0;
+  // 2D transfer function (mvw/core/GradientOpacity.h); off: 1D only.
+  GradientOpacity gradientOpacity;
   // Projections, MPR and the anatomy on a cut face (cutFace): width and centre; unset, the
   // full value range (mvw/core/WindowLevel.h).
   WindowLevel window;
