@@ -302,12 +302,12 @@ void ViewerPanel::drawViewControls() {
     state_.setSegmentOutlines(outlines);
   }
   // The rotating 3D view, as `mvw render --orbit` (keys O and K).
-  const Orbit orbit = state_.orbit().mode();
-  if (ImGui::Button(orbit == Orbit::Spin ? "stop spin (O)" : "spin (O)"))
-    state_.toggleOrbit(Orbit::Spin);
+  const viewer::Orbit orbit = state_.orbit().mode();
+  if (ImGui::Button(orbit == viewer::Orbit::Spin ? "stop spin (O)" : "spin (O)"))
+    state_.toggleOrbit(viewer::Orbit::Spin);
   ImGui::SameLine();
-  if (ImGui::Button(orbit == Orbit::Rock ? "stop rock (K)" : "rock +-30 (K)"))
-    state_.toggleOrbit(Orbit::Rock);
+  if (ImGui::Button(orbit == viewer::Orbit::Rock ? "stop rock (K)" : "rock +-30 (K)"))
+    state_.toggleOrbit(viewer::Orbit::Rock);
 }
 
 void ViewerPanel::drawDepthCue() {

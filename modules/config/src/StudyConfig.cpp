@@ -316,6 +316,36 @@ const FieldTable<WindowLevel>& windowLevelTable() {
   return t;
 }
 
+// A rotating view (mvw/core/Orbit.h): its frames' key switches it on.
+const FieldTable<Orbit>& orbitTable() {
+  static const FieldTable<Orbit> t = [] {
+    FieldTable<Orbit> o;
+    o.add(
+         "orbit",
+         "A rotating view: this many frames about the patient's long axis from the view's "
+         "azimuth on.",
+         {"integer", "2 .. " + std::to_string(kMaxOrbitFrames), "a still", {}},
+         [](const json& n, Orbit& out, const Where& w) {
+           if (!n.is_number_integer() || n.get<long long>() < 2 ||
+               n.get<long long>() > kMaxOrbitFrames)
+             w.bad("must be a whole number of frames, 2.." + std::to_string(kMaxOrbitFrames));
+           out.frames = n.get<int>();
+         },
+         [](const Orbit& in, json& j, const char* k) {
+           if (in.on()) j[k] = in.frames;
+         })
+        .enumeration("orbit_mode",
+                     "spin: a full turn (azimuth + 360 k / N); rock: back and forth (azimuth + "
+                     "orbit_range sin(2 pi k / N)).",
+                     &Orbit::mode, kOrbitModes)
+        .number("orbit_range", "rock: how far the view swings each way, in degrees.",
+                &Orbit::rangeDeg, 1.0, 180.0)
+        .number("orbit_fps", "Frames per second of the orbit's movie.", &Orbit::fps, 1.0, 60.0);
+    return o;
+  }();
+  return t;
+}
+
 const FieldTable<ViewConfig>& viewTable() {
   static const FieldTable<ViewConfig> t = [] {
     using V = ViewConfig;
@@ -435,27 +465,7 @@ const FieldTable<ViewConfig>& viewTable() {
                      &V::colormap, colorMaps())
         .enumeration("overlay_colormap", "Colour map of the functional overlay and fusion.",
                      &V::overlayColormap, colorMaps())
-        .add(
-            "orbit",
-            "A rotating view: this many frames about the patient's long axis from the view's "
-            "azimuth on.",
-            {"integer", "2 .. " + std::to_string(kMaxOrbitFrames), "a still", {}},
-            [](const json& n, V& out, const Where& w) {
-              if (!n.is_number_integer() || n.get<long long>() < 2 ||
-                  n.get<long long>() > kMaxOrbitFrames)
-                w.bad("must be a whole number of frames, 2.." + std::to_string(kMaxOrbitFrames));
-              out.orbit = n.get<int>();
-            },
-            [](const V& in, json& j, const char* k) {
-              if (in.orbit > 0) j[k] = in.orbit;
-            })
-        .enumeration("orbit_mode",
-                     "spin: a full turn (azimuth + 360 k / N); rock: back and forth (azimuth + "
-                     "orbit_range sin(2 pi k / N)).",
-                     &V::orbitMode, kOrbitModes)
-        .number("orbit_range", "rock: how far the view swings each way, in degrees.",
-                &V::orbitRangeDeg, 1.0, 180.0)
-        .number("orbit_fps", "Frames per second of the orbit's movie.", &V::orbitFps, 1.0, 60.0);
+        .inlined(&V::orbit, orbitTable());
     return v;
   }();
   return t;
@@ -487,7 +497,7 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
     throw InputError(
         file, "'" + w + "colormap' applies to mip, minip, average and mpr views, not " +
                   toString(v.mode) + " (the functional overlay's is '" + w + "overlay_colormap')");
-  if (v.orbit > 0 &&
+  if (v.orbit.on() &&
       (v.view == ViewName::Superior || v.view == ViewName::Inferior || v.view == ViewName::Axial))
     throw InputError(file, "'" + w + "orbit' turns about the patient's long axis, which view '" +
                                toString(v.view) +
@@ -563,18 +573,6 @@ std::string viewerLayoutList() { return detail::namesOf(kLayouts); }
 
 std::optional<OrbitMode> parseOrbitMode(const std::string& name) {
   return detail::parseName(kOrbitModes, name);
-}
-
-std::vector<double> orbitAzimuths(const ViewConfig& v) {
-  std::vector<double> azimuths;
-  constexpr double kPi = 3.14159265358979323846;
-  for (int k = 0; k < v.orbit; ++k) {
-    const double phase = static_cast<double>(k) / v.orbit;
-    azimuths.push_back(v.orbitMode == OrbitMode::Spin
-                           ? v.azimuth + 360.0 * phase
-                           : v.azimuth + v.orbitRangeDeg * std::sin(2.0 * kPi * phase));
-  }
-  return azimuths;
 }
 
 std::vector<std::string> viewConfigKeys() { return viewTable().keys(); }

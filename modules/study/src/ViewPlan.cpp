@@ -286,8 +286,8 @@ void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedO
   const render::StandardView sight = standardView(v.view);
   const bool alongS =
       sight == render::StandardView::Superior || sight == render::StandardView::Inferior;
-  if (o.orbit && !alongS) v.orbit = *o.orbit;
-  if (parsed.orbitMode) v.orbitMode = *parsed.orbitMode;
+  if (o.orbit && !alongS) v.orbit.frames = *o.orbit;
+  if (parsed.orbitMode) v.orbit.mode = *parsed.orbitMode;
 }
 
 // The view's size, transfer function, camera, sampling and crop.
@@ -398,7 +398,7 @@ PlannedView planView(const config::StudyConfig& study, const config::ViewConfig&
   setGlyphs(s, v, study);
   setFunctional(s, v, study);
   const render::StandardView along = standardView(v.view);
-  if (v.orbit > 0 &&
+  if (v.orbit.on() &&
       (along == render::StandardView::Superior || along == render::StandardView::Inferior))
     throw InputError(study.file, "view '" + v.name +
                                      "': an orbit turns about the patient's long axis, which " +
@@ -425,8 +425,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     throw InputError(study.file,
                      "--colormap colours mip, minip, average and mpr views, and the study has "
                      "none (--overlay-colormap colours the functional overlay)");
-  if (o.orbit &&
-      std::none_of(out.begin(), out.end(), [](const PlannedView& p) { return p.config.orbit > 0; }))
+  if (o.orbit && std::none_of(out.begin(), out.end(),
+                              [](const PlannedView& p) { return p.config.orbit.on(); }))
     throw InputError(study.file,
                      "--orbit turns views about the patient's long axis, and every view of the "
                      "study looks along it (superior, inferior or axial)");

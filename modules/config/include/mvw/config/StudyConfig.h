@@ -28,6 +28,7 @@
 #include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
 #include "mvw/core/GradientOpacity.h"
+#include "mvw/core/Orbit.h"
 #include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
 #include "mvw/core/WindowLevel.h"
@@ -92,10 +93,10 @@ struct LabelChoice {
   LabelGlyphKind kind = LabelGlyphKind::Bumps;
   bool operator==(const LabelChoice&) const = default;
 };
-// A rotating view (a PET reader's rotating MIP): the camera turns about the patient's long axis
-// (S) in `orbit` steps, a full turn (spin) or back and forth over +-orbit_range degrees (rock).
-enum class OrbitMode { Spin, Rock };
-inline constexpr int kMaxOrbitFrames = 720;
+// A rotating view (mvw/core/Orbit.h).
+using mvw::kMaxOrbitFrames;
+using mvw::Orbit;
+using mvw::OrbitMode;
 
 // One rendered view ("render": {"views": [...]}). Every default below is the one default of
 // its key: the parser starts from a default-constructed ViewConfig.
@@ -181,13 +182,9 @@ struct ViewConfig {
   // ("overlay_colormap").
   ColorMap colormap = ColorMap::Grey;
   ColorMap overlayColormap = ColorMap::HotMetal;
-  // Rotating view: 0 = a still; N in 2..kMaxOrbitFrames frames from the view's azimuth on,
-  // spin: azimuth + 360 k / N; rock: azimuth + orbit_range sin(2 pi k / N). Written as
-  // <name>/frame-000.png ... and <name>.mp4 at orbit_fps frames per second.
-  int orbit = 0;
-  OrbitMode orbitMode = OrbitMode::Spin;
-  double orbitRangeDeg = 30.0;
-  double orbitFps = 10.0;
+  // Rotating view (mvw/core/Orbit.h), from the view's azimuth on: written as
+  // <name>/frame-000.png ... and <name>.mp4 at its frames per second. Off: a still.
+  Orbit orbit;
 };
 
 // What a reader measured in `mvw view` ("measurements": {...}), saved with its state and drawn
@@ -281,8 +278,6 @@ std::string toString(ViewerLayout layout);
 std::optional<ViewerLayout> parseViewerLayout(const std::string& name);
 std::string viewerLayoutList();  // "standard, pet-ct, ..." for messages
 std::optional<OrbitMode> parseOrbitMode(const std::string& name);
-// The azimuths (degrees) of an orbiting view's frames; empty for a still.
-std::vector<double> orbitAzimuths(const ViewConfig& view);
 std::optional<ViewName> parseViewName(const std::string& name);
 std::optional<Sampling> parseSampling(const std::string& name);
 // "view names: a, b, c" lists for messages.
