@@ -232,11 +232,11 @@ std::array<double, 3> lpsArray(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
 // The crop (mvw/core/Crop.h), the renderer's value too; its keys sit in the view object.
 const FieldTable<Crop>& cropTable() {
   static const FieldTable<Crop> t = [] {
-    FieldTable<Crop> c;
-    c.numbers("crop_min",
-              "Crop box's low corner as fractions of the volume's box along L, P, S (0: most "
-              "right, anterior, inferior).",
-              &Crop::min, 0.0, 1.0)
+    FieldTable<Crop> crop;
+    crop.numbers("crop_min",
+                 "Crop box's low corner as fractions of the volume's box along L, P, S (0: most "
+                 "right, anterior, inferior).",
+                 &Crop::min, 0.0, 1.0)
         .numbers("crop_max",
                  "Crop box's high corner as fractions of the volume's box along L, P, S (1: most "
                  "left, posterior, superior).",
@@ -267,7 +267,7 @@ const FieldTable<Crop>& cropTable() {
               if (in.minMm && in.maxMm)
                 j[k] = {{"min", lpsArray(*in.minMm)}, {"max", lpsArray(*in.maxMm)}};
             });
-    return c;
+    return crop;
   }();
   return t;
 }
