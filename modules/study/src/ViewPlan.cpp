@@ -475,9 +475,8 @@ void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
   // fraction of the window: a raised low end would hide moderate uptake twice over).
   if (!view.settings.glyphs) return;
   if (view.config.functionalWindow.set() || view.config.functionalClasses > 0) return;
-  const auto window = defaultAttributeWindow(kind, functional, range);
-  if (!window) return;
-  view.settings.functionalWindow = {(*window)[0], (*window)[1]};
+  const ValueWindow window = defaultAttributeWindow(kind, functional, range);
+  if (window.set()) view.settings.functionalWindow = window;
 }
 
 void applyModalityView(PlannedView& view, const Volume& anatomy, const ModalityDefaults& defaults) {

@@ -123,8 +123,8 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     break;
   }
   if (functional_) {
-    const auto w = mvw::study::defaultFunctionalDisplayWindow(*functional_, scene_.functionalRange);
-    functionalDisplay_ = {w[0], w[1]};
+    functionalDisplay_ =
+        mvw::study::defaultFunctionalDisplayWindow(*functional_, scene_.functionalRange);
   }
   for (const mvw::study::PlannedView& v : planned)
     if (v.settings.mode == RenderMode::Mpr) {
