@@ -288,11 +288,12 @@ void ViewerPanel::drawViewControls() {
   const auto [lo, hi] = state_.scene().valueRange;
   if (ImGui::SliderFloat("iso value", &iso, float(lo), float(hi)))
     v.iso = iso, state_.markDirty(k3d);
-  float w = static_cast<float>(state_.mprWindow()), l = static_cast<float>(state_.mprLevel());
+  float w = static_cast<float>(state_.mprWindow().window);
+  float l = static_cast<float>(state_.mprWindow().level);
   // `|`, not `||`: both widgets are drawn every frame.
   if (ImGui::DragFloat("MPR window", &w, 2.0f, 1.0f, float(hi - lo) * 2) |
       ImGui::DragFloat("MPR level", &l, 2.0f, float(lo), float(hi)))
-    state_.setMprWindow(w, l);
+    state_.setMprWindow({w, l});
   colormapCombo(state_, "MIP colours", ColorTarget::View3d);
   colormapCombo(state_, "MPR colours", ColorTarget::Mpr);
   if (!state_.study().segmentation) {
@@ -301,12 +302,12 @@ void ViewerPanel::drawViewControls() {
     state_.setSegmentOutlines(outlines);
   }
   // The rotating 3D view, as `mvw render --orbit` (keys O and K).
-  const Orbit orbit = state_.orbit().mode();
-  if (ImGui::Button(orbit == Orbit::Spin ? "stop spin (O)" : "spin (O)"))
-    state_.toggleOrbit(Orbit::Spin);
+  const viewer::Orbit orbit = state_.orbit().mode();
+  if (ImGui::Button(orbit == viewer::Orbit::Spin ? "stop spin (O)" : "spin (O)"))
+    state_.toggleOrbit(viewer::Orbit::Spin);
   ImGui::SameLine();
-  if (ImGui::Button(orbit == Orbit::Rock ? "stop rock (K)" : "rock +-30 (K)"))
-    state_.toggleOrbit(Orbit::Rock);
+  if (ImGui::Button(orbit == viewer::Orbit::Rock ? "stop rock (K)" : "rock +-30 (K)"))
+    state_.toggleOrbit(viewer::Orbit::Rock);
 }
 
 void ViewerPanel::drawDepthCue() {

@@ -36,10 +36,7 @@ TEST(ColorMapConfig, KeysRoundTripAndBadValuesNameTheKey) {
                                                        "study.json", "render.views[0]", 0);
   EXPECT_EQ(v.colormap, ColorMap::GreyInverted);
   EXPECT_EQ(v.overlayColormap, ColorMap::Pet20Step);
-  EXPECT_EQ(v.orbit, 36);
-  EXPECT_EQ(v.orbitMode, config::OrbitMode::Rock);
-  EXPECT_EQ(v.orbitRangeDeg, 45);
-  EXPECT_EQ(v.orbitFps, 15);
+  EXPECT_EQ(v.orbit, (Orbit{36, OrbitMode::Rock, 45, 15}));
   const json written = config::viewConfigJson(v);
   EXPECT_EQ(written["colormap"], "grey-inverted");
   EXPECT_EQ(written["orbit"], 36);

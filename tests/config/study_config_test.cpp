@@ -240,8 +240,8 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(a.glyphPlacement, GlyphPlacement::Paper);
   EXPECT_EQ(a.glyphSpacingMm, 7.0);
   EXPECT_EQ(a.glyphMinSize, 0.5);
-  ASSERT_TRUE(a.functionalWindow.has_value());
-  EXPECT_EQ((*a.functionalWindow)[1], 1.5);
+  ASSERT_TRUE(a.functionalWindow.set());
+  EXPECT_EQ(a.functionalWindow.high, 1.5);
   EXPECT_EQ(a.functionalClasses, 4);
   EXPECT_EQ(a.crop.max[2], 0.55);
   EXPECT_EQ(a.light[0], -0.8);
@@ -249,14 +249,14 @@ TEST(StudyConfig, WrittenConfigLoadsBackTheSame) {
   EXPECT_EQ(a.sampling, Sampling::Nearest);
   EXPECT_EQ(a.background[2], 0.3);
   EXPECT_TRUE(a.perspective);
-  EXPECT_EQ(a.gradientOpacity[1], 40.0);
+  EXPECT_EQ(a.gradientOpacity.high, 40.0);
   EXPECT_TRUE(a.overlay.fusion);
   EXPECT_EQ(a.overlay.opacity, 0.7);
   const ViewConfig& b = d.render.views[1];
   EXPECT_TRUE(b.depthCue.on);
   EXPECT_EQ(b.depthCue.amount, 0.66);
-  ASSERT_TRUE(b.window.has_value());
-  EXPECT_EQ(*b.level, 500.0);
+  ASSERT_TRUE(b.window.set());
+  EXPECT_EQ(b.window.level, 500.0);
   EXPECT_EQ(d.render.views[2].shellsDisabled, (std::vector<int>{1, 2}));
   EXPECT_EQ(d.render.views[3].slabMm, 5.0);
   EXPECT_FALSE(d.render.views[3].overlay.mpr);

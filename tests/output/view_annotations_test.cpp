@@ -58,8 +58,7 @@ TEST(ViewAnnotations, AnOverlayShowsTheFunctionalWindowInTheFunctionalUnit) {
   EXPECT_EQ(bar->unit, "SUVbw");
   EXPECT_FALSE(bar->colors);  // hot metal
   EXPECT_EQ(bar->title, "PET FDG");
-  s.functionalLow = 1.0;
-  s.functionalHigh = 6.0;
+  s.functionalWindow = {1.0, 6.0};
   s.overlayColors = study::colorTable(ColorMap::Pet);
   bar = colourBarOf(s, ct, &pet, {0.5, 12.0}, {400.0, 40.0});
   ASSERT_TRUE(bar);

@@ -47,8 +47,7 @@ TEST(RealPetDisplay, AxialMipIsTheCpuMaximumThroughTheColourMap) {
                                                .jitterOff = true});
   s.camera.zoom = render::framingSphere(pet).radius / (0.5 * d.y * pet.spacing().y);
   s.linear = false;  // nearest: the samples are the voxels' own values
-  s.window = 8.0;
-  s.level = 4.0;
+  s.window = {8.0, 4.0};
   for (ColorMap map : {ColorMap::GreyInverted, ColorMap::HotIron}) {
     s.imageColors = io::standardColorTable(map);
     const Image img = renderer.render(s).image;
@@ -79,8 +78,7 @@ TEST(RealPetDisplay, InvertedAnteriorMipHasAWhiteBackgroundAndABlackHottestSpot)
   test::Renderer renderer(pet);
   render::RenderSettings s = test::settingsOf(
       {.mode = RenderMode::Mip, .size = {101, 201}, .view = render::StandardView::Anterior});
-  s.window = 8.0;
-  s.level = 4.0;
+  s.window = {8.0, 4.0};
   s.imageColors = io::standardColorTable(ColorMap::GreyInverted);
   const Image img = renderer.render(s).image;
   EXPECT_EQ(img.pixel(0, 0)[0], 255);  // outside the box: the background, white

@@ -24,8 +24,7 @@ Volume sphere() {
 
 RenderSettings mipOf(RenderMode mode) {
   RenderSettings s = test::settingsOf({.mode = mode, .size = {61, 61}, .jitterOff = true});
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   return s;
 }
 
@@ -66,8 +65,7 @@ TEST(ColorMaps, HottestPixelOfASphereMipIsThePalettesTopColour) {
   const Volume v = sphere();
   test::Renderer renderer(v);
   RenderSettings s = mipOf(RenderMode::Mip);
-  s.window = 980;  // the centre (1000 at the ray through it) saturates: grey 255
-  s.level = 490;
+  s.window = {980, 490};  // the centre (1000 at the ray through it) saturates: grey 255
   const Image grey = renderer.render(s).image;
   ASSERT_EQ(grey.pixel(30, 30)[0], 255);
   for (ColorMap map : kMaps) {
@@ -85,8 +83,7 @@ TEST(ColorMaps, GreyInvertedShowsAWhiteBackgroundAndBlackHotSpot) {
   const Volume v = sphere();
   test::Renderer renderer(v);
   RenderSettings s = mipOf(RenderMode::Mip);
-  s.window = 980;
-  s.level = 490;
+  s.window = {980, 490};
   s.camera.zoom = 0.5;  // rays that miss the box: the background
   s.imageColors = io::standardColorTable(ColorMap::GreyInverted);
   const Image img = renderer.render(s).image;
@@ -115,8 +112,7 @@ TEST(ColorMaps, OverlayUsesItsOwnColourMap) {
   renderer.setFunctional(uptake, glm::dmat4(1.0));
   RenderSettings s = mipOf(RenderMode::Mpr);
   s.camera.view = StandardView::Inferior;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 10.0;
+  s.functionalWindow = {0.0, 10.0};
   s.overlay.opacity = 1.0f;
   s.overlay.threshold = 0.0f;
   for (ColorMap map : {ColorMap::HotIron, ColorMap::Pet, ColorMap::HotMetalBlue,

@@ -42,10 +42,8 @@ struct CutScene {
     s.camera.zoom = 1.3;
     s.crop.max = {1.0, 1.0, 0.5};  // the superior half cut away: the face at z = 0
     s.cutFace = CutFace::Anatomy;
-    s.window = kWindow;
-    s.level = kLevel;
-    s.functionalLow = 0.0;
-    s.functionalHigh = 1.0;
+    s.window = {kWindow, kLevel};
+    s.functionalWindow = {0.0, 1.0};
     return s;
   }
 };

@@ -33,8 +33,7 @@ TEST(DepthCuedMip, NeutralSettingsReproducePlainMipExactly) {
       });
   test::Renderer renderer(v);
   RenderSettings s = test::settingsOf({.mode = RenderMode::Mip, .size = {63, 47}});
-  s.window = 900;
-  s.level = 400;
+  s.window = {900, 400};
   s.camera.azimuthDeg = 20;
   const RenderedFrame plain = renderer.render(s);
   s.depthCue.on = true;  // contrast 100 %, depth cue 0, brightness 0
@@ -52,8 +51,7 @@ TEST(DepthCuedMip, TheRampIsAppliedBeforeTheMaximum) {
       .view = StandardView::Anterior,
       .jitterOff = true,
   });
-  s.window = 1000;
-  s.level = 500;  // emission = value / 1000
+  s.window = {1000, 500};  // emission = value / 1000
   s.linear = false;
   const RenderedFrame plain = renderer.render(s);
   EXPECT_NEAR(plain.image.pixel(20, 20)[0], 0.8 * 255, 1.0);  // the bright far sphere wins
@@ -85,8 +83,7 @@ TEST(DepthCuedMip, IdenticalBlobsAreDimmedByTheRampRatio) {
   test::Renderer renderer(v);
   RenderSettings s =
       test::settingsOf({.mode = RenderMode::Mip, .size = {121, 121}, .jitterOff = true});
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.linear = false;
   s.depthCue.on = true;
   s.depthCue.amount = 1.0;
@@ -125,8 +122,7 @@ TEST(DepthCuedMip, OverlappingVesselsShowTheNearerOne) {
   test::Renderer renderer(tree.volume);
   RenderSettings s =
       test::settingsOf({.mode = RenderMode::Mip, .size = {128, 128}, .jitterOff = true});
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.depthCue.on = true;
   s.depthCue.amount = 1.0;
   s.depthCue.contrast = 0.0;

@@ -87,8 +87,7 @@ std::vector<RenderSettings> views(double unit) {
         test::settingsOf({.mode = mode, .size = {96, 160}, .view = view, .jitterOff = true});
     s.camera.azimuthDeg = view == StandardView::Superior ? 0.0 : 20.0;
     s.camera.elevationDeg = 10.0;
-    s.window = 12.0 * unit;
-    s.level = 0.0;
+    s.window = {12.0 * unit, 0.0};
     return s;
   };
   for (StandardView view : {StandardView::Anterior, StandardView::Left, StandardView::Superior}) {
@@ -172,8 +171,7 @@ TEST(FoldedVolume, GlyphsAndShellsAsUnfolded) {
   s.camera.zoom = 2.5;  // z from about -31 to 31 mm: both seams, glyphs below -10 mm only
   s.glyphs = true;
   s.glyphDiameterMm = 4.0;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 1.0;
+  s.functionalWindow = {0.0, 1.0};
   RenderSettings plain = s;
   plain.glyphs = false;
   const Image bumps = unfolded.render(s).image;

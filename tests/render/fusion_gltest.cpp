@@ -64,8 +64,7 @@ RenderSettings alongTheSliceAxis(const Volume& ct, RenderMode mode) {
   s.camera.zoom = framingSphere(ct).radius / (0.5 * d.y * ct.spacing().y);
   s.stepMm = ct.spacing().z;
   s.overlay.fusion = true;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 8.0;
+  s.functionalWindow = {0.0, 8.0};
   s.overlay.opacity = 0.6f;
   s.overlay.threshold = 0.2f;
   s.overlayColors = io::standardColorTable(ColorMap::HotIron);  // nearest: entries as they are
@@ -117,7 +116,7 @@ TEST(FusedProjection, AlongTheSliceAxisEqualsBothProjectionsThroughTheColourMaps
           const glm::dvec3 at(petIndexFromAnatomical *
                               glm::dvec4(ct.worldFromIndexPoint({i, j, z}), 1.0));
           const double u = resampling::detail::trilinear(petValues.data(), pet.dimensions(), at) /
-                           (s.functionalHigh - s.functionalLow);
+                           (s.functionalWindow.high - s.functionalWindow.low);
           fSum += u;
           if (u > s.overlay.threshold) fMax = std::max(fMax, std::clamp(u, 0.0, 1.0));
         }
@@ -182,13 +181,11 @@ TEST(FusedProjection, NothingAboveTheThresholdLeavesThePlainProjection) {
       RenderSettings s = test::settingsOf({.mode = mode, .size = {97, 83}});
       s.camera.azimuthDeg = 33;
       s.camera.elevationDeg = 12;
-      s.window = 1500;
-      s.level = 300;
+      s.window = {1500, 300};
       s.depthCue.on = cue;
       s.depthCue.amount = cue ? 0.66 : 0.0;
       s.depthCue.contrast = cue ? 0.33 : 1.0;
-      s.functionalLow = 0.0;
-      s.functionalHigh = 1.0;
+      s.functionalWindow = {0.0, 1.0};
       s.overlay.threshold = 1.0f;  // the uptake is 1 at most: no sample lies above it
       const RenderedFrame plain = renderer.render(s);
       s.overlay.fusion = true;
@@ -229,8 +226,7 @@ TEST(FusedProjection, DepthCueShowsALesionInFrontBrighterThanOneBehind) {
   RenderSettings s =
       test::settingsOf({.mode = RenderMode::Mip, .size = {321, 321}, .jitterOff = true});
   s.overlay.fusion = true;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 8.0;
+  s.functionalWindow = {0.0, 8.0};
   s.overlay.opacity = 1.0f;
   s.overlay.threshold = 0.3f;
   s.overlayColors = table;

@@ -210,8 +210,7 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
     s.iso = -300;
     if (crop) s.crop.max = {1.0, 1.0, kCutFraction};
     s.lightOffset = {-0.8, 0.8};
-    s.functionalLow = kWindowLow;
-    s.functionalHigh = kWindowHigh;
+    s.functionalWindow = {kWindowLow, kWindowHigh};
     s.overlay.mpr = false;
     return s;
   };
@@ -246,7 +245,7 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
       renderer.setFunctional(makeMask(lesions[i]), glm::dmat4(1.0));
       RenderSettings f = plainS;
       f.overlay.fusion = true;
-      f.functionalLow = 0.0, f.functionalHigh = 1.0;
+      f.functionalWindow = {0.0, 1.0};
       f.overlay.opacity = 1.0f;
       f.overlay.threshold = 0.5f;
       const Image fused = renderer.render(f).image;

@@ -35,8 +35,7 @@ struct GlyphScene {
     s.iso = 0.0;
     s.glyphs = true;
     s.glyphDiameterMm = 4.0;
-    s.functionalLow = 0.0;
-    s.functionalHigh = 1.0;
+    s.functionalWindow = {0.0, 1.0};
     return s;
   }
   static Volume attribute(float level) {
@@ -133,8 +132,7 @@ TEST(Glyphs, ConvexAndConcaveFlipTheLitSide) {
   s.glyphs = true;
   s.glyphMap = one;
   s.glyphDiameterMm = 2 * R;
-  s.functionalLow = 0.0;
-  s.functionalHigh = 1.0;
+  s.functionalWindow = {0.0, 1.0};
   s.lightOffset = {-1.0, 0.0};
   const double px = 80.0, py = 80.0;  // the glyph centre on screen
   auto sides = [&](const Image& img) {

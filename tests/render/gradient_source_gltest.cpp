@@ -181,8 +181,7 @@ TEST(GradientSource, GlyphsWorkWithEverySourceFromTheFirstFrame) {
                            {TfPoint{-1.0 * unit, {1, 1, 1, 0.0f}}, TfPoint{0.0, {1, 1, 1, 1.0f}},
                             TfPoint{30.0 * unit, {1, 1, 1, 1.0f}}}};
       s.glyphDiameterMm = 4.0;
-      s.functionalLow = 0.0;
-      s.functionalHigh = 1.0;
+      s.functionalWindow = {0.0, 1.0};
       VolumeRenderer renderer(*ctx, volume, source.gradient);
       const RenderedFrame plain = renderer.render(s);
       s.glyphs = true;
@@ -224,8 +223,7 @@ void expectTypeEndsReachTheShader(double lo, double mid, double hi) {
       .jitterOff = true,
   });
   s.linear = false;
-  s.window = hi - lo;
-  s.level = (hi + lo) / 2;
+  s.window = {hi - lo, (hi + lo) / 2};
   const Image image = renderer.render(s).image;
   // Screen right is patient left (+x, high i); columns well inside each slab.
   const double expected[3] = {0.0, 255.0 * (mid - lo) / (hi - lo), 255.0};

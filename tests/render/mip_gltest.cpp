@@ -72,8 +72,7 @@ TEST(Raycast, MipAndMinIpSkippingLosesNoRaysExtreme) {
       for (const auto& [azimuth, elevation] :
            {std::pair{0.0, 0.0}, {37.0, 12.0}, {118.0, -35.0}, {250.0, 64.0}}) {
         RenderSettings s = test::settingsOf({.mode = mode, .size = {96, 96}, .jitterOff = true});
-        s.window = window;
-        s.level = level;
+        s.window = {window, level};
         s.camera.azimuthDeg = azimuth;
         s.camera.elevationDeg = elevation;
         const RenderedFrame f = renderer.render(s);

@@ -29,8 +29,8 @@ TEST(Mpr, AxialPlaneShowsTheMiddleSliceVoxelForVoxel) {
       .view = *parseStandardView("axial"),  // from the feet: screen right = +x, down = +y
   });
   s.camera.zoom = framingSphere(v).radius / (0.5 * d.y);  // one pixel per voxel
-  s.window = 256;
-  s.level = 1200 + 128;  // slice 12 holds 1200 .. 1200 + 3*29 + 39
+  // Slice 12 holds 1200 .. 1200 + 3*29 + 39.
+  s.window = {256, 1200 + 128};
   const RenderedFrame f = renderer.render(s);
   for (int r = 0; r < d.y; ++r)
     for (int c = 0; c < d.x; ++c) {
@@ -40,7 +40,7 @@ TEST(Mpr, AxialPlaneShowsTheMiddleSliceVoxelForVoxel) {
   // A 10 mm slab MIP around z = 24 mm: midpoint samples every 0.5 mm, the deepest at
   // z = 28.75 mm = slice 14.375, where the (linear in z) value is 1437.5 + 3 j + i.
   s.slabMm = 10.0;
-  s.level = 1400 + 128;
+  s.window.level = 1400 + 128;
   const RenderedFrame slab = renderer.render(s);
   EXPECT_NEAR(slab.image.pixel(5, 7)[0], (1437.5 + 21 + 5) - 1400.0, 1.0);
 }
@@ -57,8 +57,7 @@ TEST(Mpr, FunctionalOverlayFollowsTheRegistrationTransform) {
   RenderSettings s =
       test::settingsOf({.mode = RenderMode::Mpr, .size = {41, 41}, .view = StandardView::Inferior});
   s.camera.zoom = framingSphere(anatomy).radius / 20.5;
-  s.window = 100;
-  s.level = 50;
+  s.window = {100, 50};
   s.overlay.opacity = 1.0f;
   s.overlay.threshold = 0.5f;
   auto hotCentroid = [](const Image& img) { return centroidOf(img, 129, 255); };

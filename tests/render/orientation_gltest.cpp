@@ -52,8 +52,7 @@ TEST(Raycast, MarkersAppearWhereTheOrientationLabelsSayForAnyStorageOrder) {
         .view = StandardView::Anterior,  // screen right = patient left, up = superior
         .jitterOff = true,
     });
-    s.window = 1000;
-    s.level = 500;
+    s.window = {1000, 500};
     s.linear = false;  // nearest: marker edges keep their exact grey (255, 153, 76)
     RenderedFrame f = renderer.render(s);
     const Centroid left = centroidOf(f.image, 250, 255), sup = centroidOf(f.image, 70, 82);
@@ -132,8 +131,7 @@ TEST(Raycast, CropBoxIsInPatientTermsForAnyStorageOrder) {
                               StorageCase{RenderMode::Mip, StandardView::Anterior}}) {
     RenderSettings s = test::settingsOf({.mode = c.mode, .size = {121, 121}, .view = c.view});
     s.transfer = transferPreset("ct-bone");
-    s.window = 2000;
-    s.level = 900;
+    s.window = {2000, 900};
     s.crop.max = {1.0, 1.0, 0.55};  // the inferior 55 % of the head
     std::vector<Image> images;
     for (const Volume* v : {&ct, &slicesReversed, &written})
@@ -184,8 +182,7 @@ TEST(Raycast, ObliqueVolumeIsCroppedAlongThePatientAxes) {
                                        .size = {121, 121},
                                        .view = StandardView::Anterior,
                                        .jitterOff = true});
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.crop.max = {1.0, 1.0, 0.5};
   const RenderedFrame f = renderer.render(s);
   // The cut's row: the world point on the cut plane at the centre, through the camera.

@@ -36,8 +36,7 @@ TEST(SegmentOutlines, EdgesInTheSegmentColoursWherePlaced) {
       .view = StandardView::Inferior,  // screen right = +x, down = +y, 1 pixel per mm
   });
   s.camera.zoom = framingSphere(anatomy).radius / 20.5;
-  s.window = 100;
-  s.level = 50;
+  s.window = {100, 50};
   const Image img = renderer.render(s).image;
   auto rgb = [&](int x, int y) {
     const std::uint8_t* p = img.pixel(x + 20, y + 20);

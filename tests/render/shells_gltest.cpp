@@ -26,8 +26,7 @@ TEST(Shells, DiscreteMaximumConvergesToTheRayCastAsShellsAreAdded) {
   test::Renderer renderer(tree.volume);
   RenderSettings s =
       test::settingsOf({.mode = RenderMode::Mip, .size = {96, 96}, .jitterOff = true});
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.stepMm = 0.25;
   s.depthCue.on = true;
   s.depthCue.amount = 0.66;
@@ -57,8 +56,7 @@ TEST(Shells, DisabledShellsAreNotDrawnAndLitShellsShowTheOutermost) {
       });
   test::Renderer renderer(v);
   RenderSettings s = test::settingsOf({.mode = RenderMode::ShellMip, .size = {41, 41}});
-  s.window = 1000;
-  s.level = 500;
+  s.window = {1000, 500};
   s.shells = 4;  // spheres at 250, 500, 750, 1000 -> radii 15, 10, 5, 0 mm
   const RenderedFrame all = renderer.render(s);
   EXPECT_NEAR(all.image.pixel(20, 20)[0], 0.75 * 255,

@@ -115,7 +115,7 @@ TEST(GlyphLabels, KindsForLabelsAndClasses) {
   PlannedView ordinal;
   ordinal.config = pet.render.views[0];
   ordinal.settings.glyphs = true;
-  ordinal.settings.functionalLow = 1.0, ordinal.settings.functionalHigh = 6.0;
+  ordinal.settings.functionalWindow = {1.0, 6.0};
   ordinal.settings.glyphClassKinds = pet.render.views[0].glyphClassKinds;
   const render::GlyphLegend ranges = glyphLegend(ordinal, "SUVbw", {0, 10});
   ASSERT_EQ(ranges.entries.size(), 6u);

@@ -1,6 +1,5 @@
-// Rotating views without GL: the orbit's azimuths (spin and rock) and the --orbit and
-// --colormap overrides (study planViews), checked before any work is done.
-#include <cmath>
+// Rotating views without GL: the --orbit and --colormap overrides (study planViews), checked
+// before any work is done (the azimuths: tests/core/orbit_test.cpp).
 #include <string>
 #include <vector>
 
@@ -13,26 +12,6 @@
 
 namespace mvw {
 namespace {
-
-TEST(Orbit, SpinTurnsAFullCircleAndRockSwingsOverItsRange) {
-  config::ViewConfig v;
-  v.azimuth = 10;
-  v.orbit = 8;
-  const std::vector<double> spin = config::orbitAzimuths(v);
-  ASSERT_EQ(spin.size(), 8u);
-  for (int k = 0; k < 8; ++k) EXPECT_DOUBLE_EQ(spin[k], 10 + 45.0 * k);
-  v.orbitMode = config::OrbitMode::Rock;
-  v.orbitRangeDeg = 30;
-  const std::vector<double> rock = config::orbitAzimuths(v);
-  ASSERT_EQ(rock.size(), 8u);
-  EXPECT_DOUBLE_EQ(rock[0], 10);
-  EXPECT_NEAR(rock[2], 40, 1e-9);   // a quarter period: +range
-  EXPECT_NEAR(rock[4], 10, 1e-9);   // half: back through the start
-  EXPECT_NEAR(rock[6], -20, 1e-9);  // three quarters: -range
-  EXPECT_NEAR(rock[1], 10 + 30 * std::sqrt(0.5), 1e-9);
-  v.orbit = 0;
-  EXPECT_TRUE(config::orbitAzimuths(v).empty());
-}
 
 TEST(Orbit, OverridesAreCheckedBeforeAnyWork) {
   config::StudyConfig study;
@@ -52,8 +31,8 @@ TEST(Orbit, OverridesAreCheckedBeforeAnyWork) {
   ASSERT_TRUE(views[0].settings.imageColors);
   EXPECT_EQ(views[0].settings.imageColors->map, ColorMap::HotIron);
   EXPECT_FALSE(views[1].settings.imageColors);
-  EXPECT_EQ(views[0].config.orbit, 12);
-  EXPECT_EQ(views[1].config.orbit, 12);
+  EXPECT_EQ(views[0].config.orbit.frames, 12);
+  EXPECT_EQ(views[1].config.orbit.frames, 12);
   // Defaults: no tables, so the renderer draws exactly what it drew before colour maps.
   const auto plain = study::planViews(study, {});
   EXPECT_FALSE(plain[0].settings.imageColors);
@@ -109,8 +88,8 @@ TEST(Orbit, OverridesAreCheckedBeforeAnyWork) {
   study::ViewOverrides some;
   some.orbit = 6;
   const auto mixed = study::planViews(study, some);
-  EXPECT_EQ(mixed[0].config.orbit, 6);
-  EXPECT_EQ(mixed[2].config.orbit, 0);
+  EXPECT_EQ(mixed[0].config.orbit.frames, 6);
+  EXPECT_EQ(mixed[2].config.orbit.frames, 0);
 }
 
 }  // namespace

@@ -50,8 +50,8 @@ TEST_F(OpenedStudyTest, PaneAnnotationsAreTheStatesWithRendersColourBar) {
     EXPECT_EQ(a.caption, state.caption(p, s));
     EXPECT_EQ(a.glyphLegend.entries.size(), state.glyphLegend(p, s).entries.size());
     const auto [lo, hi] = state.scene().valueRange;
-    const auto bar = output::colourBarOf(s, ct, nullptr, {0.0, 1.0},
-                                         windowOrFullRange(s.window, s.level, lo, hi));
+    const auto bar =
+        output::colourBarOf(s, ct, nullptr, {0.0, 1.0}, windowOrFullRange(s.window, lo, hi));
     // Where `mvw render` draws none (a grey image), the viewer's pane still carries its grey
     // scale: every pane that maps values has a bar.
     ASSERT_EQ(a.colourBar.has_value(), bar.has_value() || takesImageColors(s.mode)) << p;
@@ -60,7 +60,7 @@ TEST_F(OpenedStudyTest, PaneAnnotationsAreTheStatesWithRendersColourBar) {
       EXPECT_EQ(a.colourBar->high, bar->high);
       EXPECT_EQ(a.colourBar->title, bar->title);
     } else if (a.colourBar) {
-      const WindowLevel w = windowOrFullRange(s.window, s.level, lo, hi);
+      const WindowLevel w = windowOrFullRange(s.window, lo, hi);
       EXPECT_EQ(a.colourBar->low, w.level - 0.5 * w.window);
       EXPECT_EQ(a.colourBar->high, w.level + 0.5 * w.window);
       ASSERT_TRUE(a.colourBar->colors.has_value());
@@ -84,8 +84,8 @@ TEST_F(OpenedStudyTest, TheFunctionalPaneBarIsItsOwnWindow) {
     const render::RenderSettings s = state.renderSettings(p);
     const output::ViewAnnotations a = paneAnnotations(state, p, s, {0.0, 10.0}, nullptr);
     ASSERT_TRUE(a.colourBar);
-    EXPECT_DOUBLE_EQ(a.colourBar->low, s.level - 0.5 * s.window);
-    EXPECT_DOUBLE_EQ(a.colourBar->high, s.level + 0.5 * s.window);
+    EXPECT_DOUBLE_EQ(a.colourBar->low, s.window.level - 0.5 * s.window.window);
+    EXPECT_DOUBLE_EQ(a.colourBar->high, s.window.level + 0.5 * s.window.window);
     EXPECT_EQ(a.colourBar->title, ViewerState::volumeName(pet, "functional"));
   }
   EXPECT_EQ(shown, 1);

@@ -22,13 +22,13 @@ TEST(ViewControls, GlyphSpacingRoundTrips) {
 
 TEST(ViewControls, FunctionalWindowIsTheUsersOrTheRange) {
   render::RenderSettings v;
-  EXPECT_EQ(functionalWindow(v, {0.0, 10.0}), (std::pair<double, double>{0.0, 10.0}));
+  EXPECT_EQ(functionalWindow(v, {0.0, 10.0}), (ValueWindow{0.0, 10.0}));
   setFunctionalWindow(v, 2.0, 5.0, {0.0, 10.0});
-  EXPECT_EQ(functionalWindow(v, {0.0, 10.0}), (std::pair<double, double>{2.0, 5.0}));
+  EXPECT_EQ(functionalWindow(v, {0.0, 10.0}), (ValueWindow{2.0, 5.0}));
   // An empty window keeps a millionth of the range.
   setFunctionalWindow(v, 4.0, 3.0, {0.0, 10.0});
-  EXPECT_DOUBLE_EQ(v.functionalLow, 4.0);
-  EXPECT_DOUBLE_EQ(v.functionalHigh, 4.0 + 1e-5);
+  EXPECT_DOUBLE_EQ(v.functionalWindow.low, 4.0);
+  EXPECT_DOUBLE_EQ(v.functionalWindow.high, 4.0 + 1e-5);
 }
 
 }  // namespace

@@ -67,8 +67,8 @@ std::string dumpSettings(const render::RenderSettings& s) {
   line("transfer.name", s.transfer.name);
   num("transfer.relative", s.transfer.relative);
   num("transfer.points", double(s.transfer.points.size()));
-  vec("gradient_opacity", {s.gradientOpacityLow, s.gradientOpacityHigh});
-  vec("window_level", {s.window, s.level});
+  vec("gradient_opacity", {s.gradientOpacity.low, s.gradientOpacity.high});
+  vec("window_level", {s.window.window, s.window.level});
   num("iso", s.iso);
   num("depth_cue", s.depthCue.on);
   vec("depth_cue.values", {s.depthCue.brightness, s.depthCue.amount, s.depthCue.contrast});
@@ -110,7 +110,7 @@ std::string dumpSettings(const render::RenderSettings& s) {
   std::string kinds;
   for (GlyphKind k : s.glyphClassKinds) kinds += std::string(glyphKindName(k)) + " ";
   line("glyphs.class_kinds", kinds);
-  vec("functional_window", {s.functionalLow, s.functionalHigh});
+  vec("functional_window", {s.functionalWindow.low, s.functionalWindow.high});
   num("functional_classes", s.functionalClasses);
   num("overlay", s.overlay.mpr);
   num("fusion", s.overlay.fusion);

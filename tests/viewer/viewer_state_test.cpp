@@ -29,8 +29,8 @@ TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
   EXPECT_EQ(state.presetName(), "ct-bone");
   EXPECT_EQ(state.view3d().mode, RenderMode::Composite);
   EXPECT_DOUBLE_EQ(state.view3d().iso, 300.0);
-  EXPECT_DOUBLE_EQ(state.mprWindow(), 400.0);
-  EXPECT_DOUBLE_EQ(state.mprLevel(), 40.0);
+  EXPECT_DOUBLE_EQ(state.mprWindow().window, 400.0);
+  EXPECT_DOUBLE_EQ(state.mprWindow().level, 40.0);
   EXPECT_EQ(state.crosshair(), state.scene().centre);
   EXPECT_EQ(state.maximised(), -1);
 
@@ -38,8 +38,8 @@ TEST_F(ViewerStateTest, OpensOnTheModalityDefaults) {
   ViewerState mrState(study, mr, nullptr, sceneOf(mr));
   EXPECT_EQ(mrState.presetName(), "mr-default");
   EXPECT_DOUBLE_EQ(mrState.view3d().iso, 200.0);
-  EXPECT_DOUBLE_EQ(mrState.mprWindow(), 500.0);
-  EXPECT_DOUBLE_EQ(mrState.mprLevel(), 250.0);
+  EXPECT_DOUBLE_EQ(mrState.mprWindow().window, 500.0);
+  EXPECT_DOUBLE_EQ(mrState.mprWindow().level, 250.0);
 }
 
 TEST_F(ViewerStateTest, PanesRenderWhenSizedAndDirty) {
@@ -121,17 +121,16 @@ TEST_F(ViewerStateTest, MprRightOrCtrlDragSetsWindowAndLevel) {
   state.drag(kAxial, 0.1, 0.0, MouseButton::Left, false);  // a plain left drag is the crosshair's
   EXPECT_FALSE(state.anyDirty());
   state.drag(kCoronal, 0.5, 0.1, MouseButton::Right, false);
-  EXPECT_NEAR(state.mprWindow(), 400.0 * std::exp(1.0), 1e-9);
-  EXPECT_NEAR(state.mprLevel(), 40.0 - 0.1 * 3000.0 * 0.5, 1e-9);
+  EXPECT_NEAR(state.mprWindow().window, 400.0 * std::exp(1.0), 1e-9);
+  EXPECT_NEAR(state.mprWindow().level, 40.0 - 0.1 * 3000.0 * 0.5, 1e-9);
   EXPECT_FALSE(state.needsRender(k3d));
   EXPECT_TRUE(state.needsRender(kAxial) && state.needsRender(kCoronal) &&
               state.needsRender(kSagittal));
   state.drag(kSagittal, -100.0, 0.0, MouseButton::Left, true);
-  EXPECT_DOUBLE_EQ(state.mprWindow(), 1e-3);  // never zero or negative
+  EXPECT_DOUBLE_EQ(state.mprWindow().window, 1e-3);  // never zero or negative
   const render::RenderSettings s = state.renderSettings(kAxial);
   EXPECT_EQ(s.mode, RenderMode::Mpr);
-  EXPECT_DOUBLE_EQ(s.window, state.mprWindow());
-  EXPECT_DOUBLE_EQ(s.level, state.mprLevel());
+  EXPECT_EQ(s.window, state.mprWindow());
 }
 
 TEST_F(ViewerStateTest, WheelScrollsSlicesAndClicksMoveTheCrosshairInPlane) {
@@ -227,13 +226,12 @@ TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
 
 TEST_F(ViewerStateTest, MprPanesShareTheFunctionalWindowOfTheThreeDPane) {
   ViewerState state(study, ct, &pet, sceneOf(ct));
-  state.view3d().functionalLow = 2.0;
-  state.view3d().functionalHigh = 7.0;
+  state.view3d().functionalWindow = {2.0, 7.0};
   state.view3d().functionalClasses = 5;
   state.view3d().overlay.opacity = 0.75f;
   const render::RenderSettings s = state.renderSettings(kCoronal);
-  EXPECT_DOUBLE_EQ(s.functionalLow, 2.0);
-  EXPECT_DOUBLE_EQ(s.functionalHigh, 7.0);
+  EXPECT_DOUBLE_EQ(s.functionalWindow.low, 2.0);
+  EXPECT_DOUBLE_EQ(s.functionalWindow.high, 7.0);
   EXPECT_EQ(s.functionalClasses, 5);
   EXPECT_FLOAT_EQ(s.overlay.opacity, 0.75f);
   EXPECT_EQ(s.camera.view, render::StandardView::Anterior);
@@ -280,11 +278,11 @@ TEST_F(ViewerStateTest, PetCtLayoutShowsOnePlaneInStepAndTheFunctionalMip) {
   const auto [dlo, dhi] = state.functionalDisplayWindow();
   EXPECT_DOUBLE_EQ(dlo, 0.0);
   EXPECT_DOUBLE_EQ(dhi, 10.0);
-  EXPECT_DOUBLE_EQ(mip.level - 0.5 * mip.window, dlo);
-  EXPECT_DOUBLE_EQ(mip.level + 0.5 * mip.window, dhi);
-  EXPECT_DOUBLE_EQ(functional.functionalLow, dlo);
-  EXPECT_DOUBLE_EQ(functional.functionalHigh, dhi);
-  EXPECT_NE(fused.functionalHigh, dhi);  // the fused pane keeps the overlay's window
+  EXPECT_DOUBLE_EQ(mip.window.level - 0.5 * mip.window.window, dlo);
+  EXPECT_DOUBLE_EQ(mip.window.level + 0.5 * mip.window.window, dhi);
+  EXPECT_DOUBLE_EQ(functional.functionalWindow.low, dlo);
+  EXPECT_DOUBLE_EQ(functional.functionalWindow.high, dhi);
+  EXPECT_NE(fused.functionalWindow.high, dhi);  // the fused pane keeps the overlay's window
   EXPECT_EQ(state.paneCell(kAxial), 0);
   EXPECT_EQ(state.paneCell(kCoronal), 1);
   EXPECT_EQ(state.paneCell(kSagittal), 2);
@@ -347,9 +345,9 @@ TEST_F(ViewerStateTest, APetAloneOpensAtItsSuvWindowWithAColourBarOnEveryPane) {
   EXPECT_EQ(state.view3d().mode, RenderMode::Mip);
   ASSERT_TRUE(state.view3d().imageColors.has_value());
   EXPECT_EQ(state.view3d().imageColors->map, ColorMap::GreyInverted);
-  EXPECT_DOUBLE_EQ(state.view3d().window, 5.0);
-  EXPECT_DOUBLE_EQ(state.mprWindow(), 5.0);
-  EXPECT_DOUBLE_EQ(state.mprLevel(), 2.5);
+  EXPECT_DOUBLE_EQ(state.view3d().window.window, 5.0);
+  EXPECT_DOUBLE_EQ(state.mprWindow().window, 5.0);
+  EXPECT_DOUBLE_EQ(state.mprWindow().level, 2.5);
   renderAll(state);
   const std::filesystem::path file = test::scratchDir() / "panes.json";
   writePaneReport(state, file);
@@ -431,8 +429,8 @@ TEST_F(ViewerStateTest, SavedStateReopensAsTheSameViews) {
   EXPECT_TRUE(reopened.view3d().depthCue.on);
   EXPECT_NEAR(reopened.view3d().camera.azimuthDeg, 18.0, 1e-9);
   EXPECT_NEAR(reopened.view3d().camera.elevationDeg, 9.0, 1e-9);
-  EXPECT_NEAR(reopened.mprWindow(), state.mprWindow(), 1e-6);
-  EXPECT_NEAR(reopened.mprLevel(), state.mprLevel(), 1e-6);
+  EXPECT_NEAR(reopened.mprWindow().window, state.mprWindow().window, 1e-6);
+  EXPECT_NEAR(reopened.mprWindow().level, state.mprWindow().level, 1e-6);
 }
 
 // Zoom and pan on the MPR panes (issue 36 item 1): linked, a point panned into view on one

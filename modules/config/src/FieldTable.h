@@ -124,6 +124,16 @@ class FieldTable {
     return *this;
   }
 
+  // The key added last is written only where `when` holds for the object (a value with an unset
+  // form, written as absent: a window that is not set).
+  FieldTable& writtenWhen(std::function<bool(const T&)> when) {
+    fields_.back().write = [when, write = std::move(fields_.back().write)](const T& in, json& j,
+                                                                           const char* k) {
+      if (when(in)) write(in, j, k);
+    };
+    return *this;
+  }
+
   template <class M>
   FieldTable& number(const char* key, Doc doc, M T::*member, double lo, double hi) {
     add(

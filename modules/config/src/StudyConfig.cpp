@@ -232,11 +232,11 @@ std::array<double, 3> lpsArray(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
 // The crop (mvw/core/Crop.h), the renderer's value too; its keys sit in the view object.
 const FieldTable<Crop>& cropTable() {
   static const FieldTable<Crop> t = [] {
-    FieldTable<Crop> c;
-    c.numbers("crop_min",
-              "Crop box's low corner as fractions of the volume's box along L, P, S (0: most "
-              "right, anterior, inferior).",
-              &Crop::min, 0.0, 1.0)
+    FieldTable<Crop> crop;
+    crop.numbers("crop_min",
+                 "Crop box's low corner as fractions of the volume's box along L, P, S (0: most "
+                 "right, anterior, inferior).",
+                 &Crop::min, 0.0, 1.0)
         .numbers("crop_max",
                  "Crop box's high corner as fractions of the volume's box along L, P, S (1: most "
                  "left, posterior, superior).",
@@ -267,7 +267,7 @@ const FieldTable<Crop>& cropTable() {
               if (in.minMm && in.maxMm)
                 j[k] = {{"min", lpsArray(*in.minMm)}, {"max", lpsArray(*in.maxMm)}};
             });
-    return c;
+    return crop;
   }();
   return t;
 }
@@ -292,6 +292,55 @@ const FieldTable<Overlay>& overlayTable() {
         .number("overlay_threshold",
                 "Functional values below this fraction of their range are not overlaid.",
                 &Overlay::threshold, 0.0, 1.0);
+    return o;
+  }();
+  return t;
+}
+
+// The anatomy's window (mvw/core/WindowLevel.h): both keys or neither (parseViewConfig), written
+// only while it is set.
+const FieldTable<WindowLevel>& windowLevelTable() {
+  static const FieldTable<WindowLevel> t = [] {
+    const auto set = [](const WindowLevel& w) { return w.set(); };
+    FieldTable<WindowLevel> w;
+    w.number("window", "Window width, in the anatomy's unit (goes with level).",
+             &WindowLevel::window, 1e-9, 1e12)
+        .writtenWhen(set)
+        .whenAbsent(kDefaultWindow)
+        .number("level", "Window centre, in the anatomy's unit (goes with window).",
+                &WindowLevel::level, -1e12, 1e12)
+        .writtenWhen(set)
+        .whenAbsent(kDefaultWindow);
+    return w;
+  }();
+  return t;
+}
+
+// A rotating view (mvw/core/Orbit.h): its frames' key switches it on.
+const FieldTable<Orbit>& orbitTable() {
+  static const FieldTable<Orbit> t = [] {
+    FieldTable<Orbit> o;
+    o.add(
+         "orbit",
+         "A rotating view: this many frames about the patient's long axis from the view's "
+         "azimuth on.",
+         {"integer", "2 .. " + std::to_string(kMaxOrbitFrames), "a still", {}},
+         [](const json& n, Orbit& out, const Where& w) {
+           if (!n.is_number_integer() || n.get<long long>() < 2 ||
+               n.get<long long>() > kMaxOrbitFrames)
+             w.bad("must be a whole number of frames, 2.." + std::to_string(kMaxOrbitFrames));
+           out.frames = n.get<int>();
+         },
+         [](const Orbit& in, json& j, const char* k) {
+           if (in.on()) j[k] = in.frames;
+         })
+        .enumeration("orbit_mode",
+                     "spin: a full turn (azimuth + 360 k / N); rock: back and forth (azimuth + "
+                     "orbit_range sin(2 pi k / N)).",
+                     &Orbit::mode, kOrbitModes)
+        .number("orbit_range", "rock: how far the view swings each way, in degrees.",
+                &Orbit::rangeDeg, 1.0, 180.0)
+        .number("orbit_fps", "Frames per second of the orbit's movie.", &Orbit::fps, 1.0, 60.0);
     return o;
   }();
   return t;
@@ -324,12 +373,7 @@ const FieldTable<ViewConfig>& viewTable() {
         .string("preset", "Transfer function preset by name (ct-bone, ct-skin, mr-default, ...).",
                 &V::preset)
         .whenAbsent("chosen by the anatomy's modality")
-        .optionalNumber("window", "Window width, in the anatomy's unit (goes with level).",
-                        &V::window, 1e-9, 1e12)
-        .whenAbsent(kDefaultWindow)
-        .optionalNumber("level", "Window centre, in the anatomy's unit (goes with window).",
-                        &V::level, -1e12, 1e12)
-        .whenAbsent(kDefaultWindow)
+        .inlined(&V::window, windowLevelTable())
         .number("iso", "Isosurface value, in the anatomy's unit.", &V::iso, -1e12, 1e12)
         .boolean("shading", "Gradient shading.", &V::shading)
         .enumeration("sampling", "How the volume is sampled between voxels.", &V::sampling,
@@ -366,11 +410,13 @@ const FieldTable<ViewConfig>& viewTable() {
             "Functional values mapped to 0 .. 1 (overlay, glyph size) [low, high].",
             {"array of 2 numbers", "low < high", "by the functional volume's kind", {}},
             [](const json& fw, V& out, const Where& w) {
-              out.functionalWindow = readOrderedPair(fw, w, -std::numeric_limits<double>::max(),
-                                                     "[low, high] with low < high");
+              const auto [low, high] = readOrderedPair(fw, w, -std::numeric_limits<double>::max(),
+                                                       "[low, high] with low < high");
+              out.functionalWindow = {low, high};
             },
             [](const V& in, json& j, const char* k) {
-              if (in.functionalWindow) j[k] = *in.functionalWindow;
+              if (in.functionalWindow.set())
+                j[k] = std::array<double, 2>{in.functionalWindow.low, in.functionalWindow.high};
             })
         .section("depth_cue", "MIP depth cueing (Heidrich 1995): on where present.", &V::depthCue,
                  &DepthCue::on, depthCueTable())
@@ -380,11 +426,13 @@ const FieldTable<ViewConfig>& viewTable() {
             "anatomy's unit per mm.",
             {"array of 2 numbers", "0 <= low < high", "off", {}},
             [](const json& g, V& out, const Where& w) {
-              out.gradientOpacity =
+              const auto [low, high] =
                   readOrderedPair(g, w, 0.0, "[low, high] with 0 <= low < high (unit/mm)");
+              out.gradientOpacity = {low, high};
             },
             [](const V& in, json& j, const char* k) {
-              if (in.gradientOpacity[1] > 0.0) j[k] = in.gradientOpacity;
+              if (in.gradientOpacity.on())
+                j[k] = std::array<double, 2>{in.gradientOpacity.low, in.gradientOpacity.high};
             })
         .number("plane_offset_mm", "MPR: the plane moved along the line of sight, in mm.",
                 &V::planeOffsetMm, -1e4, 1e4)
@@ -417,27 +465,7 @@ const FieldTable<ViewConfig>& viewTable() {
                      &V::colormap, colorMaps())
         .enumeration("overlay_colormap", "Colour map of the functional overlay and fusion.",
                      &V::overlayColormap, colorMaps())
-        .add(
-            "orbit",
-            "A rotating view: this many frames about the patient's long axis from the view's "
-            "azimuth on.",
-            {"integer", "2 .. " + std::to_string(kMaxOrbitFrames), "a still", {}},
-            [](const json& n, V& out, const Where& w) {
-              if (!n.is_number_integer() || n.get<long long>() < 2 ||
-                  n.get<long long>() > kMaxOrbitFrames)
-                w.bad("must be a whole number of frames, 2.." + std::to_string(kMaxOrbitFrames));
-              out.orbit = n.get<int>();
-            },
-            [](const V& in, json& j, const char* k) {
-              if (in.orbit > 0) j[k] = in.orbit;
-            })
-        .enumeration("orbit_mode",
-                     "spin: a full turn (azimuth + 360 k / N); rock: back and forth (azimuth + "
-                     "orbit_range sin(2 pi k / N)).",
-                     &V::orbitMode, kOrbitModes)
-        .number("orbit_range", "rock: how far the view swings each way, in degrees.",
-                &V::orbitRangeDeg, 1.0, 180.0)
-        .number("orbit_fps", "Frames per second of the orbit's movie.", &V::orbitFps, 1.0, 60.0);
+        .inlined(&V::orbit, orbitTable());
     return v;
   }();
   return t;
@@ -460,7 +488,7 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
         file, "'" + w + "name' is " + std::to_string(v.name.size()) + " characters; at most 120");
   for (unsigned char c : v.name)
     if (c < 0x20 || c == 0x7f) throw InputError(file, "'" + w + "name' holds a control character");
-  if (v.window.has_value() != v.level.has_value())
+  if (j.contains("window") != j.contains("level"))
     throw InputError(file, "'" + w + "window' and '" + w + "level' go together");
   for (int a = 0; a < 3; ++a)
     if (v.crop.min[a] >= v.crop.max[a])
@@ -469,7 +497,7 @@ ViewConfig parseViewConfig(const json& j, const fs::path& file, const std::strin
     throw InputError(
         file, "'" + w + "colormap' applies to mip, minip, average and mpr views, not " +
                   toString(v.mode) + " (the functional overlay's is '" + w + "overlay_colormap')");
-  if (v.orbit > 0 &&
+  if (v.orbit.on() &&
       (v.view == ViewName::Superior || v.view == ViewName::Inferior || v.view == ViewName::Axial))
     throw InputError(file, "'" + w + "orbit' turns about the patient's long axis, which view '" +
                                toString(v.view) +
@@ -545,18 +573,6 @@ std::string viewerLayoutList() { return detail::namesOf(kLayouts); }
 
 std::optional<OrbitMode> parseOrbitMode(const std::string& name) {
   return detail::parseName(kOrbitModes, name);
-}
-
-std::vector<double> orbitAzimuths(const ViewConfig& v) {
-  std::vector<double> azimuths;
-  constexpr double kPi = 3.14159265358979323846;
-  for (int k = 0; k < v.orbit; ++k) {
-    const double phase = static_cast<double>(k) / v.orbit;
-    azimuths.push_back(v.orbitMode == OrbitMode::Spin
-                           ? v.azimuth + 360.0 * phase
-                           : v.azimuth + v.orbitRangeDeg * std::sin(2.0 * kPi * phase));
-  }
-  return azimuths;
 }
 
 std::vector<std::string> viewConfigKeys() { return viewTable().keys(); }

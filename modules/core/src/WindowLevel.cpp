@@ -2,8 +2,8 @@
 
 namespace mvw {
 
-WindowLevel windowOrFullRange(double window, double level, double lo, double hi) {
-  if (window > 0) return {window, level};
+WindowLevel windowOrFullRange(const WindowLevel& window, double lo, double hi) {
+  if (window.set()) return window;
   return {hi - lo, 0.5 * (hi + lo)};
 }
 

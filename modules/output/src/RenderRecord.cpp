@@ -34,8 +34,8 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
   r["perspective"] = v.config.perspective;
   r["size"] = {v.config.width, v.config.height};
   r["transfer_preset"] = v.presetName;
-  if (v.settings.gradientOpacityHigh > 0)
-    r["gradient_opacity"] = {v.settings.gradientOpacityLow, v.settings.gradientOpacityHigh};
+  if (v.settings.gradientOpacity.on())
+    r["gradient_opacity"] = {v.settings.gradientOpacity.low, v.settings.gradientOpacity.high};
   r["window"] = shown.window;
   r["level"] = shown.level;
   r["iso"] = v.settings.iso;
@@ -94,8 +94,8 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
     }
   }
   if (v.settings.functionalClasses > 0) r["functional_classes"] = v.settings.functionalClasses;
-  if (v.settings.functionalHigh > v.settings.functionalLow)
-    r["functional_window"] = {v.settings.functionalLow, v.settings.functionalHigh};
+  if (v.settings.functionalWindow.set())
+    r["functional_window"] = {v.settings.functionalWindow.low, v.settings.functionalWindow.high};
   const bool shellMode = isShellMode(v.settings.mode);
   if (shellMode) {
     r["shells"] = v.settings.shells;

@@ -46,8 +46,8 @@ nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame
   fs::create_directories(folder);
   const std::string movieName = c.name + ".mp4";
   io::MovieWriter movie(staging.path() / movieName, still.image.width, still.image.height,
-                        c.orbitFps);
-  const std::vector<double> azimuths = config::orbitAzimuths(c);
+                        c.orbit.fps);
+  const std::vector<double> azimuths = orbitAzimuths(c.orbit, c.azimuth);
   nlohmann::json files = nlohmann::json::array();
   double ms = still.milliseconds;
   for (std::size_t k = 0; k < azimuths.size(); ++k) {
@@ -67,7 +67,7 @@ nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame
     files.push_back(c.name + "/" + name);
   }
   movie.finish();
-  nlohmann::json r = {{"mode", config::toString(c.orbitMode)},
+  nlohmann::json r = {{"mode", config::toString(c.orbit.mode)},
                       {"frames", azimuths.size()},
                       {"azimuths_deg", azimuths},
                       {"folder", c.name},
@@ -75,9 +75,9 @@ nlohmann::json renderOrbit(const ViewPainter& paint, const render::RenderedFrame
                       {"movie", movieName},
                       {"movie_codec", "mp4v (MPEG-4 Part 2), OpenCV VideoWriter"},
                       {"movie_size", {movie.width(), movie.height()}},
-                      {"fps", c.orbitFps},
+                      {"fps", c.orbit.fps},
                       {"ms_all_frames", ms}};
-  if (c.orbitMode == config::OrbitMode::Rock) r["range_deg"] = c.orbitRangeDeg;
+  if (c.orbit.mode == OrbitMode::Rock) r["range_deg"] = c.orbit.rangeDeg;
   return r;
 }
 
@@ -195,7 +195,7 @@ render::RenderedFrame ViewPainter::operator()(const render::RenderSettings& sett
 ViewPainter viewPainter(render::VolumeRenderer& renderer, const study::Session& session,
                         const study::PlannedView& view) {
   const auto [lo, hi] = renderer.valueRange();
-  const WindowLevel shown = windowOrFullRange(view.settings.window, view.settings.level, lo, hi);
+  const WindowLevel shown = windowOrFullRange(view.settings.window, lo, hi);
   return ViewPainter{renderer,
                      session,
                      view,
@@ -230,13 +230,13 @@ RenderedStudy renderStudy(const RenderRequest& request, std::ostream& out, std::
     nlohmann::json record =
         viewRecord(v, session, renderer, paint.shown, paint.overlayShown, frame, log);
     std::vector<Image> orbitFrames;
-    if (v.config.orbit > 0) {
+    if (v.config.orbit.on()) {
       record["orbit"] = renderOrbit(paint, frame, staging, identity ? &orbitFrames : nullptr);
       orbits.push_back(v.config.name);
     }
     std::vector<std::string> dicomFiles;
     if (identity) {
-      dicomFiles = writeViewDicom(v, frame.image, orbitFrames, v.config.orbitFps, *identity,
+      dicomFiles = writeViewDicom(v, frame.image, orbitFrames, v.config.orbit.fps, *identity,
                                   1000 + static_cast<int>(outputs.size()) + 1, staging);
       record["dicom"] = dicomFiles;
       dicomObjects += static_cast<int>(dicomFiles.size());

@@ -10,7 +10,7 @@ std::optional<ColourBar> colourBarOf(const render::RenderSettings& s, const Volu
                                      const WindowLevel& shown) {
   if (render::showsFunctional(s, functional != nullptr)) {
     auto [flo, fhi] = functionalRange;
-    if (s.functionalHigh > s.functionalLow) flo = s.functionalLow, fhi = s.functionalHigh;
+    if (s.functionalWindow.set()) flo = s.functionalWindow.low, fhi = s.functionalWindow.high;
     return ColourBar{flo, fhi, functional->metadata().unit, s.overlayColors,
                      study::volumeName(*functional, "functional")};
   }

@@ -45,9 +45,8 @@ GLuint FunctionalTextures::colormap(const std::optional<ColorTable>& table) {
   return customColormap_.id();
 }
 
-glm::vec2 FunctionalTextures::window(double low, double high) const {
-  const bool userWindow = high > low;
-  return {float(userWindow ? low : range_.first), float(userWindow ? high : range_.second)};
+glm::vec2 FunctionalTextures::window(const ValueWindow& w) const {
+  return {float(w.set() ? w.low : range_.first), float(w.set() ? w.high : range_.second)};
 }
 
 void FunctionalTextures::setUniforms(const ShaderProgram& program, glm::vec2 window,

@@ -12,6 +12,7 @@
 #include "GlObjects.h"
 #include "mvw/core/ColorMap.h"
 #include "mvw/core/Volume.h"
+#include "mvw/core/WindowLevel.h"
 #include "mvw/render/ShaderProgram.h"
 
 namespace mvw::render::detail {
@@ -29,7 +30,7 @@ class FunctionalTextures {
   std::uint64_t generation() const { return generation_; }
 
   // The values mapped to 0..1: low..high when low < high, otherwise the value range.
-  glm::vec2 window(double low, double high) const;
+  glm::vec2 window(const ValueWindow& w) const;
   // uFunctionalFromWorld, uFunctionalRange (= window) and uFunctionalClasses of `program`.
   void setUniforms(const ShaderProgram& program, glm::vec2 window, int classes) const;
 

@@ -53,7 +53,7 @@ void GlyphIcons::fill(GlContext& context, const RenderSettings& view, GlyphLegen
   s.overlay.fusion = false;
   s.jitter = false;
   s.stepMm = 0.0;
-  if (legend.high > legend.low) s.functionalLow = legend.low, s.functionalHigh = legend.high;
+  if (legend.high > legend.low) s.functionalWindow = {legend.low, legend.high};
   for (GlyphLegendEntry& e : legend.entries) {
     if (!e.value || e.size <= 0.0) continue;
     Volume attribute(dims_, 1, ScalarType::Float32, worldFromIndex_);

@@ -116,7 +116,7 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .setUniforms = setTf2dUniforms,
        .appliesTo = onlyComposite,
        .needs = kNone,
-       .valueFor = [](const RenderSettings& s, bool) { return int(s.gradientOpacityHigh > 0.0); }},
+       .valueFor = [](const RenderSettings& s, bool) { return int(s.gradientOpacity.on()); }},
       // Colour fusion: composite blends the functional colour in per sample (common/
       // functional.glsl); a fused projection lays the functional volume's own projection over
       // the anatomy's (raycast/fusion-projection.glsl, with the fused block grid).

@@ -123,7 +123,7 @@ Image VolumeRenderer::Impl::drawShells(const RenderSettings& s, const Camera& ca
   d.centre = framing.centre;
   d.radius = framing.radius;
   const auto [lo, hi] = volume.range();
-  const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
+  const WindowLevel wl = windowOrFullRange(s.window, lo, hi);
   d.windowLow = wl.level - 0.5 * wl.window;
   d.windowWidth = wl.window;
   d.count = s.shells;
@@ -142,11 +142,11 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   // What this frame's settings derive: the transfer table and the blocks it leaves visible,
   // and for glyphs the map and the attribute volume (both cached).
   const auto [lo, hi] = volume.transferRange();
-  transfer.update(s.transfer, lo, hi, step, volume.referenceStepMm(), s.gradientOpacityLow,
-                  s.gradientOpacityHigh);
+  transfer.update(s.transfer, lo, hi, step, volume.referenceStepMm(), s.gradientOpacity.low,
+                  s.gradientOpacity.high);
   blocks.updateVisibility(transfer.lut(), lo, hi, s.mode == RenderMode::Composite);
   volume.setLinear(s.linear);
-  const glm::vec2 functionalWindow = functional.window(s.functionalLow, s.functionalHigh);
+  const glm::vec2 functionalWindow = functional.window(s.functionalWindow);
   if (s.glyphs) {
     glyphs.uploadMap(s.glyphMap);
     glyphs.updateBeta(volume, functional, functionalWindow, s.functionalClasses, s.glyphLabels,
@@ -283,7 +283,7 @@ void VolumeRenderer::Impl::setShadingUniforms(const ShaderProgram& p, const Rend
   glUniform1i(p.uniform("uHeadlight"), s.lightOffset == glm::dvec2(0.0) ? 1 : 0);
   glUniform1i(p.uniform("uShading"), s.shading ? 1 : 0);
   const auto [lo, hi] = volume.transferRange();
-  const WindowLevel wl = windowOrFullRange(s.window, s.level, lo, hi);
+  const WindowLevel wl = windowOrFullRange(s.window, lo, hi);
   glUniform2f(p.uniform("uWindowLevel"), float(wl.window), float(wl.level));
   glUniform1f(p.uniform("uIsoValue"), float(s.iso));
   glUniform4f(p.uniform("uIsoColor"), s.isoColor.r, s.isoColor.g, s.isoColor.b, s.isoColor.a);

@@ -144,8 +144,8 @@ render::GlyphLegend glyphLegend(const PlannedView& v, const std::string& unit,
     }
     return legend;
   }
-  double lo = s.functionalLow, hi = s.functionalHigh;
-  if (!(hi > lo)) lo = range.first, hi = range.second;
+  double lo = s.functionalWindow.low, hi = s.functionalWindow.high;
+  if (!s.functionalWindow.set()) lo = range.first, hi = range.second;
   legend.title = "glyphs: " + (unit.empty() ? std::string("attribute") : unit);
   legend.low = lo, legend.high = hi;
   if (render::usesGlyphKinds(s)) {

@@ -60,7 +60,7 @@ ModalityDefaults modalityDefaults(const Volume& anatomy, std::pair<double, doubl
     d.iso = lo + kIsoFractionOfRange * (hi - lo);
     if (inSuv(anatomy) && hi > kSuvLesionThreshold && lo < kSuvLesionThreshold)
       d.iso = kSuvLesionThreshold;
-    d.mpr = windowOrFullRange(0.0, 0.0, lo, hi);
+    d.mpr = windowOrFullRange(WindowLevel{}, lo, hi);
   }
   if (isEmission(anatomy)) {
     const auto [low, high] = defaultFunctionalDisplayWindow(anatomy, valueRange);
@@ -78,29 +78,27 @@ std::vector<std::string> presetsFor(const Volume& anatomy) {
   return out;
 }
 
-std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKind kind,
-                                                            const Volume& functional,
-                                                            std::pair<double, double> range) {
+ValueWindow defaultAttributeWindow(config::FunctionalKind kind, const Volume& functional,
+                                   std::pair<double, double> range) {
   // fMRI statistic maps (z or t, from the NIfTI intent code): from the usual cluster-forming
   // threshold, z = 2.3.
   const std::string& unit = functional.metadata().unit;
   if (kind != config::FunctionalKind::Labels && (unit == "z" || unit == "t")) {
-    if (!(range.second > kStatisticThreshold)) return std::nullopt;
-    return std::array<double, 2>{kStatisticThreshold, range.second};
+    if (!(range.second > kStatisticThreshold)) return {};
+    return {kStatisticThreshold, range.second};
   }
   const bool emission =
       kind == config::FunctionalKind::Pet || kind == config::FunctionalKind::Spect ||
       functional.metadata().modality == "PT" || functional.metadata().modality == "NM";
-  if (!emission || kind == config::FunctionalKind::Labels) return std::nullopt;
+  if (!emission || kind == config::FunctionalKind::Labels) return {};
   const double max = range.second;
-  if (inSuv(functional))
-    return std::array<double, 2>{kSuvLesionThreshold, std::max(max, kSuvLesionThreshold + 1.0)};
-  if (!(max > 0)) return std::nullopt;
-  return std::array<double, 2>{kRelativeUptakeThreshold * max, max};
+  if (inSuv(functional)) return {kSuvLesionThreshold, std::max(max, kSuvLesionThreshold + 1.0)};
+  if (!(max > 0)) return {};
+  return {kRelativeUptakeThreshold * max, max};
 }
 
-std::array<double, 2> defaultFunctionalDisplayWindow(const Volume& functional,
-                                                     std::pair<double, double> range) {
+ValueWindow defaultFunctionalDisplayWindow(const Volume& functional,
+                                           std::pair<double, double> range) {
   const auto [lo, hi] = range;
   const glm::ivec3 d = functional.dimensions();
   // At most about a million voxels, evenly strided: a percentile needs no more.

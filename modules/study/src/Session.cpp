@@ -17,12 +17,12 @@ namespace {
 std::optional<WindowLevel> studyMprWindow(const std::vector<PlannedView>& views,
                                           const Volume& anatomical) {
   if (std::none_of(views.begin(), views.end(), [](const PlannedView& v) {
-        return !v.config.window && render::showsAnatomyOnCutFace(v.settings);
+        return !v.config.window.set() && render::showsAnatomyOnCutFace(v.settings);
       }))
     return std::nullopt;
   for (const PlannedView& v : views)
     if (v.settings.mode == render::RenderMode::Mpr) {
-      if (v.settings.window > 0) return WindowLevel{v.settings.window, v.settings.level};
+      if (v.settings.window.set()) return v.settings.window;
       break;
     }
   return modalityDefaults(anatomical, anatomical.valueRange()).mpr;

@@ -267,8 +267,8 @@ void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedO
   if (o.elevation) v.elevation = *o.elevation;
   if (o.roll) v.roll = *o.roll;
   if (o.zoom) v.zoom = *o.zoom;
-  if (o.window) v.window = *o.window;
-  if (o.level) v.level = *o.level;
+  if (o.window) v.window.window = *o.window;
+  if (o.level) v.window.level = *o.level;
   if (o.iso) v.iso = *o.iso;
   if (o.noAnnotate) v.annotate = false;
   if (o.cueBrightness || o.cueAmount || o.cueContrast) v.depthCue.on = true;
@@ -286,16 +286,14 @@ void applyOverrides(config::ViewConfig& v, const ViewOverrides& o, const ParsedO
   const render::StandardView sight = standardView(v.view);
   const bool alongS =
       sight == render::StandardView::Superior || sight == render::StandardView::Inferior;
-  if (o.orbit && !alongS) v.orbit = *o.orbit;
-  if (parsed.orbitMode) v.orbitMode = *parsed.orbitMode;
+  if (o.orbit && !alongS) v.orbit.frames = *o.orbit;
+  if (parsed.orbitMode) v.orbit.mode = *parsed.orbitMode;
 }
 
 // The view's size, transfer function, camera, sampling and crop.
 void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, const fs::path& file) {
   if (v.width < 1 || v.width > 8192 || v.height < 1 || v.height > 8192)
     throw InputError(file, "view '" + v.name + "': size must be 1..8192");
-  if (v.window && !(*v.window > 0))
-    throw InputError(file, "view '" + v.name + "': window must be positive");
   if (!v.preset.empty()) {
     try {
       s.transfer = render::transferPreset(v.preset);
@@ -303,6 +301,7 @@ void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, con
       throw InputError(file, "view '" + v.name + "': " + e.what());
     }
   }
+  s.gradientOpacity = v.gradientOpacity;
   s.mode = v.mode;
   s.size = {v.width, v.height};
   s.camera.view = standardView(v.view);
@@ -313,8 +312,7 @@ void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, con
   s.camera.fitAspect = v.fitAspect > 0.0 ? v.fitAspect : double(v.width) / v.height;
   s.camera.panMm = {v.pan[0], v.pan[1]};
   s.camera.perspective = v.perspective;
-  s.window = v.window.value_or(0.0);
-  s.level = v.level.value_or(0.0);
+  s.window = v.window;
   s.iso = v.iso;
   s.stepMm = v.stepMm;
   s.shading = v.shading;
@@ -368,10 +366,7 @@ void setGlyphs(render::RenderSettings& s, const config::ViewConfig& v,
 // glyph labels.
 void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
                    const config::StudyConfig& study) {
-  if (v.functionalWindow) {
-    s.functionalLow = (*v.functionalWindow)[0];
-    s.functionalHigh = (*v.functionalWindow)[1];
-  }
+  s.functionalWindow = v.functionalWindow;
   s.lightOffset = {v.light[0], v.light[1]};
   s.shells = v.shells;
   if (!v.shellsDisabled.empty()) {
@@ -379,8 +374,6 @@ void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
     for (int k : v.shellsDisabled) s.shellEnabled[static_cast<std::size_t>(k - 1)] = false;
   }
   s.depthCue = v.depthCue;
-  s.gradientOpacityLow = v.gradientOpacity[0];
-  s.gradientOpacityHigh = v.gradientOpacity[1];
   s.planeOffsetMm = v.planeOffsetMm;
   s.slabMm = v.slabMm;
   s.overlay = v.overlay;
@@ -405,7 +398,7 @@ PlannedView planView(const config::StudyConfig& study, const config::ViewConfig&
   setGlyphs(s, v, study);
   setFunctional(s, v, study);
   const render::StandardView along = standardView(v.view);
-  if (v.orbit > 0 &&
+  if (v.orbit.on() &&
       (along == render::StandardView::Superior || along == render::StandardView::Inferior))
     throw InputError(study.file, "view '" + v.name +
                                      "': an orbit turns about the patient's long axis, which " +
@@ -432,8 +425,8 @@ std::vector<PlannedView> planViews(const config::StudyConfig& study, const ViewO
     throw InputError(study.file,
                      "--colormap colours mip, minip, average and mpr views, and the study has "
                      "none (--overlay-colormap colours the functional overlay)");
-  if (o.orbit &&
-      std::none_of(out.begin(), out.end(), [](const PlannedView& p) { return p.config.orbit > 0; }))
+  if (o.orbit && std::none_of(out.begin(), out.end(),
+                              [](const PlannedView& p) { return p.config.orbit.on(); }))
     throw InputError(study.file,
                      "--orbit turns views about the patient's long axis, and every view of the "
                      "study looks along it (superior, inferior or axial)");
@@ -481,11 +474,9 @@ void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
   // A colour overlay or fusion keeps the full range as its colour scale (its threshold is a
   // fraction of the window: a raised low end would hide moderate uptake twice over).
   if (!view.settings.glyphs) return;
-  if (view.config.functionalWindow || view.config.functionalClasses > 0) return;
-  const auto window = defaultAttributeWindow(kind, functional, range);
-  if (!window) return;
-  view.settings.functionalLow = (*window)[0];
-  view.settings.functionalHigh = (*window)[1];
+  if (view.config.functionalWindow.set() || view.config.functionalClasses > 0) return;
+  const ValueWindow window = defaultAttributeWindow(kind, functional, range);
+  if (window.set()) view.settings.functionalWindow = window;
 }
 
 void applyModalityView(PlannedView& view, const Volume& anatomy, const ModalityDefaults& defaults) {
@@ -498,17 +489,15 @@ void applyModalityView(PlannedView& view, const Volume& anatomy, const ModalityD
     if (view.config.colormap == ColorMap::Grey) view.config.colormap = defaults.mipColors;
     applyColorMaps(s, view.config.colormap, view.config.overlayColormap);
   }
-  if (view.config.window ||
+  if (view.config.window.set() ||
       (s.mode != render::RenderMode::Mip && s.mode != render::RenderMode::Mpr))
     return;
-  s.window = defaults.mpr.window;
-  s.level = defaults.mpr.level;
+  s.window = defaults.mpr;
 }
 
 void applyCutFaceWindow(PlannedView& view, const WindowLevel& mpr) {
-  if (view.config.window || !render::showsAnatomyOnCutFace(view.settings)) return;
-  view.settings.window = mpr.window;
-  view.settings.level = mpr.level;
+  if (view.config.window.set() || !render::showsAnatomyOnCutFace(view.settings)) return;
+  view.settings.window = mpr;
 }
 
 config::ViewConfig describeView(const render::RenderSettings& s, const std::string& name,
@@ -526,7 +515,7 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.width = s.size.x;
   v.height = s.size.y;
   v.preset = preset;
-  if (s.window > 0) v.window = s.window, v.level = s.level;
+  if (s.window.set()) v.window = s.window;
   v.iso = s.iso;
   v.stepMm = s.stepMm;
   v.shading = s.shading;
@@ -559,14 +548,13 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   if (blueNoise)  // the map's scale, back in mm
     v.glyphSpacingMm =
         render::blueNoiseSpacing(s.glyphMap.size) * s.glyphDiameterMm / s.glyphMap.diameter;
-  if (s.functionalHigh > s.functionalLow)
-    v.functionalWindow = std::array<double, 2>{s.functionalLow, s.functionalHigh};
+  if (s.functionalWindow.set()) v.functionalWindow = s.functionalWindow;
   v.light = {s.lightOffset.x, s.lightOffset.y};
   v.shells = s.shells;
   for (std::size_t k = 0; k < s.shellEnabled.size(); ++k)
     if (!s.shellEnabled[k]) v.shellsDisabled.push_back(static_cast<int>(k) + 1);
   v.depthCue = s.depthCue;
-  v.gradientOpacity = {s.gradientOpacityLow, s.gradientOpacityHigh};
+  v.gradientOpacity = s.gradientOpacity;
   v.planeOffsetMm = s.planeOffsetMm;
   v.slabMm = s.slabMm;
   v.overlay = s.overlay;

@@ -61,12 +61,13 @@ output::ViewAnnotations paneAnnotations(const ViewerState& state, int pane,
   a.glyphLegend = state.glyphLegend(pane, s);
   if (state.paneShowsFunctional(pane)) {
     const Volume& functional = *state.functional();
-    a.colourBar = output::ColourBar{s.level - 0.5 * s.window, s.level + 0.5 * s.window,
-                                    functional.metadata().unit, s.imageColors,
-                                    ViewerState::volumeName(functional, "functional")};
+    a.colourBar =
+        output::ColourBar{s.window.level - 0.5 * s.window.window,
+                          s.window.level + 0.5 * s.window.window, functional.metadata().unit,
+                          s.imageColors, ViewerState::volumeName(functional, "functional")};
   } else {
     const auto [lo, hi] = state.scene().valueRange;
-    const WindowLevel shown = windowOrFullRange(s.window, s.level, lo, hi);
+    const WindowLevel shown = windowOrFullRange(s.window, lo, hi);
     a.colourBar =
         output::colourBarOf(s, state.anatomical(), state.functional(), functionalRange, shown);
     // Every pane that maps values to colours carries its scale (a reader reads a grey MPR's
@@ -94,7 +95,7 @@ void writePaneReport(const ViewerState& state, const std::filesystem::path& file
     const output::ViewAnnotations a =
         paneAnnotations(state, pane, s, state.scene().functionalRange, nullptr);
     const auto [lo, hi] = state.scene().valueRange;
-    const WindowLevel w = windowOrFullRange(s.window, s.level, lo, hi);
+    const WindowLevel w = windowOrFullRange(s.window, lo, hi);
     nlohmann::json bar = nullptr;
     if (a.colourBar)
       bar = {{"low", a.colourBar->low},

@@ -16,16 +16,14 @@ void setGlyphSpacingMm(render::RenderSettings& v, double spacingMm) {
   v.glyphMap = render::blueNoiseGlyphMap(spacingMm, v.glyphDiameterMm, v.glyphMap.seed);
 }
 
-std::pair<double, double> functionalWindow(const render::RenderSettings& v,
-                                           std::pair<double, double> range) {
-  if (v.functionalHigh > v.functionalLow) return {v.functionalLow, v.functionalHigh};
-  return range;
+ValueWindow functionalWindow(const render::RenderSettings& v, std::pair<double, double> range) {
+  if (v.functionalWindow.set()) return v.functionalWindow;
+  return {range.first, range.second};
 }
 
 void setFunctionalWindow(render::RenderSettings& v, double low, double high,
                          std::pair<double, double> range) {
-  v.functionalLow = low;
-  v.functionalHigh = std::max(high, low + 1e-6 * (range.second - range.first));
+  v.functionalWindow = {low, std::max(high, low + 1e-6 * (range.second - range.first))};
 }
 
 }  // namespace mvw::viewer

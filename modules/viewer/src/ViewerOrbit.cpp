@@ -1,25 +1,23 @@
 #include "mvw/viewer/ViewerOrbit.h"
 
-#include "mvw/config/StudyConfig.h"
-
 namespace mvw::viewer {
 
 void ViewerOrbit::start(Orbit orbit, double azimuthDeg) {
-  mode_ = orbit;
-  azimuths_.clear();
+  turn_ = mvw::Orbit{};
   step_ = 0;
-  if (orbit == Orbit::Off) return;
+  if (orbit != Orbit::Off)
+    turn_ = {kFrames, orbit == Orbit::Spin ? OrbitMode::Spin : OrbitMode::Rock, kRockRangeDeg};
   // The same angles `mvw render --orbit` renders, from the azimuth shown now.
-  config::ViewConfig v;
-  v.azimuth = azimuthDeg;
-  v.orbit = kFrames;
-  v.orbitMode = orbit == Orbit::Spin ? config::OrbitMode::Spin : config::OrbitMode::Rock;
-  v.orbitRangeDeg = kRockRangeDeg;
-  azimuths_ = config::orbitAzimuths(v);
+  azimuths_ = orbitAzimuths(turn_, azimuthDeg);
+}
+
+Orbit ViewerOrbit::mode() const {
+  if (!turn_.on()) return Orbit::Off;
+  return turn_.mode == OrbitMode::Spin ? Orbit::Spin : Orbit::Rock;
 }
 
 std::optional<double> ViewerOrbit::advance() {
-  if (mode_ == Orbit::Off || azimuths_.empty()) return std::nullopt;
+  if (azimuths_.empty()) return std::nullopt;
   step_ = (step_ + 1) % azimuths_.size();
   return azimuths_[step_];
 }

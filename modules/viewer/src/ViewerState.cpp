@@ -99,13 +99,11 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     // A PET read alone (study::modalityDefaults): its MIP under its own window, as the implied
     // view of a config without views has it (study::applyModalityView).
     view3d_.mode = defaults.mode3d;
-    view3d_.window = defaults.mpr.window;
-    view3d_.level = defaults.mpr.level;
+    view3d_.window = defaults.mpr;
     if (defaults.mipColors != ColorMap::Grey)
       view3d_.imageColors = mvw::study::colorTable(defaults.mipColors);
   }
-  mprWindow_ = defaults.mpr.window;
-  mprLevel_ = defaults.mpr.level;
+  mprWindow_ = defaults.mpr;
   crosshair_ = scene_.centre;
   functionalColors_ = greyTable(true);  // PET as nuclear medicine reads it: black on white
   // The study's first view the 3D pane can show sets it up, exactly as `mvw render` would
@@ -125,14 +123,13 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
     break;
   }
   if (functional_) {
-    const auto w = mvw::study::defaultFunctionalDisplayWindow(*functional_, scene_.functionalRange);
-    functionalDisplay_ = {w[0], w[1]};
+    functionalDisplay_ =
+        mvw::study::defaultFunctionalDisplayWindow(*functional_, scene_.functionalRange);
   }
   for (const mvw::study::PlannedView& v : planned)
     if (v.settings.mode == RenderMode::Mpr) {
-      if (v.config.functionalWindow)
-        functionalDisplay_ = {(*v.config.functionalWindow)[0], (*v.config.functionalWindow)[1]};
-      if (v.settings.window > 0) mprWindow_ = v.settings.window, mprLevel_ = v.settings.level;
+      if (v.config.functionalWindow.set()) functionalDisplay_ = v.config.functionalWindow;
+      if (v.settings.window.set()) mprWindow_ = v.settings.window;
       mprColors_ = v.settings.imageColors;
       segmentOutlines_ = v.settings.segmentationOutlines;
       break;
@@ -266,8 +263,8 @@ void ViewerState::drag(int pane, double dx, double dy, MouseButton button, bool 
   }
   if (button == MouseButton::Right || ctrl) {  // window / level, as workstation viewers do
     const auto [lo, hi] = scene_.valueRange;
-    mprWindow_ = std::max(1e-3, mprWindow_ * std::exp(dx * 2.0));
-    mprLevel_ -= dy * (hi - lo) * 0.5;
+    mprWindow_.window = std::max(1e-3, mprWindow_.window * std::exp(dx * 2.0));
+    mprWindow_.level -= dy * (hi - lo) * 0.5;
     markMprDirty();
     if (render::showsAnatomyOnCutFace(view3d_)) markDirty(k3d);  // its cut face follows
   }
@@ -457,9 +454,8 @@ void ViewerState::setPreset(const std::string& name) {
   markAllDirty();
 }
 
-void ViewerState::setMprWindow(double window, double level) {
+void ViewerState::setMprWindow(const WindowLevel& window) {
   mprWindow_ = window;
-  mprLevel_ = level;
   markAllDirty();
 }
 
@@ -533,22 +529,20 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
     s.imageColors = functionalColors_;
     s.overlay.mpr = false;
     if (functional_)
-      s.window = fhi - flo, s.level = 0.5 * (flo + fhi);
+      s.window = {fhi - flo, 0.5 * (flo + fhi)};
     else
-      s.window = mprWindow_, s.level = mprLevel_;
+      s.window = mprWindow_;
   } else if (pane == k3d) {
     s = view3d_;
     // The cut face shows the anatomy as the MPR panes do, under their window.
-    if (render::showsAnatomyOnCutFace(s)) s.window = mprWindow_, s.level = mprLevel_;
+    if (render::showsAnatomyOnCutFace(s)) s.window = mprWindow_;
   } else {
     s.mode = RenderMode::Mpr;
     s.camera.view = mprViewIn(layout, pane);
     s.window = mprWindow_;
-    s.level = mprLevel_;
     s.overlay.opacity = view3d_.overlay.opacity;
     s.overlay.threshold = view3d_.overlay.threshold;
-    s.functionalLow = view3d_.functionalLow;
-    s.functionalHigh = view3d_.functionalHigh;
+    s.functionalWindow = view3d_.functionalWindow;
     s.functionalClasses = view3d_.functionalClasses;
     s.imageColors = mprColors_;
     s.overlayColors = view3d_.overlayColors;
@@ -568,8 +562,7 @@ render::RenderSettings ViewerState::settingsIn(config::ViewerLayout layout, int 
       s.overlayColors = functionalColors_;
       s.overlay.opacity = 1.0f;
       s.overlay.threshold = -1.0f;
-      s.functionalLow = flo;
-      s.functionalHigh = fhi;
+      s.functionalWindow = {flo, fhi};
     } else if (petCt && pane == kCoronal) {
       s.imageColors = functionalColors_;  // the one volume in the functional colour map
     }
@@ -586,7 +579,7 @@ std::string ViewerState::caption(int pane, const render::RenderSettings& s) cons
   const auto [lo, hi] = scene_.valueRange;
   mvw::study::PlannedView shown{viewConfigOf(pane, layout_), s,
                                 pane == k3d && !petCtLayout() ? presetName_ : ""};
-  std::string text = mvw::study::viewCaption(shown, windowOrFullRange(s.window, s.level, lo, hi));
+  std::string text = mvw::study::viewCaption(shown, windowOrFullRange(s.window, lo, hi));
   // A PET without SUV says so, with why (study::noSuvNote), on every pane that shows it.
   const bool showsFunctional = render::showsFunctional(s, functional_ != nullptr);
   for (const Volume* v : {&anatomical_, showsFunctional ? functional_ : nullptr})
@@ -664,9 +657,8 @@ config::ViewConfig ViewerState::viewConfigOf(int pane, config::ViewerLayout layo
       pane == k3d && !petCt ? presetName_ : "");
   // Glyphs shown over the functional volume's full range (G on a view without a window): saved
   // as that range, or `mvw render` would give the glyph view its default window instead.
-  if (pane == k3d && v.glyphs && !v.functionalWindow && v.functionalClasses == 0)
-    v.functionalWindow =
-        std::array<double, 2>{scene_.functionalRange.first, scene_.functionalRange.second};
+  if (pane == k3d && v.glyphs && !v.functionalWindow.set() && v.functionalClasses == 0)
+    v.functionalWindow = {scene_.functionalRange.first, scene_.functionalRange.second};
   if (pane != k3d)  // axial, coronal, sagittal: the planes' own names
     v.view = s.camera.view == StandardView::Inferior   ? config::ViewName::Axial
              : s.camera.view == StandardView::Anterior ? config::ViewName::Coronal

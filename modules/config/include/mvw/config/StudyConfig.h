@@ -27,8 +27,11 @@
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/GradientOpacity.h"
+#include "mvw/core/Orbit.h"
 #include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
+#include "mvw/core/WindowLevel.h"
 
 namespace mvw::config {
 
@@ -90,10 +93,10 @@ struct LabelChoice {
   LabelGlyphKind kind = LabelGlyphKind::Bumps;
   bool operator==(const LabelChoice&) const = default;
 };
-// A rotating view (a PET reader's rotating MIP): the camera turns about the patient's long axis
-// (S) in `orbit` steps, a full turn (spin) or back and forth over +-orbit_range degrees (rock).
-enum class OrbitMode { Spin, Rock };
-inline constexpr int kMaxOrbitFrames = 720;
+// A rotating view (mvw/core/Orbit.h).
+using mvw::kMaxOrbitFrames;
+using mvw::Orbit;
+using mvw::OrbitMode;
 
 // One rendered view ("render": {"views": [...]}). Every default below is the one default of
 // its key: the parser starts from a default-constructed ViewConfig.
@@ -113,8 +116,8 @@ struct ViewConfig {
   // Not a key: the shape (width / height) the zoom was chosen for when a command-line --size
   // gave the image another (0: width / height); see render::CameraSettings::fitAspect.
   double fitAspect = 0.0;
-  std::string preset;                               // transfer function preset; "" = by modality
-  std::array<double, 2> gradientOpacity{0.0, 0.0};  // 2D TF: opacity x smoothstep(g0, g1, |grad|)
+  std::string preset;               // transfer function preset; "" = by modality
+  GradientOpacity gradientOpacity;  // 2D TF (mvw/core/GradientOpacity.h)
   // Volumetric normal glyphs (composite, isosurface): {"method": "sized" | "simple",
   // "convexity": "convex" | "concave" | "both", "placement": "blue-noise" | "paper",
   // "spacing_mm" (blue-noise: glyph centre spacing; default: the functional voxel, within what
@@ -138,8 +141,8 @@ struct ViewConfig {
   int glyphCount = 16, glyphMapSize = 128;
   double glyphMapDiameter = 32.0;
   unsigned glyphSeed = 1;
-  std::optional<std::array<double, 2>> functionalWindow;  // values -> 0..1 (overlay, glyph beta)
-  int functionalClasses = 0;  // labels: K > 0 gives label L the glyph size (L mod K + 1) / K
+  ValueWindow functionalWindow;  // values -> 0..1 (overlay, glyph beta); unset: by kind
+  int functionalClasses = 0;     // labels: K > 0 gives label L the glyph size (L mod K + 1) / K
   // glyphs.labels {"Hippocampus_L": "bumps", "38": "dimples", ...}: only these labels get
   // glyphs ("bumps" | "dimples" | "none"); names come from the atlas's label table.
   std::vector<LabelChoice> glyphLabels;
@@ -147,7 +150,7 @@ struct ViewConfig {
   // (label L with L mod K = c) takes kind c of this list (the last one past its end), as well
   // as its size; without, the attribute window is cut into as many equal ranges as kinds.
   std::vector<GlyphKind> glyphClassKinds;
-  std::optional<double> window, level;
+  WindowLevel window;  // "window" and "level"; unset: by the modality (study::modalityDefaults)
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.
   DepthCue depthCue;
@@ -179,13 +182,9 @@ struct ViewConfig {
   // ("overlay_colormap").
   ColorMap colormap = ColorMap::Grey;
   ColorMap overlayColormap = ColorMap::HotMetal;
-  // Rotating view: 0 = a still; N in 2..kMaxOrbitFrames frames from the view's azimuth on,
-  // spin: azimuth + 360 k / N; rock: azimuth + orbit_range sin(2 pi k / N). Written as
-  // <name>/frame-000.png ... and <name>.mp4 at orbit_fps frames per second.
-  int orbit = 0;
-  OrbitMode orbitMode = OrbitMode::Spin;
-  double orbitRangeDeg = 30.0;
-  double orbitFps = 10.0;
+  // Rotating view (mvw/core/Orbit.h), from the view's azimuth on: written as
+  // <name>/frame-000.png ... and <name>.mp4 at its frames per second. Off: a still.
+  Orbit orbit;
 };
 
 // What a reader measured in `mvw view` ("measurements": {...}), saved with its state and drawn
@@ -279,8 +278,6 @@ std::string toString(ViewerLayout layout);
 std::optional<ViewerLayout> parseViewerLayout(const std::string& name);
 std::string viewerLayoutList();  // "standard, pet-ct, ..." for messages
 std::optional<OrbitMode> parseOrbitMode(const std::string& name);
-// The azimuths (degrees) of an orbiting view's frames; empty for a still.
-std::vector<double> orbitAzimuths(const ViewConfig& view);
 std::optional<ViewName> parseViewName(const std::string& name);
 std::optional<Sampling> parseSampling(const std::string& name);
 // "view names: a, b, c" lists for messages.

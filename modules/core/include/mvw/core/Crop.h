@@ -3,6 +3,9 @@
 // config's view (config::ViewConfig: "crop_min", "crop_max", "crop_mm") and the renderer
 // (render::RenderSettings; render::PatientCrop turns it into texture and world boxes). Its keys,
 // ranges and defaults: the config's crop table (modules/config, docs/config-reference.md).
+// What the cut face shows (CutFace) is not part of it: its default differs on purpose, anatomy
+// in the config (what a reader gets, under the window the plan gives) and plain in the renderer
+// (a look that needs no window, which settings made by hand keep).
 #include <optional>
 
 #include <glm/vec3.hpp>

@@ -15,8 +15,10 @@
 #include "mvw/core/Crop.h"
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/GradientOpacity.h"
 #include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
+#include "mvw/core/WindowLevel.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/GlyphMap.h"
 #include "mvw/render/TransferFunction.h"
@@ -50,13 +52,11 @@ struct RenderSettings {
   glm::ivec2 size{512, 512};
   CameraSettings camera;
   TransferFunction transfer = transferPreset("ct-bone");
-  // 2D transfer function: opacity scaled by smoothstep(g0, g1, |gradient|) (unit/mm), which
-  // keeps boundaries and hides homogeneous regions (Levoy). g1 <= 0: 1D only.
-  double gradientOpacityLow = 0.0, gradientOpacityHigh = 0.0;
-  // Projections, MPR and the anatomy on a cut face (cutFace): window width; <= 0 means the
-  // full value range.
-  double window = 0.0;
-  double level = 0.0;  // window centre
+  // 2D transfer function (mvw/core/GradientOpacity.h); off: 1D only.
+  GradientOpacity gradientOpacity;
+  // Projections, MPR and the anatomy on a cut face (cutFace): width and centre; unset, the
+  // full value range (mvw/core/WindowLevel.h).
+  WindowLevel window;
   double iso = 300.0;
   // MIP and the shell modes with depth cueing (mvw/core/DepthCue.h).
   DepthCue depthCue;
@@ -112,8 +112,8 @@ struct RenderSettings {
   // (shaders/common/glyphs.glsl: glyphScreenNormal). The glyphs keep to the image, not to the
   // anatomy, when the view turns.
   bool glyphOnSurface = false;
-  // Functional values mapped to 0..1 (colour map, glyph beta); lo >= hi: the value range.
-  double functionalLow = 0.0, functionalHigh = 0.0;
+  // Functional values mapped to 0..1 (colour map, glyph beta); unset: the value range.
+  ValueWindow functionalWindow;
   // Nominal attribute (labels), chosen by the reader (issue 15 item 4): when not empty only
   // these labels get glyphs, each a full-size bump or dimple (the "both" shading of
   // glyphs.glsl); other labels and 0 get none.

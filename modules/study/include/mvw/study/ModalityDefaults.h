@@ -2,8 +2,6 @@
 // What a view shows before the reader chooses: the transfer preset, isosurface value and MPR
 // window that suit the anatomy's modality. The one home of the rule `mvw render` (views
 // without a preset) and `mvw view` (its panes when the study says nothing) share.
-#include <array>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,11 +62,10 @@ inline constexpr double kStatisticThreshold = 2.3;  // z (or t): the usual clust
 //   PET or SPECT in other units (Bq/ml, counts, none): from 41 % of the maximum to the maximum;
 //   a statistic map (unit z or t: the NIfTI intent code) that is not a label map: from 2.3 to
 //     the maximum (none when nothing exceeds 2.3);
-//   otherwise (fMRI signal, perfusion, dose, labels, other): none, the full value range.
+//   otherwise (fMRI signal, perfusion, dose, labels, other): none (unset), the full value range.
 // range: the functional volume's value range (min, max).
-std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKind kind,
-                                                            const Volume& functional,
-                                                            std::pair<double, double> range);
+ValueWindow defaultAttributeWindow(config::FunctionalKind kind, const Volume& functional,
+                                   std::pair<double, double> range);
 
 // The functional volume's window where it is shown alone (the viewer's PET/CT functional pane
 // and rotating MIP) and the study names none: PET or SPECT in SUV from 0 to 5, or to 10 where
@@ -77,7 +74,7 @@ std::optional<std::array<double, 2>> defaultAttributeWindow(config::FunctionalKi
 // the voxels above the
 // background (the minimum), so that a few hot voxels do not set the scale. The full range where
 // that leaves nothing. range: the functional volume's value range (min, max).
-std::array<double, 2> defaultFunctionalDisplayWindow(const Volume& functional,
-                                                     std::pair<double, double> range);
+ValueWindow defaultFunctionalDisplayWindow(const Volume& functional,
+                                           std::pair<double, double> range);
 
 }  // namespace mvw::study

@@ -14,8 +14,7 @@ double glyphSpacingMm(const render::RenderSettings& v);
 void setGlyphSpacingMm(render::RenderSettings& v, double spacingMm);
 
 // The functional attribute's window shown: the user's where set (high above low), else `range`.
-std::pair<double, double> functionalWindow(const render::RenderSettings& v,
-                                           std::pair<double, double> range);
+ValueWindow functionalWindow(const render::RenderSettings& v, std::pair<double, double> range);
 // The user's window, kept a millionth of `range` wide at least.
 void setFunctionalWindow(render::RenderSettings& v, double low, double high,
                          std::pair<double, double> range);

@@ -7,6 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include "mvw/core/Orbit.h"
+
 namespace mvw::viewer {
 
 enum class Orbit { Off, Spin, Rock };
@@ -21,12 +23,14 @@ class ViewerOrbit {
   // Starts `orbit` from `azimuthDeg` (the angle shown now), from its first step; Off stops it
   // (the camera stays at the angle shown, so a reader can stop where a finding shows best).
   void start(Orbit orbit, double azimuthDeg);
-  Orbit mode() const { return mode_; }
+  Orbit mode() const;
+  // The rotation it runs (mvw/core/Orbit.h, what a view's "orbit" keys say): off while off.
+  const mvw::Orbit& turn() const { return turn_; }
   // The next frame's azimuth in degrees; nothing while off.
   std::optional<double> advance();
 
  private:
-  Orbit mode_ = Orbit::Off;
+  mvw::Orbit turn_;
   std::vector<double> azimuths_;  // one turn or swing, from the starting azimuth
   std::size_t step_ = 0;
 };

@@ -23,6 +23,7 @@
 #include "mvw/core/ColorMap.h"
 #include "mvw/core/Image.h"
 #include "mvw/core/Volume.h"
+#include "mvw/core/WindowLevel.h"
 #include "mvw/render/Annotations.h"
 #include "mvw/render/Camera.h"
 #include "mvw/render/VolumeRenderer.h"
@@ -138,7 +139,7 @@ class ViewerState : public PaneGeometry {
   const glm::dvec3& mprPan() const { return mprPan_; }  // world mm the MPR pictures are moved
   void setMode(render::RenderMode mode);                // one of modes3d()
   void setPreset(const std::string& name);
-  void setMprWindow(double window, double level);
+  void setMprWindow(const WindowLevel& window);
   // Colour maps (grey for the images and hot metal for the overlay are the defaults); the 3D
   // pane's shows in MIP, MinIP and average.
   void setColormap(ColorTarget target, ColorMap map);
@@ -202,12 +203,11 @@ class ViewerState : public PaneGeometry {
   render::RenderSettings& view3d() { return view3d_; }  // edits: markDirty the panes
   const render::RenderSettings& view3d() const { return view3d_; }
   const std::string& presetName() const { return presetName_; }
-  double mprWindow() const { return mprWindow_; }
-  double mprLevel() const { return mprLevel_; }
+  const WindowLevel& mprWindow() const { return mprWindow_; }
   // The PET/CT layout's functional pane and rotating MIP: the functional volume alone, in its
   // own window (not the glyphs' or the overlay's): the study's first MPR view's
   // functional_window, else study::defaultFunctionalDisplayWindow from the data.
-  std::pair<double, double> functionalDisplayWindow() const { return functionalDisplay_; }
+  const ValueWindow& functionalDisplayWindow() const { return functionalDisplay_; }
   void setFunctionalDisplayWindow(double low, double high);
   int maximised() const { return maximised_; }  // -1: all four panes
   // The panes' geometry (PaneGeometry): the last frames' cameras, the crosshair, and the world
@@ -274,8 +274,8 @@ class ViewerState : public PaneGeometry {
   std::array<PaneState, kPaneCount> panes_;
   render::RenderSettings view3d_;
   std::string presetName_;
-  double mprWindow_ = 0, mprLevel_ = 0;
-  std::pair<double, double> functionalDisplay_{0.0, 1.0};
+  WindowLevel mprWindow_;
+  ValueWindow functionalDisplay_{0.0, 1.0};
   double mprZoom_ = 1.0;
   glm::dvec3 mprPan_{0.0};
   std::map<int, std::string> labelNames_;
