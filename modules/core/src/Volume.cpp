@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "mvw/core/Check.h"
 
@@ -69,6 +70,16 @@ std::pair<double, double> Volume::valueRange() const {
     using T = decltype(t);
     const T* p = reinterpret_cast<const T*>(bytes_.data());
     const std::size_t n = valueCount();
+    if constexpr (std::is_integral_v<T>) {
+      // No NaN or infinity: the extremes in the values' own type, a loop the compiler
+      // vectorises (the double loop below took half a second on a 512 x 512 x 432 CT).
+      T lo = p[0], hi = p[0];
+      for (std::size_t i = 1; i < n; ++i) {
+        lo = p[i] < lo ? p[i] : lo;
+        hi = p[i] > hi ? p[i] : hi;
+      }
+      return std::pair<double, double>{static_cast<double>(lo), static_cast<double>(hi)};
+    }
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
     for (std::size_t i = 0; i < n; ++i) {
