@@ -179,8 +179,6 @@ void BlockGrid::setFunctional(const Volume& functional,
   checkGl("uploading the fused block grid");
 }
 
-namespace {
-
 // The Chebyshev (L-infinity, chessboard) distance of every block to the nearest 0 in `d`
 // (0 visible, 255 not), at most 255, by two raster passes over the 26 neighbours (Rosenfeld
 // and Pfaltz's sequential transform, exact for this metric): each block takes the least of
@@ -219,8 +217,6 @@ void chessboardDistance(std::vector<std::uint8_t>& d, glm::ivec3 n) {
       std::copy_n(&p[(k + 1) * sz + (j + 1) * sy + 1], n.x,
                   &d[(static_cast<std::size_t>(k) * n.y + j) * n.x]);
 }
-
-}  // namespace
 
 void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, double hi,
                                  bool skipEmpty) {
