@@ -1,6 +1,7 @@
 // Volume (core), which every reader, renderer and statistic holds: the geometry read back from
 // worldFromIndex, values and the value range with NaN, conversion with slope and intercept.
 #include <limits>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -35,6 +36,24 @@ TEST(Volume, ValuesAndRangeIgnoreNaN) {
   EXPECT_EQ(lo, -4.5);
   EXPECT_EQ(hi, 12.0);
   EXPECT_EQ(v.value(2, 1, 1), 12.0);
+}
+
+// The range in the values' own type: integers (the extremes anywhere, the first voxel or the
+// last) and float, whose infinities are left out like NaN.
+TEST(Volume, RangeInEveryValueType) {
+  Volume i16({4, 3, 2}, 1, ScalarType::Int16, glm::dmat4(1.0));
+  i16.setValue(3, 2, 1, 0, -32768);
+  i16.setValue(0, 0, 0, 0, 32767);
+  EXPECT_EQ(i16.valueRange(), (std::pair<double, double>{-32768.0, 32767.0}));
+  Volume u8({5, 1, 1}, 2, ScalarType::UInt8, glm::dmat4(1.0));
+  for (int i = 0; i < 5; ++i) u8.setValue(i, 0, 0, 0, 7);
+  u8.setValue(4, 0, 0, 1, 200);  // the second component counts too
+  EXPECT_EQ(u8.valueRange(), (std::pair<double, double>{0.0, 200.0}));
+  Volume f({3, 1, 1}, 1, ScalarType::Float32, glm::dmat4(1.0));
+  f.setValue(0, 0, 0, 0, std::numeric_limits<double>::infinity());
+  f.setValue(1, 0, 0, 0, -0.25);
+  f.setValue(2, 0, 0, 0, -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(f.valueRange(), (std::pair<double, double>{-0.25, -0.25}));
 }
 
 TEST(Volume, ConvertedAppliesSlopeAndIntercept) {

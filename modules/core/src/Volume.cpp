@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "mvw/core/Check.h"
 
@@ -69,16 +70,28 @@ std::pair<double, double> Volume::valueRange() const {
     using T = decltype(t);
     const T* p = reinterpret_cast<const T*>(bytes_.data());
     const std::size_t n = valueCount();
-    double lo = std::numeric_limits<double>::infinity();
-    double hi = -lo;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double v = static_cast<double>(p[i]);
-      if (std::isinf(v)) continue;  // the range is always finite (readers clamp +-inf)
-      if (v < lo) lo = v;           // NaN compares false both ways and is skipped
-      if (v > hi) hi = v;
+    if constexpr (std::is_integral_v<T>) {
+      // No NaN or infinity: the extremes in the values' own type, a loop the compiler
+      // vectorises (every voxel converted to double took half a second on a 512 x 512 x 432 CT).
+      T lo = p[0], hi = p[0];
+      for (std::size_t i = 1; i < n; ++i) {
+        lo = p[i] < lo ? p[i] : lo;
+        hi = p[i] > hi ? p[i] : hi;
+      }
+      return std::pair<double, double>{static_cast<double>(lo), static_cast<double>(hi)};
+    } else {
+      // In the values' own type too (widening to double keeps every comparison).
+      T lo = std::numeric_limits<T>::infinity();
+      T hi = -lo;
+      for (std::size_t i = 0; i < n; ++i) {
+        const T v = p[i];
+        if (std::isinf(v)) continue;  // the range is always finite (readers clamp +-inf)
+        if (v < lo) lo = v;           // NaN compares false both ways and is skipped
+        if (v > hi) hi = v;
+      }
+      if (lo > hi) return std::pair<double, double>{0.0, 0.0};  // all NaN
+      return std::pair<double, double>{static_cast<double>(lo), static_cast<double>(hi)};
     }
-    if (lo > hi) return std::pair<double, double>{0.0, 0.0};  // all NaN
-    return std::pair<double, double>{lo, hi};
   });
 }
 

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <thread>
+#include <type_traits>
 
 #include <glm/common.hpp>
 #include <glm/mat3x3.hpp>
@@ -24,6 +26,67 @@ void onTwoThreads(int slices, const Work& work) {
   other.join();
 }
 
+// Component 0's min/max over each block of the block slices bk0..bk1-1 and its one-voxel
+// apron, into out (x fastest): reduced along k first, a whole slice at a time, then along j,
+// then along i, in the voxels' own type (each voxel read about 1.3 times, in loops the compiler
+// vectorises; a min or max does not depend on the order, and converting to float keeps the
+// order). `Stride` 1: one component (a compile-time stride), 0: `nc` components. NaN fails
+// both comparisons, so it is left out; a block of NaN alone keeps +3.4e38 / -3.4e38.
+template <typename T, int Stride>
+void blockSlices(const T* p, glm::ivec3 dims, glm::ivec3 count, int bk0, int bk1, glm::vec2* out,
+                 int nc = 1) {
+  constexpr int kB = BlockGrid::kBlockVoxels;
+  const std::size_t step = Stride ? Stride : nc;
+  T top, bottom;  // what no voxel falls short of / exceeds
+  if constexpr (std::is_floating_point_v<T>) {
+    top = static_cast<T>(3.4e38f);
+    bottom = static_cast<T>(-3.4e38f);
+  } else {
+    top = std::numeric_limits<T>::max();
+    bottom = std::numeric_limits<T>::lowest();
+  }
+  const std::size_t slice = static_cast<std::size_t>(dims.x) * dims.y;
+  std::vector<T> kMin(slice), kMax(slice), jMin(dims.x), jMax(dims.x);
+  for (int bk = bk0; bk < bk1; ++bk) {
+    std::fill(kMin.begin(), kMin.end(), top);
+    std::fill(kMax.begin(), kMax.end(), bottom);
+    const int k0 = std::max(bk * kB - 1, 0), k1 = std::min(bk * kB + kB, dims.z - 1);
+    for (int k = k0; k <= k1; ++k) {
+      const T* s = p + static_cast<std::size_t>(k) * slice * step;
+      T* mn = kMin.data();
+      T* mx = kMax.data();
+      for (std::size_t v = 0; v < slice; ++v) {
+        const T x = s[v * step];
+        mn[v] = x < mn[v] ? x : mn[v];
+        mx[v] = x > mx[v] ? x : mx[v];
+      }
+    }
+    for (int bj = 0; bj < count.y; ++bj) {
+      std::fill(jMin.begin(), jMin.end(), top);
+      std::fill(jMax.begin(), jMax.end(), bottom);
+      const int j0 = std::max(bj * kB - 1, 0), j1 = std::min(bj * kB + kB, dims.y - 1);
+      for (int j = j0; j <= j1; ++j) {
+        const T* rmn = kMin.data() + static_cast<std::size_t>(j) * dims.x;
+        const T* rmx = kMax.data() + static_cast<std::size_t>(j) * dims.x;
+        for (int i = 0; i < dims.x; ++i) {
+          jMin[i] = rmn[i] < jMin[i] ? rmn[i] : jMin[i];
+          jMax[i] = rmx[i] > jMax[i] ? rmx[i] : jMax[i];
+        }
+      }
+      glm::vec2* row = out + (static_cast<std::size_t>(bk) * count.y + bj) * count.x;
+      for (int bi = 0; bi < count.x; ++bi) {
+        const int i0 = std::max(bi * kB - 1, 0), i1 = std::min(bi * kB + kB, dims.x - 1);
+        T mn = top, mx = bottom;
+        for (int i = i0; i <= i1; ++i) {
+          mn = jMin[i] < mn ? jMin[i] : mn;
+          mx = jMax[i] > mx ? jMax[i] : mx;
+        }
+        row[bi] = glm::vec2(static_cast<float>(mn), static_cast<float>(mx));
+      }
+    }
+  }
+}
+
 // A 3D texture of one texel per block, read with texelFetch (nearest).
 void uploadBlocks(GLuint texture, glm::ivec3 count, GLint internalFormat, GLenum format,
                   GLenum type, const void* data) {
@@ -42,34 +105,17 @@ BlockGrid::BlockGrid(const Volume& volume) {
   const int nc = volume.components();
   count_ = (dims + kB - 1) / kB;
   // Min/max per block, widened by one voxel: trilinear samples near a block's face read the
-  // neighbour's voxels too. Block by block over its voxels and the apron (about 1.4 reads a
-  // voxel), on two threads split along the block rows; NaN fails both comparisons.
-  minMax_.assign(static_cast<std::size_t>(count_.x) * count_.y * count_.z,
-                 glm::vec2(3.4e38f, -3.4e38f));
+  // neighbour's voxels too. NaN fails both comparisons.
+  minMax_.resize(static_cast<std::size_t>(count_.x) * count_.y * count_.z);
   dispatchScalar(volume.scalarType(), [&](auto t) {
     using T = decltype(t);
     const T* p = reinterpret_cast<const T*>(volume.data());
-    auto work = [&](int bk0, int bk1) {
-      for (int bk = bk0; bk < bk1; ++bk)
-        for (int bj = 0; bj < count_.y; ++bj)
-          for (int bi = 0; bi < count_.x; ++bi) {
-            const glm::ivec3 b(bi, bj, bk);
-            const glm::ivec3 lo = glm::max(b * kB - 1, glm::ivec3(0));
-            const glm::ivec3 hi = glm::min(b * kB + kB, dims - 1);
-            float mn = 3.4e38f, mx = -3.4e38f;
-            for (int k = lo.z; k <= hi.z; ++k)
-              for (int j = lo.y; j <= hi.y; ++j) {
-                const T* row = p + ((static_cast<std::size_t>(k) * dims.y + j) * dims.x) * nc;
-                for (int i = lo.x; i <= hi.x; ++i) {
-                  const auto v = static_cast<float>(row[static_cast<std::size_t>(i) * nc]);
-                  mn = v < mn ? v : mn;
-                  mx = v > mx ? v : mx;
-                }
-              }
-            minMax_[(static_cast<std::size_t>(bk) * count_.y + bj) * count_.x + bi] = {mn, mx};
-          }
-    };
-    onTwoThreads(count_.z, work);
+    onTwoThreads(count_.z, [&](int bk0, int bk1) {
+      if (nc == 1)
+        blockSlices<T, 1>(p, dims, count_, bk0, bk1, minMax_.data());
+      else
+        blockSlices<T, 0>(p, dims, count_, bk0, bk1, minMax_.data(), nc);
+    });
     return 0;
   });
   visibility_ = makeTexture();
@@ -133,37 +179,44 @@ void BlockGrid::setFunctional(const Volume& functional,
   checkGl("uploading the fused block grid");
 }
 
-namespace {
-
-// One pass of the Chebyshev (L-infinity) distance transform along one axis of the block grid:
-// out(x) = min over x' of max(|x - x'|, in(x')), scanning outward from x until no nearer x'
-// can win. Three passes, one per axis, give the distance to the nearest visible block.
-void chebyshevPass(std::vector<std::uint8_t>& d, glm::ivec3 count, int axis) {
-  const glm::ivec3 stride(1, count.x, count.x * count.y);
-  const int n = count[axis];
-  glm::ivec3 lines = count;
-  lines[axis] = 1;
-  std::vector<std::uint8_t> in(static_cast<std::size_t>(n));
-  for (int c = 0; c < lines.z; ++c)
-    for (int b = 0; b < lines.y; ++b)
-      for (int a = 0; a < lines.x; ++a) {
-        const std::size_t base = static_cast<std::size_t>(a) * stride.x +
-                                 static_cast<std::size_t>(b) * stride.y +
-                                 static_cast<std::size_t>(c) * stride.z;
-        for (int x = 0; x < n; ++x) in[x] = d[base + static_cast<std::size_t>(x) * stride[axis]];
-        for (int x = 0; x < n; ++x) {
-          int best = in[x];
-          for (int r = 1; r < best; ++r) {
-            if (x - r >= 0) best = std::min(best, std::max(r, int(in[x - r])));
-            if (x + r < n) best = std::min(best, std::max(r, int(in[x + r])));
-            if (x - r < 0 && x + r >= n) break;
-          }
-          d[base + static_cast<std::size_t>(x) * stride[axis]] = static_cast<std::uint8_t>(best);
-        }
-      }
+// The Chebyshev (L-infinity, chessboard) distance of every block to the nearest 0 in `d`
+// (0 visible, 255 not), at most 255, by two raster passes over the 26 neighbours (Rosenfeld
+// and Pfaltz's sequential transform, exact for this metric): each block takes the least of
+// its 13 neighbours before it in the pass's order, plus one. On a grid padded by one block of
+// 255, so no neighbour needs a bounds test. The same distances as three separable passes
+// along the axes, ten times faster (about 0.2 s on the 512 x 512 x 432 CT's 86 x 86 x 72
+// blocks before).
+void chessboardDistance(std::vector<std::uint8_t>& d, glm::ivec3 n) {
+  const glm::ivec3 m = n + 2;
+  const std::ptrdiff_t sy = m.x, sz = static_cast<std::ptrdiff_t>(m.x) * m.y;
+  std::vector<std::uint8_t> p(static_cast<std::size_t>(m.x) * m.y * m.z, 255);
+  for (int k = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      std::copy_n(&d[(static_cast<std::size_t>(k) * n.y + j) * n.x], n.x,
+                  &p[(k + 1) * sz + (j + 1) * sy + 1]);
+  std::ptrdiff_t before[13];  // the neighbours before a block in raster order
+  int c = 0;
+  for (int dk = -1; dk <= 0; ++dk)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di)
+        if (dk < 0 || dj < 0 || (dj == 0 && di < 0)) before[c++] = di + dj * sy + dk * sz;
+  auto relax = [&](std::uint8_t* at, std::ptrdiff_t sign) {
+    int best = *at;
+    if (best == 0) return;
+    for (const std::ptrdiff_t o : before) best = std::min(best, at[sign * o] + 1);
+    *at = static_cast<std::uint8_t>(std::min(best, 255));
+  };
+  for (int k = 1; k <= n.z; ++k)
+    for (int j = 1; j <= n.y; ++j)
+      for (int i = 1; i <= n.x; ++i) relax(&p[k * sz + j * sy + i], 1);
+  for (int k = n.z; k >= 1; --k)
+    for (int j = n.y; j >= 1; --j)
+      for (int i = n.x; i >= 1; --i) relax(&p[k * sz + j * sy + i], -1);
+  for (int k = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      std::copy_n(&p[(k + 1) * sz + (j + 1) * sy + 1], n.x,
+                  &d[(static_cast<std::size_t>(k) * n.y + j) * n.x]);
 }
-
-}  // namespace
 
 void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, double hi,
                                  bool skipEmpty) {
@@ -180,16 +233,20 @@ void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, d
     // looks a value up: TransferTable::entryOf), widened by a hundredth of an entry for the
     // shader's float rounding.
     const int n = static_cast<int>(lut.size());
+    // shown[e]: how many of the entries before e have some opacity (a block asks about a
+    // range of entries: two lookups, not a walk over them).
+    std::vector<int> shown(static_cast<std::size_t>(n) + 1, 0);
+    for (int e = 0; e < n; ++e) shown[e + 1] = shown[e] + (lut[e].a > 0.0f ? 1 : 0);
     for (std::size_t b = 0; b < distance.size(); ++b) {
       const auto e0 =
           static_cast<int>(std::floor(TransferTable::entryOf(minMax_[b].x, lo, hi) - 0.01));
       const auto e1 =
           static_cast<int>(std::ceil(TransferTable::entryOf(minMax_[b].y, lo, hi) + 0.01));
-      bool any = false;
-      for (int e = std::max(0, e0); e <= std::min(n - 1, e1) && !any; ++e) any = lut[e].a > 0.0f;
+      const int first = std::max(0, e0), last = std::min(n - 1, e1);
+      const bool any = first <= last && shown[last + 1] > shown[first];
       distance[b] = any ? 0 : 255;
     }
-    for (int axis = 0; axis < 3; ++axis) chebyshevPass(distance, count_, axis);
+    chessboardDistance(distance, count_);
   }
   // The visible blocks' box, as the shader's blockOf maps texture coordinates to blocks (the
   // grid's first and last blocks reach on to the box's faces).

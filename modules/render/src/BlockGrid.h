@@ -4,6 +4,7 @@
 // step over blocks that would add nothing: over every block within the distance to the
 // nearest visible one at once. 6 voxels: on the Cranium CT composite took 62 ms/frame with
 // 4^3 and 6^3 blocks, 67 with 8^3, 145 with 2^3 (docs/performance-log.md#block-size).
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -16,6 +17,11 @@
 #include "mvw/core/Volume.h"
 
 namespace mvw::render::detail {
+
+// The Chebyshev (chessboard) distance in blocks of every block of a grid of `count` blocks (x
+// fastest) to the nearest 0 in `d` (0: visible, 255: not), at most 255, in place:
+// BlockGrid::updateVisibility's map, here for its test.
+void chessboardDistance(std::vector<std::uint8_t>& d, glm::ivec3 count);
 
 class BlockGrid {
  public:
