@@ -65,7 +65,12 @@ vec3 glyphKindShape(int k, vec3 tv, float r, vec3 frame, vec3 nO) {
     if (abs(q) >= 1.0) return nO;
     return sqrt(1.0 - q * q) * frame + q * radial;
   }
-  if (k == 4) return 0.6 * frame + 0.8 * radial;  // cones: a constant 53 degree tilt
+  if (k == 4) {
+    // Cones: a peak with concave flanks, steep at the tip (72 degrees) and easing to 30 at
+    // the foot, so that even under a headlight it shades from a dark tip to a light rim.
+    float tilt = mix(1.309, 0.3491, r);
+    return cos(tilt) * frame + sin(tilt) * radial;
+  }
   // Ridges and crosses: bars (half-cylinders) across the disc, one along the patient's S axis
   // (L where the surface faces within 60 degrees of S), crosses with a second at right angles.
   vec3 e = vec3(0.0, 0.0, 1.0) - frame.z * frame;
@@ -123,6 +128,16 @@ uniform vec3 uGlyphScreenRight;      // world unit vectors of the image's x and 
 uniform vec3 uGlyphScreenUp;
 float gGlyphSurfaceValue = -1e30;  // set by isosurface.frag.glsl: its isovalue
 
+// The anatomy's value at `world` as the isosurface sees it: what a crop cuts away is air, so
+// that a crop's cut face is a surface like any other (issue 52: the lesions on an opaque cut).
+float glyphSurfaceSample(vec3 world) {
+  vec3 tex = toTexture(world);
+  if (any(lessThan(tex, uBoxMin)) || any(greaterThan(tex, uBoxMax)) ||
+      any(lessThan(world, uWorldBoxMin)) || any(greaterThan(world, uWorldBoxMax)))
+    return -1e30;
+  return sampleValue(tex);
+}
+
 vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   vec3 frame = cross(uGlyphScreenRight, uGlyphScreenUp);  // towards the viewer
   float R = uGlyphScreenRadiusPx;
@@ -149,8 +164,8 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   if (a <= 0.0) return nO;
   if (gGlyphSurfaceValue > -1e29) {
     // The centre's ray meets the surface within two glyph radii of the sample's depth.
-    float before = sampleValue(toTexture(foot + 2.0 * uGlyphRadiusMm * frame));
-    float beyond = sampleValue(toTexture(foot - 2.0 * uGlyphRadiusMm * frame));
+    float before = glyphSurfaceSample(foot + 2.0 * uGlyphRadiusMm * frame);
+    float beyond = glyphSurfaceSample(foot - 2.0 * uGlyphRadiusMm * frame);
     if (before >= gGlyphSurfaceValue || beyond < gGlyphSurfaceValue) return nO;
   }
   float kind = floor(a * 0.5);

@@ -197,12 +197,14 @@ struct ViewResult {
   int backgroundChanged = 0;
 };
 
-TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
+// The lesions shown by glyphs as `glyphed` sets them up (bumps of the 3D lattice by default),
+// with every requirement above; renders and maps of changes in the build folder's `folder`.
+void expectEveryLesionShown(const char* folder, void (*glyphed)(RenderSettings&)) {
   const World w = loadCt();
   const std::vector<Lesion> lesions = placeLesions(w);
   ASSERT_EQ(lesions.size(), 10u);
   const Volume pet = makePet(w.lo - 10.0, w.hi + 10.0, lesions);
-  const std::filesystem::path out = std::filesystem::path(MVW_TEST_OUTPUT_DIR) / "glyph-legibility";
+  const std::filesystem::path out = std::filesystem::path(MVW_TEST_OUTPUT_DIR) / folder;
   std::filesystem::create_directories(out);
   io::writeVolume(pet, out / "pet_lesions.nii.gz");
 
@@ -250,6 +252,7 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
     const Image plain = renderer.render(plainS).image;
     RenderSettings glyphS = v.s;
     glyphS.glyphs = true;
+    glyphed(glyphS);
     const Image glyphs = renderer.render(glyphS).image;
     io::writePng(plain, out / (v.name + "-plain.png"));
     io::writePng(glyphs, out / (v.name + "-glyphs.png"));
@@ -339,6 +342,22 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
   // Ordinal levels: lesions 0-2 are 15 mm at SUV 3.5, 5, 8 on the cut.
   EXPECT_LT(share(0, 0), share(0, 1));
   EXPECT_LT(share(0, 1), share(0, 2));
+}
+
+TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
+  expectEveryLesionShown("glyph-legibility", [](RenderSettings&) {});
+}
+
+// Issue 52: the same lesions and requirements with the glyphs on the visible surface
+// (RenderSettings::glyphOnSurface, "on_surface"). That placement lays out glyph kinds, so the
+// window is one class of bumps (glyphClassKinds: the attribute's place in the window still
+// sets each glyph's size); nothing hidden may be lost and nothing false drawn under it.
+TEST(GlyphLegibility, EveryLesionIsShownByGlyphsOnTheSurface) {
+  expectEveryLesionShown("glyph-legibility-on-surface", [](RenderSettings& s) {
+    s.glyphClassKinds = {GlyphKind::Bumps};
+    s.glyphOnSurface = true;
+    ASSERT_TRUE(usesGlyphKinds(s));
+  });
 }
 
 }  // namespace
