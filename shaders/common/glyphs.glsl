@@ -66,7 +66,7 @@ vec3 glyphKindShape(int k, vec3 tv, float r, vec3 frame, vec3 nO) {
     return sqrt(1.0 - q * q) * frame + q * radial;
   }
   if (k == 4) {
-    // Cones: a peak with concave flanks, steep at the tip (72 degrees) and easing to 30 at
+    // Cones: a peak with concave flanks, steep at the tip (75 degrees) and easing to 20 at
     // the foot, so that even under a headlight it shades from a dark tip to a light rim.
     float tilt = mix(1.309, 0.3491, r);
     return cos(tilt) * frame + sin(tilt) * radial;
@@ -128,11 +128,13 @@ uniform vec3 uGlyphScreenRight;      // world unit vectors of the image's x and 
 uniform vec3 uGlyphScreenUp;
 float gGlyphSurfaceValue = -1e30;  // set by isosurface.frag.glsl: its isovalue
 
-// The anatomy's value at `world` as the isosurface sees it: what a crop cuts away is air, so
-// that a crop's cut face is a surface like any other (issue 52: the lesions on an opaque cut).
+// The anatomy's value at `world` as the isosurface sees it: what a crop cuts away from the
+// volume is air, so that a crop's cut face is a surface like any other (issue 52: the lesions
+// on an opaque cut); beyond the volume's edge, the edge's value (the texture's clamp).
 float glyphSurfaceSample(vec3 world) {
   vec3 tex = toTexture(world);
-  if (any(lessThan(tex, uBoxMin)) || any(greaterThan(tex, uBoxMax)) ||
+  vec3 inVolume = clamp(tex, 0.0, 1.0);
+  if (any(lessThan(inVolume, uBoxMin)) || any(greaterThan(inVolume, uBoxMax)) ||
       any(lessThan(world, uWorldBoxMin)) || any(greaterThan(world, uWorldBoxMax)))
     return -1e30;
   return sampleValue(tex);
@@ -143,7 +145,7 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   float R = uGlyphScreenRadiusPx;
   float S = uGlyphScreenSpacingPx;
   float H = 0.8660254 * S;
-  vec2 q = gl_FragCoord.xy;
+  vec2 q = gl_FragCoord.xy - 0.5 * uViewport;  // a centre at the image's middle (a legend icon's)
   vec2 best = vec2(0.0);
   float bestD2 = 1e30;
   float row0 = floor(q.y / H);
