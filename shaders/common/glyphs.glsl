@@ -65,7 +65,12 @@ vec3 glyphKindShape(int k, vec3 tv, float r, vec3 frame, vec3 nO) {
     if (abs(q) >= 1.0) return nO;
     return sqrt(1.0 - q * q) * frame + q * radial;
   }
-  if (k == 4) return 0.6 * frame + 0.8 * radial;  // cones: a constant 53 degree tilt
+  if (k == 4) {
+    // Cones: a peak with concave flanks, steep at the tip (75 degrees) and easing to 20 at
+    // the foot, so that even under a headlight it shades from a dark tip to a light rim.
+    float tilt = mix(1.309, 0.3491, r);
+    return cos(tilt) * frame + sin(tilt) * radial;
+  }
   // Ridges and crosses: bars (half-cylinders) across the disc, one along the patient's S axis
   // (L where the surface faces within 60 degrees of S), crosses with a second at right angles.
   vec3 e = vec3(0.0, 0.0, 1.0) - frame.z * frame;
@@ -123,12 +128,24 @@ uniform vec3 uGlyphScreenRight;      // world unit vectors of the image's x and 
 uniform vec3 uGlyphScreenUp;
 float gGlyphSurfaceValue = -1e30;  // set by isosurface.frag.glsl: its isovalue
 
+// The anatomy's value at `world` as the isosurface sees it: what a crop cuts away from the
+// volume is air, so that a crop's cut face is a surface like any other (issue 52: the lesions
+// on an opaque cut); beyond the volume's edge, the edge's value (the texture's clamp).
+float glyphSurfaceSample(vec3 world) {
+  vec3 tex = toTexture(world);
+  vec3 inVolume = clamp(tex, 0.0, 1.0);
+  if (any(lessThan(inVolume, uBoxMin)) || any(greaterThan(inVolume, uBoxMax)) ||
+      any(lessThan(world, uWorldBoxMin)) || any(greaterThan(world, uWorldBoxMax)))
+    return -1e30;
+  return sampleValue(tex);
+}
+
 vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   vec3 frame = cross(uGlyphScreenRight, uGlyphScreenUp);  // towards the viewer
   float R = uGlyphScreenRadiusPx;
   float S = uGlyphScreenSpacingPx;
   float H = 0.8660254 * S;
-  vec2 q = gl_FragCoord.xy;
+  vec2 q = gl_FragCoord.xy - 0.5 * uViewport;  // a centre at the image's middle (a legend icon's)
   vec2 best = vec2(0.0);
   float bestD2 = 1e30;
   float row0 = floor(q.y / H);
@@ -149,8 +166,8 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   if (a <= 0.0) return nO;
   if (gGlyphSurfaceValue > -1e29) {
     // The centre's ray meets the surface within two glyph radii of the sample's depth.
-    float before = sampleValue(toTexture(foot + 2.0 * uGlyphRadiusMm * frame));
-    float beyond = sampleValue(toTexture(foot - 2.0 * uGlyphRadiusMm * frame));
+    float before = glyphSurfaceSample(foot + 2.0 * uGlyphRadiusMm * frame);
+    float beyond = glyphSurfaceSample(foot - 2.0 * uGlyphRadiusMm * frame);
     if (before >= gGlyphSurfaceValue || beyond < gGlyphSurfaceValue) return nO;
   }
   float kind = floor(a * 0.5);

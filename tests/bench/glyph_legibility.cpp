@@ -11,6 +11,7 @@
 // region with >= 2,000 visible pixels how many fully visible glyphs it carries; writes the
 // renders and a crop per kind to OUT.
 //   [MVW_GLYPH_RADIUS_PX=R] [MVW_GLYPH_LAYER_RADII=L] [MVW_GLYPH_ON_SURFACE=0|1]
+//   [MVW_GLYPH_MODES=isosurface|composite] (one mode only, for a quicker comparison)
 //   mvw_glyph_legibility_bench DATA_DIR OUT
 //   [PERMUTATIONS] [SIZES...]
 #include <algorithm>
@@ -80,9 +81,11 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(out);
 
   std::vector<Condition> conditions;
+  const char* onlyMode = std::getenv("MVW_GLYPH_MODES");
   for (int size : sizes)
     for (const char* mode : {"isosurface", "composite"})
-      for (bool lit : {false, true}) conditions.push_back({size, mode, lit});
+      for (bool lit : {false, true})
+        if (!onlyMode || std::string(onlyMode) == mode) conditions.push_back({size, mode, lit});
   // One study, every view: plain (no glyphs) first, then each permutation's.
   nlohmann::json views = nlohmann::json::array();
   for (std::size_t c = 0; c < conditions.size(); ++c)

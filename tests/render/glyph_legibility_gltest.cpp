@@ -188,12 +188,17 @@ struct ViewResult {
   int backgroundChanged = 0;
 };
 
-TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
+// The lesions shown by bumps of the 3D lattice, or on the visible surface (issue 52,
+// RenderSettings::glyphOnSurface: a placement of glyph kinds, so there the window is one class
+// of bumps, glyphClassKinds, the attribute's place in the window still setting each glyph's
+// size, at the product's spacing for kinds), with every requirement above; renders and maps of
+// changes in the build folder's `folder`.
+void expectEveryLesionShown(const char* folder, bool onSurface) {
   const World w = loadCt();
   const std::vector<Lesion> lesions = placeLesions(w);
   ASSERT_EQ(lesions.size(), 10u);
   const Volume pet = makePet(w.lo - 10.0, w.hi + 10.0, lesions);
-  const std::filesystem::path out = std::filesystem::path(MVW_TEST_OUTPUT_DIR) / "glyph-legibility";
+  const std::filesystem::path out = std::filesystem::path(MVW_TEST_OUTPUT_DIR) / folder;
   std::filesystem::create_directories(out);
   io::writeVolume(pet, out / "pet_lesions.nii.gz");
 
@@ -221,7 +226,13 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
   views[2].s.transfer = transferPreset("ct-muscle-bone");
   for (View& v : views) {
     const double mmPerPixel = 2.0 * framingSphere(w.ct).radius / v.s.camera.zoom / v.s.size.x;
-    const double spacing = study::defaultGlyphSpacingMm(kPetVoxelMm, mmPerPixel, v.s.glyphMinSize);
+    if (onSurface) {
+      v.s.glyphClassKinds = {GlyphKind::Bumps};
+      v.s.glyphOnSurface = true;
+      ASSERT_TRUE(usesGlyphKinds(v.s));
+    }
+    const double spacing =
+        study::defaultGlyphSpacingMm(kPetVoxelMm, mmPerPixel, v.s.glyphMinSize, onSurface);
     std::printf("%s: glyph spacing %.2f mm (%.2f mm per pixel)\n", v.name.c_str(), spacing,
                 mmPerPixel);
     v.s.glyphMap = blueNoiseGlyphMap(spacing, kBlueNoiseDiameterFraction * spacing, 1);
@@ -325,6 +336,22 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
   // Ordinal levels: lesions 0-2 are 15 mm at SUV 3.5, 5, 8 on the cut.
   EXPECT_LT(share(0, 0), share(0, 1));
   EXPECT_LT(share(0, 1), share(0, 2));
+}
+
+TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
+  expectEveryLesionShown("glyph-legibility", false);
+}
+
+// Issue 52: nothing hidden lost and nothing false drawn with the glyphs on the surface.
+// Disabled: it fails today, and that is its finding (run it with
+// --gtest_also_run_disabled_tests). At the product's spacing for kinds the image's hexagonal
+// lattice is too coarse for the lesions at 360 px: a glyph is drawn only where its centre's
+// ray meets the attribute, so a lesion between centres gets none (6 of the 10 lesions, 10-20 mm
+// at SUV 3.5-8, changed 0 % of their footprint; no pixel changed below the window). At the bumps'
+// finer spacing two of the weakest fall just under the 10 % (8.6 and 9.7 %), depending on the
+// lattice's phase. So glyphs on the surface are not the default (docs/user-guide/glyphs.md).
+TEST(GlyphLegibility, DISABLED_EveryLesionIsShownByGlyphsOnTheSurface) {
+  expectEveryLesionShown("glyph-legibility-on-surface", true);
 }
 
 }  // namespace

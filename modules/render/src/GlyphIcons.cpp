@@ -59,6 +59,17 @@ void GlyphIcons::fill(GlContext& context, const RenderSettings& view, GlyphLegen
     Volume attribute(dims_, 1, ScalarType::Float32, worldFromIndex_);
     float* p = attribute.dataAs<float>();
     for (std::size_t i = 0; i < attribute.voxelCount(); ++i) p[i] = float(*e.value);
+    if (s.glyphOnSurface) {
+      // Glyphs on the surface: their lattice is the image's, one centre in its middle (the
+      // plane's middle, facing the camera); the attribute only under that glyph's disc, so the
+      // icon is the one glyph whole, as a glyph of the image, not its neighbours' slivers.
+      p = attribute.dataAs<float>();
+      for (int k = 0; k < dims_.z; ++k)
+        for (int j = 0; j < dims_.y; ++j)
+          for (int i = 0; i < dims_.x; ++i, ++p)
+            if (std::hypot(i - kHalf, k - kHalf) * worldFromIndex_[0][0] > 0.5 * diameterMm_)
+              *p = 0.0f;
+    }
     renderer_->setFunctional(attribute, glm::dmat4(1.0));
     e.icon = renderer_->render(s).image;
   }

@@ -60,8 +60,9 @@ enum class GlyphConvexity { Bumps, Dimples, Both };
 // The shapes a glyph can take (issue 40: a nominal attribute's classes told apart by shape),
 // each a normal-map glyph (the shading normal perturbed, no geometry): bumps (hemispheres),
 // dimples (bumps inverted), rings (a torus with a flat centre), ridges (a bar across the glyph,
-// running along the patient's S axis where the surface allows, else L), cones (a constant
-// tilt: a flat-shaded point), crosses (two bars at right angles). Config names: the plurals.
+// running along the patient's S axis where the surface allows, else L), cones (a peak with
+// concave flanks: a dark point fading to a light rim), crosses (two bars at right angles).
+// Config names: the plurals.
 enum class GlyphKind { Bumps, Dimples, Rings, Ridges, Cones, Crosses };
 inline constexpr int kGlyphKindCount = 6;
 inline const char* glyphKindName(GlyphKind k) {
