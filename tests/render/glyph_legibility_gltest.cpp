@@ -193,7 +193,9 @@ struct ViewResult {
 // of bumps, glyphClassKinds, the attribute's place in the window still setting each glyph's
 // size, at the product's spacing for kinds), with every requirement above; renders and maps of
 // changes in the build folder's `folder`.
-void expectEveryLesionShown(const char* folder, bool onSurface) {
+// `lesionsShown`: every hidden lesion must be shown (the product's placement); without it only
+// "nothing false" is required and the lesions' shares are printed (glyphs on the surface).
+void expectEveryLesionShown(const char* folder, bool onSurface, bool lesionsShown = true) {
   const World w = loadCt();
   const std::vector<Lesion> lesions = placeLesions(w);
   ASSERT_EQ(lesions.size(), 10u);
@@ -319,6 +321,9 @@ void expectEveryLesionShown(const char* folder, bool onSurface) {
   auto share = [&](std::size_t view, std::size_t i) {
     return double(results[view].shown[i]) / std::max(results[view].footprint[i], 1);
   };
+  for (std::size_t v = 0; v < views.size(); ++v)
+    EXPECT_EQ(results[v].backgroundChanged, 0) << views[v].name;
+  if (!lesionsShown) return;
   int dvrLesions = 0, dvrShown = 0;
   for (std::size_t i = 0; i < lesions.size(); ++i) {
     const std::size_t v = lesions[i].onCut ? 0 : 1;
@@ -331,8 +336,6 @@ void expectEveryLesionShown(const char* folder, bool onSurface) {
   // GlyphDefaults.h, 5 of the 7: the two 20 mm lesions in the brain parenchyma, translucent
   // under the ct-muscle-bone preset, changed by < 10 grey levels. Now 7 of 7.)
   EXPECT_GE(dvrShown, 0.8 * dvrLesions) << "low-opacity DVR: " << dvrShown << " of " << dvrLesions;
-  for (std::size_t v = 0; v < views.size(); ++v)
-    EXPECT_EQ(results[v].backgroundChanged, 0) << views[v].name;
   // Ordinal levels: lesions 0-2 are 15 mm at SUV 3.5, 5, 8 on the cut.
   EXPECT_LT(share(0, 0), share(0, 1));
   EXPECT_LT(share(0, 1), share(0, 2));
@@ -342,16 +345,16 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
   expectEveryLesionShown("glyph-legibility", false);
 }
 
-// Issue 52: nothing hidden lost and nothing false drawn with the glyphs on the surface.
-// Disabled: it fails today, and that is its finding (run it with
-// --gtest_also_run_disabled_tests). At the product's spacing for kinds the image's hexagonal
-// lattice is too coarse for the lesions at 360 px: a glyph is drawn only where its centre's
-// ray meets the attribute, so a lesion between centres gets none (6 of the 10 lesions, 10-20 mm
-// at SUV 3.5-8, changed 0 % of their footprint; no pixel changed below the window). At the bumps'
-// finer spacing two of the weakest fall just under the 10 % (8.6 and 9.7 %), depending on the
-// lattice's phase. So glyphs on the surface are not the default (docs/user-guide/glyphs.md).
-TEST(GlyphLegibility, DISABLED_EveryLesionIsShownByGlyphsOnTheSurface) {
-  expectEveryLesionShown("glyph-legibility-on-surface", true);
+// Issue 52: glyphs on the surface draw nothing false (no pixel changed below the window, in
+// every view); the lesions' shares are printed, not required. Not every hidden lesion is shown
+// yet, which is why the placement is not the default (docs/user-guide/glyphs.md): at the
+// product's spacing for kinds the image's hexagonal lattice is too coarse for the lesions at
+// 360 px. A glyph is drawn only where its centre's ray meets the attribute, so a lesion between
+// centres gets none (6 of the 10 lesions, 10-20 mm at SUV 3.5-8, changed 0 % of their
+// footprint); at the bumps' finer spacing two of the weakest fall just under the 10 % (8.6 and
+// 9.7 %), depending on the lattice's phase.
+TEST(GlyphLegibility, GlyphsOnTheSurfaceDrawNothingFalse) {
+  expectEveryLesionShown("glyph-legibility-on-surface", true, false);
 }
 
 }  // namespace
