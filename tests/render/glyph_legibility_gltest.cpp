@@ -350,9 +350,8 @@ TEST(GlyphLegibility, EveryLesionIsShownByBumps) {
 // yet, which is why the placement is not the default (docs/user-guide/glyphs.md): at the
 // product's spacing for kinds the image's hexagonal lattice is too coarse for the lesions at
 // 360 px. A glyph is drawn only where its centre's ray meets the attribute, so a lesion between
-// centres gets none (6 of the 10 lesions, 10-20 mm at SUV 3.5-8, changed 0 % of their
-// footprint); at the bumps' finer spacing two of the weakest fall just under the 10 % (8.6 and
-// 9.7 %), depending on the lattice's phase.
+// centres gets none: on the merged main (a479d46) the lesion on the forehead at 20 mm / SUV 8 and
+// the two 20 mm lesions in low-opacity DVR reach 10 % of their footprint; the others get 0 %.
 TEST(GlyphLegibility, GlyphsOnTheSurfaceDrawNothingFalse) {
   expectEveryLesionShown("glyph-legibility-on-surface", true, false);
 }
