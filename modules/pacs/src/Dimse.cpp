@@ -45,14 +45,13 @@ const OFList<OFString>& uncompressed() {
 
 std::string where(const Server& server) { return server.text; }
 
-// A DIMSE message that has started must go on at 1 kB a second or more, as a DICOMweb answer
-// must (curl's low-speed limit, DicomWeb.cpp). DCMTK bounds each read of a started message by
-// the socket time-out only, so a server that trickled a byte every half second held mvw for as
+// A DIMSE message that has started must go on at kLowSpeedBytesPerSecond or more, as a DICOMweb
+// answer must (curl's low-speed limit, DicomWeb.cpp). DCMTK bounds each read of a started message
+// by the socket time-out only, so a server that trickled a byte every half second held mvw for as
 // long as it went on (issue 50's fault suite: the DIMSE trickle). PacedConnection follows the
 // PDUs it reads (a 6-byte header that gives the body's length): between two PDUs, waiting is
 // the DIMSE time-out's business (a server that thinks, mvw writing what it received); within
-// one, a window of the read time-out that brings less than 1 kB ends the association.
-constexpr std::size_t kLowSpeedBytes = 1024;
+// one, a window of the read time-out that brings less than 1 kB a second ends the association.
 thread_local double pacedWindowS = 60;  // the read time-out of this thread's association
 thread_local bool tooSlow = false;      // set when a PacedConnection stopped a trickle
 
@@ -63,7 +62,7 @@ class PacedConnection : public DcmTCPConnection {
 
   ssize_t read(void* buf, size_t nbyte) override {
     if (headerBytes_ > 0 && seconds(Clock::now() - windowStart_) > windowS_) {
-      if (windowBytes_ < kLowSpeedBytes) {
+      if (double(windowBytes_) < double(kLowSpeedBytesPerSecond) * windowS_) {
         tooSlow = true;
         ::shutdown(getSocket(), SHUT_RDWR);
         errno = ETIMEDOUT;
@@ -142,7 +141,7 @@ class PacedScu : public DcmSCU {
   std::string text = cond.text();
   for (std::size_t at; (at = text.find('\n')) != std::string::npos;) text.replace(at, 1, "; ");
   if (tooSlow)
-    text = "the answer slowed to less than 1 kB in " + std::to_string(int(pacedWindowS)) +
+    text = "the answer came slower than 1 kB a second for " + std::to_string(int(pacedWindowS)) +
            " s in the middle of a message (--read-timeout): stopped (" + text + ")";
   if (cond == DUL_PEERABORTEDASSOCIATION && !callingAet.empty())
     text += " (check that the server knows the calling AE title '" + callingAet +
