@@ -26,7 +26,8 @@ void onFatalSignal(int) {
 
 }  // namespace
 
-DecoderGuard::DecoderGuard(const std::filesystem::path& file) {
+DecoderGuard::DecoderGuard(const std::filesystem::path& file, bool active) : active_(active) {
+  if (!active_) return;
   if (gDepth++ > 0) return;
   const std::string text =
       "\nmvw: error: " + file.string() +
@@ -40,6 +41,7 @@ DecoderGuard::DecoderGuard(const std::filesystem::path& file) {
 }
 
 DecoderGuard::~DecoderGuard() {
+  if (!active_) return;
   if (--gDepth > 0) return;
   for (int i = 0; i < 4; ++i) ::sigaction(kSignals[i], &gPrevious[i], nullptr);
 }

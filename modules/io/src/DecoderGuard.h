@@ -10,10 +10,15 @@ namespace mvw::io::detail {
 
 class DecoderGuard {
  public:
-  explicit DecoderGuard(const std::filesystem::path& file);
+  // `active` false installs nothing: ReadOptions::isolateDecoder false (the fuzz harness), where
+  // an abort or a crash must reach libFuzzer, which keeps the input, instead of exit 2.
+  explicit DecoderGuard(const std::filesystem::path& file, bool active = true);
   ~DecoderGuard();
   DecoderGuard(const DecoderGuard&) = delete;
   DecoderGuard& operator=(const DecoderGuard&) = delete;
+
+ private:
+  bool active_;
 };
 
 }  // namespace mvw::io::detail

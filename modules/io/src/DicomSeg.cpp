@@ -93,7 +93,7 @@ bool isDicomSegmentation(const fs::path& path) {
 }
 
 Segmentation readDicomSegmentation(const fs::path& path, const ReadOptions& options) {
-  detail::DecoderGuard guard(path);
+  detail::DecoderGuard guard(path, options.isolateDecoder);
   vtkNew<vtkDICOMMetaData> meta;
   const detail::ParsedDicomFile parsed = detail::parseDicomFile(path, meta);
   return detail::segmentationFromHeader(path, meta, parsed, options);

@@ -132,7 +132,7 @@ Volume readVoxels(vtkDICOMReader* reader, const VtkMessageScope& messages, const
 Volume readSeries(const fs::path& path, vtkStringArray* files, const SeriesRef& ref,
                   const ReadOptions& options) {
   fs::path first(files->GetValue(0).c_str());
-  DecoderGuard guard(path);
+  DecoderGuard guard(path, options.isolateDecoder);
   VtkMessageScope messages;
   vtkNew<CheckedDicomReader> reader;
   reader->SetFileNames(files);
@@ -204,7 +204,7 @@ Volume readSingleFile(const fs::path& path, const ReadOptions& options) {
         "Deflated Explicit VR Little Endian: the data set was inflated before reading");
     return volume;
   }
-  DecoderGuard guard(path);
+  DecoderGuard guard(path, options.isolateDecoder);
   vtkNew<vtkDICOMMetaData> meta;
   const ParsedDicomFile file = parseDicomFile(path, meta);
   if (meta->Get(DC::SOPClassUID).AsString() == "1.2.840.10008.5.1.4.1.1.66.4")  // DicomSeg.cpp
@@ -241,7 +241,7 @@ std::vector<Volume> readDicom(const fs::path& path, const ReadOptions& options, 
     one.push_back(readSingleFile(path, options));
     return one;
   }
-  DecoderGuard guard(path);
+  DecoderGuard guard(path, options.isolateDecoder);
   VtkMessageScope messages;
   vtkNew<vtkDICOMDirectory> dir;
   dir->SetDirectoryName(path.c_str());

@@ -235,7 +235,7 @@ Response request(const Server& server, const std::string& url, const std::string
   // The read time-out: less than 1 kB a second for this long ends the transfer. At 1 byte a
   // second (curl's usual floor) a server that trickles a byte or two a second held mvw forever
   // (issue 50's fault suite, tests/faults).
-  lib.easySetopt(c, CURLOPT_LOW_SPEED_LIMIT, 1024L);
+  lib.easySetopt(c, CURLOPT_LOW_SPEED_LIMIT, kLowSpeedBytesPerSecond);
   lib.easySetopt(c, CURLOPT_LOW_SPEED_TIME,
                  std::max(1L, static_cast<long>(options.readTimeoutS + 0.5)));
   lib.easySetopt(c, CURLOPT_ACCEPT_ENCODING, "");

@@ -1,6 +1,10 @@
 // DIMSE with DCMTK: C-ECHO, C-FIND, C-GET (DcmSCU receiving the C-STOREs itself), C-MOVE (to
 // mvw's own storage SCP, a DcmSCP on a thread), C-STORE.
+#include <sys/socket.h>
+
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -12,6 +16,7 @@
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmnet/dcmlayer.h>
 #include <dcmtk/dcmnet/dcmtrans.h>
 #include <dcmtk/dcmnet/dimse.h>
 #include <dcmtk/dcmnet/diutil.h>
@@ -40,6 +45,93 @@ const OFList<OFString>& uncompressed() {
 
 std::string where(const Server& server) { return server.text; }
 
+// A DIMSE message that has started must go on at kLowSpeedBytesPerSecond or more, as a DICOMweb
+// answer must (curl's low-speed limit, DicomWeb.cpp). DCMTK bounds each read of a started message
+// by the socket time-out only, so a server that trickled a byte every half second held mvw for as
+// long as it went on (issue 50's fault suite: the DIMSE trickle). PacedConnection follows the
+// PDUs it reads (a 6-byte header that gives the body's length): between two PDUs, waiting is
+// the DIMSE time-out's business (a server that thinks, mvw writing what it received); within
+// one, a window of the read time-out that brings less than 1 kB a second ends the association.
+thread_local double pacedWindowS = 60;  // the read time-out of this thread's association
+thread_local bool tooSlow = false;      // set when a PacedConnection stopped a trickle
+
+class PacedConnection : public DcmTCPConnection {
+ public:
+  PacedConnection(DcmNativeSocketType socket, double windowS)
+      : DcmTCPConnection(socket), windowS_(windowS) {}
+
+  ssize_t read(void* buf, size_t nbyte) override {
+    if (headerBytes_ > 0 && seconds(Clock::now() - windowStart_) > windowS_) {
+      if (double(windowBytes_) < double(kLowSpeedBytesPerSecond) * windowS_) {
+        tooSlow = true;
+        ::shutdown(getSocket(), SHUT_RDWR);
+        errno = ETIMEDOUT;
+        return -1;
+      }
+      windowStart_ = Clock::now();
+      windowBytes_ = 0;
+    }
+    const ssize_t n = DcmTCPConnection::read(buf, nbyte);
+    if (n > 0) follow(static_cast<const unsigned char*>(buf), static_cast<std::size_t>(n));
+    return n;
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+  void follow(const unsigned char* p, std::size_t n) {
+    windowBytes_ += n;
+    while (n > 0) {
+      if (headerBytes_ == 0) {  // a PDU starts: its window with it
+        windowStart_ = Clock::now();
+        windowBytes_ = n;
+      }
+      if (headerBytes_ < 6) {
+        const std::size_t take = std::min<std::size_t>(6 - headerBytes_, n);
+        for (std::size_t i = 0; i < take; ++i) header_[headerBytes_++] = p[i];
+        p += take;
+        n -= take;
+        if (headerBytes_ == 6)
+          bodyLeft_ = (std::uint32_t(header_[2]) << 24) | (std::uint32_t(header_[3]) << 16) |
+                      (std::uint32_t(header_[4]) << 8) | std::uint32_t(header_[5]);
+      } else {
+        const std::size_t take = std::min<std::size_t>(bodyLeft_, n);
+        bodyLeft_ -= take;
+        p += take;
+        n -= take;
+      }
+      if (headerBytes_ == 6 && bodyLeft_ == 0) headerBytes_ = 0;  // the PDU is whole
+    }
+  }
+
+  double windowS_;
+  Clock::time_point windowStart_{};
+  std::size_t windowBytes_ = 0;
+  unsigned char header_[6] = {};
+  std::size_t headerBytes_ = 0;  // 0: between PDUs
+  std::uint64_t bodyLeft_ = 0;
+};
+
+// Hands DCMTK a PacedConnection for each association: a plain TCP one, no TLS.
+class PacedLayer : public DcmTransportLayer {
+ public:
+  DcmTransportConnection* createConnection(DcmNativeSocketType socket, OFBool) override {
+    return new PacedConnection(socket, pacedWindowS);
+  }
+};
+
+// Every association mvw requests goes through a PacedLayer: DcmSCU::useSecureConnection, the
+// one door to the connection DCMTK makes, is protected, and it needs the network and the
+// association's parameters, which initNetwork makes.
+class PacedScu : public DcmSCU {
+ public:
+  OFCondition pace() {
+    static PacedLayer layer;
+    return useSecureConnection(&layer);
+  }
+};
+
 // `callingAet`: the AE title mvw called as, named in the hint when the server aborted (issue
 // 51: Orthanc accepts the association of an AE title it does not know, then aborts its C-FIND
 // or C-GET, which DCMTK reports as "Peer aborted Association").
@@ -48,6 +140,9 @@ std::string where(const Server& server) { return server.text; }
   // DCMTK's texts can hold several lines: one message, one line.
   std::string text = cond.text();
   for (std::size_t at; (at = text.find('\n')) != std::string::npos;) text.replace(at, 1, "; ");
+  if (tooSlow)
+    text = "the answer came slower than 1 kB a second for " + std::to_string(int(pacedWindowS)) +
+           " s in the middle of a message (--read-timeout): stopped (" + text + ")";
   if (cond == DUL_PEERABORTEDASSOCIATION && !callingAet.empty())
     text += " (check that the server knows the calling AE title '" + callingAet +
             "': a PACS answers only the AE titles it lists, Orthanc under DicomModalities; give "
@@ -65,7 +160,7 @@ void setSocketTimeouts(const Options& options) {
   dcmSocketSendTimeout.set(seconds);
 }
 
-void configure(DcmSCU& scu, const Server& server, const Options& options) {
+void configure(PacedScu& scu, const Server& server, const Options& options) {
   quietDcmtk();
   scu.setAETitle(options.callingAet.c_str());
   scu.setPeerHostName(server.host.c_str());
@@ -76,10 +171,14 @@ void configure(DcmSCU& scu, const Server& server, const Options& options) {
   scu.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
   scu.setDIMSETimeout(static_cast<Uint32>(std::max(1.0, options.readTimeoutS)));
   setSocketTimeouts(options);
+  pacedWindowS = std::max(1.0, options.readTimeoutS);
+  tooSlow = false;
 }
 
-void associate(DcmSCU& scu, const Server& server, const Options& options) {
+void associate(PacedScu& scu, const Server& server, const Options& options) {
   OFCondition cond = scu.initNetwork();
+  if (cond.bad()) fail(server, "cannot start the network", cond);
+  cond = scu.pace();
   if (cond.bad()) fail(server, "cannot start the network", cond);
   cond = scu.negotiateAssociation();
   if (cond == DUL_ASSOCIATIONREJECTED)
@@ -117,7 +216,7 @@ struct StoreSink {
   }
 };
 
-class GetScu : public DcmSCU {
+class GetScu : public PacedScu {
  public:
   StoreSink sink;
 
@@ -210,7 +309,7 @@ std::vector<DcmDataset> retrieveKeys(const std::string& studyUid, const std::str
 }  // namespace
 
 double dimseEcho(const Server& server, const Options& options) {
-  DcmSCU scu;
+  PacedScu scu;
   configure(scu, server, options);
   scu.addPresentationContext(UID_VerificationSOPClass, uncompressed());
   const auto start = std::chrono::steady_clock::now();
@@ -237,7 +336,7 @@ Match matchFromIdentifier(DcmDataset& identifier) {
 
 std::vector<Match> dimseFind(const Server& server, const std::string& level, const Match& keys,
                              const Options& options) {
-  DcmSCU scu;
+  PacedScu scu;
   configure(scu, server, options);
   scu.addPresentationContext(UID_FINDStudyRootQueryRetrieveInformationModel, uncompressed());
   associate(scu, server, options);
@@ -325,7 +424,7 @@ void dimseRetrieve(const Server& server, const std::string& studyUid, const std:
       if (t.joinable()) t.join();
     }
   } join{scp, listener};
-  DcmSCU scu;
+  PacedScu scu;
   configure(scu, server, options);
   scu.addPresentationContext(UID_MOVEStudyRootQueryRetrieveInformationModel, uncompressed());
   associate(scu, server, options);
@@ -362,7 +461,7 @@ void dimseStore(const Server& server, const std::vector<fs::path>& files, const 
   }
   if (classes.size() > 120)
     throw InputError(files.front(), "the files hold more than 120 kinds of object to store");
-  DcmSCU scu;
+  PacedScu scu;
   configure(scu, server, options);
   for (const auto& [sopClass, xfer] : classes) {
     OFList<OFString> syntaxes;

@@ -17,6 +17,10 @@ class DcmDataset;
 
 namespace mvw::pacs::detail {
 
+// An answer slower than this for --read-timeout seconds has stalled: over DICOMweb curl's
+// low-speed limit (DicomWeb.cpp), over DIMSE within a message that has started (Dimse.cpp).
+inline constexpr long kLowSpeedBytesPerSecond = 1024;
+
 // The UIDs a received instance must carry; empty: any.
 struct Expect {
   std::string studyUid;

@@ -26,8 +26,9 @@ struct ReadOptions {
   double sliceSpacing = 0.0;
   // Compressed DICOM pixel data (JPEG, JPEG-LS, JPEG 2000, RLE) is decoded by a child process,
   // mvw-decoder, with memory and time limits: a decoder fault is the file's error, never this
-  // process's (docs/design.md#isolated-decoder). false decodes in this process: for the fuzz
-  // harness, whose findings must happen where libFuzzer sees them.
+  // process's (docs/design.md#isolated-decoder). false decodes in this process, and an abort
+  // or a crash of vtk-dicom or GDCM is no longer turned into exit 2 (DecoderGuard.h): for the
+  // fuzz harness, whose findings must happen where libFuzzer sees them.
   bool isolateDecoder = true;
 };
 
