@@ -9,8 +9,8 @@ std::optional<ColourBar> colourBarOf(const render::RenderSettings& s, const Volu
                                      std::pair<double, double> functionalRange,
                                      const WindowLevel& shown) {
   if (render::showsFunctional(s, functional != nullptr)) {
-    auto [flo, fhi] = functionalRange;
-    if (s.functionalWindow.set()) flo = s.functionalWindow.low, fhi = s.functionalWindow.high;
+    const auto [flo, fhi] =
+        s.functionalWindow.orRange(functionalRange.first, functionalRange.second);
     return ColourBar{flo, fhi, functional->metadata().unit, s.overlayColors,
                      study::volumeName(*functional, "functional")};
   }

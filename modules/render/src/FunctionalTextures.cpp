@@ -46,7 +46,8 @@ GLuint FunctionalTextures::colormap(const std::optional<ColorTable>& table) {
 }
 
 glm::vec2 FunctionalTextures::window(const ValueWindow& w) const {
-  return {float(w.set() ? w.low : range_.first), float(w.set() ? w.high : range_.second)};
+  const ValueWindow shown = w.orRange(range_.first, range_.second);
+  return {float(shown.low), float(shown.high)};
 }
 
 void FunctionalTextures::setUniforms(const ShaderProgram& program, glm::vec2 window,

@@ -144,8 +144,7 @@ render::GlyphLegend glyphLegend(const PlannedView& v, const std::string& unit,
     }
     return legend;
   }
-  double lo = s.functionalWindow.low, hi = s.functionalWindow.high;
-  if (!s.functionalWindow.set()) lo = range.first, hi = range.second;
+  const auto [lo, hi] = s.functionalWindow.orRange(range.first, range.second);
   legend.title = "glyphs: " + (unit.empty() ? std::string("attribute") : unit);
   legend.low = lo, legend.high = hi;
   if (render::usesGlyphKinds(s)) {

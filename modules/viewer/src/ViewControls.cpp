@@ -17,8 +17,7 @@ void setGlyphSpacingMm(render::RenderSettings& v, double spacingMm) {
 }
 
 ValueWindow functionalWindow(const render::RenderSettings& v, std::pair<double, double> range) {
-  if (v.functionalWindow.set()) return v.functionalWindow;
-  return {range.first, range.second};
+  return v.functionalWindow.orRange(range.first, range.second);
 }
 
 void setFunctionalWindow(render::RenderSettings& v, double low, double high,

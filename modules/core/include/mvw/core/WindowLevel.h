@@ -28,6 +28,9 @@ struct ValueWindow {
   double low = 0.0;
   double high = 0.0;
   bool set() const { return high > low; }
+  // This window where set; otherwise [lo, hi] (the volume's value range): the one fallback of
+  // the overlay, the glyphs, their legend and the colour bar.
+  ValueWindow orRange(double lo, double hi) const { return set() ? *this : ValueWindow{lo, hi}; }
   bool operator==(const ValueWindow&) const = default;
 };
 
