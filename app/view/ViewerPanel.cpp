@@ -369,8 +369,8 @@ void ViewerPanel::drawFunctionalWindow() {
 // Glyphs and colour fusion: their switches, spacing and size, the legend, method and kinds.
 void ViewerPanel::drawGlyphControls() {
   render::RenderSettings& v = state_.view3d();
-  bool glyphs = v.glyphs, fusion = v.overlay.fusion;
-  if (ImGui::Checkbox("glyphs (G)", &glyphs)) v.glyphs = glyphs, state_.markDirty(k3d);
+  bool glyphs = v.glyphs.on, fusion = v.overlay.fusion;
+  if (ImGui::Checkbox("glyphs (G)", &glyphs)) v.glyphs.on = glyphs, state_.markDirty(k3d);
   ImGui::SameLine();
   if (ImGui::Checkbox("colour fusion (F)", &fusion))
     v.overlay.fusion = fusion, state_.markDirty(k3d);
@@ -388,9 +388,9 @@ void ViewerPanel::drawGlyphControls() {
     float spacing = float(glyphSpacingMm(v));
     if (ImGui::SliderFloat("glyph spacing mm", &spacing, 2, 30))
       setGlyphSpacingMm(v, spacing), state_.markDirty(k3d);
-    float minSize = float(v.glyphMinSize);
+    float minSize = float(v.glyphs.minSize);
     if (ImGui::SliderFloat("smallest bump", &minSize, 0, 1))
-      v.glyphMinSize = minSize, state_.markDirty(k3d);
+      v.glyphs.minSize = minSize, state_.markDirty(k3d);
   } else {
     float gd = float(v.glyphDiameterMm);
     if (ImGui::SliderFloat("glyph size mm", &gd, 1, 40))
@@ -399,14 +399,14 @@ void ViewerPanel::drawGlyphControls() {
   // The legend, as the 3D pane shows it: what each bump size or kind means.
   for (const render::GlyphLegendEntry& e : state_.glyphLegend(k3d, v).entries)
     ImGui::BulletText("%s", glyphLegendLine(e).c_str());
-  int method = v.glyphSizeControl ? 0 : 1;
+  int method = static_cast<int>(v.glyphs.method);  // the enum's order is the list's
   const char* methods[] = {"sized (eqs. 2-3)", "simple (eq. 1)"};
   if (ImGui::Combo("glyph method", &method, methods, 2))
-    v.glyphSizeControl = method == 0, state_.markDirty(k3d);
+    v.glyphs.method = static_cast<GlyphMethod>(method), state_.markDirty(k3d);
   const char* convexity[] = {"convex", "concave", "both"};
-  int convex = static_cast<int>(v.glyphConvexity);  // the enum's order is the list's
+  int convex = static_cast<int>(v.glyphs.convexity);  // the enum's order is the list's
   if (ImGui::Combo("bumps", &convex, convexity, 3)) {
-    v.glyphConvexity = static_cast<GlyphConvexity>(convex);
+    v.glyphs.convexity = static_cast<GlyphConvexity>(convex);
     state_.markDirty(k3d);
   }
   if (state_.study().functionalKind == config::FunctionalKind::Labels) glyphLabelPicker(state_);

@@ -110,7 +110,7 @@ vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
   return glyphKindShape(int(kind), tv, sqrt(t2 / rho2), frame, nO);
 }
 
-// Glyphs on the visible surface (issue 52; RenderSettings::glyphOnSurface): instead of the 3D
+// Glyphs on the visible surface (issue 52; GlyphStyle::onSurface): instead of the 3D
 // lattice that the surface cuts at random depths, the glyph centres form a hexagonal lattice on
 // the image (uGlyphScreenRadiusPx > 0: a glyph's radius in pixels, the centres
 // uGlyphScreenSpacingPx apart: 2 / kBlueNoiseDiameterFraction radii), and each glyph's shape is laid out on the disc

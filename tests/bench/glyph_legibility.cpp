@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
     const Condition& k = conditions[c];
     const mvw::render::RenderedFrame plain = [&] {
       mvw::render::RenderSettings s = planned[view++].settings;
-      s.glyphs = false;
+      s.glyphs.on = false;
       return renderer.render(s);
     }();
     const int w = plain.image.width, h = plain.image.height;
@@ -203,9 +203,9 @@ int main(int argc, char** argv) {
       // glyph radii so that one value suits every size.
       if (const char* layer = std::getenv("MVW_GLYPH_LAYER_RADII"))
         s.glyphLayerMm = std::atof(layer) * 0.5 * s.glyphDiameterMm;
-      // Glyphs on the visible surface (RenderSettings::glyphOnSurface, "on_surface") or not,
+      // Glyphs on the visible surface (RenderSettings::glyphs.onSurface, "on_surface") or not,
       // whatever the view says.
-      if (const char* on = std::getenv("MVW_GLYPH_ON_SURFACE")) s.glyphOnSurface = *on == '1';
+      if (const char* on = std::getenv("MVW_GLYPH_ON_SURFACE")) s.glyphs.onSurface = *on == '1';
       glyphRadiusPx = 0.5 * s.glyphDiameterMm / mmPerPixel;
       diameterMm = s.glyphDiameterMm;
       for (int q : region)

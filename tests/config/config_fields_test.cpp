@@ -33,19 +33,20 @@ ViewConfig fullySet() {
   v.height = 200;
   v.preset = "ct-skin";
   v.gradientOpacity = {5, 40};
-  v.glyphs = true;
-  v.glyphMethod = GlyphMethod::Simple;
-  v.glyphConvexity = GlyphConvexity::Both;
+  v.glyphs.on = true;
+  v.glyphs.method = GlyphMethod::Simple;
+  v.glyphs.convexity = GlyphConvexity::Both;
   v.glyphPlacement = GlyphPlacement::Paper;
   v.glyphSpacingMm = 7;
-  v.glyphMinSize = 0.5;
-  v.glyphDvrOpacity = 0.5;
+  v.glyphs.minSize = 0.5;
+  v.glyphs.dvrOpacity = 0.5;
   v.glyphDiameterMm = 9;
   v.glyphCount = 20;
   v.glyphMapSize = 96;
   v.glyphMapDiameter = 20;
   v.glyphSeed = 3;
-  v.glyphOnSurface = true;
+  v.glyphs.onSurface = true;
+  v.glyphs.classKinds = {GlyphKind::Rings, GlyphKind::Crosses};
   v.functionalWindow = {0.3, 1.5};
   v.functionalClasses = 4;
   v.window = {900, 100};
@@ -100,14 +101,9 @@ TEST(ConfigFields, FullySetViewSurvivesTheRoundTrip) {
   EXPECT_EQ(b.preset, a.preset);
   EXPECT_EQ(b.gradientOpacity, a.gradientOpacity);
   EXPECT_EQ(b.glyphs, a.glyphs);
-  EXPECT_EQ(b.glyphMethod, a.glyphMethod);
-  EXPECT_EQ(b.glyphConvexity, a.glyphConvexity);
   EXPECT_EQ(b.glyphPlacement, a.glyphPlacement);
   EXPECT_EQ(b.glyphSpacingMm, a.glyphSpacingMm);
-  EXPECT_EQ(b.glyphMinSize, a.glyphMinSize);
-  EXPECT_EQ(b.glyphDvrOpacity, a.glyphDvrOpacity);
   EXPECT_EQ(b.glyphDiameterMm, a.glyphDiameterMm);
-  EXPECT_EQ(b.glyphOnSurface, a.glyphOnSurface);
   EXPECT_EQ(b.glyphCount, a.glyphCount);
   EXPECT_EQ(b.glyphMapSize, a.glyphMapSize);
   EXPECT_EQ(b.glyphMapDiameter, a.glyphMapDiameter);
@@ -183,7 +179,7 @@ TEST(ConfigFields, AnEmptyViewHasTheStructsDefaults) {
   EXPECT_EQ(d.glyphDiameterMm, defaults.glyphDiameterMm);
   EXPECT_EQ(d.zoom, defaults.zoom);
   EXPECT_FALSE(d.window.set());
-  EXPECT_FALSE(d.glyphs);
+  EXPECT_FALSE(d.glyphs.on);
   EXPECT_EQ(viewConfigJson(parseViewConfig(viewConfigJson(d), "s.json", "view", 0)),
             viewConfigJson(d));
   EXPECT_FALSE(viewConfigJson(d).contains("glyphs"));  // a section is written only when on

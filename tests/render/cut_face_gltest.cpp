@@ -170,9 +170,9 @@ TEST(CutFace, GlyphsOfEveryKindAndFusionStayOnTheFace) {
   for (const Case& c : cases) {
     RenderSettings s = CutScene::settings(c.mode);
     s.glyphDiameterMm = 5.0;
-    s.glyphClassKinds = c.kinds;
+    s.glyphs.classKinds = c.kinds;
     const Image plain = renderer.render(s).image;
-    s.glyphs = true;
+    s.glyphs.on = true;
     const RenderedFrame glyphs = renderer.render(s);
     const std::string what = toString(c.mode) + " " +
                              (c.kinds.empty() ? std::string("bumps") : glyphKindName(c.kinds[0]));
@@ -184,7 +184,7 @@ TEST(CutFace, GlyphsOfEveryKindAndFusionStayOnTheFace) {
     RenderSettings beige = s;
     beige.cutFace = CutFace::Plain;
     const RenderedFrame beigeGlyphs = renderer.render(beige);
-    beige.glyphs = false;
+    beige.glyphs.on = false;
     const Changes b = changes(beigeGlyphs, renderer.render(beige).image);
     std::cout << what << ": glyphs change " << d.right << " of " << d.rightCount
               << " px on tissue 100, " << d.left << " of " << d.leftCount << " on tissue 200 ("

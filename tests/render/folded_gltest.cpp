@@ -169,11 +169,11 @@ TEST(FoldedVolume, GlyphsAndShellsAsUnfolded) {
                                        .jitterOff = true});
   s.iso = -2.0;         // the tube 6 mm and the ball 9 mm in radius
   s.camera.zoom = 2.5;  // z from about -31 to 31 mm: both seams, glyphs below -10 mm only
-  s.glyphs = true;
+  s.glyphs.on = true;
   s.glyphDiameterMm = 4.0;
   s.functionalWindow = {0.0, 1.0};
   RenderSettings plain = s;
-  plain.glyphs = false;
+  plain.glyphs.on = false;
   const Image bumps = unfolded.render(s).image;
   const Difference glyphs = compare(bumps, unfolded.render(plain).image);
   EXPECT_GT(glyphs.differing, 100) << "the glyphs must show for the comparison to mean anything";

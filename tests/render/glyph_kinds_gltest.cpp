@@ -93,7 +93,7 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
     // The product's default glyph size for a 4 mm label voxel at this scale.
     const double perPixel = 2.0 * renderer.radius() / s.camera.zoom / s.size.x;
     double spacing =
-        study::defaultGlyphSpacingMm(kLabelVoxelMm, perPixel, s.glyphMinSize, /*kinds=*/true);
+        study::defaultGlyphSpacingMm(kLabelVoxelMm, perPixel, s.glyphs.minSize, /*kinds=*/true);
     if (const char* px = std::getenv("MVW_KIND_PX"))  // measuring the glyph size: radius, px
       spacing = std::atof(px) * perPixel / (0.5 * kBlueNoiseDiameterFraction);
     *spacingOut = spacing;
@@ -102,8 +102,8 @@ std::vector<Tile> tilesOf(VolumeRenderer& renderer, const std::vector<GlyphKind>
     for (int b = 0; b < kBands; ++b)
       s.glyphLabels.push_back({b + 1, kindOfBand[std::size_t(b)], ""});
     RenderSettings plainS = s;
-    plainS.glyphs = false;
-    s.glyphs = true;
+    plainS.glyphs.on = false;
+    s.glyphs.on = true;
     const RenderedFrame plain = renderer.render(plainS);
     const RenderedFrame glyphs = renderer.render(s);
     io::writePng(glyphs.image, out / (tag + "-" + views[v].name + ".png"));

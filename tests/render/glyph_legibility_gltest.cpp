@@ -189,8 +189,8 @@ struct ViewResult {
 };
 
 // The lesions shown by bumps of the 3D lattice, or on the visible surface (issue 52,
-// RenderSettings::glyphOnSurface: a placement of glyph kinds, so there the window is one class
-// of bumps, glyphClassKinds, the attribute's place in the window still setting each glyph's
+// RenderSettings::glyphs.onSurface: a placement of glyph kinds, so there the window is one class
+// of bumps, glyphs.classKinds, the attribute's place in the window still setting each glyph's
 // size, at the product's spacing for kinds), with every requirement above; renders and maps of
 // changes in the build folder's `folder`.
 // `lesionsShown`: every hidden lesion must be shown (the product's placement); without it only
@@ -229,12 +229,12 @@ void expectEveryLesionShown(const char* folder, bool onSurface, bool lesionsShow
   for (View& v : views) {
     const double mmPerPixel = 2.0 * framingSphere(w.ct).radius / v.s.camera.zoom / v.s.size.x;
     if (onSurface) {
-      v.s.glyphClassKinds = {GlyphKind::Bumps};
-      v.s.glyphOnSurface = true;
+      v.s.glyphs.classKinds = {GlyphKind::Bumps};
+      v.s.glyphs.onSurface = true;
       ASSERT_TRUE(usesGlyphKinds(v.s));
     }
     const double spacing =
-        study::defaultGlyphSpacingMm(kPetVoxelMm, mmPerPixel, v.s.glyphMinSize, onSurface);
+        study::defaultGlyphSpacingMm(kPetVoxelMm, mmPerPixel, v.s.glyphs.minSize, onSurface);
     std::printf("%s: glyph spacing %.2f mm (%.2f mm per pixel)\n", v.name.c_str(), spacing,
                 mmPerPixel);
     v.s.glyphMap = blueNoiseGlyphMap(spacing, kBlueNoiseDiameterFraction * spacing, 1);
@@ -244,11 +244,11 @@ void expectEveryLesionShown(const char* folder, bool onSurface, bool lesionsShow
   std::vector<ViewResult> results;
   for (const View& v : views) {
     RenderSettings plainS = v.s;
-    plainS.glyphs = false;
+    plainS.glyphs.on = false;
     renderer.setFunctional(pet, glm::dmat4(1.0));
     const Image plain = renderer.render(plainS).image;
     RenderSettings glyphS = v.s;
-    glyphS.glyphs = true;
+    glyphS.glyphs.on = true;
     const Image glyphs = renderer.render(glyphS).image;
     io::writePng(plain, out / (v.name + "-plain.png"));
     io::writePng(glyphs, out / (v.name + "-glyphs.png"));

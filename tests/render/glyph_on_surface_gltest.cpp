@@ -1,4 +1,4 @@
-// Glyphs on the visible surface (issue 52, RenderSettings::glyphOnSurface): the legend's icons
+// Glyphs on the visible surface (issue 52, RenderSettings::glyphs.onSurface): the legend's icons
 // still match the image. A plane facing the camera in five bands, one glyph kind each, on the
 // isosurface with the glyphs on the surface (as the icons' own plane); the legend's icons for
 // the same view (VolumeRenderer::renderGlyphIcons). Each icon must hold one whole glyph in its
@@ -65,15 +65,15 @@ TEST(GlyphsOnTheSurface, TheLegendIconsMatchTheImage) {
   s.jitter = false;
   s.overlay.mpr = false;
   const double perPixel = 2.0 * renderer.radius() / s.camera.zoom / s.size.x;
-  const double spacing = study::defaultGlyphSpacingMm(4.0, perPixel, s.glyphMinSize, true);
+  const double spacing = study::defaultGlyphSpacingMm(4.0, perPixel, s.glyphs.minSize, true);
   s.glyphMap = blueNoiseGlyphMap(spacing, kBlueNoiseDiameterFraction * spacing, 1);
   s.glyphDiameterMm = kBlueNoiseDiameterFraction * spacing;
   for (int b = 0; b < kOnSurfaceBands; ++b)
     s.glyphLabels.push_back({b + 1, kOnSurfaceKinds[b], ""});
-  s.glyphOnSurface = true;
+  s.glyphs.onSurface = true;
   RenderSettings plainS = s;
-  plainS.glyphs = false;
-  s.glyphs = true;
+  plainS.glyphs.on = false;
+  s.glyphs.on = true;
   const RenderedFrame plain = renderer.render(plainS), glyphs = renderer.render(s);
   const std::filesystem::path out =
       std::filesystem::path(MVW_TEST_OUTPUT_DIR) / "glyphs-on-the-surface";

@@ -33,7 +33,7 @@ struct GlyphScene {
                                          .view = StandardView::Anterior,
                                          .jitterOff = true});
     s.iso = 0.0;
-    s.glyphs = true;
+    s.glyphs.on = true;
     s.glyphDiameterMm = 4.0;
     s.functionalWindow = {0.0, 1.0};
     return s;
@@ -63,11 +63,11 @@ TEST(Glyphs, NoAttributeGivesPlainShadingAndGlyphsStayWhereTheAttributeIs) {
   GlyphScene scene;
   test::Renderer renderer(scene.anatomy);
   RenderSettings s = GlyphScene::settings();
-  s.glyphs = false;
+  s.glyphs.on = false;
   const RenderedFrame plain = renderer.render(s);
   // beta = 0 everywhere: bit for bit the plain image.
   renderer.setFunctional(GlyphScene::attribute(0.0f), glm::dmat4(1.0));
-  s.glyphs = true;
+  s.glyphs.on = true;
   EXPECT_EQ(renderer.render(s).image.rgba, plain.image.rgba);
   // beta > 0 on the left half only: changes appear, and only on the screen's right half.
   renderer.setFunctional(GlyphScene::attribute(0.8f), glm::dmat4(1.0));
@@ -85,7 +85,7 @@ TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
   RenderSettings s = GlyphScene::settings();
   const RenderedFrame plain = [&] {
     RenderSettings p = s;
-    p.glyphs = false;
+    p.glyphs.on = false;
     return renderer.render(p);
   }();
   int previous = 0;
@@ -99,7 +99,7 @@ TEST(Glyphs, ApparentBumpSizeGrowsWithTheAttribute) {
   // Dimples change the same places as bumps, with other shading.
   renderer.setFunctional(GlyphScene::attribute(1.0f), glm::dmat4(1.0));
   const RenderedFrame bumps = renderer.render(s);
-  s.glyphConvexity = GlyphConvexity::Dimples;
+  s.glyphs.convexity = GlyphConvexity::Dimples;
   const RenderedFrame dimples = renderer.render(s);
   EXPECT_GT(changedPixels(bumps.image, dimples.image), previous / 2);
 }
@@ -129,7 +129,7 @@ TEST(Glyphs, ConvexAndConcaveFlipTheLitSide) {
   });
   s.iso = 0.0;
   s.camera.zoom = framingSphere(slab).radius / 40.5;  // 0.5 mm per pixel over the 80 mm slab
-  s.glyphs = true;
+  s.glyphs.on = true;
   s.glyphMap = one;
   s.glyphDiameterMm = 2 * R;
   s.functionalWindow = {0.0, 1.0};
@@ -147,9 +147,9 @@ TEST(Glyphs, ConvexAndConcaveFlipTheLitSide) {
       }
     return std::pair<double, double>{left / std::max(nl, 1), right / std::max(nr, 1)};
   };
-  s.glyphConvexity = GlyphConvexity::Bumps;
+  s.glyphs.convexity = GlyphConvexity::Bumps;
   const auto [bumpLeft, bumpRight] = sides(renderer.render(s).image);
-  s.glyphConvexity = GlyphConvexity::Dimples;
+  s.glyphs.convexity = GlyphConvexity::Dimples;
   const auto [dimpleLeft, dimpleRight] = sides(renderer.render(s).image);
   std::cout << "bump left/right " << bumpLeft << "/" << bumpRight << ", dimple " << dimpleLeft
             << "/" << dimpleRight << "\n";
@@ -179,9 +179,9 @@ TEST(Glyphs, StayVisibleInCompositeDvrAsTheOpacityIsLowered) {
   for (double opacity : {0.9, 0.3, 0.1, 0.05}) {
     const glm::vec3 c(0.9f, 0.85f, 0.8f);
     s.transfer = {"step", false, {{-0.5, glm::vec4(c, 0.0f)}, {0.5, glm::vec4(c, float(opacity))}}};
-    s.glyphs = false;
+    s.glyphs.on = false;
     const Image plain = renderer.render(s).image;
-    s.glyphs = true;
+    s.glyphs.on = true;
     const Image glyphs = renderer.render(s).image;
     int sphere = 0, changed = 0, wrongSide = 0;
     double delta = 0.0, level = 0.0;

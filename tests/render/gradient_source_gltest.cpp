@@ -184,7 +184,7 @@ TEST(GradientSource, GlyphsWorkWithEverySourceFromTheFirstFrame) {
       s.functionalWindow = {0.0, 1.0};
       VolumeRenderer renderer(*ctx, volume, source.gradient);
       const RenderedFrame plain = renderer.render(s);
-      s.glyphs = true;
+      s.glyphs.on = true;
       VolumeRenderer first(*ctx, volume, source.gradient);
       first.setFunctional(attribute(0.8f), glm::dmat4(1.0));
       const Image bumped = first.render(s).image;

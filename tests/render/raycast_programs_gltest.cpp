@@ -172,24 +172,24 @@ TEST(RaycastFeatures, GlyphSettingsGiveOneShading) {
     return RaycastPrograms::variants(s, false).glyphShading();
   };
   RenderSettings s;
-  s.glyphs = true;
+  s.glyphs.on = true;
   EXPECT_EQ(shadingOf(s), GlyphShading::Bumps);
-  s.glyphConvexity = GlyphConvexity::Dimples;
+  s.glyphs.convexity = GlyphConvexity::Dimples;
   EXPECT_EQ(shadingOf(s), GlyphShading::Dimples);
-  s.glyphConvexity = GlyphConvexity::Both;
+  s.glyphs.convexity = GlyphConvexity::Both;
   EXPECT_EQ(shadingOf(s), GlyphShading::Both);
   // Chosen labels carry their own bump or dimple through the "both" shading...
-  s.glyphConvexity = GlyphConvexity::Dimples;
+  s.glyphs.convexity = GlyphConvexity::Dimples;
   s.glyphLabels = {{1, GlyphKind::Dimples, "a"}, {2, GlyphKind::Bumps, "b"}};
   EXPECT_EQ(shadingOf(s), GlyphShading::Both);
   // ...and a kind beyond those two takes the kinds' shading, as kinds for the classes do.
   s.glyphLabels.push_back({3, GlyphKind::Rings, "c"});
   EXPECT_EQ(shadingOf(s), GlyphShading::Kinds);
   s.glyphLabels.clear();
-  s.glyphClassKinds = {GlyphKind::Bumps};
+  s.glyphs.classKinds = {GlyphKind::Bumps};
   EXPECT_EQ(shadingOf(s), GlyphShading::Kinds);
   // Glyphs off: the shading's define reaches no program.
-  s.glyphs = false;
+  s.glyphs.on = false;
   const RaycastSource off = RaycastPrograms::source(RenderMode::Composite, VolumeLayout::Gradient,
                                                     RaycastPrograms::variants(s, false));
   EXPECT_EQ(std::count(off.defines.begin(), off.defines.end(), "MVW_GLYPH_KINDS 1"), 0);

@@ -54,12 +54,12 @@ TEST(GlyphLegend, SizesFollowTheAttributeWindow) {
   EXPECT_EQ(legend.entries[2].label, "5.25");
   EXPECT_DOUBLE_EQ(legend.entries[2].size, 0.8);
   EXPECT_DOUBLE_EQ(legend.entries[3].size, 1.0);
-  v.settings.glyphConvexity = GlyphConvexity::Both;
+  v.settings.glyphs.convexity = GlyphConvexity::Both;
   const render::GlyphLegend both = glyphLegend(v, "SUVbw", {0, 20});
   ASSERT_EQ(both.entries.size(), 5u);
   EXPECT_EQ(both.entries[1].kind, GlyphKind::Dimples);
   EXPECT_EQ(both.entries[4].kind, GlyphKind::Bumps);
-  v.settings.glyphs = false;
+  v.settings.glyphs.on = false;
   EXPECT_TRUE(glyphLegend(v, "SUVbw", {0, 20}).entries.empty());
 }
 

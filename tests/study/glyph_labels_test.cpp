@@ -114,9 +114,9 @@ TEST(GlyphLabels, KindsForLabelsAndClasses) {
                  {"glyphs", {{"class_kinds", {"bumps", "rings", "ridges", "cones", "crosses"}}}}});
   PlannedView ordinal;
   ordinal.config = pet.render.views[0];
-  ordinal.settings.glyphs = true;
+  ordinal.settings.glyphs.on = true;
   ordinal.settings.functionalWindow = {1.0, 6.0};
-  ordinal.settings.glyphClassKinds = pet.render.views[0].glyphClassKinds;
+  ordinal.settings.glyphs.classKinds = pet.render.views[0].glyphs.classKinds;
   const render::GlyphLegend ranges = glyphLegend(ordinal, "SUVbw", {0, 10});
   ASSERT_EQ(ranges.entries.size(), 6u);
   EXPECT_EQ(ranges.entries[0].label, "<= 1  none");

@@ -18,10 +18,10 @@ TEST(RenderBench, FeaturesAreNamedInOrder) {
   s.depthCue.on = true;
   EXPECT_TRUE(hasBenchFeature(s));
   EXPECT_EQ(benchFeatureName(s), "depth cue");
-  s.glyphs = true;
+  s.glyphs.on = true;
   s.overlay.fusion = true;
   EXPECT_EQ(benchFeatureName(s), "glyphs+fusion+depth cue");
-  s.glyphs = false;
+  s.glyphs.on = false;
   EXPECT_EQ(benchFeatureName(s), "fusion+depth cue");
 }
 
@@ -33,13 +33,13 @@ TEST(RenderBench, AnatomyOnACutFaceCountsOnlyWhenCropped) {
   s.crop.min = glm::dvec3(0.25, 0.0, 0.0);
   EXPECT_TRUE(hasBenchFeature(s));
   EXPECT_EQ(benchFeatureName(s), "cut face");
-  s.glyphs = true;
+  s.glyphs.on = true;
   EXPECT_EQ(benchFeatureName(s), "glyphs+cut face");
 }
 
 TEST(RenderBench, WithoutFeaturesKeepsTheRest) {
   render::RenderSettings s;
-  s.glyphs = s.overlay.fusion = s.depthCue.on = true;
+  s.glyphs.on = s.overlay.fusion = s.depthCue.on = true;
   s.cutFace = render::CutFace::Anatomy;
   s.crop.min = glm::dvec3(0.25, 0.0, 0.0);
   s.size = {64, 48};

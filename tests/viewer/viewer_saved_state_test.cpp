@@ -92,23 +92,23 @@ std::string dumpSettings(const render::RenderSettings& s) {
   num("cut_face", double(static_cast<int>(s.cutFace)));
   num("plane_offset_mm", s.planeOffsetMm);
   num("slab_mm", s.slabMm);
-  num("glyphs", s.glyphs);
-  num("glyphs.size_control", s.glyphSizeControl);
-  num("glyphs.convexity", double(static_cast<int>(s.glyphConvexity)));
+  num("glyphs", s.glyphs.on);
+  num("glyphs.size_control", s.glyphs.method == GlyphMethod::Sized);
+  num("glyphs.convexity", double(static_cast<int>(s.glyphs.convexity)));
   num("glyphs.diameter_mm", s.glyphDiameterMm);
   vec("glyphs.map", {double(s.glyphMap.size), double(s.glyphMap.count), s.glyphMap.diameter,
                      double(s.glyphMap.seed), double(static_cast<int>(s.glyphMap.placement))});
-  num("glyphs.min_size", s.glyphMinSize);
-  num("glyphs.dvr_opacity", s.glyphDvrOpacity);
+  num("glyphs.min_size", s.glyphs.minSize);
+  num("glyphs.dvr_opacity", s.glyphs.dvrOpacity);
   num("glyphs.layer_mm", s.glyphLayerMm);
-  num("glyphs.on_surface", s.glyphOnSurface);
+  num("glyphs.on_surface", s.glyphs.onSurface);
   std::string labels;
   for (const render::LabelGlyph& g : s.glyphLabels)
     labels +=
         std::to_string(g.label) + ":" + std::string(glyphKindName(g.kind)) + ":" + g.name + " ";
   line("glyphs.labels", labels);
   std::string kinds;
-  for (GlyphKind k : s.glyphClassKinds) kinds += std::string(glyphKindName(k)) + " ";
+  for (GlyphKind k : s.glyphs.classKinds) kinds += std::string(glyphKindName(k)) + " ";
   line("glyphs.class_kinds", kinds);
   vec("functional_window", {s.functionalWindow.low, s.functionalWindow.high});
   num("functional_classes", s.functionalClasses);

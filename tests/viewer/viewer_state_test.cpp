@@ -174,7 +174,7 @@ TEST_F(ViewerStateTest, KeysSwitchModesAndToggles) {
   EXPECT_DOUBLE_EQ(state.view3d().depthCue.contrast, 1.0);
   state.key('G', false);
   state.key('F', false);
-  EXPECT_TRUE(state.view3d().glyphs);
+  EXPECT_TRUE(state.view3d().glyphs.on);
   EXPECT_TRUE(state.view3d().overlay.fusion);
   const std::string preset = state.presetName();
   state.key('P', false);
@@ -216,7 +216,7 @@ TEST_F(ViewerStateTest, GlyphAndFusionKeysNeedAFunctionalVolume) {
   renderAll(state);
   state.key('G', false);
   state.key('F', false);
-  EXPECT_FALSE(state.view3d().glyphs);
+  EXPECT_FALSE(state.view3d().glyphs.on);
   EXPECT_FALSE(state.view3d().overlay.fusion);
   EXPECT_FALSE(state.anyDirty());
   EXPECT_EQ(state.requests().status(), "colour fusion needs a functional volume");
@@ -703,7 +703,7 @@ TEST_F(ViewerStateTest, ChosenGlyphLabelsReachTheRendererAndAreSaved) {
   const std::vector<render::LabelGlyph> expected = {{2, GlyphKind::Dimples, "Precentral_R"},
                                                     {3, GlyphKind::Rings, "Frontal_Sup_L"}};
   EXPECT_EQ(state.view3d().glyphLabels, expected);
-  ASSERT_TRUE(state.view3d().glyphs);
+  ASSERT_TRUE(state.view3d().glyphs.on);
   EXPECT_EQ(state.glyphLegend(k3d, state.renderSettings(k3d)).entries.size(), 2u);
   state.saveConfig(dir / "saved.json");
   const config::StudyConfig saved = config::loadStudyConfig(dir / "saved.json");

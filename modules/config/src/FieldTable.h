@@ -11,7 +11,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -218,18 +220,21 @@ class FieldTable {
         });
   }
 
-  // A nested object whose presence switches a feature on ("glyphs": {...}); its keys are read
-  // into the same struct by `table`, and it is written only while the feature is on.
-  FieldTable& section(const char* key, Doc doc, bool T::*enabled, const FieldTable<T>& table) {
+  // A nested object whose presence switches on `enabled` of the member `value` ("glyphs":
+  // {...} sets the glyph style's `on`), its keys read into this same struct by `table` (a value
+  // type's keys, inlined there, beside keys of this struct's own); written only while it is on.
+  template <class M>
+  FieldTable& section(const char* key, Doc doc, M T::*value, bool M::*enabled,
+                      const FieldTable<T>& table) {
     return add(
         key, doc,
         {"object", "", "off", [table](const std::string& path) { return table.describe(path); }},
-        [enabled, table](const json& v, T& out, const Where& w) {
-          out.*enabled = true;
+        [value, enabled, table](const json& v, T& out, const Where& w) {
+          (out.*value).*enabled = true;
           table.read(v, out, Where{w.file, w.key + "."});
         },
-        [enabled, table](const T& in, json& j, const char* k) {
-          if (in.*enabled) j[k] = table.write(in);
+        [value, enabled, table](const T& in, json& j, const char* k) {
+          if ((in.*value).*enabled) j[k] = table.write(in);
         });
   }
 
@@ -248,6 +253,36 @@ class FieldTable {
                          },
                          f.range, f.shape});
     return *this;
+  }
+
+  // The keys named of a value type's own table, inlined here as above, in the order of `keys`
+  // (so that a value's keys can keep their places among the object's own: the glyph style's
+  // among the glyph map's). Every one must be in `table`; coveredKeys() checks the rest.
+  template <class M>
+  FieldTable& inlined(M T::*value, const FieldTable<M>& table,
+                      std::initializer_list<const char*> keys) {
+    for (const char* key : keys) {
+      const typename FieldTable<M>::Field* f = table.find(key);
+      if (f == nullptr) throw std::logic_error(std::string("no key '") + key + "' to inline");
+      fields_.push_back({f->key, f->doc,
+                         [value, read = f->read](const json& v, T& out, const Where& w) {
+                           read(v, out.*value, w);
+                         },
+                         [value, write = f->write](const T& in, json& j, const char* k) {
+                           write(in.*value, j, k);
+                         },
+                         f->range, f->shape});
+    }
+    return *this;
+  }
+
+  // Whether every key of `table` is a key of this one (each key of a value type's table
+  // inlined in pieces, none left out).
+  template <class M>
+  bool coveredKeys(const FieldTable<M>& table) const {
+    for (const auto& f : table.fields_)
+      if (find(f.key) == nullptr) return false;
+    return true;
   }
 
   // A value type's own table as a nested object whose presence switches it on ("depth_cue":

@@ -114,14 +114,69 @@ std::string absolutePath(const fs::path& path) {
 // ---------------------------------------------------------------------------------------
 // The tables
 
-const FieldTable<ViewConfig>& glyphTable() {
-  static const FieldTable<ViewConfig> t = [] {
-    FieldTable<ViewConfig> g;
+// How glyphs are drawn (mvw/core/GlyphStyle.h), the renderer's value too; its keys sit in the
+// glyph object among the map's (glyphTable).
+const FieldTable<GlyphStyle>& glyphStyleTable() {
+  static const FieldTable<GlyphStyle> t = [] {
+    FieldTable<GlyphStyle> g;
     g.enumeration("method",
                   "Size control: sized, eqs. (2)-(3) of Seipel 2007; simple, eq. (1) blending.",
-                  &ViewConfig::glyphMethod, kGlyphMethods)
+                  &GlyphStyle::method, kGlyphMethods)
         .enumeration("convexity", "Bumps (convex), dimples (concave) or both.",
-                     &ViewConfig::glyphConvexity, kConvexities)
+                     &GlyphStyle::convexity, kConvexities)
+        .number("min_size", "Apparent bump radius at the window's low end, in glyph radii.",
+                &GlyphStyle::minSize, 0.0, 1.0)
+        .number("dvr_opacity",
+                "Composite, blue-noise: the least opacity per mm of ray a bump gives its samples.",
+                &GlyphStyle::dvrOpacity, 0.0, 1.0)
+        .boolean("on_surface",
+                 "Glyph kinds, orthographic views: the glyphs on the visible surface, a lattice on "
+                 "the image, each shape whole on the disc facing the viewer (issue 52); false, a "
+                 "3D lattice the surface cuts. They keep to the image when the view turns.",
+                 &GlyphStyle::onSurface)
+        .add(
+            "class_kinds",
+            "Glyph kind per class: with functional_classes, of each label class in class "
+            "order (the last one past the list's end); else the window cut into equal ranges, "
+            "one kind each.",
+            {"array",
+             "\"bumps\" | \"dimples\" | \"rings\" | \"ridges\" | \"cones\" | "
+             "\"crosses\"",
+             "every class bumps",
+             {}},
+            [](const json& v, GlyphStyle& out, const Where& w) {
+              if (!v.is_array() || v.empty())
+                w.bad(
+                    "must be a non-empty array of glyph kinds (bumps, dimples, rings, ridges, "
+                    "cones, crosses)");
+              out.classKinds.clear();
+              for (std::size_t i = 0; i < v.size(); ++i) {
+                const Where item{w.file, w.key + "[" + std::to_string(i) + "]"};
+                const std::optional<GlyphKind> k = parseGlyphKind(readString(v[i], item));
+                if (!k) item.bad("must be bumps, dimples, rings, ridges, cones or crosses");
+                out.classKinds.push_back(*k);
+              }
+            },
+            [](const GlyphStyle& in, json& j, const char* k) {
+              if (in.classKinds.empty()) return;
+              json a = json::array();
+              for (GlyphKind c : in.classKinds) a.push_back(glyphKindName(c));
+              j[k] = a;
+            });
+    return g;
+  }();
+  return t;
+}
+
+// The glyph object: the style's keys (glyphStyleTable) at their places among the config's form
+// of the map (placement, spacing, diameter, the paper map's) and the chosen labels, which the
+// renderer holds in its own form (study::planViews converts).
+const FieldTable<ViewConfig>& glyphTable() {
+  static const FieldTable<ViewConfig> t = [] {
+    using V = ViewConfig;
+    const FieldTable<GlyphStyle>& style = glyphStyleTable();
+    FieldTable<ViewConfig> g;
+    g.inlined(&V::glyphs, style, {"method", "convexity"})
         .enumeration("placement",
                      "Where glyphs sit: blue-noise, a turned, jittered lattice spacing_mm apart; "
                      "paper, the paper's 16 random glyphs of 32 voxels in 128^3.",
@@ -129,16 +184,7 @@ const FieldTable<ViewConfig>& glyphTable() {
         .optionalNumber("spacing_mm", "Blue-noise: the glyph centres' spacing in mm.",
                         &ViewConfig::glyphSpacingMm, 0.5, 1000.0)
         .whenAbsent("the functional voxel, within what the rendered scale shows")
-        .number("min_size", "Apparent bump radius at the window's low end, in glyph radii.",
-                &ViewConfig::glyphMinSize, 0.0, 1.0)
-        .number("dvr_opacity",
-                "Composite, blue-noise: the least opacity per mm of ray a bump gives its samples.",
-                &ViewConfig::glyphDvrOpacity, 0.0, 1.0)
-        .boolean("on_surface",
-                 "Glyph kinds, orthographic views: the glyphs on the visible surface, a lattice on "
-                 "the image, each shape whole on the disc facing the viewer (issue 52); false, a "
-                 "3D lattice the surface cuts. They keep to the image when the view turns.",
-                 &ViewConfig::glyphOnSurface)
+        .inlined(&V::glyphs, style, {"min_size", "dvr_opacity", "on_surface"})
         .optionalNumber("diameter_mm", "Glyph diameter in mm.", &ViewConfig::glyphDiameterMm, 0.1,
                         1000.0)
         .whenAbsent("blue-noise: a fraction of the spacing; paper: the paper's diameter")
@@ -180,35 +226,8 @@ const FieldTable<ViewConfig>& glyphTable() {
               for (const LabelChoice& c : in.glyphLabels) o[c.label] = toString(c.kind);
               j[k] = o;
             })
-        .add(
-            "class_kinds",
-            "Glyph kind per class: with functional_classes, of each label class in class "
-            "order (the last one past the list's end); else the window cut into equal ranges, "
-            "one kind each.",
-            {"array",
-             "\"bumps\" | \"dimples\" | \"rings\" | \"ridges\" | \"cones\" | "
-             "\"crosses\"",
-             "every class bumps",
-             {}},
-            [](const json& v, ViewConfig& out, const Where& w) {
-              if (!v.is_array() || v.empty())
-                w.bad(
-                    "must be a non-empty array of glyph kinds (bumps, dimples, rings, ridges, "
-                    "cones, crosses)");
-              out.glyphClassKinds.clear();
-              for (std::size_t i = 0; i < v.size(); ++i) {
-                const Where item{w.file, w.key + "[" + std::to_string(i) + "]"};
-                const std::optional<GlyphKind> k = parseGlyphKind(readString(v[i], item));
-                if (!k) item.bad("must be bumps, dimples, rings, ridges, cones or crosses");
-                out.glyphClassKinds.push_back(*k);
-              }
-            },
-            [](const ViewConfig& in, json& j, const char* k) {
-              if (in.glyphClassKinds.empty()) return;
-              json a = json::array();
-              for (GlyphKind c : in.glyphClassKinds) a.push_back(glyphKindName(c));
-              j[k] = a;
-            });
+        .inlined(&V::glyphs, style, {"class_kinds"});
+    if (!g.coveredKeys(style)) throw std::logic_error("a glyph style key is not in glyphs");
     return g;
   }();
   return t;
@@ -404,7 +423,7 @@ const FieldTable<ViewConfig>& viewTable() {
         .section("glyphs",
                  "Volumetric normal glyphs showing the functional volume (composite, "
                  "isosurface): on where present.",
-                 &V::glyphs, glyphTable())
+                 &V::glyphs, &GlyphStyle::on, glyphTable())
         .add(
             "functional_window",
             "Functional values mapped to 0 .. 1 (overlay, glyph size) [low, high].",

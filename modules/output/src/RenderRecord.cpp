@@ -61,10 +61,10 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
     r["notes"].push_back(text);
     log << "mvw render: note: view '" << v.config.name << "': " << text << "\n";
   }
-  if (v.settings.glyphs)
+  if (v.settings.glyphs.on)
     r["glyphs"] = {
-        {"method", config::toString(v.config.glyphMethod)},
-        {"convexity", config::toString(v.config.glyphConvexity)},
+        {"method", config::toString(v.config.glyphs.method)},
+        {"convexity", config::toString(v.config.glyphs.convexity)},
         {"diameter_mm", v.settings.glyphDiameterMm},
         {"spacing_mm", v.settings.glyphMap.placement == render::GlyphPlacement::BlueNoise
                            ? render::blueNoiseSpacing(v.settings.glyphMap.size) *
@@ -74,7 +74,7 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
         {"seed", v.config.glyphSeed},
         {"map_size", v.config.glyphMapSize},
         {"map_diameter", v.config.glyphMapDiameter}};
-  if (v.settings.glyphs && session.functional()) {
+  if (v.settings.glyphs.on && session.functional()) {
     // What the legend shows (issue 40): per entry its label, glyph kind, size and value.
     nlohmann::json entries = nlohmann::json::array();
     const render::GlyphLegend legend =
@@ -87,9 +87,9 @@ nlohmann::json viewRecord(const study::PlannedView& v, const study::Session& ses
       entries.push_back(entry);
     }
     r["glyphs"]["legend"] = {{"title", legend.title}, {"entries", entries}};
-    if (!v.settings.glyphClassKinds.empty()) {
+    if (!v.settings.glyphs.classKinds.empty()) {
       nlohmann::json kinds = nlohmann::json::array();
-      for (GlyphKind k : v.settings.glyphClassKinds) kinds.push_back(glyphKindName(k));
+      for (GlyphKind k : v.settings.glyphs.classKinds) kinds.push_back(glyphKindName(k));
       r["glyphs"]["class_kinds"] = kinds;
     }
   }

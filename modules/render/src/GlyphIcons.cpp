@@ -18,7 +18,7 @@ void GlyphIcons::fill(GlContext& context, const RenderSettings& view, GlyphLegen
                       int pixels) {
   bool any = false;
   for (const GlyphLegendEntry& e : legend.entries) any |= e.value.has_value() && e.size > 0.0;
-  if (!any || !view.glyphs) return;
+  if (!any || !view.glyphs.on) return;
   const GlyphMapSettings& g = view.glyphMap;
   if (!renderer_ || g.size != map_.size || g.count != map_.count || g.diameter != map_.diameter ||
       g.seed != map_.seed || g.placement != map_.placement || view.glyphDiameterMm != diameterMm_) {
@@ -59,7 +59,7 @@ void GlyphIcons::fill(GlContext& context, const RenderSettings& view, GlyphLegen
     Volume attribute(dims_, 1, ScalarType::Float32, worldFromIndex_);
     float* p = attribute.dataAs<float>();
     for (std::size_t i = 0; i < attribute.voxelCount(); ++i) p[i] = float(*e.value);
-    if (s.glyphOnSurface) {
+    if (s.glyphs.onSurface) {
       // Glyphs on the surface: their lattice is the image's, one centre in its middle (the
       // plane's middle, facing the camera); the attribute only under that glyph's disc, so the
       // icon is the one glyph whole, as a glyph of the image, not its neighbours' slivers.

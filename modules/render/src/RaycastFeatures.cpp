@@ -25,8 +25,10 @@ bool shadedModes(RenderMode m) { return hasCutFace(m); }  // composite and isosu
 // (issue 40) take the kinds' shading, each glyph's kind read at its foot.
 GlyphShading glyphShadingOf(const RenderSettings& s) {
   if (usesGlyphKinds(s)) return GlyphShading::Kinds;
-  if (s.glyphConvexity == GlyphConvexity::Both || !s.glyphLabels.empty()) return GlyphShading::Both;
-  return s.glyphConvexity == GlyphConvexity::Dimples ? GlyphShading::Dimples : GlyphShading::Bumps;
+  if (s.glyphs.convexity == GlyphConvexity::Both || !s.glyphLabels.empty())
+    return GlyphShading::Both;
+  return s.glyphs.convexity == GlyphConvexity::Dimples ? GlyphShading::Dimples
+                                                       : GlyphShading::Bumps;
 }
 
 constexpr RaycastFeature kNone = RaycastFeature::Count;
@@ -57,7 +59,7 @@ void setTf2dUniforms(const ShaderProgram& p, const FeatureFrame& f) {
 // The glyph map's scale and centres; the DVR opacity floor per step.
 void setGlyphUniforms(const ShaderProgram& p, const FeatureFrame& f) {
   const RenderSettings& s = f.settings;
-  f.glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphMinSize, s.glyphDvrOpacity, f.stepMm);
+  f.glyphs.setUniforms(p, s.glyphDiameterMm, s.glyphs.minSize, s.glyphs.dvrOpacity, f.stepMm);
 }
 
 // The kinds' shading: glyph space back to world mm, the surface layer, and glyphs on the
@@ -68,7 +70,7 @@ void setGlyphKindsUniforms(const ShaderProgram& p, const FeatureFrame& f) {
   f.glyphs.setKindsUniforms(p, s.glyphDiameterMm);
   glUniform1f(p.uniform("uGlyphLayerMm"), float(std::max(s.glyphLayerMm, 0.0)));
   // Glyphs on the visible surface: the glyph's radius in pixels (0: the 3D lattice).
-  const bool onSurface = s.glyphOnSurface && !camera.perspective && camera.halfHeightMm > 0;
+  const bool onSurface = s.glyphs.onSurface && !camera.perspective && camera.halfHeightMm > 0;
   const double radiusPx = 0.5 * s.glyphDiameterMm * s.size.y / (2.0 * camera.halfHeightMm);
   glUniform1f(p.uniform("uGlyphScreenRadiusPx"), onSurface ? float(radiusPx) : 0.0f);
   glUniform1f(p.uniform("uGlyphScreenSpacingPx"),
@@ -154,7 +156,7 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .sharedUniforms = {"uGlyphCells"},
        .appliesTo = shadedModes,
        .needs = kNone,
-       .valueFor = [](const RenderSettings& s, bool) { return int(s.glyphs); }},
+       .valueFor = [](const RenderSettings& s, bool) { return int(s.glyphs.on); }},
       // Simple blending, eq. (1), instead of size and convexity control (eqs. 2-3).
       {.id = F::GlyphSimple,
        .name = "glyph simple blending",
@@ -164,7 +166,8 @@ const std::array<RaycastFeatureSpec, kRaycastFeatureCount>& raycastFeatures() {
        .uniforms = {},
        .appliesTo = shadedModes,
        .needs = F::Glyphs,
-       .valueFor = [](const RenderSettings& s, bool) { return int(!s.glyphSizeControl); }},
+       .valueFor = [](const RenderSettings& s,
+                      bool) { return int(s.glyphs.method == GlyphMethod::Simple); }},
       // GlyphShading's values, in its order: bumps (no define), dimples, both, kinds.
       {.id = F::GlyphShading,
        .name = "glyph shading",

@@ -134,9 +134,9 @@ Image VolumeRenderer::Impl::drawShells(const RenderSettings& s, const Camera& ca
 }
 
 Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camera) {
-  if (s.glyphs && !functional.present())
+  if (s.glyphs.on && !functional.present())
     throw Error("glyph rendering needs a functional volume (the study has none)");
-  if (s.glyphs && !(s.glyphDiameterMm > 0)) throw Error("glyph diameter must be positive");
+  if (s.glyphs.on && !(s.glyphDiameterMm > 0)) throw Error("glyph diameter must be positive");
   const double step = s.stepMm > 0 ? s.stepMm : defaultStep;
 
   // What this frame's settings derive: the transfer table and the blocks it leaves visible,
@@ -147,10 +147,10 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   blocks.updateVisibility(transfer.lut(), lo, hi, s.mode == RenderMode::Composite);
   volume.setLinear(s.linear);
   const glm::vec2 functionalWindow = functional.window(s.functionalWindow);
-  if (s.glyphs) {
+  if (s.glyphs.on) {
     glyphs.uploadMap(s.glyphMap);
     glyphs.updateBeta(volume, functional, functionalWindow, s.functionalClasses, s.glyphLabels,
-                      usesGlyphKinds(s) ? s.glyphClassKinds : std::vector<GlyphKind>{},
+                      usesGlyphKinds(s) ? s.glyphs.classKinds : std::vector<GlyphKind>{},
                       usesGlyphKinds(s), programs.beta(), vao.id());
   }
 
@@ -324,7 +324,7 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayCo
 }
 
 bool usesGlyphKinds(const RenderSettings& s) {
-  if (s.glyphLabels.empty() && !s.glyphClassKinds.empty()) return true;
+  if (s.glyphLabels.empty() && !s.glyphs.classKinds.empty()) return true;
   for (const LabelGlyph& l : s.glyphLabels)
     if (l.kind != GlyphKind::Bumps && l.kind != GlyphKind::Dimples) return true;
   return false;

@@ -57,10 +57,10 @@ std::string viewCaption(const PlannedView& v, const WindowLevel& shown) {
     caption += "  W " + std::to_string(static_cast<int>(shown.window)) + " L " +
                std::to_string(static_cast<int>(shown.level));
   if (render::showsImageColors(s)) caption += "  " + toString(s.imageColors->map);
-  if (s.glyphs &&
+  if (s.glyphs.on &&
       (s.mode == render::RenderMode::Composite || s.mode == render::RenderMode::Isosurface))
-    caption += "  glyphs " + config::toString(v.config.glyphMethod) + " " +
-               (s.glyphLabels.empty() ? config::toString(v.config.glyphConvexity)
+    caption += "  glyphs " + config::toString(v.config.glyphs.method) + " " +
+               (s.glyphLabels.empty() ? config::toString(v.config.glyphs.convexity)
                                       : std::string("by chosen label"));
   // Only where the image shows it (a planned view with fusion has a functional volume): MPR
   // shows its overlay, and the shell modes cannot fuse.
@@ -93,18 +93,19 @@ render::GlyphLegend glyphLegend(const PlannedView& v, const std::string& unit,
                                 std::pair<double, double> range) {
   const render::RenderSettings& s = v.settings;
   render::GlyphLegend legend;
-  if (!s.glyphs) return legend;
+  if (!s.glyphs.on) return legend;
   // The apparent bump radius for an attribute u in 0..1 (shaders/common/glyphs.glsl): eq. (1)
   // blends at full size; eqs. (2)-(3) run from the minimum size to 1 (paper: from 0).
   const bool paper = s.glyphMap.placement == render::GlyphPlacement::Paper;
-  const bool both = s.glyphConvexity == GlyphConvexity::Both || !s.glyphLabels.empty();
+  const bool both = s.glyphs.convexity == GlyphConvexity::Both || !s.glyphLabels.empty();
   auto bump = [&](double u, std::string label, std::optional<double> value) {
     const double beta = both ? 2.0 * u - 1.0 : u;
     const double size =
-        !s.glyphSizeControl ? (beta == 0.0 ? 0.0 : 1.0)
-        : paper             ? std::abs(beta)
-                : (beta == 0.0 ? 0.0 : s.glyphMinSize + (1.0 - s.glyphMinSize) * std::abs(beta));
-    const bool dimple = s.glyphConvexity == GlyphConvexity::Dimples || (both && beta < 0.0);
+        s.glyphs.method == GlyphMethod::Simple ? (beta == 0.0 ? 0.0 : 1.0)
+        : paper
+            ? std::abs(beta)
+            : (beta == 0.0 ? 0.0 : s.glyphs.minSize + (1.0 - s.glyphs.minSize) * std::abs(beta));
+    const bool dimple = s.glyphs.convexity == GlyphConvexity::Dimples || (both && beta < 0.0);
     legend.entries.push_back(
         {std::move(label), size, dimple ? GlyphKind::Dimples : GlyphKind::Bumps, {}, value});
   };
@@ -137,7 +138,7 @@ render::GlyphLegend glyphLegend(const PlannedView& v, const std::string& unit,
            double(c == 0 ? k : c));     // a label of the class
       if (render::usesGlyphKinds(s)) {  // issue 40: each class its kind as well as its size
         const GlyphKind kind =
-            s.glyphClassKinds[std::min<std::size_t>(c, s.glyphClassKinds.size() - 1)];
+            s.glyphs.classKinds[std::min<std::size_t>(c, s.glyphs.classKinds.size() - 1)];
         legend.entries.back().kind = kind;
         legend.entries.back().label += std::string("  ") + glyphKindName(kind);
       }
@@ -150,12 +151,12 @@ render::GlyphLegend glyphLegend(const PlannedView& v, const std::string& unit,
   if (render::usesGlyphKinds(s)) {
     // An ordinal attribute in classes (issue 40): the window's equal ranges, each its kind,
     // the icon at the range's middle (the size the window gives there).
-    const int n = int(s.glyphClassKinds.size());
+    const int n = int(s.glyphs.classKinds.size());
     bump(0.0, "<= " + number(lo) + "  none", std::nullopt);
     for (int c = 0; c < n; ++c) {
       const double a = lo + (hi - lo) * c / n, b = lo + (hi - lo) * (c + 1) / n;
       const double u = (c + 0.5) / n;
-      const GlyphKind kind = s.glyphClassKinds[std::size_t(c)];
+      const GlyphKind kind = s.glyphs.classKinds[std::size_t(c)];
       bump(u, number(a) + " - " + number(b) + (c + 1 == n ? "+" : "") + "  " + glyphKindName(kind),
            lo + u * (hi - lo));
       legend.entries.back().kind = kind;

@@ -168,7 +168,7 @@ void applyGlyphScale(PlannedView& view, const Volume& anatomy, const Volume& fun
   const glm::dvec3 fv = functional.spacing();
   const double voxel = std::max({fv.x, fv.y, fv.z});
   setBlueNoiseMap(
-      s, v, defaultGlyphSpacingMm(voxel, mmPerPixel, v.glyphMinSize, render::usesGlyphKinds(s)));
+      s, v, defaultGlyphSpacingMm(voxel, mmPerPixel, v.glyphs.minSize, render::usesGlyphKinds(s)));
 }
 
 ColorTable colorTable(ColorMap map) {
@@ -324,15 +324,11 @@ void setViewGeometry(render::RenderSettings& s, const config::ViewConfig& v, con
   s.cutFace = v.cutFace;
 }
 
-// The glyphs: their switches and their map, checked against the study and the mode.
+// The glyphs: their style and their map (the config's placement, spacing and diameter made the
+// renderer's map; describeView turns it back), checked against the study and the mode.
 void setGlyphs(render::RenderSettings& s, const config::ViewConfig& v,
                const config::StudyConfig& study) {
   s.glyphs = v.glyphs;
-  s.glyphSizeControl = v.glyphMethod == config::GlyphMethod::Sized;
-  s.glyphConvexity = v.glyphConvexity;
-  s.glyphMinSize = v.glyphMinSize;
-  s.glyphDvrOpacity = v.glyphDvrOpacity;
-  s.glyphOnSurface = v.glyphOnSurface;
   s.glyphMap = {v.glyphMapSize, v.glyphCount, v.glyphMapDiameter, v.glyphSeed};
   {
     // The map follows the config's placement even while glyphs are off, so a viewer that
@@ -346,17 +342,17 @@ void setGlyphs(render::RenderSettings& s, const config::ViewConfig& v,
         s.glyphDiameterMm = v.glyphDiameterMm.value_or(kPaperGlyphDiameterMm);
       else  // an automatic spacing is provisional until applyGlyphScale knows the volumes
         setBlueNoiseMap(s, v, kGlyphSpacingMm);
-      if (v.glyphs) render::makeGlyphMap(s.glyphMap, /*texels=*/false);
+      if (v.glyphs.on) render::makeGlyphMap(s.glyphMap, /*texels=*/false);
     } catch (const InputError&) {
       throw;
     } catch (const Error& e) {
       throw InputError(study.file, "view '" + v.name + "': " + keys + ": " + e.what());
     }
   }
-  if (v.glyphs && !study.functional)
+  if (v.glyphs.on && !study.functional)
     throw InputError(study.file,
                      "view '" + v.name + "': glyphs need a functional volume in the study");
-  if (v.glyphs &&
+  if (v.glyphs.on &&
       (s.mode != render::RenderMode::Composite && s.mode != render::RenderMode::Isosurface))
     throw InputError(study.file,
                      "view '" + v.name + "': glyphs work in composite and isosurface modes");
@@ -379,7 +375,6 @@ void setFunctional(render::RenderSettings& s, const config::ViewConfig& v,
   s.overlay = v.overlay;
   s.segmentationOutlines = v.segmentationOutlines;
   s.functionalClasses = v.functionalClasses;
-  s.glyphClassKinds = v.glyphClassKinds;
   if (!v.glyphLabels.empty()) s.glyphLabels = chosenLabels(study, v);
   if (v.overlay.fusion && !study.functional)
     throw InputError(study.file,
@@ -473,7 +468,7 @@ void applyAttributeDefaults(PlannedView& view, config::FunctionalKind kind,
   // Glyph views only: there the window's low end is the threshold below which no glyph shows.
   // A colour overlay or fusion keeps the full range as its colour scale (its threshold is a
   // fraction of the window: a raised low end would hide moderate uptake twice over).
-  if (!view.settings.glyphs) return;
+  if (!view.settings.glyphs.on) return;
   if (view.config.functionalWindow.set() || view.config.functionalClasses > 0) return;
   const ValueWindow window = defaultAttributeWindow(kind, functional, range);
   if (window.set()) view.settings.functionalWindow = window;
@@ -527,17 +522,14 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   v.crop = s.crop;
   // Glyphs only where they show (a viewer may leave them on while it shows a MIP): a saved MIP
   // with glyphs would not load.
-  v.glyphs = s.glyphs && (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface);
-  v.glyphMethod = s.glyphSizeControl ? config::GlyphMethod::Sized : config::GlyphMethod::Simple;
-  v.glyphConvexity = s.glyphConvexity;
+  v.glyphs = s.glyphs;
+  v.glyphs.on =
+      s.glyphs.on && (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface);
   v.glyphDiameterMm = s.glyphDiameterMm;  // what is shown, explicit
   v.glyphMapSize = s.glyphMap.size;
   v.glyphCount = s.glyphMap.count;
   v.glyphMapDiameter = s.glyphMap.diameter;
   v.glyphSeed = s.glyphMap.seed;
-  v.glyphMinSize = s.glyphMinSize;
-  v.glyphDvrOpacity = s.glyphDvrOpacity;
-  v.glyphOnSurface = s.glyphOnSurface;
   // Chosen labels by number (a table beside the volume names them again), in the modes
   // that draw glyphs, kept while glyphs are switched off.
   if (s.mode == RenderMode::Composite || s.mode == RenderMode::Isosurface)
@@ -562,7 +554,6 @@ config::ViewConfig describeView(const render::RenderSettings& s, const std::stri
   // The functional mean only where the mode takes it, as the colour map below.
   if (!takesFusionMean(s.mode)) v.overlay.projection = FusionProjection::Max;
   v.functionalClasses = s.functionalClasses;
-  v.glyphClassKinds = s.glyphClassKinds;
   // Only where the mode shows it: a saved composite view with a colormap would not load.
   v.colormap = render::showsImageColors(s) ? s.imageColors->map : ColorMap::Grey;
   v.overlayColormap = s.overlayColors ? s.overlayColors->map : ColorMap::HotMetal;

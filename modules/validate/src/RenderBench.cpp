@@ -94,12 +94,12 @@ void runRenderBench(const RenderBenchOptions& o) {
 }
 
 bool hasBenchFeature(const render::RenderSettings& s) {
-  return s.glyphs || s.overlay.fusion || s.depthCue.on || render::showsAnatomyOnCutFace(s);
+  return s.glyphs.on || s.overlay.fusion || s.depthCue.on || render::showsAnatomyOnCutFace(s);
 }
 
 std::string benchFeatureName(const render::RenderSettings& s) {
   std::string name;
-  if (s.glyphs) name += "glyphs";
+  if (s.glyphs.on) name += "glyphs";
   if (s.overlay.fusion) name += name.empty() ? "fusion" : "+fusion";
   if (s.depthCue.on) name += name.empty() ? "depth cue" : "+depth cue";
   if (render::showsAnatomyOnCutFace(s)) name += name.empty() ? "cut face" : "+cut face";
@@ -107,7 +107,7 @@ std::string benchFeatureName(const render::RenderSettings& s) {
 }
 
 render::RenderSettings withoutBenchFeatures(render::RenderSettings s) {
-  s.glyphs = s.overlay.fusion = s.depthCue.on = false;
+  s.glyphs.on = s.overlay.fusion = s.depthCue.on = false;
   s.cutFace = render::CutFace::Plain;
   return s;
 }

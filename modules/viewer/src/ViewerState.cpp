@@ -382,7 +382,7 @@ void ViewerState::key(char key, bool ctrl) {
     view3d_.depthCue.amount = view3d_.depthCue.on ? 0.66 : 0.0;
     view3d_.depthCue.contrast = view3d_.depthCue.on ? 0.33 : 1.0;
   } else if (key == 'G' && functional_) {
-    view3d_.glyphs = !view3d_.glyphs;
+    view3d_.glyphs.on = !view3d_.glyphs.on;
   } else if (key == 'F') {
     // Said on the status line, not toggled: a fusion the image could not show.
     if (!functional_) return requests_.setStatus("colour fusion needs a functional volume");
@@ -657,7 +657,7 @@ config::ViewConfig ViewerState::viewConfigOf(int pane, config::ViewerLayout layo
       pane == k3d && !petCt ? presetName_ : "");
   // Glyphs shown over the functional volume's full range (G on a view without a window): saved
   // as that range, or `mvw render` would give the glyph view its default window instead.
-  if (pane == k3d && v.glyphs && !v.functionalWindow.set() && v.functionalClasses == 0)
+  if (pane == k3d && v.glyphs.on && !v.functionalWindow.set() && v.functionalClasses == 0)
     v.functionalWindow = {scene_.functionalRange.first, scene_.functionalRange.second};
   if (pane != k3d)  // axial, coronal, sagittal: the planes' own names
     v.view = s.camera.view == StandardView::Inferior   ? config::ViewName::Axial

@@ -27,6 +27,7 @@
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/Frame.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/GlyphStyle.h"
 #include "mvw/core/GradientOpacity.h"
 #include "mvw/core/Orbit.h"
 #include "mvw/core/Overlay.h"
@@ -68,8 +69,9 @@ enum class ViewName {
   Sagittal
 };
 enum class Sampling { Linear, Nearest };
-// Volumetric normal glyphs: size control by eqs. (2)-(3) of Seipel 2007, or eq. (1) blending.
-enum class GlyphMethod { Sized, Simple };
+// Volumetric normal glyphs: how they are drawn (mvw/core/GlyphStyle.h).
+using mvw::GlyphMethod;
+using mvw::GlyphStyle;
 // Where glyphs sit in the normal map: a turned, jittered lattice with the spacing in mm
 // (blue-noise), or the paper's 16 random glyphs of 32 voxels in 128^3 (paper).
 enum class GlyphPlacement { BlueNoise, Paper };
@@ -127,29 +129,23 @@ struct ViewConfig {
   // the least opacity per mm a bump gives its samples; blue-noise only: "paper" is
   // the paper's map and shading), "seed", and for the paper's random map "count", "map_size",
   // "map_diameter"}; the functional attribute is mapped to beta 0..1 by functional_window.
-  bool glyphs = false;
-  GlyphMethod glyphMethod = GlyphMethod::Sized;
-  GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
+  GlyphStyle glyphs;  // how they are drawn, the renderer's value too (mvw/core/GlyphStyle.h)
+  // Where they sit, the config's form (the renderer holds the map it makes: study::planViews
+  // and study::describeView convert). Empty spacing: from the functional voxel and the rendered
+  // scale (study::applyGlyphScale); empty diameter: kBlueNoiseDiameterFraction of the spacing
+  // (paper: kPaperGlyphDiameterMm).
   GlyphPlacement glyphPlacement = GlyphPlacement::BlueNoise;
-  // Empty spacing: from the functional voxel and the rendered scale (study::applyGlyphScale);
-  // empty diameter: kBlueNoiseDiameterFraction of the spacing (paper: kPaperGlyphDiameterMm).
   std::optional<double> glyphSpacingMm;
-  double glyphMinSize = kGlyphMinSize;
   std::optional<double> glyphDiameterMm;
-  double glyphDvrOpacity = kGlyphDvrOpacityPerMm;  // per mm of ray (composite DVR)
-  bool glyphOnSurface = false;  // glyph kinds: a lattice on the image (render::RenderSettings)
   int glyphCount = 16, glyphMapSize = 128;
   double glyphMapDiameter = 32.0;
   unsigned glyphSeed = 1;
   ValueWindow functionalWindow;  // values -> 0..1 (overlay, glyph beta); unset: by kind
   int functionalClasses = 0;     // labels: K > 0 gives label L the glyph size (L mod K + 1) / K
   // glyphs.labels {"Hippocampus_L": "bumps", "38": "dimples", ...}: only these labels get
-  // glyphs ("bumps" | "dimples" | "none"); names come from the atlas's label table.
+  // glyphs ("bumps" | "dimples" | "none"); names come from the atlas's label table (the
+  // renderer holds the numbers: study's chosenLabels).
   std::vector<LabelChoice> glyphLabels;
-  // glyphs.class_kinds ["bumps", "rings", ...] (issue 40): with functional_classes K, class c
-  // (label L with L mod K = c) takes kind c of this list (the last one past its end), as well
-  // as its size; without, the attribute window is cut into as many equal ranges as kinds.
-  std::vector<GlyphKind> glyphClassKinds;
   WindowLevel window;  // "window" and "level"; unset: by the modality (study::modalityDefaults)
   double iso = 300.0;
   // mip: depth cueing (Heidrich 1995) {"brightness": beta0, "amount": a, "contrast": b}.

@@ -15,6 +15,7 @@
 #include "mvw/core/Crop.h"
 #include "mvw/core/DepthCue.h"
 #include "mvw/core/GlyphDefaults.h"
+#include "mvw/core/GlyphStyle.h"
 #include "mvw/core/GradientOpacity.h"
 #include "mvw/core/Overlay.h"
 #include "mvw/core/RenderMode.h"
@@ -43,6 +44,8 @@ bool usesGlyphKinds(const RenderSettings& s);
 using mvw::CutFace;
 using mvw::GlyphConvexity;
 using mvw::GlyphKind;
+using mvw::GlyphMethod;
+using mvw::GlyphStyle;
 using mvw::parseRenderMode;
 using mvw::RenderMode;
 using mvw::toString;
@@ -88,30 +91,17 @@ struct RenderSettings {
   double slabMm = 0.0;
   // Volumetric normal glyphs (Seipel 2007) in composite and isosurface modes: the functional
   // attribute (mapped to 0..1 by functionalWindow) perturbs the shading normal with glyphs
-  // from a periodic normal map. Needs a functional volume.
-  bool glyphs = false;
-  bool glyphSizeControl = true;  // eqs. (2)-(3); false: simple blending, eq. (1)
-  GlyphConvexity glyphConvexity = GlyphConvexity::Bumps;
+  // from a periodic normal map. Needs a functional volume. How they are drawn
+  // (mvw/core/GlyphStyle.h); where they sit, the map and its diameter on the patient below.
+  GlyphStyle glyphs;
   double glyphDiameterMm = kPaperGlyphDiameterMm;  // the default map is the paper's
   GlyphMapSettings glyphMap;  // size, count, diameter in map voxels, seed, placement
-  // The apparent bump radius just above the attribute window's low end, in glyph radii; it
-  // grows linearly to 1 at the high end (shaders/common/glyphs.glsl).
-  double glyphMinSize = kGlyphMinSize;
-  // Composite DVR (beyond the paper): the least opacity per mm of ray a bump gives the samples
-  // it tilts, so bumps show in translucent tissue (mvw/core/GlyphDefaults.h).
-  double glyphDvrOpacity = kGlyphDvrOpacityPerMm;
   // Composite DVR with glyph kinds (issue 52, a prototype): > 0 draws only the glyphs whose
   // centre lies within this many mm beyond the ray's first glyph sample, one layer of the 3D
   // lattice instead of glyphs from several depths run together on the screen; whole or
   // nothing per glyph, as the test is on its centre. 0: every depth (today's images).
+  // Renderer only (no config key), so not in GlyphStyle.
   double glyphLayerMm = 0.0;
-  // Glyph kinds (issue 52): the glyphs on the visible surface, a hexagonal lattice on the image
-  // (each glyph's radius the glyph diameter's half, in pixels at the view's scale; orthographic
-  // views only, a perspective view keeps the 3D lattice), each shape laid out on the disc that
-  // faces the viewer, instead of the 3D lattice that the surface cuts at random depths
-  // (shaders/common/glyphs.glsl: glyphScreenNormal). The glyphs keep to the image, not to the
-  // anatomy, when the view turns.
-  bool glyphOnSurface = false;
   // Functional values mapped to 0..1 (colour map, glyph beta); unset: the value range.
   ValueWindow functionalWindow;
   // Nominal attribute (labels), chosen by the reader (issue 15 item 4): when not empty only
@@ -120,11 +110,6 @@ struct RenderSettings {
   std::vector<LabelGlyph> glyphLabels;
   // Nominal attribute (labels): K > 0 maps label L > 0 to glyph size (L mod K + 1) / K.
   int functionalClasses = 0;
-  // Glyph kinds for classes (issue 40): with functionalClasses, class c (labels) takes
-  // glyphClassKinds[c] (the last one past the end); without, the attribute window is cut into
-  // glyphClassKinds.size() equal ranges, range c of kind c (an ordinal attribute in classes).
-  // Empty: bumps (and the convexity) as before.
-  std::vector<GlyphKind> glyphClassKinds;
   // Functional colour overlay and fusion, when the renderer holds a functional volume
   // (mvw/core/Overlay.h).
   Overlay overlay;
