@@ -14,7 +14,10 @@
 #include "TestUtil.h"
 #include "ViewerTestUtil.h"
 #include "mvw/config/StudyConfig.h"
+#include "mvw/study/Session.h"
+#include "mvw/study/ViewPlan.h"
 #include "mvw/viewer/OpenedStudy.h"
+#include "mvw/viewer/ViewControls.h"
 #include "mvw/viewer/ViewerScript.h"
 
 namespace mvw::viewer {
@@ -318,6 +321,40 @@ TEST_F(ViewerStateTest, AStudysZoomKeepsItsFieldInAPaneOfAnotherShape) {
       render::makeCamera(s.camera, state.scene().centre, r, {portrait.width, portrait.height});
   EXPECT_NEAR(pane.halfHeightMm, own.halfHeightMm, 1e-9);  // the portrait's whole height
   EXPECT_NEAR(own.halfHeightMm, 2.0 * r / 2.0, 1e-9);
+}
+
+// Issue 52 item 4: the 3D pane's glyphs take the spacing `mvw render` derives for the study's
+// view at the pane's size (study::applyGlyphScale), so a maximised pane reads as a render at
+// its size does; a spacing set on the panel stays.
+TEST_F(ViewerStateTest, GlyphSpacingFollowsThePaneSizeAsARenderAtThatSize) {
+  config::ViewConfig glyphs;
+  glyphs.name = "glyphs";
+  glyphs.mode = RenderMode::Composite;
+  glyphs.glyphs = true;
+  study.render.views = {glyphs};
+  study.functional.emplace();
+  study.functional->path = "pet.nii.gz";
+  ViewerScene scene = sceneOf(ct);
+  scene.functionalRange = {0.0, 10.0};
+  // `mvw render`'s spacing for the view at a size.
+  auto renderedAt = [&](glm::ivec2 size) {
+    config::StudyConfig at = study;
+    at.render.views[0].width = size.x, at.render.views[0].height = size.y;
+    std::vector<study::PlannedView> planned = study::planViews(at);
+    study::prepareViews(planned, at, ct, &pet, scene.functionalRange);
+    return glyphSpacingMm(planned.at(0).settings);
+  };
+  const glm::ivec2 window{24, 16}, maximised{400, 300};  // the pixel floor decides the first
+  ASSERT_GT(renderedAt(window), 1.5 * renderedAt(maximised));
+  ViewerState state(study, ct, &pet, scene);
+  state.setPaneSize(k3d, window);
+  EXPECT_DOUBLE_EQ(glyphSpacingMm(state.renderSettings(k3d)), renderedAt(window));
+  state.setPaneSize(k3d, maximised);
+  EXPECT_DOUBLE_EQ(glyphSpacingMm(state.renderSettings(k3d)), renderedAt(maximised));
+  EXPECT_DOUBLE_EQ(glyphSpacingMm(state.renderSettings(k3d, true)), renderedAt(maximised));
+  setGlyphSpacingMm(state.view3d(), 7.0);  // the panel's slider
+  state.setPaneSize(k3d, window);
+  EXPECT_NEAR(glyphSpacingMm(state.renderSettings(k3d)), 7.0, 1e-9);
 }
 
 TEST_F(ViewerStateTest, CaptionsNameTheModeAndWindow) {

@@ -149,6 +149,8 @@ void parseWheel(LineReader& in, Command& c) {
 
 void parseIso(LineReader& in, Command& c) { c.x = in.number("value"); }
 
+void parsePane(LineReader& in, Command& c) { c.pane = in.pane(); }
+
 void parseZoom(LineReader& in, Command& c) {
   c.pane = in.pane();
   c.x = in.number("factor");
@@ -341,6 +343,12 @@ const Entry kCommands[] = {
     {{"wheel", "PANE n [ctrl]", "n wheel notches (with Ctrl an MPR pane zooms)", "wheel coronal 4"},
      Kind::Wheel,
      parseWheel},
+    {{"maximise", "PANE",
+      "the pane maximised, or all four panes back if it is (a double click on it); the 3D "
+      "pane's automatic glyph spacing follows its new size",
+      "maximise 3d"},
+     Kind::Maximise,
+     parsePane},
     {{"jump", "", "the next place to read (key J): hottest voxel, segments, ROIs", "jump"},
      Kind::Jump,
      nullptr},
@@ -622,6 +630,9 @@ bool ViewerScript::step(ViewerState* statePointer, PacsBrowser* pacs) {
     case Kind::Iso:
       state.view3d().iso = c.x;
       state.markAllDirty();
+      break;
+    case Kind::Maximise:
+      state.toggleMaximised(c.pane);
       break;
     case Kind::Zoom:
       state.zoomPane(c.pane, c.x);

@@ -16,6 +16,7 @@
 #include "mvw/study/ModalityDefaults.h"
 #include "mvw/study/Session.h"
 #include "mvw/study/ViewPlan.h"
+#include "mvw/viewer/ViewControls.h"
 
 namespace mvw::viewer {
 
@@ -114,6 +115,8 @@ ViewerState::ViewerState(const config::StudyConfig& study, const Volume& anatomi
   for (const mvw::study::PlannedView& v : planned) {
     if (!is3dMode(v.settings.mode)) continue;
     view3d_ = v.settings;
+    glyphScaleView_ = v.config;
+    glyphScaleSpacingMm_ = glyphSpacingMm(view3d_);
     presetName_ = v.presetName;
     // A view in another mode carries the config's default isovalue (300, for HU): key 2 would
     // show nothing on a volume that does not reach it (a PET in SUV), so the volume's own.
@@ -493,7 +496,26 @@ void ViewerState::advanceOrbit() {
 
 void ViewerState::setPaneSize(int pane, glm::ivec2 size) {
   PaneState& p = pane_(pane);
-  if (size != p.size) p.size = size, p.dirty = true;
+  if (size == p.size) return;
+  p.size = size, p.dirty = true;
+  if (pane == k3d) fitGlyphSpacing();
+}
+
+void ViewerState::fitGlyphSpacing() {
+  const glm::ivec2 size = pane_(k3d).size;
+  if (!glyphScaleView_ || !functional_ || size.x < 8 || size.y < 8) return;
+  if (glyphSpacingMm(view3d_) != glyphScaleSpacingMm_) {
+    glyphScaleView_.reset();  // the panel chose a spacing: it stays
+    return;
+  }
+  // The view as `mvw render` would plan it at the pane's size, its camera as now shown
+  // (applyGlyphScale leaves a spacing the config gives, and a paper map, as they are).
+  mvw::study::PlannedView v{*glyphScaleView_, view3d_, presetName_};
+  v.settings.size = size;
+  mvw::study::applyGlyphScale(v, anatomical_, *functional_);
+  v.settings.size = view3d_.size;
+  view3d_ = std::move(v.settings);
+  glyphScaleSpacingMm_ = glyphSpacingMm(view3d_);
 }
 
 bool ViewerState::needsRender(int pane) const {

@@ -29,6 +29,7 @@ class ViewerScript {
       DragFrames,
       Click,
       Wheel,
+      Maximise,
       Zoom,
       Pan,
       Iso,

@@ -162,7 +162,11 @@ class ViewerState : public PaneGeometry {
 
   // Rendering: the window loop sets each pane's size, renders the panes that need it with
   // renderSettings(), and reports each frame back.
-  void setPaneSize(int pane, glm::ivec2 size);  // marks the pane dirty when it changes
+  // Marks the pane dirty when it changes. The 3D pane's glyphs, where the study's view leaves
+  // their spacing open and the panel has not set one, take the spacing `mvw render` derives
+  // for that view at the pane's size (study::applyGlyphScale): a maximised pane reads as a
+  // render at its size does.
+  void setPaneSize(int pane, glm::ivec2 size);
   // Where the panel drew the pane this frame (window pixels, top left; size: setPaneSize).
   void setPaneOrigin(int pane, glm::ivec2 topLeft) { pane_(pane).origin = topLeft; }
   glm::ivec2 paneOrigin(int pane) const { return pane_(pane).origin; }
@@ -266,6 +270,7 @@ class ViewerState : public PaneGeometry {
   // layout's views and the layout's name).
   render::RenderSettings settingsIn(config::ViewerLayout layout, int pane, bool interacting) const;
   config::ViewConfig viewConfigOf(int pane, config::ViewerLayout layout) const;
+  void fitGlyphSpacing();  // setPaneSize's glyph spacing for the 3D pane's size
 
   const config::StudyConfig& study_;
   const Volume& anatomical_;
@@ -273,6 +278,10 @@ class ViewerState : public PaneGeometry {
   ViewerScene scene_;
   std::array<PaneState, kPaneCount> panes_;
   render::RenderSettings view3d_;
+  // The study's view that set view3d_ up, while its glyph spacing follows the 3D pane's size
+  // (fitGlyphSpacing), and the spacing it last gave: another one was set by the panel.
+  std::optional<config::ViewConfig> glyphScaleView_;
+  double glyphScaleSpacingMm_ = 0.0;
   std::string presetName_;
   WindowLevel mprWindow_;
   ValueWindow functionalDisplay_{0.0, 1.0};
