@@ -411,8 +411,9 @@ int main(int argc, char** argv) {
         std::sort(s.glyphLabels.begin(), s.glyphLabels.end(),
                   [](const auto& a, const auto& b) { return a.label < b.label; });
       } else if (classes) {
-        s.glyphClassKinds.clear();
-        for (const Region& r : regions) s.glyphClassKinds.push_back(kKindValues[kindOfLabel[r.id]]);
+        s.glyphs.classKinds.clear();
+        for (const Region& r : regions)
+          s.glyphs.classKinds.push_back(kKindValues[kindOfLabel[r.id]]);
       }
       for (int q : region) chosenPixels += q > 0 && kindOfLabel.count(q);
       const mvw::render::RenderedFrame glyphs = renderer.render(s);

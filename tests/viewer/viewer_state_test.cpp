@@ -330,7 +330,7 @@ TEST_F(ViewerStateTest, GlyphSpacingFollowsThePaneSizeAsARenderAtThatSize) {
   config::ViewConfig glyphs;
   glyphs.name = "glyphs";
   glyphs.mode = RenderMode::Composite;
-  glyphs.glyphs = true;
+  glyphs.glyphs.on = true;
   study.render.views = {glyphs};
   study.functional.emplace();
   study.functional->path = "pet.nii.gz";
