@@ -16,7 +16,8 @@ struct ParsedDicomFile {
 };
 
 // Parses `path` into `meta`. Throws InputError naming the file when it is not a regular file
-// or vtk-dicom cannot parse it ("not a readable DICOM file: ...").
+// or vtk-dicom cannot parse it ("not a readable DICOM file: ..."), or a length field made the
+// parser allocate more than the machine holds ("not enough memory ...").
 ParsedDicomFile parseDicomFile(const std::filesystem::path& path, vtkDICOMMetaData* meta);
 
 // readDicomSegmentation on a header parseDicomFile has already read (a reader that met the

@@ -25,6 +25,12 @@ std::uintmax_t regularFileSize(const std::filesystem::path& path) {
   return size;
 }
 
+void throwOutOfMemory(const std::filesystem::path& file) {
+  throw InputError(
+      file,
+      "not enough memory to read this file (a length field claims more than the machine holds)");
+}
+
 std::uintmax_t companionFileSize(const std::filesystem::path& header,
                                  const std::filesystem::path& data) {
   std::error_code ec;

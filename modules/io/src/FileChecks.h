@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <new>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -11,6 +12,21 @@ namespace mvw::io::detail {
 
 // Size of a regular file; throws InputError if it is missing or not a regular file.
 std::uintmax_t regularFileSize(const std::filesystem::path& path);
+
+// Throws the InputError of a file whose reading ran out of memory: a length field that made a
+// library (vtk-dicom's parser, a decoder) allocate more than the machine holds.
+[[noreturn]] void throwOutOfMemory(const std::filesystem::path& file);
+
+// Runs `read`, the reading of `file`, with a std::bad_alloc from it turned into the file's
+// InputError (throwOutOfMemory): bad input, not an internal fault.
+template <class F>
+auto refuseOutOfMemory(const std::filesystem::path& file, F&& read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemory(file);
+  }
+}
 
 // Size of the data file a header points to; a missing one is reported against the header.
 std::uintmax_t companionFileSize(const std::filesystem::path& header,

@@ -66,18 +66,6 @@ FileFormat detectFormat(const fs::path& path) {
 
 namespace {
 
-// A header that makes a library allocate more than the machine has is bad input too.
-template <class F>
-auto refuseOutOfMemory(const fs::path& path, F&& read) {
-  try {
-    return read();
-  } catch (const std::bad_alloc&) {
-    throw InputError(
-        path,
-        "not enough memory to read this file (a length field claims more than the machine holds)");
-  }
-}
-
 // A float volume without one finite voxel is refused. +-inf voxels are clamped to the finite range
 // of the others, with a note, rather than the file refused: a few infinite voxels (a ratio map
 // divided by zero, a failed fit) should not make a whole scan unreadable, and left in they break
@@ -184,7 +172,7 @@ std::vector<Volume> readAllVolumes(const fs::path& path, const ReadOptions& give
   ReadOptions options = given;
   if (options.maxBytes == 0) options.maxBytes = defaultMaxBytes();
   refuseMissing(path);
-  return refuseOutOfMemory(path, [&]() -> std::vector<Volume> {
+  return detail::refuseOutOfMemory(path, [&]() -> std::vector<Volume> {
     const FileFormat format = detectFormat(path);
     // A series is chosen among a DICOM folder's; asked of any other file, it was a mistake.
     if (format != FileFormat::Dicom && format != FileFormat::Unknown && !options.series.empty())
@@ -224,7 +212,7 @@ Volume readVolume(const fs::path& path, const ReadOptions& given) {
   if (options.maxBytes == 0) options.maxBytes = defaultMaxBytes();
   if (detectFormat(path) == FileFormat::Dicom) {
     refuseMissing(path);
-    auto volumes = refuseOutOfMemory(
+    auto volumes = detail::refuseOutOfMemory(
         path, [&] { return finished(detail::readDicom(path, options, false), path); });
     return std::move(volumes.front());
   }
