@@ -20,7 +20,17 @@ void setupHook(inout RayState s, Ray ray) {
 // Empty-space skipping by the block min/max grid (one-voxel apron, so no trilinear sample in a
 // block leaves its range): the accumulator's anatomySettled says whether a block of that range
 // can change the projection (fused: fusion-projection.glsl's own, both volumes').
+// With PROJECTION_LEVELS (plain MIP) the block's texel also says how many blocks around it a
+// settled ray steps over at once (settledReach).
+#if defined(PROJECTION_LEVELS)
+bool skipHook(RayState s, float t, vec3 tex) {
+  vec4 r = texelFetch(uBlockRange, blockOf(tex), 0);  // max, then the levels' distances
+  gSkipReach = settledReach(r.yzw);
+  return anatomySettled(s, t, vec2(0.0, r.x));
+}
+#else
 bool skipHook(RayState s, float t, vec3 tex) { return anatomySettled(s, t, blockRange(tex)); }
+#endif
 
 bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   anatomySample(s, t, value);

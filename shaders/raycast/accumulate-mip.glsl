@@ -39,6 +39,28 @@ float cued(RayState s, float t, float phi) {
   return phi;
 }
 
+// Several settled blocks at once (plain MIP; projection.frag.glsl's skipHook): uMipLevels are
+// three rising levels of the block maxima, and the block's texel (BlockGrid::prepareMipLevels)
+// holds its maximum and, for each level, the Chebyshev distance d in blocks to the nearest
+// block whose maximum is at or above it. Every block nearer than d has its maximum under the
+// level; where the level is at or under the ray's pre-pass bound, those blocks are all settled
+// (anatomySettled would skip each one by one), so a settled ray steps over the cube of d - 1
+// blocks around its own. The samples the ray takes are the same, only fewer loop iterations
+// reach them. Per ray (prepassHook), gLevelPick picks the highest level at or under the bound
+// (all 0 where none is, and without the pre-pass): per sample a dot product, no decoding and
+// no comparison. The texel's layout is plain MIP's (BlockGrid::mipRange), with or without
+// the depth cue; a fused MIP reads its own grid (fusion-projection.glsl).
+#define PROJECTION_LEVELS
+uniform vec3 uMipLevels;
+vec3 gLevelPick = vec3(0.0);
+void pickLevel(float bound) {
+  vec3 at = step(uMipLevels, vec3(bound));  // 1 for the levels at or under the bound (rising)
+  gLevelPick = at - vec3(at.yz, 0.0);       // the highest of them alone
+}
+float settledReach(vec3 levelDistances) {
+  return max(dot(levelDistances, gLevelPick) - 1.0, 0.0);
+}
+
 // Before the ray proper, every PREPASS_STRIDE-th of its samples: their maximum, less a
 // margin, bounds the ray's maximum from below, so blocks whose maximum lies under it are
 // skipped from the start. The maximum so far alone skips no block before the ray has met
@@ -64,6 +86,7 @@ void prepassHook(inout RayState s, float t0, float tEnd) {
     m = max(m, sampleValue(textureAt(t)));
   }
   s.bound = m - 0.01 * (uVolume.valueRange.y - uVolume.valueRange.x);
+  pickLevel(s.bound);
 }
 #endif
 

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <random>
 #include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "../support/TestUtil.h"
+#include "BlockGrid.h"
 #include "RenderTestUtil.h"
 #include "Trilinear.h"
 #include "mvw/io/VolumeReader.h"
@@ -135,6 +137,53 @@ TEST(Raycast, MipAndMinIpSkippingLosesNoRaysExtreme) {
   // other comes within a tenth of a unit of it.
   EXPECT_GT(depths, pixels / 4);
   EXPECT_LE(depthsOff, depths / 1000);
+}
+
+// MIP's level maps (BlockGrid::prepareMipLevels, by chessboardDistance) against the definition:
+// for every block, the least Chebyshev distance to a block whose maximum is at or above the
+// level (a block at the level counts), at most 255. Random grids of 1-14 blocks a side, block
+// maxima drawn from a few values so that levels fall on them, every level from under all to
+// over all of them; and a long grid where the distance reaches the cap.
+TEST(Raycast, MipLevelMapIsTheChebyshevDistanceToTheNearestBlockAtOrAboveTheLevel) {
+  std::mt19937 random(53);
+  std::vector<glm::ivec3> grids;
+  for (int i = 0; i < 60; ++i)
+    grids.emplace_back(1 + random() % 14, 1 + random() % 14, 1 + random() % 14);
+  grids.emplace_back(300, 2, 3);
+  int cases = 0, nonzero = 0;
+  for (const glm::ivec3 n : grids) {
+    std::vector<glm::vec2> minMax(static_cast<std::size_t>(n.x) * n.y * n.z);
+    std::uniform_int_distribution<int> value(0, 40);
+    for (glm::vec2& r : minMax) {
+      const int v = value(random);
+      r = glm::vec2(-1000.0f, v < 38 ? float(v) : -3.4e38f);  // a few blocks of NaN alone
+    }
+    if (n.x == 300) {  // one block above the rest at an end: distances up to 299, capped
+      for (glm::vec2& r : minMax) r.y = 0.0f;
+      minMax[0].y = 10.0f;
+    }
+    for (const float level : {-5.0f, 0.0f, 10.0f, 30.0f, 36.5f, 37.0f, 50.0f}) {
+      const std::vector<std::uint8_t> d = detail::distanceToMaximumAtLeast(minMax, n, level);
+      int wrong = 0;
+      for (int k = 0, b = 0; k < n.z; ++k)
+        for (int j = 0; j < n.y; ++j)
+          for (int i = 0; i < n.x; ++i, ++b) {
+            int expected = 255;
+            for (int k2 = 0, b2 = 0; k2 < n.z; ++k2)
+              for (int j2 = 0; j2 < n.y; ++j2)
+                for (int i2 = 0; i2 < n.x; ++i2, ++b2)
+                  if (minMax[b2].y >= level)
+                    expected = std::min(
+                        expected, std::max({std::abs(i2 - i), std::abs(j2 - j), std::abs(k2 - k)}));
+            wrong += d[b] != expected;
+            nonzero += d[b] > 1 && d[b] < 255;
+          }
+      EXPECT_EQ(wrong, 0) << n.x << " x " << n.y << " x " << n.z << ", level " << level;
+      ++cases;
+    }
+  }
+  EXPECT_EQ(cases, 427);
+  EXPECT_GT(nonzero, 1000);  // the maps reach past the neighbours, not only 0, 1 and 255
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <thread>
 #include <type_traits>
@@ -216,6 +217,44 @@ void chessboardDistance(std::vector<std::uint8_t>& d, glm::ivec3 n) {
     for (int j = 0; j < n.y; ++j)
       std::copy_n(&p[(k + 1) * sz + (j + 1) * sy + 1], n.x,
                   &d[(static_cast<std::size_t>(k) * n.y + j) * n.x]);
+}
+
+std::vector<std::uint8_t> distanceToMaximumAtLeast(const std::vector<glm::vec2>& minMax,
+                                                   glm::ivec3 count, float level) {
+  std::vector<std::uint8_t> d(minMax.size());
+  for (std::size_t b = 0; b < d.size(); ++b) d[b] = minMax[b].y >= level ? 0 : 255;
+  chessboardDistance(d, count);
+  return d;
+}
+
+void BlockGrid::prepareMipLevels() {
+  if (mipTexture_.id()) return;
+  // The levels: the block maxima that a half, a quarter and a tenth of the blocks reach
+  // (NaN-only blocks, -3.4e38, left out).
+  std::vector<float> maxima;
+  maxima.reserve(minMax_.size());
+  for (const glm::vec2& r : minMax_)
+    if (r.y > -3.4e38f) maxima.push_back(r.y);
+  std::sort(maxima.begin(), maxima.end(), std::greater<>());
+  constexpr double kFractions[kMipLevels] = {0.5, 0.25, 0.1};
+  for (int i = 0; i < kMipLevels; ++i)
+    mipLevels_[i] = maxima.empty()
+                        ? 3.4e38f
+                        : maxima[std::min(maxima.size() - 1,
+                                          static_cast<std::size_t>(kFractions[i] * maxima.size()))];
+  std::vector<std::uint8_t> d[kMipLevels];
+  auto work = [&](int l0, int l1) {
+    for (int l = l0; l < l1; ++l)
+      d[l] = mipLevels_[l] < 3.4e38f ? distanceToMaximumAtLeast(minMax_, count_, mipLevels_[l])
+                                     : std::vector<std::uint8_t>(minMax_.size(), 0);
+  };
+  onTwoThreads(kMipLevels, work);
+  std::vector<glm::vec4> texels(minMax_.size());
+  for (std::size_t b = 0; b < texels.size(); ++b)
+    texels[b] = glm::vec4(minMax_[b].y, d[0][b], d[1][b], d[2][b]);
+  mipTexture_ = makeTexture();
+  uploadBlocks(mipTexture_.id(), count_, GL_RGBA32F, GL_RGBA, GL_FLOAT, texels.data());
+  checkGl("uploading MIP's block levels");
 }
 
 void BlockGrid::updateVisibility(const std::vector<glm::vec4>& lut, double lo, double hi,

@@ -23,6 +23,13 @@ namespace mvw::render::detail {
 // BlockGrid::updateVisibility's map, here for its test.
 void chessboardDistance(std::vector<std::uint8_t>& d, glm::ivec3 count);
 
+// The Chebyshev distance in blocks of every block of `minMax` (per block min, max; a grid of
+// `count` blocks, x fastest) to the nearest block whose maximum is at or above `level`: 0 for
+// those blocks themselves, at most 255. Every block nearer than that has its maximum under
+// `level`: BlockGrid::prepareMipLevels's maps, here for its test.
+std::vector<std::uint8_t> distanceToMaximumAtLeast(const std::vector<glm::vec2>& minMax,
+                                                   glm::ivec3 count, float level);
+
 class BlockGrid {
  public:
   static constexpr int kBlockVoxels = 6;
@@ -49,8 +56,21 @@ class BlockGrid {
   // volume can change its projection. Context current.
   void setFunctional(const Volume& functional, const glm::dmat4& functionalIndexFromIndex);
 
+  // MIP's skip over several settled blocks at once (issue 53): kMipLevels rising levels of the
+  // block maxima (those that a half, a quarter and a tenth of the blocks reach; +3.4e38 where
+  // no block holds data), and per block, for each level, distanceToMaximumAtLeast: a ray whose
+  // pre-pass bound is at or above a level steps over every block nearer than that distance at
+  // once (raycast/accumulate-mip.glsl). Made on the first MIP frame (about 8 MB of texture on
+  // the 512 x 512 x 432 CT), not for other modes. Context current.
+  static constexpr int kMipLevels = 3;
+  void prepareMipLevels();
+  // The levels, +3.4e38 each before prepareMipLevels.
+  glm::vec3 mipLevels() const { return mipLevels_; }
+
   GLuint visibility() const { return visibility_.id(); }
   GLuint minMax() const { return minMaxTexture_.id(); }
+  // RGBA32F: the block's maximum and the three levels' distances; 0 before prepareMipLevels.
+  GLuint mipRange() const { return mipTexture_.id(); }
   // RGBA32F; 0 before setFunctional.
   GLuint fusedMinMax() const { return fusedTexture_.id(); }
 
@@ -62,7 +82,8 @@ class BlockGrid {
   std::vector<glm::vec4> lut_;
   double lo_ = 0.0, hi_ = 0.0;
   int skipEmpty_ = -1;
-  Texture visibility_, minMaxTexture_, fusedTexture_;
+  glm::vec3 mipLevels_{3.4e38f};
+  Texture visibility_, minMaxTexture_, fusedTexture_, mipTexture_;
 };
 
 }  // namespace mvw::render::detail

@@ -91,7 +91,7 @@ struct VolumeRenderer::Impl {
                           const Camera& camera) const;
   void setFunctionalUniforms(const ShaderProgram& p, const RenderSettings& s, bool fusion,
                              glm::vec2 window) const;
-  void bindTextures(const ShaderProgram& p, GLuint overlayColormap, bool fusedBlocks) const;
+  void bindTextures(const ShaderProgram& p, GLuint overlayColormap, GLuint blockRange) const;
   void updateImageColormap(const std::optional<ColorTable>& table);
 };
 
@@ -166,8 +166,18 @@ Image VolumeRenderer::Impl::rayCast(const RenderSettings& s, const Camera& camer
   setFunctionalUniforms(p, s, fusion, functionalWindow);
   segments.setUniforms(p, s.mode == RenderMode::Mpr && s.segmentationOutlines);
   if (showsImageColors(s)) updateImageColormap(s.imageColors);
-  // The fused projections skip by both volumes' block ranges (BlockGrid::setFunctional).
-  bindTextures(p, functional.colormap(s.overlayColors), fusion && isProjectionMode(s.mode));
+  // The fused projections skip by both volumes' block ranges (BlockGrid::setFunctional), plain
+  // MIP by its own with the levels' distances (BlockGrid::prepareMipLevels).
+  GLuint blockRange = blocks.minMax();
+  if (fusion && isProjectionMode(s.mode)) {
+    blockRange = blocks.fusedMinMax();
+  } else if (s.mode == RenderMode::Mip) {
+    blocks.prepareMipLevels();
+    blockRange = blocks.mipRange();
+  }
+  const glm::vec3 levels = blocks.mipLevels();
+  glUniform3f(p.uniform("uMipLevels"), levels.x, levels.y, levels.z);
+  bindTextures(p, functional.colormap(s.overlayColors), blockRange);
 
   glViewport(0, 0, s.size.x, s.size.y);
   glDisable(GL_DEPTH_TEST);
@@ -299,7 +309,7 @@ void VolumeRenderer::Impl::setFunctionalUniforms(const ShaderProgram& p, const R
 
 // Every sampler on its own unit, also those the program does not use (uniform -1 is ignored).
 void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayColormap,
-                                        bool fusedBlocks) const {
+                                        GLuint blockRange) const {
   const struct {
     const char* name;
     GLenum target;
@@ -309,7 +319,7 @@ void VolumeRenderer::Impl::bindTextures(const ShaderProgram& p, GLuint overlayCo
                {"uAttribute", GL_TEXTURE_3D, volume.attribute()},
                {"uBlocks", GL_TEXTURE_3D, blocks.visibility()},
                {"uTransfer", GL_TEXTURE_2D, transfer.texture()},
-               {"uBlockRange", GL_TEXTURE_3D, fusedBlocks ? blocks.fusedMinMax() : blocks.minMax()},
+               {"uBlockRange", GL_TEXTURE_3D, blockRange},
                {"uFunctional", GL_TEXTURE_3D, functional.texture()},
                {"uColormap", GL_TEXTURE_1D, overlayColormap},
                {"uGlyphCells", GL_TEXTURE_3D, glyphs.cells()},
