@@ -213,6 +213,18 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   vec3 centreHit = vec3(0.0);
   float a = 0.0;
   if (isosurface) {
+    // First a cheap test, so that only the glyphs over the attribute march their centre's ray
+    // (an isosurface frame with kinds took 1.9x its time without glyphs, not 1.1x, where every
+    // glyph marched): the attribute somewhere on the centre's ray within the depths its hit
+    // can lie at for this pixel to be drawn (1.5 radii either side of the pixel's depth, and
+    // the read 1 mm deeper), at the voxels' spacing.
+    vec3 foot = world - (best.x * uGlyphScreenRight + best.y * uGlyphScreenUp) * (uGlyphRadiusMm / R);
+    float reach = 1.5 * uGlyphRadiusMm;
+    int count = min(int(ceil((2.0 * reach + 1.0) / uVolume.referenceStep)), 64);
+    bool near = false;
+    for (int j = 0; j <= count && !near; ++j)
+      near = glyphAttributeNearest(foot + (reach - float(j) * uVolume.referenceStep) * frame) > 0.0;
+    if (!near) return nO;
     // Everything from the centre's own hit, the same for every pixel of the glyph: the kind,
     // and whether (and at which size) the glyph lies whole on the surface.
     Ray c = makeRayAt(centre + 0.5 * uViewport);
