@@ -121,7 +121,10 @@ vec3 glyphKindNormal(vec3 p, vec3 d, vec3 nO, vec3 frame) {
 // 0.5 of it) and only where the pixel's own hit lies within 1.5 glyph radii in depth of the
 // centre's, so a glyph is drawn whole or not at all: at a fold's edge, on a sulcal wall or a
 // grazing flank it is left out rather than cut into a fragment that reads as another kind
-// (issue 52: 83 % -> 97 % on ch2better at 1024 px). The shape's tilts are taken relative to
+// (issue 52: 83 % -> 97 % on ch2better at 1024 px). Glyphs of more than
+// kWholeGlyphMaxRadiusMm (wider than a gyrus) keep the per-pixel drawing instead: a pixel whose
+// hit lies more than two glyph radii in depth from where its centre's ray meets the surface is
+// left flat, so a glyph stops at a fold's edge. The shape's tilts are taken relative to
 // the surface's own normal (its flat parts are the surface), as on the sphere. Composite: the
 // kind is the attribute on the centre's ray at the depth of the pixel's own sample (its foot),
 // so a glyph is whole across its region's edge, and the tilts are relative to the viewer (the
@@ -172,6 +175,7 @@ float glyphCentreHit(Ray c) {
 // its rim (0.8 of its radius) crosses within 1.5 glyph radii in depth of the centre's hit, at
 // its full size, else at 0.75, else at 0.5 of it. A glyph is drawn whole or not at all: a
 // glyph a fold cuts is no fragment that reads as a bar (issue 52).
+const float kWholeGlyphMaxRadiusMm = 5.0;
 float glyphWholeScale(vec3 centreHit, vec3 frame, float size) {
   float tol = 1.5 * uGlyphRadiusMm;
   for (int s = 0; s < 3; ++s) {
@@ -210,9 +214,14 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   }
   if (bestD2 >= R * R) return nO;
   bool isosurface = gGlyphSurfaceValue > -1e29;
+  // Whole glyphs up to kWholeGlyphMaxRadiusMm: a glyph wider than a gyrus (about 10 mm) rarely
+  // lies whole anywhere on a cortex, and there the per-pixel drawing below reads better (issue
+  // 52, ch2better at 512 px, 6.7 mm radii: the right hemisphere's isosurface 76.5 / 70.0 % drawn
+  // per pixel, 29.7 / 58.3 % whole; at 1024 and 884 px, 3.4-3.9 mm, whole glyphs read 96-98 %).
+  bool whole = isosurface && uGlyphRadiusMm <= kWholeGlyphMaxRadiusMm;
   vec3 centreHit = vec3(0.0);
   float a = 0.0;
-  if (isosurface) {
+  if (whole) {
     // First a cheap test, so that only the glyphs over the attribute march their centre's ray
     // (an isosurface frame with kinds took 1.9x its time without glyphs, not 1.1x, where every
     // glyph marched): the attribute somewhere on the centre's ray within the depths its hit
@@ -241,11 +250,18 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
     vec3 foot = world - offsetMm;  // the centre's ray at the sample's depth
     a = glyphAttributeNearest(foot);
     if (a <= 0.0) a = glyphAttributeNearest(foot - frame);  // 1 mm deeper
+    if (isosurface && a > 0.0) {
+      // The centre's ray meets the surface within two glyph radii of the sample's depth, so a
+      // glyph stops at a fold's edge instead of running down into the sulcus.
+      float before = glyphSurfaceSample(foot + 2.0 * uGlyphRadiusMm * frame);
+      float beyond = glyphSurfaceSample(foot - 2.0 * uGlyphRadiusMm * frame);
+      if (before >= gGlyphSurfaceValue || beyond < gGlyphSurfaceValue) return nO;
+    }
   }
   if (a <= 0.0) return nO;
   float kind = floor(a * 0.5);
   float size = mix(uGlyphMinSize, 1.0, clamp(a - 2.0 * kind, 0.0, 1.0));
-  if (isosurface) {
+  if (whole) {
     size *= glyphWholeScale(centreHit, frame, size);
     if (size <= 0.0) return nO;
   }
