@@ -22,17 +22,7 @@ bool sampleHook(inout RayState s, float t, vec3 tex, float value, Ray ray) {
   if (value < uIsoValue) return true;
   // The previous grid point (sampled or skipped) lies below the surface, or the ray entered
   // within this step: bisect between.
-  float lo = max(t - uStep, gRayEntry), hi = t;
-  if (sampleValue(toTexture(ray.origin + lo * ray.dir)) >= uIsoValue) {
-    s.hitT = lo;  // the ray enters the box inside the surface
-    return false;
-  }
-  for (int i = 0; i < 8; ++i) {
-    float mid = 0.5 * (lo + hi);
-    if (sampleValue(toTexture(ray.origin + mid * ray.dir)) >= uIsoValue) hi = mid;
-    else lo = mid;
-  }
-  s.hitT = 0.5 * (lo + hi);
+  s.hitT = isoCrossing(ray, max(t - uStep, gRayEntry), t, uIsoValue);
   return false;
 }
 

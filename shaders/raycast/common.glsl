@@ -53,8 +53,10 @@ struct Ray {
   vec3 dir;     // unit, world
 };
 
-Ray makeRay() {
-  vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0;
+// The ray through the pixel at fragCoord (gl_FragCoord's units): makeRay's, or (glyphs on the
+// surface) a glyph centre's.
+Ray makeRayAt(vec2 fragCoord) {
+  vec2 ndc = fragCoord / uViewport * 2.0 - 1.0;
   vec4 nearPoint = uWorldFromClip * vec4(ndc, -1.0, 1.0);
   vec4 farPoint = uWorldFromClip * vec4(ndc, 1.0, 1.0);
   Ray r;
@@ -62,6 +64,8 @@ Ray makeRay() {
   r.dir = normalize(farPoint.xyz / farPoint.w - r.origin);
   return r;
 }
+
+Ray makeRay() { return makeRayAt(gl_FragCoord.xy); }
 
 vec3 toTexture(vec3 world) { return (uVolume.textureFromWorld * vec4(world, 1.0)).xyz; }
 
@@ -217,6 +221,19 @@ vec4 sampleGradientOfValue(vec3 tex) { return decodeGradient(gPackedTexel, tex);
 #else
 vec4 sampleGradientOfValue(vec3 tex) { return sampleGradient(tex); }
 #endif
+
+// Where `ray` crosses up to `value` between lo (below it) and hi (at or above): lo itself where
+// lo already lies at or above (the ray enters the box inside the surface), else 8 halvings
+// (1/256 of the span). The isosurface's hit, and (glyphs on the surface) a glyph centre's.
+float isoCrossing(Ray ray, float lo, float hi, float value) {
+  if (sampleValue(toTexture(ray.origin + lo * ray.dir)) >= value) return lo;
+  for (int i = 0; i < 8; ++i) {
+    float mid = 0.5 * (lo + hi);
+    if (sampleValue(toTexture(ray.origin + mid * ray.dir)) >= value) hi = mid;
+    else lo = mid;
+  }
+  return 0.5 * (lo + hi);
+}
 
 ivec3 blockOf(vec3 tex) { return clamp(ivec3(floor(tex * gBlockScale)), ivec3(0), gBlockMax); }
 // Blocks around the current one that skipSteps steps over with it: a cube of side

@@ -66,8 +66,9 @@ const mvw::GlyphKind kKindValues[] = {mvw::GlyphKind::Bumps, mvw::GlyphKind::Rin
                                       mvw::GlyphKind::Crosses};
 // The Cranium's class kinds: the PET-like volume's window cut into five classes.
 constexpr double kClassLow = 1.3, kClassHigh = 3.0;
-// Two folds of five lateral regions each, spread over the hemisphere alike.
-const std::vector<std::vector<std::string>> kFolds = {
+// Two folds of five lateral regions each, spread over the hemisphere alike (the left one;
+// MVW_GLYPH_SIDE=right: the same regions of the right hemisphere, seen from the right).
+std::vector<std::vector<std::string>> kFolds = {
     {"Precentral_L", "Frontal_Mid_L", "Temporal_Sup_L", "Parietal_Inf_L", "Occipital_Mid_L"},
     {"Postcentral_L", "Frontal_Inf_Tri_L", "Temporal_Mid_L", "SupraMarginal_L", "Frontal_Sup_L"}};
 
@@ -204,6 +205,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   const bool classes = scene == "cranium";
+  const char* sideEnv = std::getenv("MVW_GLYPH_SIDE");
+  const std::string side = sideEnv ? sideEnv : "left";
+  if (side != "left" && side != "right") {
+    std::fprintf(stderr, "MVW_GLYPH_SIDE: '%s' is not left or right\n", side.c_str());
+    return 2;
+  }
+  if (side == "right")
+    for (auto& fold : kFolds)
+      for (std::string& name : fold) name.back() = 'R';
   std::vector<Condition> conditions;
   const char* onlyMode = std::getenv("MVW_GLYPH_MODES");
   for (int size : sizes)
@@ -217,7 +227,7 @@ int main(int argc, char** argv) {
       const Condition& k = conditions[c];
       std::string name = "c";  // "c" + std::to_string(c) trips GCC 12's -Wrestrict
       name += std::to_string(c) + "p" + std::to_string(p + 1);
-      nlohmann::json v = {{"name", name},     {"mode", k.mode},   {"view", "left"},
+      nlohmann::json v = {{"name", name},     {"mode", k.mode},   {"view", side},
                           {"width", k.size},  {"height", k.size}, {"jitter", false},
                           {"annotate", false}};
       if (k.mode == "isosurface")
@@ -287,7 +297,8 @@ int main(int argc, char** argv) {
   };
   auto labelAt = [&](const glm::dvec3& world) { return int(valueAt(world)); };
 
-  const char* what = scene == "brain" ? "ch2better + AAL, left view"
+  const char* what = scene == "brain" ? (side == "right" ? "ch2better + AAL, right view"
+                                                         : "ch2better + AAL, left view")
                      : scene == "t1"  ? "real T1 (series 5) + AAL placed rigidly, axial cut"
                                       : "Cranium CT + PET-like class kinds, axial cut";
   std::printf("glyph legibility (issue 52): %s, %d permutations, %s %s\n", what, perms,
