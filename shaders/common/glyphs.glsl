@@ -194,6 +194,13 @@ float glyphWholeScale(vec3 centreHit, vec3 frame, float size) {
   return 0.0;
 }
 
+// The attribute at `p`, or 1 mm under it (along -frame, away from the viewer) where there is
+// none at `p`: a glyph's kind read on its centre's ray.
+float glyphAttributeAtOrUnder(vec3 p, vec3 frame) {
+  float a = glyphAttributeNearest(p);
+  return a > 0.0 ? a : glyphAttributeNearest(p - frame);
+}
+
 vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   vec3 frame = cross(uGlyphScreenRight, uGlyphScreenUp);  // towards the viewer
   float R = uGlyphScreenRadiusPx;
@@ -219,6 +226,8 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
   // 52, ch2better at 512 px, 6.7 mm radii: the right hemisphere's isosurface 76.5 / 70.0 % drawn
   // per pixel, 29.7 / 58.3 % whole; at 1024 and 884 px, 3.4-3.9 mm, whole glyphs read 96-98 %).
   bool whole = isosurface && uGlyphRadiusMm <= kWholeGlyphMaxRadiusMm;
+  // The centre's ray at the sample's depth.
+  vec3 foot = world - (best.x * uGlyphScreenRight + best.y * uGlyphScreenUp) * (uGlyphRadiusMm / R);
   vec3 centreHit = vec3(0.0);
   float a = 0.0;
   if (whole) {
@@ -227,7 +236,6 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
     // glyph marched): the attribute somewhere on the centre's ray within the depths its hit
     // can lie at for this pixel to be drawn (1.5 radii either side of the pixel's depth, and
     // the read 1 mm deeper), at the voxels' spacing.
-    vec3 foot = world - (best.x * uGlyphScreenRight + best.y * uGlyphScreenUp) * (uGlyphRadiusMm / R);
     float reach = 1.5 * uGlyphRadiusMm;
     int count = min(int(ceil((2.0 * reach + 1.0) / uVolume.referenceStep)), 64);
     bool near = false;
@@ -243,13 +251,9 @@ vec3 glyphScreenNormal(vec3 world, vec3 nO) {
     centreHit = c.origin + tc * c.dir;
     // The pixel sees the glyph's surface, not one in front of or behind it.
     if (abs(dot(world - centreHit, frame)) > 1.5 * uGlyphRadiusMm) return nO;
-    a = glyphAttributeNearest(centreHit);
-    if (a <= 0.0) a = glyphAttributeNearest(centreHit - frame);  // 1 mm deeper
+    a = glyphAttributeAtOrUnder(centreHit, frame);
   } else {
-    vec3 offsetMm = (best.x * uGlyphScreenRight + best.y * uGlyphScreenUp) * (uGlyphRadiusMm / R);
-    vec3 foot = world - offsetMm;  // the centre's ray at the sample's depth
-    a = glyphAttributeNearest(foot);
-    if (a <= 0.0) a = glyphAttributeNearest(foot - frame);  // 1 mm deeper
+    a = glyphAttributeAtOrUnder(foot, frame);
     if (isosurface && a > 0.0) {
       // The centre's ray meets the surface within two glyph radii of the sample's depth, so a
       // glyph stops at a fold's edge instead of running down into the sulcus.
