@@ -4,10 +4,12 @@
 // settings; and where a grey range lies on the screen.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>  // the tests use most of core GLM (length, dot, all, clamp)
 
@@ -131,6 +133,29 @@ inline Centroid centroidOf(const Image& img, int lo, int hi) {
     c.y /= c.n;
   }
   return c;
+}
+
+// The block distance maps' definition, for their tests: for every block of a grid of `n`
+// blocks (x fastest), the least Chebyshev distance in blocks to a block where `marked(b)`
+// holds, at most 255 (255 where none is).
+template <class Marked>
+std::vector<std::uint8_t> chebyshevDistanceByDefinition(glm::ivec3 n, const Marked& marked) {
+  std::vector<glm::ivec3> seeds;
+  for (int k = 0, b = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i, ++b)
+        if (marked(b)) seeds.emplace_back(i, j, k);
+  std::vector<std::uint8_t> d(static_cast<std::size_t>(n.x) * n.y * n.z);
+  for (int k = 0, b = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i, ++b) {
+        int expected = 255;
+        for (const glm::ivec3& s : seeds)
+          expected = std::min(expected,
+                              std::max({std::abs(s.x - i), std::abs(s.y - j), std::abs(s.z - k)}));
+        d[static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(expected);
+      }
+  return d;
 }
 
 }  // namespace mvw::test
